@@ -1,0 +1,109 @@
+//! The [`Element`] trait: one element *type with its material or law*
+//! (e.g. "H20 of steel", "INTER18 with linear penalty"), called once per
+//! element of a block per assembly.
+
+use crate::topology::CellShape;
+use thiserror::Error;
+
+/// Errors raised by an element kernel.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ElementError {
+    /// det J <= 0 at an integration point: the element is inverted or degenerate.
+    #[error("non-positive Jacobian determinant {det:.6e} at integration point {point} (inverted or degenerate element; check the node order)")]
+    NegativeJacobian { point: usize, det: f64 },
+    /// A zero-area interface (coincident nodes across the face).
+    #[error("degenerate interface surface: |V_xi x V_eta| = {area:.3e} at integration point {point}")]
+    DegenerateSurface { point: usize, area: f64 },
+    /// The constitutive law failed.
+    #[error("law failed at integration point {point}: {message}")]
+    Law { point: usize, message: String },
+}
+
+/// Increment information handed down to elements and laws.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StepInfo {
+    /// Index of the current increment (0-based).
+    pub increment: usize,
+    /// Load factor at the end of the current increment.
+    pub load_factor: f64,
+    /// Size of the current load-factor increment.
+    pub delta_load_factor: f64,
+}
+
+/// Everything an element kernel reads. Buffers are owned by the caller.
+#[derive(Debug, Clone, Copy)]
+pub struct ElementContext<'a> {
+    /// Reference coordinates of the element's nodes (len = `num_nodes`).
+    pub coords: &'a [[f64; 3]],
+    /// Total nodal displacements, node-major (len = 3 `num_nodes`).
+    pub disp: &'a [f64],
+    /// Committed integration-point state of this element (len = `state_len`).
+    pub state_committed: &'a [f64],
+    /// Increment information.
+    pub step: StepInfo,
+}
+
+/// Output at one integration point: position and named values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointOutput {
+    /// Position in the reference configuration.
+    pub position: [f64; 3],
+    /// Named values: e.g. `("stress", [sxx, syy, szz, sxy, syz, szx])`.
+    pub values: Vec<(&'static str, Vec<f64>)>,
+}
+
+impl PointOutput {
+    /// The value named `name`, if present.
+    pub fn get(&self, name: &str) -> Option<&[f64]> {
+        self.values
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, v)| v.as_slice())
+    }
+}
+
+/// One element type bound to its material or law.
+///
+/// Kernels use fixed-size arrays inside and write into caller buffers: no
+/// allocation per call.
+pub trait Element: Send + Sync + std::fmt::Debug {
+    /// Registry key of the element type (`"h20"`, `"inter18"`, ...).
+    fn key(&self) -> &'static str;
+    /// Cell shape (node count and order, faces).
+    fn shape(&self) -> CellShape;
+    /// Number of nodes.
+    fn num_nodes(&self) -> usize {
+        self.shape().num_nodes()
+    }
+    /// Degrees of freedom per node (3 for every element so far).
+    fn dofs_per_node(&self) -> usize {
+        3
+    }
+    /// Number of integration points.
+    fn num_points(&self) -> usize;
+    /// Number of state values this element keeps (all points together).
+    fn state_len(&self) -> usize {
+        0
+    }
+    /// Write the initial state (before any increment) into `state`.
+    fn init_state(&self, _state: &mut [f64]) {}
+    /// Compute the internal force `f_int` (len = ndof) and, if asked, the
+    /// tangent `k` (ndof x ndof, row-major), writing the trial state into
+    /// `state_trial` (len = `state_len`).
+    fn compute(
+        &self,
+        ctx: &ElementContext<'_>,
+        state_trial: &mut [f64],
+        f_int: &mut [f64],
+        k: Option<&mut [f64]>,
+    ) -> Result<(), ElementError>;
+    /// Check the reference geometry (positive Jacobian everywhere).
+    fn check_geometry(&self, coords: &[[f64; 3]]) -> Result<(), ElementError>;
+    /// Integration-point output for post-processing (may allocate).
+    fn point_outputs(&self, ctx: &ElementContext<'_>) -> Result<Vec<PointOutput>, ElementError>;
+    /// Requests from the element for small increments (e.g. a point being
+    /// released); the driver may honour it. Default: none.
+    fn wants_small_increments(&self, _state_committed: &[f64]) -> bool {
+        false
+    }
+}

@@ -1,0 +1,33 @@
+//! # junta-core
+//!
+//! The shared vocabulary of Junta: the mesh ([`mesh`]), cell topologies and
+//! node orders ([`topology`]), the degree-of-freedom map with Dirichlet
+//! conditions by elimination ([`dof`]), the plugin traits ([`Element`],
+//! [`Material`], [`InterfaceLaw`], [`FailureCriterion`], [`LinearSolver`]),
+//! the plugin [`registry`] on `inventory`, integration-point [`state`]
+//! storage, and parallel [`assembly`] into a fixed sparsity pattern.
+//!
+//! Dependencies point one way: every other Junta crate depends on this one,
+//! and this one on none of them.
+
+pub mod assembly;
+pub mod criterion;
+pub mod dof;
+pub mod element;
+pub mod error;
+pub mod law;
+pub mod material;
+pub mod mesh;
+pub mod registry;
+pub mod solver;
+pub mod sparse;
+pub mod state;
+pub mod topology;
+
+pub use criterion::{FailureCriterion, FailureMode, FailureResult};
+pub use element::{Element, ElementContext, ElementError, PointOutput};
+pub use error::CoreError;
+pub use law::{InterfaceLaw, LawContext, LawError, LawResponse};
+pub use material::{Material, Voigt6};
+pub use solver::{LinearSolver, SolveReport, SolverError};
+pub use sparse::SymmetricCsc;

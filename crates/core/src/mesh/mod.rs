@@ -1,0 +1,187 @@
+//! The mesh: nodes, element blocks and named node / element / face sets.
+//!
+//! Node and element numbers are 0-based internally; readers convert the
+//! user's labels and keep them in [`Mesh::node_labels`] for messages.
+
+pub mod generate;
+
+use crate::error::CoreError;
+use crate::topology::CellShape;
+use std::collections::BTreeMap;
+
+/// A block of elements of one shape, element type and material (or law).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ElementBlock {
+    /// Block name (used in messages and output).
+    pub name: String,
+    /// Cell shape of every element of the block.
+    pub shape: CellShape,
+    /// Flat connectivity: element `e` uses `connectivity[e*n..(e+1)*n]`.
+    pub connectivity: Vec<usize>,
+    /// Registry key of the element type (`"h8"`, `"h20r"`, `"inter18"`).
+    pub element_type: String,
+    /// Name of the material (solids) or law (interfaces) of the block.
+    pub material: String,
+}
+
+impl ElementBlock {
+    /// Number of nodes per element.
+    pub fn nodes_per_element(&self) -> usize {
+        self.shape.num_nodes()
+    }
+    /// Number of elements.
+    pub fn len(&self) -> usize {
+        self.connectivity.len() / self.nodes_per_element()
+    }
+    /// True when the block has no element.
+    pub fn is_empty(&self) -> bool {
+        self.connectivity.is_empty()
+    }
+    /// Nodes of element `e`.
+    pub fn element(&self, e: usize) -> &[usize] {
+        let n = self.nodes_per_element();
+        &self.connectivity[e * n..(e + 1) * n]
+    }
+}
+
+/// Reference to one element: block index and index within the block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct ElementRef {
+    pub block: usize,
+    pub element: usize,
+}
+
+/// Reference to one face of a solid element (face ids as in
+/// [`crate::topology::HEX_FACES`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct FaceRef {
+    pub block: usize,
+    pub element: usize,
+    pub face: usize,
+}
+
+/// A finite-element mesh.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Mesh {
+    /// Reference coordinates.
+    pub nodes: Vec<[f64; 3]>,
+    /// The user's node labels (e.g. `.inp` numbers); empty means `i + 1`.
+    pub node_labels: Vec<usize>,
+    /// Element blocks.
+    pub blocks: Vec<ElementBlock>,
+    /// Named node sets (sorted, unique node ids).
+    pub node_sets: BTreeMap<String, Vec<usize>>,
+    /// Named element sets.
+    pub element_sets: BTreeMap<String, Vec<ElementRef>>,
+    /// Named face sets (for pressures and interfaces).
+    pub face_sets: BTreeMap<String, Vec<FaceRef>>,
+}
+
+fn names<T>(m: &BTreeMap<String, T>) -> String {
+    if m.is_empty() {
+        "(none)".into()
+    } else {
+        m.keys().cloned().collect::<Vec<_>>().join(", ")
+    }
+}
+
+impl Mesh {
+    /// Total number of elements.
+    pub fn num_elements(&self) -> usize {
+        self.blocks.iter().map(ElementBlock::len).sum()
+    }
+
+    /// Label of node `i` for messages.
+    pub fn node_label(&self, i: usize) -> usize {
+        self.node_labels.get(i).copied().unwrap_or(i + 1)
+    }
+
+    /// Node set `name`, or an error listing the defined sets.
+    pub fn node_set(&self, name: &str) -> Result<&[usize], CoreError> {
+        self.node_sets
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| CoreError::UnknownSet {
+                kind: "node",
+                name: name.into(),
+                valid: names(&self.node_sets),
+            })
+    }
+
+    /// Element set `name`.
+    pub fn element_set(&self, name: &str) -> Result<&[ElementRef], CoreError> {
+        self.element_sets
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| CoreError::UnknownSet {
+                kind: "element",
+                name: name.into(),
+                valid: names(&self.element_sets),
+            })
+    }
+
+    /// Face set `name`.
+    pub fn face_set(&self, name: &str) -> Result<&[FaceRef], CoreError> {
+        self.face_sets
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| CoreError::UnknownSet {
+                kind: "face",
+                name: name.into(),
+                valid: names(&self.face_sets),
+            })
+    }
+
+    /// Global node ids of a face.
+    pub fn face_nodes(&self, f: FaceRef) -> Vec<usize> {
+        let b = &self.blocks[f.block];
+        let conn = b.element(f.element);
+        b.shape.face_nodes(f.face).iter().map(|&l| conn[l]).collect()
+    }
+
+    /// Node set made of all the nodes of a face set.
+    pub fn nodes_of_faces(&self, faces: &[FaceRef]) -> Vec<usize> {
+        let mut v: Vec<usize> = faces.iter().flat_map(|&f| self.face_nodes(f)).collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    }
+
+    /// Check connectivity indices and set contents.
+    pub fn validate(&self) -> Result<(), CoreError> {
+        let n = self.nodes.len();
+        for b in &self.blocks {
+            for e in 0..b.len() {
+                for &node in b.element(e) {
+                    if node >= n {
+                        return Err(CoreError::BadConnectivity {
+                            block: b.name.clone(),
+                            element: e,
+                            node,
+                            num_nodes: n,
+                        });
+                    }
+                }
+            }
+        }
+        for (name, set) in &self.node_sets {
+            if let Some(&bad) = set.iter().find(|&&i| i >= n) {
+                return Err(CoreError::Invalid(format!(
+                    "node set `{name}` holds node {bad}, but the mesh has {n} nodes"
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Nodes used by at least one element.
+    pub fn used_nodes(&self) -> Vec<bool> {
+        let mut used = vec![false; self.nodes.len()];
+        for b in &self.blocks {
+            for &i in &b.connectivity {
+                used[i] = true;
+            }
+        }
+        used
+    }
+}

@@ -1,0 +1,71 @@
+//! The [`LinearSolver`] trait: direct and iterative back ends behind one
+//! interface. `analyze` once per sparsity pattern (symbolic work), then
+//! `factorize` per matrix and `solve` per right-hand side.
+
+use crate::sparse::SymmetricCsc;
+use thiserror::Error;
+
+/// A failed or unreliable solve, with its numbers.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SolverError {
+    /// The matrix is not positive definite (singular or unconstrained model).
+    #[error("matrix is not positive definite: factorisation failed{detail} (is the model constrained against rigid-body motion?)")]
+    NotPositiveDefinite { detail: String },
+    /// An iterative method did not reach its tolerance.
+    #[error("{method} did not converge: relative residual {residual:.3e} after {iterations} iterations (tolerance {tolerance:.1e})")]
+    NotConverged {
+        method: String,
+        iterations: usize,
+        residual: f64,
+        tolerance: f64,
+    },
+    /// The solution contains NaN or infinity.
+    #[error("solution is not finite (NaN or infinity) after {method}")]
+    NonFinite { method: String },
+    /// `factorize`/`solve` called before `analyze`, or with a different pattern.
+    #[error("solver misuse: {0}")]
+    Usage(String),
+}
+
+/// What a solve did.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SolveReport {
+    /// Back-end name.
+    pub solver: String,
+    /// Iterations (iterative back ends; 0 for direct).
+    pub iterations: usize,
+    /// Final relative residual ||b - A x|| / ||b||.
+    pub residual: f64,
+    /// Seconds spent in symbolic analysis (cumulative).
+    pub analyze_seconds: f64,
+    /// Seconds spent factorising (cumulative).
+    pub factor_seconds: f64,
+    /// Seconds spent solving (cumulative).
+    pub solve_seconds: f64,
+    /// Non-zeros of the factor (direct back ends).
+    pub factor_nonzeros: usize,
+    /// Warnings the caller should show (e.g. loss of digits).
+    pub warnings: Vec<String>,
+}
+
+/// A linear solver for symmetric positive-definite systems stored as the
+/// upper triangle in [`SymmetricCsc`].
+pub trait LinearSolver: Send + std::fmt::Debug {
+    /// Registry key (`"cholesky"`, `"cg"`).
+    fn key(&self) -> &'static str;
+    /// Symbolic analysis of the pattern (ordering, elimination tree). Done
+    /// once; later matrices must share the pattern. `coords`, when given,
+    /// holds one point per equation for geometric orderings.
+    fn analyze(
+        &mut self,
+        matrix: &SymmetricCsc,
+        coords: Option<&[[f64; 3]]>,
+    ) -> Result<(), SolverError>;
+    /// Numeric factorisation (direct) or preconditioner set-up (iterative).
+    fn factorize(&mut self, matrix: &SymmetricCsc) -> Result<(), SolverError>;
+    /// Solve `A x = b` for the last factorised `A` (passed again: iterative
+    /// back ends multiply by it), overwriting `b` with `x`.
+    fn solve_in_place(&mut self, matrix: &SymmetricCsc, b: &mut [f64]) -> Result<(), SolverError>;
+    /// Cumulative report of what the solver did.
+    fn report(&self) -> SolveReport;
+}

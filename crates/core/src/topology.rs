@@ -1,0 +1,233 @@
+//! Cell shapes, their node orders and faces: the one place where node
+//! numbering is defined. Every other crate (shape functions, generators,
+//! readers, writers) follows these tables; conversions to Gmsh or Abaqus
+//! orders live in the readers, to VTK in the writer (our order *is* VTK's
+//! for hexahedra, so the writer needs no permutation).
+//!
+//! ```text
+//! Hexahedra (H8 / H20 / H27), natural coordinates (xi, eta, zeta) in [-1, 1]^3
+//!
+//!         7 ------14------ 6          corners 0..7     (VTK, Abaqus C3D8)
+//!        /|               /|          mid-edges 8..19  (VTK, Abaqus C3D20):
+//!      15 |    25       13 |            8:0-1  9:1-2 10:2-3 11:3-0
+//!      /  19    23     /   18           12:4-5 13:5-6 14:6-7 15:7-4
+//!     4 ------12------ 5   |            16:0-4 17:1-5 18:2-6 19:3-7
+//!     | 20|     26     | 21|          face centres 20..25 (VTK order):
+//!     |   3 ------10---|-- 2            20:x-  21:x+  22:y-  23:y+  24:z-  25:z+
+//!    16  /    22      17  /           body centre 26
+//!     | 11     24      | 9     zeta
+//!     |/               |/      |  eta
+//!     0 ------ 8------ 1       | /
+//!                              |/___ xi
+//! ```
+//!
+//! Quadrilaterals (Q4 / Q8 / Q9), natural coordinates (xi, eta) in [-1, 1]^2:
+//! corners 0 (-1,-1), 1 (1,-1), 2 (1,1), 3 (-1,1); mid-sides 4: 0-1, 5: 1-2,
+//! 6: 2-3, 7: 3-0; centre 8. The face normal is V_xi x V_eta (right-hand rule).
+//!
+//! Hexahedron faces are listed in Abaqus order S1..S6 (z-, z+, y-, x+, y+, x-),
+//! each as a quadrilateral whose right-hand normal points *out* of the cell.
+//!
+//! Interface cells (INTER8 / INTER16 / INTER18): the nodes of the bottom face
+//! then those of the top face, each in quadrilateral order; the normal points
+//! from bottom to top.
+
+/// Every cell shape Junta knows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum CellShape {
+    Quad4,
+    Quad8,
+    Quad9,
+    Hex8,
+    Hex20,
+    Hex27,
+    Inter8,
+    Inter16,
+    Inter18,
+}
+
+/// Natural coordinates of the 27 hexahedron nodes (the first 8 / 20 serve H8 / H20).
+pub const HEX27_NODES: [[f64; 3]; 27] = [
+    [-1.0, -1.0, -1.0],
+    [1.0, -1.0, -1.0],
+    [1.0, 1.0, -1.0],
+    [-1.0, 1.0, -1.0],
+    [-1.0, -1.0, 1.0],
+    [1.0, -1.0, 1.0],
+    [1.0, 1.0, 1.0],
+    [-1.0, 1.0, 1.0],
+    [0.0, -1.0, -1.0],
+    [1.0, 0.0, -1.0],
+    [0.0, 1.0, -1.0],
+    [-1.0, 0.0, -1.0],
+    [0.0, -1.0, 1.0],
+    [1.0, 0.0, 1.0],
+    [0.0, 1.0, 1.0],
+    [-1.0, 0.0, 1.0],
+    [-1.0, -1.0, 0.0],
+    [1.0, -1.0, 0.0],
+    [1.0, 1.0, 0.0],
+    [-1.0, 1.0, 0.0],
+    [-1.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [0.0, -1.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [0.0, 0.0, -1.0],
+    [0.0, 0.0, 1.0],
+    [0.0, 0.0, 0.0],
+];
+
+/// Natural coordinates of the 9 quadrilateral nodes (first 4 / 8 serve Q4 / Q8).
+pub const QUAD9_NODES: [[f64; 2]; 9] = [
+    [-1.0, -1.0],
+    [1.0, -1.0],
+    [1.0, 1.0],
+    [-1.0, 1.0],
+    [0.0, -1.0],
+    [1.0, 0.0],
+    [0.0, 1.0],
+    [-1.0, 0.0],
+    [0.0, 0.0],
+];
+
+/// Hexahedron faces (Abaqus S1..S6), each as 9 local node ids in Q9 order
+/// with outward right-hand normal. Take the first 4 / 8 for H8 / H20.
+pub const HEX_FACES: [[usize; 9]; 6] = [
+    [0, 3, 2, 1, 11, 10, 9, 8, 24],   // S1 z-
+    [4, 5, 6, 7, 12, 13, 14, 15, 25], // S2 z+
+    [0, 1, 5, 4, 8, 17, 12, 16, 22],  // S3 y-
+    [1, 2, 6, 5, 9, 18, 13, 17, 21],  // S4 x+
+    [2, 3, 7, 6, 10, 19, 14, 18, 23], // S5 y+
+    [3, 0, 4, 7, 11, 16, 15, 19, 20], // S6 x-
+];
+
+/// Names of the hexahedron faces in [`HEX_FACES`] order (axis-aligned in a
+/// box generated with the natural axes along x, y, z).
+pub const HEX_FACE_NAMES: [&str; 6] = ["z0", "z1", "y0", "x1", "y1", "x0"];
+
+impl CellShape {
+    /// Number of nodes.
+    pub fn num_nodes(self) -> usize {
+        match self {
+            CellShape::Quad4 => 4,
+            CellShape::Quad8 => 8,
+            CellShape::Quad9 => 9,
+            CellShape::Hex8 => 8,
+            CellShape::Hex20 => 20,
+            CellShape::Hex27 => 27,
+            CellShape::Inter8 => 8,
+            CellShape::Inter16 => 16,
+            CellShape::Inter18 => 18,
+        }
+    }
+
+    /// True for the 3D solid shapes.
+    pub fn is_solid(self) -> bool {
+        matches!(self, CellShape::Hex8 | CellShape::Hex20 | CellShape::Hex27)
+    }
+
+    /// True for the zero-thickness interface shapes.
+    pub fn is_interface(self) -> bool {
+        matches!(self, CellShape::Inter8 | CellShape::Inter16 | CellShape::Inter18)
+    }
+
+    /// The quadrilateral shape of a face (solids) or of each side (interfaces).
+    pub fn face_shape(self) -> Option<CellShape> {
+        match self {
+            CellShape::Hex8 | CellShape::Inter8 => Some(CellShape::Quad4),
+            CellShape::Hex20 | CellShape::Inter16 => Some(CellShape::Quad8),
+            CellShape::Hex27 | CellShape::Inter18 => Some(CellShape::Quad9),
+            _ => None,
+        }
+    }
+
+    /// Number of faces (6 for hexahedra, 0 otherwise).
+    pub fn num_faces(self) -> usize {
+        if self.is_solid() {
+            6
+        } else {
+            0
+        }
+    }
+
+    /// Local node ids of face `f` (Q-order, outward normal). Empty for non-solids.
+    pub fn face_nodes(self, f: usize) -> &'static [usize] {
+        match (self, self.face_shape()) {
+            (s, Some(q)) if s.is_solid() => &HEX_FACES[f][..q.num_nodes()],
+            _ => &[],
+        }
+    }
+
+    /// The interface shape that matches a solid shape face to face.
+    pub fn matching_interface(self) -> Option<CellShape> {
+        match self {
+            CellShape::Hex8 => Some(CellShape::Inter8),
+            CellShape::Hex20 => Some(CellShape::Inter16),
+            CellShape::Hex27 => Some(CellShape::Inter18),
+            _ => None,
+        }
+    }
+
+    /// VTK cell type id (our node order equals VTK's for all shapes listed).
+    pub fn vtk_type(self) -> u8 {
+        match self {
+            CellShape::Quad4 | CellShape::Inter8 => 9,
+            CellShape::Quad8 | CellShape::Inter16 => 23,
+            CellShape::Quad9 | CellShape::Inter18 => 28,
+            CellShape::Hex8 => 12,
+            CellShape::Hex20 => 25,
+            CellShape::Hex27 => 29,
+        }
+    }
+
+    /// Lower-case name used in scenes and messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            CellShape::Quad4 => "quad4",
+            CellShape::Quad8 => "quad8",
+            CellShape::Quad9 => "quad9",
+            CellShape::Hex8 => "hex8",
+            CellShape::Hex20 => "hex20",
+            CellShape::Hex27 => "hex27",
+            CellShape::Inter8 => "inter8",
+            CellShape::Inter16 => "inter16",
+            CellShape::Inter18 => "inter18",
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+    fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    }
+
+    #[test]
+    fn hex_faces_point_outward_and_midnodes_are_midpoints() {
+        for face in HEX_FACES {
+            let p: Vec<[f64; 3]> = face.iter().map(|&i| HEX27_NODES[i]).collect();
+            let n = cross(sub(p[1], p[0]), sub(p[3], p[0]));
+            // centre of the face is the outward direction of the unit cube
+            let c = p[8];
+            let dot = n[0] * c[0] + n[1] * c[1] + n[2] * c[2];
+            assert!(dot > 0.0, "face {face:?} normal {n:?} not outward");
+            for k in 0..4 {
+                let a = p[k];
+                let b = p[(k + 1) % 4];
+                let m = p[4 + k];
+                for d in 0..3 {
+                    assert_eq!(m[d], 0.5 * (a[d] + b[d]), "face {face:?} mid-side {k}");
+                }
+            }
+        }
+    }
+}

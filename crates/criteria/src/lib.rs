@@ -1,0 +1,1 @@
+//! junta-criteria (see crate docs)

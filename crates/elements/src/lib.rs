@@ -1,0 +1,1 @@
+//! junta-elements (see crate docs)

@@ -1,0 +1,1 @@
+//! junta-interface (see crate docs)

@@ -1,0 +1,1 @@
+//! junta-solvers (see crate docs)
