@@ -163,7 +163,12 @@ impl Assembler {
         if let Some(k) = k.as_deref_mut() {
             k.values.iter_mut().for_each(|v| *v = 0.0);
         }
-        let max_nodes = mesh.blocks.iter().map(|b| b.nodes_per_element()).max().unwrap_or(0);
+        let max_nodes = mesh
+            .blocks
+            .iter()
+            .map(|b| b.nodes_per_element())
+            .max()
+            .unwrap_or(0);
         let want_k = k.is_some();
         let (kp, kv) = match k {
             Some(k) => {
@@ -212,7 +217,11 @@ impl Assembler {
                     };
                     // SAFETY: each element owns its state range.
                     let trial_slice = unsafe { trial.slice(r) };
-                    let kbuf = if want_k { Some(&mut s.k[..nd * nd]) } else { None };
+                    let kbuf = if want_k {
+                        Some(&mut s.k[..nd * nd])
+                    } else {
+                        None
+                    };
                     el.compute(&ctx, trial_slice, &mut s.f[..nd], kbuf)
                         .map_err(|source| CoreError::Element {
                             block: block.name.clone(),
@@ -235,7 +244,8 @@ impl Assembler {
                                 if i == CONSTRAINED || i > j {
                                     continue;
                                 }
-                                let p = cp[j] + rows.binary_search(&i).expect("pattern covers element");
+                                let p =
+                                    cp[j] + rows.binary_search(&i).expect("pattern covers element");
                                 // SAFETY: entry (i, j) belongs to nodes of this element only
                                 // among the elements of this colour.
                                 unsafe { kv.add(p, s.k[a * nd + b]) };
@@ -261,11 +271,17 @@ pub fn color_elements(mesh: &Mesh) -> Vec<Vec<ElementRef>> {
             let conn = b.element(e);
             let used = conn.iter().fold(0u128, |m, &i| m | node_mask[i]);
             let c = (!used).trailing_zeros() as usize;
-            assert!(c < 128, "more than 128 colours needed (extremely irregular mesh)");
+            assert!(
+                c < 128,
+                "more than 128 colours needed (extremely irregular mesh)"
+            );
             if c == colors.len() {
                 colors.push(Vec::new());
             }
-            colors[c].push(ElementRef { block: bi, element: e });
+            colors[c].push(ElementRef {
+                block: bi,
+                element: e,
+            });
             for &i in conn {
                 node_mask[i] |= 1u128 << c;
             }

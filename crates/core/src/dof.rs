@@ -29,7 +29,11 @@ impl DofMap {
     /// Build the map from `(dof, value)` constraints. Nodes used by no
     /// element (`used[node] == false`) are fixed at zero silently.
     /// Two different values on one dof are an error.
-    pub fn new(num_nodes: usize, constraints: &[(usize, f64)], used: &[bool]) -> Result<Self, CoreError> {
+    pub fn new(
+        num_nodes: usize,
+        constraints: &[(usize, f64)],
+        used: &[bool],
+    ) -> Result<Self, CoreError> {
         let ndof = 3 * num_nodes;
         let mut fixed: Vec<Option<f64>> = vec![None; ndof];
         for &(d, v) in constraints {

@@ -12,7 +12,9 @@ pub enum ElementError {
     #[error("non-positive Jacobian determinant {det:.6e} at integration point {point} (inverted or degenerate element; check the node order)")]
     NegativeJacobian { point: usize, det: f64 },
     /// A zero-area interface (coincident nodes across the face).
-    #[error("degenerate interface surface: |V_xi x V_eta| = {area:.3e} at integration point {point}")]
+    #[error(
+        "degenerate interface surface: |V_xi x V_eta| = {area:.3e} at integration point {point}"
+    )]
     DegenerateSurface { point: usize, area: f64 },
     /// The constitutive law failed.
     #[error("law failed at integration point {point}: {message}")]

@@ -10,6 +10,8 @@
 //! Dependencies point one way: every other Junta crate depends on this one,
 //! and this one on none of them.
 
+pub use inventory;
+
 pub mod assembly;
 pub mod criterion;
 pub mod dof;
@@ -18,6 +20,7 @@ pub mod error;
 pub mod law;
 pub mod material;
 pub mod mesh;
+pub mod model;
 pub mod registry;
 pub mod solver;
 pub mod sparse;
@@ -29,5 +32,6 @@ pub use element::{Element, ElementContext, ElementError, PointOutput};
 pub use error::CoreError;
 pub use law::{InterfaceLaw, LawContext, LawError, LawResponse};
 pub use material::{Material, Voigt6};
+pub use model::Model;
 pub use solver::{LinearSolver, SolveReport, SolverError};
 pub use sparse::SymmetricCsc;

@@ -142,11 +142,14 @@ where
     inventory::iter<E>: IntoIterator<Item = &'static E>,
 {
     let all = entries::<E>();
-    all.iter().copied().find(|e| e.key() == key).ok_or_else(|| CoreError::UnknownKey {
-        kind: E::KIND,
-        key: key.to_string(),
-        valid: all.iter().map(|e| e.key()).collect::<Vec<_>>().join(", "),
-    })
+    all.iter()
+        .copied()
+        .find(|e| e.key() == key)
+        .ok_or_else(|| CoreError::UnknownKey {
+            kind: E::KIND,
+            key: key.to_string(),
+            valid: all.iter().map(|e| e.key()).collect::<Vec<_>>().join(", "),
+        })
 }
 
 /// Deserialize a plugin's parameter table (use `#[serde(deny_unknown_fields)]`

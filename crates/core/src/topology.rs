@@ -128,7 +128,10 @@ impl CellShape {
 
     /// True for the zero-thickness interface shapes.
     pub fn is_interface(self) -> bool {
-        matches!(self, CellShape::Inter8 | CellShape::Inter16 | CellShape::Inter18)
+        matches!(
+            self,
+            CellShape::Inter8 | CellShape::Inter16 | CellShape::Inter18
+        )
     }
 
     /// The quadrilateral shape of a face (solids) or of each side (interfaces).

@@ -97,7 +97,12 @@ pub fn box_mesh(
     // lattice coordinates per axis (element ends, plus midpoints if quadratic)
     let lattice: Vec<Vec<f64>> = (0..3)
         .map(|a| {
-            let t = axis_ticks(spec.origin[a], spec.size[a], spec.divisions[a], spec.grading[a]);
+            let t = axis_ticks(
+                spec.origin[a],
+                spec.size[a],
+                spec.divisions[a],
+                spec.grading[a],
+            );
             if p == 1 {
                 t
             } else {
@@ -126,7 +131,14 @@ pub fn box_mesh(
                     let k = p * ez + ((xi[2] + 1.0) * 0.5 * p as f64) as usize;
                     conn.push(lid(i, j, k));
                 }
-                let on = [ez == 0, ez == nz - 1, ey == 0, ex == nx - 1, ey == ny - 1, ex == 0];
+                let on = [
+                    ez == 0,
+                    ez == nz - 1,
+                    ey == 0,
+                    ex == nx - 1,
+                    ey == ny - 1,
+                    ex == 0,
+                ];
                 for (f, &b) in on.iter().enumerate() {
                     if b {
                         faces[f].push(FaceRef {
@@ -174,12 +186,15 @@ pub fn box_mesh(
     };
     for (f, list) in faces.into_iter().enumerate() {
         let name = HEX_FACE_NAMES[f].to_string();
-        mesh.node_sets.insert(name.clone(), mesh.nodes_of_faces(&list));
+        mesh.node_sets
+            .insert(name.clone(), mesh.nodes_of_faces(&list));
         mesh.face_sets.insert(name, list);
     }
     mesh.element_sets.insert(
         "all".into(),
-        (0..e).map(|element| ElementRef { block: 0, element }).collect(),
+        (0..e)
+            .map(|element| ElementRef { block: 0, element })
+            .collect(),
     );
     Ok(mesh)
 }
@@ -192,11 +207,29 @@ mod tests {
     fn node_counts_match_closed_forms() {
         // H8: (n+1)^3; H27: (2n+1)^3; H20: (2n+1)^3 minus face and body centres
         let n = 3;
-        let h8 = box_mesh(&BoxSpec::new([1.0; 3], [n; 3], CellShape::Hex8), "b", "h8", "m").unwrap();
+        let h8 = box_mesh(
+            &BoxSpec::new([1.0; 3], [n; 3], CellShape::Hex8),
+            "b",
+            "h8",
+            "m",
+        )
+        .unwrap();
         assert_eq!(h8.nodes.len(), (n + 1).pow(3));
-        let h27 = box_mesh(&BoxSpec::new([1.0; 3], [n; 3], CellShape::Hex27), "b", "h27", "m").unwrap();
+        let h27 = box_mesh(
+            &BoxSpec::new([1.0; 3], [n; 3], CellShape::Hex27),
+            "b",
+            "h27",
+            "m",
+        )
+        .unwrap();
         assert_eq!(h27.nodes.len(), (2 * n + 1).pow(3));
-        let h20 = box_mesh(&BoxSpec::new([1.0; 3], [n; 3], CellShape::Hex20), "b", "h20", "m").unwrap();
+        let h20 = box_mesh(
+            &BoxSpec::new([1.0; 3], [n; 3], CellShape::Hex20),
+            "b",
+            "h20",
+            "m",
+        )
+        .unwrap();
         // corners (n+1)^3 + edges 3 n (n+1)^2
         assert_eq!(h20.nodes.len(), (n + 1).pow(3) + 3 * n * (n + 1).pow(2));
         assert_eq!(h20.face_sets["z1"].len(), n * n);

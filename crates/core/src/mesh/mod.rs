@@ -4,6 +4,8 @@
 //! user's labels and keep them in [`Mesh::node_labels`] for messages.
 
 pub mod generate;
+pub mod gmsh;
+pub mod inp;
 
 use crate::error::CoreError;
 use crate::topology::CellShape;
@@ -136,7 +138,11 @@ impl Mesh {
     pub fn face_nodes(&self, f: FaceRef) -> Vec<usize> {
         let b = &self.blocks[f.block];
         let conn = b.element(f.element);
-        b.shape.face_nodes(f.face).iter().map(|&l| conn[l]).collect()
+        b.shape
+            .face_nodes(f.face)
+            .iter()
+            .map(|&l| conn[l])
+            .collect()
     }
 
     /// Node set made of all the nodes of a face set.

@@ -1,0 +1,627 @@
+//! Reader for Gmsh MSH 4.1 ASCII files (`$MeshFormat 4.1 0 8`).
+//!
+//! What is read:
+//!
+//! - `$PhysicalNames`, `$Entities` (to map entity tags to physical groups),
+//!   `$Nodes` (entity blocks, arbitrary tags kept in [`Mesh::node_labels`]),
+//!   `$Elements`; any other section is skipped.
+//! - Volume elements: 5 (hex8), 17 (hex20), 12 (hex27). They become one
+//!   [`ElementBlock`] per physical volume and shape: block name = physical
+//!   name (or `volume<tag>` for an entity outside any physical group),
+//!   `element_type` = `h8` / `h20` / `h27`, `material` = the physical name.
+//!   Each physical volume is also an element set.
+//! - Surface elements: 3 (quad4), 16 (quad8), 10 (quad9). A physical surface
+//!   becomes a node set (all nodes of its quads) and a face set: each quad is
+//!   matched, by its corner nodes, to the face of a volume element
+//!   ([`FaceRef`]). On an internal surface shared by two volume elements the
+//!   face whose outward normal agrees with the quad's right-hand normal is
+//!   taken (so orient internal surfaces as you want the pressure to act).
+//! - Points (15) and lines (1, 8, 26) only feed node sets of 0D / 1D
+//!   physical groups.
+//!
+//! Node orders. Gmsh's hexahedron corners equal ours (VTK); the Gmsh
+//! reference manual, section "Node ordering"
+//! (<https://gmsh.info/doc/texinfo/gmsh.html#Node-ordering>, the
+//! `Hexahedron20` / `Hexahedron27` pictures, also reproduced in Gmsh's
+//! `Geo/MHexahedron.h`) numbers the mid-edge nodes
+//! 8: 0-1, 9: 0-3, 10: 0-4, 11: 1-2, 12: 1-5, 13: 2-3, 14: 2-6, 15: 3-7,
+//! 16: 4-5, 17: 4-7, 18: 5-6, 19: 6-7 and the face centres
+//! 20: (0,3,2,1) z-, 21: (0,1,5,4) y-, 22: (0,4,7,3) x-, 23: (1,2,6,5) x+,
+//! 24: (2,3,7,6) y+, 25: (4,5,6,7) z+, 26: body centre.
+//! [`GMSH_TO_OURS_HEX27`] converts; a unit test checks it geometrically
+//! against [`crate::topology::HEX27_NODES`]. Quadrilaterals (4, 8, 9 nodes)
+//! are in our order already.
+
+use super::{ElementBlock, ElementRef, FaceRef, Mesh};
+use crate::topology::CellShape;
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+use thiserror::Error;
+
+/// `ours[i] = gmsh[GMSH_TO_OURS_HEX27[i]]` (take the first 20 for hex20).
+pub const GMSH_TO_OURS_HEX27: [usize; 27] = [
+    0, 1, 2, 3, 4, 5, 6, 7, // corners
+    8, 11, 13, 9, // bottom edges 0-1, 1-2, 2-3, 3-0
+    16, 18, 19, 17, // top edges 4-5, 5-6, 6-7, 7-4
+    10, 12, 14, 15, // vertical edges 0-4, 1-5, 2-6, 3-7
+    22, 23, 21, 24, 20, 25, // faces x-, x+, y-, y+, z-, z+
+    26,
+];
+
+/// Errors of the Gmsh reader. Every message names the file, and the line
+/// where there is one.
+#[derive(Debug, Error)]
+pub enum GmshError {
+    /// The file could not be read.
+    #[error("cannot read `{file}`: {source}")]
+    Io {
+        file: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// Binary MSH files are not supported.
+    #[error("{file}:{line}: binary MSH files are not supported; re-export as ASCII (gmsh: `-format msh41` with `Mesh.Binary = 0`)")]
+    Binary { file: String, line: usize },
+    /// Only MSH 4.1 is read.
+    #[error("{file}:{line}: MSH version `{version}` is not supported; valid: 4.1 (gmsh: `-format msh41`)")]
+    Version {
+        file: String,
+        line: usize,
+        version: String,
+    },
+    /// An element type the reader does not handle.
+    #[error("{file}:{line}: Gmsh element type {code} is not supported; valid: 5 (hex8), 17 (hex20), 12 (hex27), 3/16/10 (quad4/8/9 boundary faces), 15 (point), 1/8/26 (lines, ignored)")]
+    ElementType {
+        file: String,
+        line: usize,
+        code: usize,
+    },
+    /// Malformed content.
+    #[error("{file}:{line}: {message}")]
+    Syntax {
+        file: String,
+        line: usize,
+        message: String,
+    },
+}
+
+/// Read a MSH 4.1 ASCII file.
+pub fn read_msh(path: impl AsRef<Path>) -> Result<Mesh, GmshError> {
+    let path = path.as_ref();
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|source| GmshError::Io {
+        file: file.clone(),
+        source,
+    })?;
+    parse_msh(&text, &file)
+}
+
+/// Line-oriented cursor over the file (1-based line numbers).
+struct Cursor<'a> {
+    lines: Vec<&'a str>,
+    pos: usize,
+    file: &'a str,
+}
+
+impl<'a> Cursor<'a> {
+    fn err(&self, line: usize, message: impl Into<String>) -> GmshError {
+        GmshError::Syntax {
+            file: self.file.to_string(),
+            line,
+            message: message.into(),
+        }
+    }
+    /// Next line (trimmed), with its 1-based number.
+    fn next(&mut self, what: &str) -> Result<(usize, &'a str), GmshError> {
+        if self.pos >= self.lines.len() {
+            return Err(self.err(
+                self.lines.len(),
+                format!("unexpected end of file while reading {what}"),
+            ));
+        }
+        let l = self.lines[self.pos].trim();
+        self.pos += 1;
+        Ok((self.pos, l))
+    }
+    /// Next line split in whitespace tokens.
+    fn tokens(&mut self, what: &str) -> Result<(usize, Vec<&'a str>), GmshError> {
+        let (n, l) = self.next(what)?;
+        Ok((n, l.split_whitespace().collect()))
+    }
+    fn num<T: std::str::FromStr>(
+        &self,
+        line: usize,
+        tok: Option<&&str>,
+        what: &str,
+    ) -> Result<T, GmshError> {
+        let t = tok.ok_or_else(|| self.err(line, format!("missing {what}")))?;
+        t.parse()
+            .map_err(|_| self.err(line, format!("bad {what} `{t}`")))
+    }
+    fn expect_end(&mut self, section: &str) -> Result<(), GmshError> {
+        let (n, l) = self.next(&format!("$End{section}"))?;
+        if l != format!("$End{section}") {
+            return Err(self.err(n, format!("expected `$End{section}`, found `{l}`")));
+        }
+        Ok(())
+    }
+}
+
+struct ElemBlock {
+    dim: usize,
+    entity: i64,
+    code: usize,
+    line: usize,
+    /// element tag and node tags (gmsh order)
+    elements: Vec<(usize, Vec<usize>)>,
+}
+
+fn shape_of(code: usize) -> Option<(CellShape, usize)> {
+    match code {
+        5 => Some((CellShape::Hex8, 8)),
+        17 => Some((CellShape::Hex20, 20)),
+        12 => Some((CellShape::Hex27, 27)),
+        3 => Some((CellShape::Quad4, 4)),
+        16 => Some((CellShape::Quad8, 8)),
+        10 => Some((CellShape::Quad9, 9)),
+        15 => Some((CellShape::Quad4, 1)), // point: shape unused
+        1 => Some((CellShape::Quad4, 2)),
+        8 => Some((CellShape::Quad4, 3)),
+        26 => Some((CellShape::Quad4, 4)),
+        _ => None,
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+/// Right-hand normal of a quadrilateral given by its 4 corners.
+fn quad_normal(p: [[f64; 3]; 4]) -> [f64; 3] {
+    cross(sub(p[2], p[0]), sub(p[3], p[1]))
+}
+
+/// Parse the text of a MSH 4.1 ASCII file; `file_name` is used in messages.
+pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
+    let mut c = Cursor {
+        lines: text.lines().collect(),
+        pos: 0,
+        file: file_name,
+    };
+    let mut seen_format = false;
+    let mut physical_names: HashMap<(usize, i64), String> = HashMap::new();
+    let mut entity_phys: HashMap<(usize, i64), Vec<i64>> = HashMap::new();
+    let mut nodes: Vec<[f64; 3]> = Vec::new();
+    let mut labels: Vec<usize> = Vec::new();
+    let mut node_id: HashMap<usize, usize> = HashMap::new();
+    let mut blocks: Vec<ElemBlock> = Vec::new();
+
+    while c.pos < c.lines.len() {
+        let (n, l) = c.next("a section")?;
+        if l.is_empty() {
+            continue;
+        }
+        match l {
+            "$MeshFormat" => {
+                let (ln, t) = c.tokens("$MeshFormat")?;
+                let version = t.first().copied().unwrap_or("");
+                let ftype = t.get(1).copied().unwrap_or("");
+                if ftype == "1" {
+                    return Err(GmshError::Binary {
+                        file: file_name.into(),
+                        line: ln,
+                    });
+                }
+                if version != "4.1" {
+                    return Err(GmshError::Version {
+                        file: file_name.into(),
+                        line: ln,
+                        version: version.into(),
+                    });
+                }
+                if ftype != "0" {
+                    return Err(c.err(ln, format!("bad file type `{ftype}`; valid: 0 (ASCII)")));
+                }
+                c.expect_end("MeshFormat")?;
+                seen_format = true;
+            }
+            _ if !seen_format => {
+                return Err(c.err(n, format!("expected `$MeshFormat` first, found `{l}`")));
+            }
+            "$PhysicalNames" => {
+                let (ln, t) = c.tokens("$PhysicalNames")?;
+                let count: usize = c.num(ln, t.first(), "number of physical names")?;
+                for _ in 0..count {
+                    let (ln, l) = c.next("a physical name")?;
+                    let mut it = l.splitn(3, char::is_whitespace);
+                    let dim: usize = c.num(ln, it.next().as_ref(), "physical dimension")?;
+                    let tag: i64 = c.num(ln, it.next().as_ref(), "physical tag")?;
+                    let name = it.next().unwrap_or("").trim().trim_matches('"').to_string();
+                    physical_names.insert((dim, tag), name);
+                }
+                c.expect_end("PhysicalNames")?;
+            }
+            "$Entities" => {
+                let (ln, t) = c.tokens("$Entities")?;
+                let mut counts = [0usize; 4];
+                for (d, cnt) in counts.iter_mut().enumerate() {
+                    *cnt = c.num(ln, t.get(d), "entity count")?;
+                }
+                for (dim, &cnt) in counts.iter().enumerate() {
+                    for _ in 0..cnt {
+                        let (ln, t) = c.tokens("an entity")?;
+                        let tag: i64 = c.num(ln, t.first(), "entity tag")?;
+                        // points: tag x y z nPhys ...; others: tag 6 bbox values nPhys ...
+                        let at = if dim == 0 { 4 } else { 7 };
+                        let np: usize = c.num(ln, t.get(at), "number of physical tags")?;
+                        let mut phys = Vec::with_capacity(np);
+                        for k in 0..np {
+                            let p: i64 = c.num(ln, t.get(at + 1 + k), "physical tag")?;
+                            phys.push(p.abs());
+                        }
+                        entity_phys.insert((dim, tag), phys);
+                    }
+                }
+                c.expect_end("Entities")?;
+            }
+            "$Nodes" => {
+                let (ln, t) = c.tokens("$Nodes")?;
+                let nblocks: usize = c.num(ln, t.first(), "number of node blocks")?;
+                let total: usize = c.num(ln, t.get(1), "number of nodes")?;
+                nodes.reserve(total);
+                labels.reserve(total);
+                for _ in 0..nblocks {
+                    let (ln, t) = c.tokens("a node block")?;
+                    let _parametric: usize = c.num(ln, t.get(2), "parametric flag")?;
+                    let count: usize = c.num(ln, t.get(3), "number of nodes in block")?;
+                    let mut tags = Vec::with_capacity(count);
+                    for _ in 0..count {
+                        let (ln, t) = c.tokens("a node tag")?;
+                        tags.push((ln, c.num::<usize>(ln, t.first(), "node tag")?));
+                    }
+                    for (tln, tag) in tags {
+                        let (ln, t) = c.tokens("node coordinates")?;
+                        // parametric nodes (flag != 0) carry u [v [w]] after x y z: ignored
+                        if t.len() < 3 {
+                            return Err(c.err(ln, "expected x y z"));
+                        }
+                        let mut x = [0.0; 3];
+                        for (d, xd) in x.iter_mut().enumerate() {
+                            *xd = c.num(ln, t.get(d), "coordinate")?;
+                        }
+                        if node_id.insert(tag, nodes.len()).is_some() {
+                            return Err(c.err(tln, format!("node tag {tag} defined twice")));
+                        }
+                        nodes.push(x);
+                        labels.push(tag);
+                    }
+                }
+                c.expect_end("Nodes")?;
+            }
+            "$Elements" => {
+                let (ln, t) = c.tokens("$Elements")?;
+                let nblocks: usize = c.num(ln, t.first(), "number of element blocks")?;
+                for _ in 0..nblocks {
+                    let (ln, t) = c.tokens("an element block")?;
+                    let dim: usize = c.num(ln, t.first(), "entity dimension")?;
+                    let entity: i64 = c.num(ln, t.get(1), "entity tag")?;
+                    let code: usize = c.num(ln, t.get(2), "element type")?;
+                    let count: usize = c.num(ln, t.get(3), "number of elements")?;
+                    let (_, npe) = shape_of(code).ok_or_else(|| GmshError::ElementType {
+                        file: file_name.into(),
+                        line: ln,
+                        code,
+                    })?;
+                    let mut b = ElemBlock {
+                        dim,
+                        entity,
+                        code,
+                        line: ln,
+                        elements: Vec::with_capacity(count),
+                    };
+                    for _ in 0..count {
+                        let (eln, t) = c.tokens("an element")?;
+                        if t.len() != npe + 1 {
+                            return Err(c.err(
+                                eln,
+                                format!("element of type {code} needs a tag and {npe} nodes, found {} values", t.len()),
+                            ));
+                        }
+                        let tag: usize = c.num(eln, t.first(), "element tag")?;
+                        let mut conn = Vec::with_capacity(npe);
+                        for k in 0..npe {
+                            conn.push(c.num::<usize>(eln, t.get(k + 1), "node tag")?);
+                        }
+                        b.elements.push((tag, conn));
+                    }
+                    blocks.push(b);
+                }
+                c.expect_end("Elements")?;
+            }
+            s if s.starts_with('$') && !s.starts_with("$End") => {
+                // skip an unknown section
+                let end = format!("$End{}", &s[1..]);
+                loop {
+                    let (_, l) = c.next(&end)?;
+                    if l == end {
+                        break;
+                    }
+                }
+            }
+            _ => return Err(c.err(n, format!("expected a section header `$Name`, found `{l}`"))),
+        }
+    }
+    if !seen_format {
+        return Err(c.err(1, "no `$MeshFormat` section: not a Gmsh MSH file"));
+    }
+
+    let phys_name = |dim: usize, tag: i64| -> String {
+        physical_names
+            .get(&(dim, tag))
+            .cloned()
+            .unwrap_or_else(|| format!("physical{dim}d_{tag}"))
+    };
+    let groups_of = |dim: usize, entity: i64| -> Vec<i64> {
+        entity_phys.get(&(dim, entity)).cloned().unwrap_or_default()
+    };
+    let resolve = |c: &Cursor, line: usize, tag: usize| -> Result<usize, GmshError> {
+        node_id
+            .get(&tag)
+            .copied()
+            .ok_or_else(|| c.err(line, format!("element refers to undefined node tag {tag}")))
+    };
+
+    let mut mesh = Mesh {
+        nodes,
+        node_labels: labels,
+        ..Mesh::default()
+    };
+    // volume elements -> blocks
+    let mut block_index: HashMap<(String, CellShape), usize> = HashMap::new();
+    let mut element_sets: BTreeMap<String, Vec<ElementRef>> = BTreeMap::new();
+    for b in blocks.iter().filter(|b| b.dim == 3) {
+        let (shape, npe) = shape_of(b.code).unwrap();
+        if !shape.is_solid() {
+            return Err(c.err(
+                b.line,
+                format!("element type {} is not a volume element", b.code),
+            ));
+        }
+        let groups = groups_of(3, b.entity);
+        let name = match groups.first() {
+            Some(&g) => phys_name(3, g),
+            None => format!("volume{}", b.entity),
+        };
+        let key = (name.clone(), shape);
+        let bi = match block_index.get(&key) {
+            Some(&i) => i,
+            None => {
+                let taken = mesh.blocks.iter().any(|x| x.name == name);
+                let bname = if taken {
+                    format!("{name}_{}", shape.name())
+                } else {
+                    name.clone()
+                };
+                mesh.blocks.push(ElementBlock {
+                    name: bname,
+                    shape,
+                    connectivity: Vec::new(),
+                    element_type: match shape {
+                        CellShape::Hex8 => "h8",
+                        CellShape::Hex20 => "h20",
+                        _ => "h27",
+                    }
+                    .into(),
+                    material: if groups.is_empty() {
+                        String::new()
+                    } else {
+                        name.clone()
+                    },
+                });
+                block_index.insert(key, mesh.blocks.len() - 1);
+                mesh.blocks.len() - 1
+            }
+        };
+        for (_, conn) in &b.elements {
+            let e = mesh.blocks[bi].len();
+            for &k in &GMSH_TO_OURS_HEX27[..npe] {
+                let id = resolve(&c, b.line, conn[k])?;
+                mesh.blocks[bi].connectivity.push(id);
+            }
+            for &g in &groups {
+                element_sets
+                    .entry(phys_name(3, g))
+                    .or_default()
+                    .push(ElementRef {
+                        block: bi,
+                        element: e,
+                    });
+            }
+        }
+    }
+    mesh.element_sets = element_sets;
+
+    // faces of volume elements keyed by sorted corner nodes
+    let mut faces: HashMap<[usize; 4], Vec<FaceRef>> = HashMap::new();
+    for (bi, b) in mesh.blocks.iter().enumerate() {
+        for e in 0..b.len() {
+            let conn = b.element(e);
+            for f in 0..6 {
+                let fl = b.shape.face_nodes(f);
+                let mut key = [conn[fl[0]], conn[fl[1]], conn[fl[2]], conn[fl[3]]];
+                key.sort_unstable();
+                faces.entry(key).or_default().push(FaceRef {
+                    block: bi,
+                    element: e,
+                    face: f,
+                });
+            }
+        }
+    }
+
+    // lower-dimensional groups -> node sets (+ face sets for surfaces)
+    let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    let mut face_sets: BTreeMap<String, Vec<FaceRef>> = BTreeMap::new();
+    for b in blocks.iter().filter(|b| b.dim < 3) {
+        let groups = groups_of(b.dim, b.entity);
+        if groups.is_empty() {
+            continue;
+        }
+        let is_quad = matches!(b.code, 3 | 16 | 10);
+        if b.dim == 2 && !is_quad {
+            return Err(c.err(
+                b.line,
+                format!("element type {} cannot lie on a surface", b.code),
+            ));
+        }
+        for (tag, conn) in &b.elements {
+            let ids: Vec<usize> = conn
+                .iter()
+                .map(|&t| resolve(&c, b.line, t))
+                .collect::<Result<_, _>>()?;
+            let face = if is_quad {
+                let mut key = [ids[0], ids[1], ids[2], ids[3]];
+                key.sort_unstable();
+                let cands = faces.get(&key).ok_or_else(|| {
+                    c.err(
+                        b.line,
+                        format!(
+                            "quadrangle {tag} of surface {} is not a face of any volume element",
+                            b.entity
+                        ),
+                    )
+                })?;
+                let p = [
+                    mesh.nodes[ids[0]],
+                    mesh.nodes[ids[1]],
+                    mesh.nodes[ids[2]],
+                    mesh.nodes[ids[3]],
+                ];
+                let nq = quad_normal(p);
+                let pick = cands
+                    .iter()
+                    .find(|&&f| {
+                        let fnodes = mesh.face_nodes(f);
+                        let q = [
+                            mesh.nodes[fnodes[0]],
+                            mesh.nodes[fnodes[1]],
+                            mesh.nodes[fnodes[2]],
+                            mesh.nodes[fnodes[3]],
+                        ];
+                        dot(quad_normal(q), nq) > 0.0
+                    })
+                    .unwrap_or(&cands[0]);
+                Some(*pick)
+            } else {
+                None
+            };
+            for &g in &groups {
+                let name = phys_name(b.dim, g);
+                node_sets
+                    .entry(name.clone())
+                    .or_default()
+                    .extend(ids.iter().copied());
+                if let Some(f) = face {
+                    face_sets.entry(name).or_default().push(f);
+                }
+            }
+        }
+    }
+    for v in node_sets.values_mut() {
+        v.sort_unstable();
+        v.dedup();
+    }
+    mesh.node_sets = node_sets;
+    mesh.face_sets = face_sets;
+    mesh.validate().map_err(|e| c.err(0, e.to_string()))?;
+    Ok(mesh)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::topology::HEX27_NODES;
+
+    /// Natural coordinates of the 27 Gmsh hexahedron nodes, written from the
+    /// manual's picture (not from our table).
+    fn gmsh_hex27_coords() -> Vec<[f64; 3]> {
+        let c = [
+            [-1., -1., -1.],
+            [1., -1., -1.],
+            [1., 1., -1.],
+            [-1., 1., -1.],
+            [-1., -1., 1.],
+            [1., -1., 1.],
+            [1., 1., 1.],
+            [-1., 1., 1.],
+        ];
+        let mid = |a: usize, b: usize| -> [f64; 3] {
+            [
+                0.5 * (c[a][0] + c[b][0]),
+                0.5 * (c[a][1] + c[b][1]),
+                0.5 * (c[a][2] + c[b][2]),
+            ]
+        };
+        let face = |q: [usize; 4]| -> [f64; 3] {
+            let mut s = [0.0; 3];
+            for &i in &q {
+                for d in 0..3 {
+                    s[d] += 0.25 * c[i][d];
+                }
+            }
+            s
+        };
+        let mut v: Vec<[f64; 3]> = c.to_vec();
+        let edges = [
+            (0, 1),
+            (0, 3),
+            (0, 4),
+            (1, 2),
+            (1, 5),
+            (2, 3),
+            (2, 6),
+            (3, 7),
+            (4, 5),
+            (4, 7),
+            (5, 6),
+            (6, 7),
+        ];
+        for (a, b) in edges {
+            v.push(mid(a, b));
+        }
+        for q in [
+            [0, 3, 2, 1],
+            [0, 1, 5, 4],
+            [0, 4, 7, 3],
+            [1, 2, 6, 5],
+            [2, 3, 7, 6],
+            [4, 5, 6, 7],
+        ] {
+            v.push(face(q));
+        }
+        v.push([0.0; 3]);
+        v
+    }
+
+    #[test]
+    fn gmsh_permutation_is_geometric() {
+        let g = gmsh_hex27_coords();
+        for (i, &k) in GMSH_TO_OURS_HEX27.iter().enumerate() {
+            assert_eq!(g[k], HEX27_NODES[i], "our node {i} <- gmsh node {k}");
+        }
+        let mut seen = GMSH_TO_OURS_HEX27.to_vec();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..27).collect::<Vec<_>>());
+        // hex20: the first 20 entries only use gmsh nodes 0..20
+        assert!(GMSH_TO_OURS_HEX27[..20].iter().all(|&k| k < 20));
+    }
+}

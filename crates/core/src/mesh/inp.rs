@@ -1,0 +1,1664 @@
+//! Reader for Abaqus / CalculiX input decks (`.inp`): mesh, sets, elastic
+//! materials, sections, boundary conditions, concentrated loads and one
+//! static step.
+//!
+//! # Syntax accepted
+//!
+//! Keyword lines start with `*` and are case-insensitive; parameters are
+//! `KEY=value` (or a bare `KEY`), comma separated; a keyword line ending with
+//! a comma continues on the next line. `**` starts a comment line. Data lines
+//! are comma separated; an element data line continues on the next line when
+//! it ends with a comma (or holds the Abaqus maximum of 16 entries) and the
+//! element still lacks nodes. Numbers may use a Fortran `D` exponent.
+//!
+//! Keywords: `*HEADING`, `*NODE [, NSET=]`, `*ELEMENT, TYPE= [, ELSET=]`,
+//! `*NSET, NSET= [, GENERATE]`, `*ELSET, ELSET= [, GENERATE]`,
+//! `*MATERIAL, NAME=`, `*ELASTIC [, TYPE=ISOTROPIC | ENGINEERING CONSTANTS |
+//! TRACTION]`, `*DENSITY` (kept, noted as unused), `*SOLID SECTION, ELSET=,
+//! MATERIAL=`, `*COHESIVE SECTION, ELSET=, MATERIAL=, RESPONSE=TRACTION
+//! SEPARATION`, `*BOUNDARY`, `*CLOAD`, `*STEP [, NLGEOM, INC, NAME]`,
+//! `*STATIC`, `*END STEP`; the output requests `*NODE PRINT`, `*NODE FILE`,
+//! `*EL PRINT`, `*EL FILE`, `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*OUTPUT` are
+//! skipped with a note (Junta's outputs are chosen in the scene). Anything
+//! else is an error that lists these keywords.
+//!
+//! # Names
+//!
+//! Set and material names are matched case-insensitively, as Abaqus does,
+//! but are stored as first written (`*NSET, NSET=Bottom` gives the node set
+//! `Bottom` in [`Mesh::node_sets`]; `BOTTOM` finds it in the deck).
+//!
+//! # Element types and node orders
+//!
+//! | TYPE   | shape  | `element_type` | conversion |
+//! |--------|--------|----------------|------------|
+//! | C3D8   | Hex8   | `h8`           | none (Abaqus = VTK = ours) |
+//! | C3D20  | Hex20  | `h20`          | none |
+//! | C3D20R | Hex20  | `h20r`         | none |
+//! | C3D27  | Hex27  | `h27`          | face / body centres, see [`C3D27_TO_OURS`] |
+//! | COH3D8 | Inter8 | `inter8`       | none: bottom face 1-4 then top face 5-8 |
+//!
+//! Each (TYPE, ELSET) pair of `*ELEMENT` makes one [`ElementBlock`] named
+//! after the ELSET (or the lower-case TYPE); when sections give the elements
+//! of one block different materials the block is split into
+//! `<name>_<material>` blocks. Element labels map to [`ElementRef`]s in
+//! [`InpDeck::element_labels`].
+
+use super::{ElementBlock, ElementRef, Mesh};
+use crate::topology::CellShape;
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+use thiserror::Error;
+
+/// `ours[i] = abaqus[C3D27_TO_OURS[i]]` (0-based).
+///
+/// Abaqus numbers the C3D27 nodes 21-26 at the centres of faces 1-6 and
+/// node 27 at the centroid, the faces being (Abaqus Analysis User's Guide,
+/// "Three-dimensional solid element library", face numbering of brick
+/// elements): 1 = 1-2-3-4 (z-), 2 = 5-8-7-6 (z+), 3 = 1-5-6-2 (y-),
+/// 4 = 2-6-7-3 (x+), 5 = 3-7-8-4 (y+), 6 = 4-8-5-1 (x-). The same face
+/// order is the S1..S6 order of [`crate::topology::HEX_FACES`]. Ours puts
+/// the face centres in VTK order x-, x+, y-, y+, z-, z+.
+pub const C3D27_TO_OURS: [usize; 27] = [
+    0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, //
+    25, 23, 22, 24, 20, 21, 26,
+];
+
+/// Keywords the reader understands (for messages).
+pub const SUPPORTED_KEYWORDS: &str =
+    "*HEADING, *NODE, *ELEMENT, *NSET, *ELSET, *MATERIAL, *ELASTIC, *DENSITY, \
+*SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *STEP, *STATIC, *END STEP, \
+*NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT";
+
+/// Element types the reader understands (for messages).
+pub const SUPPORTED_ELEMENT_TYPES: &str = "C3D8, C3D20, C3D20R, C3D27, COH3D8";
+
+const OUTPUT_KEYWORDS: [&str; 7] = [
+    "NODE PRINT",
+    "NODE FILE",
+    "EL PRINT",
+    "EL FILE",
+    "NODE OUTPUT",
+    "ELEMENT OUTPUT",
+    "OUTPUT",
+];
+
+/// Errors of the deck reader. Each names the file, the 1-based line, the
+/// keyword, and what would be valid.
+#[derive(Debug, Error)]
+pub enum InpError {
+    /// The file could not be read.
+    #[error("cannot read `{file}`: {source}")]
+    Io {
+        file: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A keyword the reader does not support.
+    #[error("{file}:{line}: unsupported keyword `*{keyword}`; supported keywords: {valid}")]
+    UnknownKeyword {
+        file: String,
+        line: usize,
+        keyword: String,
+        valid: String,
+    },
+    /// A parameter the keyword does not accept, or a bad parameter value.
+    #[error("{file}:{line}: *{keyword}: unsupported parameter `{parameter}`; valid: {valid}")]
+    Parameter {
+        file: String,
+        line: usize,
+        keyword: String,
+        parameter: String,
+        valid: String,
+    },
+    /// A required parameter is missing.
+    #[error("{file}:{line}: *{keyword} needs the parameter {parameter}")]
+    MissingParameter {
+        file: String,
+        line: usize,
+        keyword: String,
+        parameter: String,
+    },
+    /// An element TYPE the reader does not support.
+    #[error("{file}:{line}: *ELEMENT: unsupported element TYPE={element_type}; supported types: {valid}")]
+    ElementType {
+        file: String,
+        line: usize,
+        element_type: String,
+        valid: String,
+    },
+    /// A field that should be a number is not.
+    #[error("{file}:{line}: *{keyword}: {what} `{text}` is not a valid {expected}")]
+    BadNumber {
+        file: String,
+        line: usize,
+        keyword: String,
+        what: String,
+        text: String,
+        expected: &'static str,
+    },
+    /// A node or element label that was never defined.
+    #[error("{file}:{line}: *{keyword}: {kind} label {label} is not defined")]
+    UndefinedLabel {
+        file: String,
+        line: usize,
+        keyword: String,
+        kind: &'static str,
+        label: usize,
+    },
+    /// A set or material name that was never defined.
+    #[error("{file}:{line}: *{keyword}: {kind} `{name}` is not defined; defined: {valid}")]
+    UnknownName {
+        file: String,
+        line: usize,
+        keyword: String,
+        kind: &'static str,
+        name: String,
+        valid: String,
+    },
+    /// Any other mistake in the deck.
+    #[error("{file}:{line}: *{keyword}: {message}")]
+    Invalid {
+        file: String,
+        line: usize,
+        keyword: String,
+        message: String,
+    },
+}
+
+/// Elastic constants of a material.
+#[derive(Debug, Clone, PartialEq)]
+pub enum InpMaterialKind {
+    /// `*ELASTIC` (TYPE=ISOTROPIC): Young's modulus and Poisson's ratio.
+    Isotropic { e: f64, nu: f64 },
+    /// `*ELASTIC, TYPE=ENGINEERING CONSTANTS`:
+    /// `[E1, E2, E3, nu12, nu13, nu23, G12, G13, G23]`.
+    EngineeringConstants([f64; 9]),
+    /// `*ELASTIC, TYPE=TRACTION` (cohesive): `[K_nn, K_ss, K_tt]`.
+    Traction([f64; 3]),
+}
+
+/// A `*MATERIAL` with its `*ELASTIC` data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpMaterial {
+    /// Name as written.
+    pub name: String,
+    /// Elastic constants.
+    pub kind: InpMaterialKind,
+    /// `*DENSITY`, if given (not used by static analyses).
+    pub density: Option<f64>,
+    /// Line of `*MATERIAL`.
+    pub line: usize,
+}
+
+/// A `*SOLID SECTION`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpSolidSection {
+    /// Element set as written.
+    pub elset: String,
+    /// Material name as written in `*MATERIAL`.
+    pub material: String,
+    /// Line of the keyword.
+    pub line: usize,
+}
+
+/// A `*COHESIVE SECTION`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpCohesiveSection {
+    /// Element set as written.
+    pub elset: String,
+    /// Material name as written in `*MATERIAL`.
+    pub material: String,
+    /// RESPONSE parameter, upper case (`TRACTION SEPARATION`).
+    pub response: String,
+    /// Initial constitutive thickness from the data line, if given.
+    pub thickness: Option<f64>,
+    /// Line of the keyword.
+    pub line: usize,
+}
+
+/// A `*BOUNDARY` data line: prescribed value on dofs `first_dof..=last_dof`
+/// (1-based, 1..=3) of the target's nodes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpBoundary {
+    /// Node set name or node label, as written.
+    pub target: String,
+    /// 0-based node ids of the target.
+    pub nodes: Vec<usize>,
+    /// First dof, 1-based.
+    pub first_dof: usize,
+    /// Last dof, 1-based (inclusive).
+    pub last_dof: usize,
+    /// Prescribed value (0 when not given).
+    pub value: f64,
+    /// Given inside `*STEP` (history data) rather than as model data.
+    pub in_step: bool,
+    /// Line of the data line.
+    pub line: usize,
+}
+
+/// A `*CLOAD` data line: force `value` on dof `dof` of every target node.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpCload {
+    /// Node set name or node label, as written.
+    pub target: String,
+    /// 0-based node ids.
+    pub nodes: Vec<usize>,
+    /// Dof, 1-based (1..=3).
+    pub dof: usize,
+    /// Force per node.
+    pub value: f64,
+    /// Given inside `*STEP`.
+    pub in_step: bool,
+    /// Line of the data line.
+    pub line: usize,
+}
+
+/// The `*STATIC` procedure of a step (data line values, all optional).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct InpStatic {
+    pub initial_increment: Option<f64>,
+    pub period: Option<f64>,
+    pub min_increment: Option<f64>,
+    pub max_increment: Option<f64>,
+    /// DIRECT parameter (fixed increments).
+    pub direct: bool,
+    pub line: usize,
+}
+
+/// A `*STEP ... *END STEP`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct InpStep {
+    pub name: Option<String>,
+    /// NLGEOM (YES when given without value).
+    pub nlgeom: bool,
+    /// INC (maximum number of increments).
+    pub max_increments: Option<usize>,
+    /// The `*STATIC` procedure, if any.
+    pub static_procedure: Option<InpStatic>,
+    /// Line of `*STEP`.
+    pub line: usize,
+}
+
+/// Everything read from a deck.
+///
+/// - `mesh`: nodes (labels in [`Mesh::node_labels`]), blocks (one per
+///   TYPE / ELSET / material), node sets (`*NSET`, `*NODE, NSET=`), element
+///   sets (`*ELSET`, `*ELEMENT, ELSET=`); no face sets.
+/// - `element_labels`: element label -> [`ElementRef`].
+/// - `materials`, `solid_sections`, `cohesive_sections`: as written; block
+///   materials already carry the section materials.
+/// - `boundaries`, `cloads`: targets resolved to node ids.
+/// - `steps`: at most one (more is an error for now).
+/// - `notes`: what was accepted but ignored, with line numbers.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct InpDeck {
+    pub mesh: Mesh,
+    pub element_labels: BTreeMap<usize, ElementRef>,
+    pub heading: String,
+    pub materials: Vec<InpMaterial>,
+    pub solid_sections: Vec<InpSolidSection>,
+    pub cohesive_sections: Vec<InpCohesiveSection>,
+    pub boundaries: Vec<InpBoundary>,
+    pub cloads: Vec<InpCload>,
+    pub steps: Vec<InpStep>,
+    pub notes: Vec<String>,
+}
+
+impl InpDeck {
+    /// Material by name (case-insensitive).
+    pub fn material(&self, name: &str) -> Option<&InpMaterial> {
+        self.materials
+            .iter()
+            .find(|m| m.name.eq_ignore_ascii_case(name))
+    }
+}
+
+/// Read a deck from a file.
+pub fn read_inp(path: impl AsRef<Path>) -> Result<InpDeck, InpError> {
+    let path = path.as_ref();
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|source| InpError::Io {
+        file: file.clone(),
+        source,
+    })?;
+    parse_inp(&text, &file)
+}
+
+// ---------------------------------------------------------------- lexing
+
+#[derive(Debug)]
+enum Item<'a> {
+    Keyword {
+        line: usize,
+        name: String,
+        params: Vec<(String, Option<String>)>,
+    },
+    Data {
+        line: usize,
+        raw: &'a str,
+        fields: Vec<&'a str>,
+        continues: bool,
+    },
+}
+
+fn lex(text: &str) -> Vec<Item<'_>> {
+    let mut items = Vec::new();
+    let mut lines = text.lines().enumerate().peekable();
+    while let Some((i, raw)) = lines.next() {
+        let l = raw.trim();
+        if l.is_empty() || l.starts_with("**") {
+            continue;
+        }
+        if let Some(rest) = l.strip_prefix('*') {
+            let mut full = rest.to_string();
+            // keyword-line continuation
+            while full.trim_end().ends_with(',') {
+                match lines.peek() {
+                    Some((_, next)) if !next.trim().starts_with('*') && !next.trim().is_empty() => {
+                        full.push_str(next.trim());
+                        lines.next();
+                    }
+                    _ => break,
+                }
+            }
+            let mut parts = full.split(',');
+            let name = parts
+                .next()
+                .unwrap_or("")
+                .split_whitespace()
+                .collect::<Vec<_>>()
+                .join(" ")
+                .to_uppercase();
+            let params = parts
+                .filter(|p| !p.trim().is_empty())
+                .map(|p| match p.split_once('=') {
+                    Some((k, v)) => (norm_key(k), Some(v.trim().to_string())),
+                    None => (norm_key(p), None),
+                })
+                .collect();
+            items.push(Item::Keyword {
+                line: i + 1,
+                name,
+                params,
+            });
+        } else {
+            let continues = l.ends_with(',');
+            let fields: Vec<&str> = l.split(',').map(str::trim).collect();
+            let fields = if continues {
+                fields[..fields.len() - 1].to_vec()
+            } else {
+                fields
+            };
+            items.push(Item::Data {
+                line: i + 1,
+                raw: l,
+                fields,
+                continues,
+            });
+        }
+    }
+    items
+}
+
+fn norm_key(k: &str) -> String {
+    k.split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .to_uppercase()
+}
+
+// ---------------------------------------------------------------- parsing
+
+struct Elem {
+    pre_block: usize,
+    conn: Vec<usize>,
+    label: usize,
+    material: Option<(String, usize)>,
+}
+
+struct PreBlock {
+    name: String,
+    shape: CellShape,
+    element_type: &'static str,
+}
+
+/// A named set: name as first written, members (node ids or flat element ids).
+struct NamedSet {
+    name: String,
+    members: Vec<usize>,
+}
+
+struct PendingTarget {
+    target: String,
+    line: usize,
+    keyword: &'static str,
+}
+
+struct Parser<'a> {
+    file: &'a str,
+    nodes: Vec<[f64; 3]>,
+    labels: Vec<usize>,
+    node_id: HashMap<usize, usize>,
+    elems: Vec<Elem>,
+    elem_id: HashMap<usize, usize>,
+    pre_blocks: Vec<PreBlock>,
+    pre_block_key: HashMap<(String, String), usize>,
+    nsets: Vec<NamedSet>,
+    nset_index: HashMap<String, usize>,
+    elsets: Vec<NamedSet>,
+    elset_index: HashMap<String, usize>,
+    deck: InpDeck,
+    material_index: HashMap<String, usize>,
+    /// material being defined: (name, line, elastic, density)
+    current_material: Option<(String, usize, Option<InpMaterialKind>, Option<f64>)>,
+    step_open: Option<usize>,
+    boundary_targets: Vec<PendingTarget>,
+    cload_targets: Vec<PendingTarget>,
+}
+
+type Params = [(String, Option<String>)];
+
+fn element_kind(t: &str) -> Option<(CellShape, &'static str)> {
+    match t {
+        "C3D8" => Some((CellShape::Hex8, "h8")),
+        "C3D20" => Some((CellShape::Hex20, "h20")),
+        "C3D20R" => Some((CellShape::Hex20, "h20r")),
+        "C3D27" => Some((CellShape::Hex27, "h27")),
+        "COH3D8" => Some((CellShape::Inter8, "inter8")),
+        _ => None,
+    }
+}
+
+impl<'a> Parser<'a> {
+    fn invalid(&self, line: usize, keyword: &str, message: impl Into<String>) -> InpError {
+        InpError::Invalid {
+            file: self.file.into(),
+            line,
+            keyword: keyword.into(),
+            message: message.into(),
+        }
+    }
+
+    fn check_params(
+        &self,
+        line: usize,
+        keyword: &str,
+        params: &Params,
+        valid: &[&str],
+    ) -> Result<(), InpError> {
+        for (k, _) in params {
+            if !valid.contains(&k.as_str()) {
+                return Err(InpError::Parameter {
+                    file: self.file.into(),
+                    line,
+                    keyword: keyword.into(),
+                    parameter: k.clone(),
+                    valid: if valid.is_empty() {
+                        "(none)".into()
+                    } else {
+                        valid.join(", ")
+                    },
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn param<'p>(params: &'p Params, key: &str) -> Option<&'p (String, Option<String>)> {
+        params.iter().find(|(k, _)| k == key)
+    }
+
+    fn required(
+        &self,
+        line: usize,
+        keyword: &str,
+        params: &Params,
+        key: &str,
+    ) -> Result<String, InpError> {
+        match Self::param(params, key) {
+            Some((_, Some(v))) if !v.is_empty() => Ok(v.clone()),
+            _ => Err(InpError::MissingParameter {
+                file: self.file.into(),
+                line,
+                keyword: keyword.into(),
+                parameter: format!("{key}="),
+            }),
+        }
+    }
+
+    fn float(&self, line: usize, keyword: &str, what: &str, text: &str) -> Result<f64, InpError> {
+        let t = text.replace(['d', 'D'], "e");
+        t.parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| InpError::BadNumber {
+                file: self.file.into(),
+                line,
+                keyword: keyword.into(),
+                what: what.into(),
+                text: text.into(),
+                expected: "number",
+            })
+    }
+
+    fn label(&self, line: usize, keyword: &str, what: &str, text: &str) -> Result<usize, InpError> {
+        text.parse::<usize>()
+            .ok()
+            .filter(|&x| x > 0)
+            .ok_or_else(|| InpError::BadNumber {
+                file: self.file.into(),
+                line,
+                keyword: keyword.into(),
+                what: what.into(),
+                text: text.into(),
+                expected: "positive integer label",
+            })
+    }
+
+    fn dof(&self, line: usize, keyword: &str, text: &str) -> Result<usize, InpError> {
+        let d = self.label(line, keyword, "degree of freedom", text)?;
+        if !(1..=3).contains(&d) {
+            return Err(self.invalid(
+                line,
+                keyword,
+                format!("degree of freedom {d} is not supported; valid: 1, 2, 3 (displacements of solids)"),
+            ));
+        }
+        Ok(d)
+    }
+
+    fn unknown_set(&self, line: usize, keyword: &str, kind: &'static str, name: &str) -> InpError {
+        let sets = if kind == "node set" {
+            &self.nsets
+        } else {
+            &self.elsets
+        };
+        let valid = if sets.is_empty() {
+            "(none)".to_string()
+        } else {
+            sets.iter()
+                .map(|s| s.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        InpError::UnknownName {
+            file: self.file.into(),
+            line,
+            keyword: keyword.into(),
+            kind,
+            name: name.into(),
+            valid,
+        }
+    }
+
+    fn node_of(&self, line: usize, keyword: &str, label: usize) -> Result<usize, InpError> {
+        self.node_id
+            .get(&label)
+            .copied()
+            .ok_or_else(|| InpError::UndefinedLabel {
+                file: self.file.into(),
+                line,
+                keyword: keyword.into(),
+                kind: "node",
+                label,
+            })
+    }
+
+    fn set_mut(sets: &mut Vec<NamedSet>, index: &mut HashMap<String, usize>, name: &str) -> usize {
+        let key = name.to_uppercase();
+        *index.entry(key).or_insert_with(|| {
+            sets.push(NamedSet {
+                name: name.to_string(),
+                members: Vec::new(),
+            });
+            sets.len() - 1
+        })
+    }
+
+    /// Resolve a node target (label or node set) to node ids.
+    fn node_target(
+        &self,
+        line: usize,
+        keyword: &str,
+        target: &str,
+    ) -> Result<Vec<usize>, InpError> {
+        if target.chars().all(|c| c.is_ascii_digit()) {
+            let l = self.label(line, keyword, "node label", target)?;
+            Ok(vec![self.node_of(line, keyword, l)?])
+        } else {
+            match self.nset_index.get(&target.to_uppercase()) {
+                Some(&i) => Ok(self.nsets[i].members.clone()),
+                None => Err(self.unknown_set(line, keyword, "node set", target)),
+            }
+        }
+    }
+
+    fn model_data_only(&self, line: usize, keyword: &str) -> Result<(), InpError> {
+        if let Some(s) = self.step_open {
+            return Err(self.invalid(
+                line,
+                keyword,
+                format!(
+                    "model data is not allowed inside the *STEP of line {s}; move it before *STEP"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    fn finish_material(&mut self) -> Result<(), InpError> {
+        if let Some((name, line, kind, density)) = self.current_material.take() {
+            let kind = kind.ok_or_else(|| {
+                self.invalid(
+                    line,
+                    "MATERIAL",
+                    format!("material `{name}` has no *ELASTIC"),
+                )
+            })?;
+            self.material_index
+                .insert(name.to_uppercase(), self.deck.materials.len());
+            self.deck.materials.push(InpMaterial {
+                name,
+                kind,
+                density,
+                line,
+            });
+        }
+        Ok(())
+    }
+
+    fn run(&mut self, items: &[Item<'_>]) -> Result<(), InpError> {
+        let mut i = 0;
+        // data lines before any keyword
+        if let Some(Item::Data { line, .. }) = items.first() {
+            return Err(self.invalid(*line, "(none)", "data line before any keyword"));
+        }
+        while i < items.len() {
+            let Item::Keyword { line, name, params } = &items[i] else {
+                unreachable!("data lines are consumed by their keyword")
+            };
+            let (line, kw) = (*line, name.as_str());
+            i += 1;
+            let start = i;
+            while i < items.len() && matches!(items[i], Item::Data { .. }) {
+                i += 1;
+            }
+            let data: Vec<(usize, &[&str], bool)> = items[start..i]
+                .iter()
+                .map(|it| match it {
+                    Item::Data {
+                        line,
+                        fields,
+                        continues,
+                        ..
+                    } => (*line, fields.as_slice(), *continues),
+                    Item::Keyword { .. } => unreachable!(),
+                })
+                .collect();
+            if !matches!(kw, "ELASTIC" | "DENSITY") {
+                self.finish_material()?;
+            }
+            match kw {
+                "HEADING" => {
+                    self.check_params(line, kw, params, &[])?;
+                    let text: Vec<&str> = items[start..i]
+                        .iter()
+                        .filter_map(|it| match it {
+                            Item::Data { raw, .. } => Some(*raw),
+                            Item::Keyword { .. } => None,
+                        })
+                        .collect();
+                    self.deck.heading = text.join("\n");
+                }
+                "NODE" => self.node(line, params, &data)?,
+                "ELEMENT" => self.element(line, params, &data)?,
+                "NSET" | "ELSET" => self.set(line, kw, params, &data)?,
+                "MATERIAL" => {
+                    self.model_data_only(line, kw)?;
+                    self.check_params(line, kw, params, &["NAME"])?;
+                    let name = self.required(line, kw, params, "NAME")?;
+                    if let Some(&m) = self.material_index.get(&name.to_uppercase()) {
+                        return Err(self.invalid(
+                            line,
+                            kw,
+                            format!(
+                                "material `{name}` already defined at line {}",
+                                self.deck.materials[m].line
+                            ),
+                        ));
+                    }
+                    if let Some(&(d, _, _)) = data.first() {
+                        return Err(self.invalid(d, kw, "*MATERIAL takes no data lines"));
+                    }
+                    self.current_material = Some((name, line, None, None));
+                }
+                "ELASTIC" => self.elastic(line, params, &data)?,
+                "DENSITY" => {
+                    self.check_params(line, kw, params, &[])?;
+                    if self.current_material.is_none() {
+                        return Err(self.invalid(line, kw, "*DENSITY must follow *MATERIAL"));
+                    }
+                    let (dl, f, _) = *data.first().ok_or_else(|| {
+                        self.invalid(line, kw, "expected a data line with the density")
+                    })?;
+                    let rho = self.float(dl, kw, "density", f.first().copied().unwrap_or(""))?;
+                    let name = self
+                        .current_material
+                        .as_ref()
+                        .map(|m| m.0.clone())
+                        .unwrap_or_default();
+                    if let Some(m) = self.current_material.as_mut() {
+                        m.3 = Some(rho);
+                    }
+                    self.deck
+                        .notes
+                        .push(format!("line {line}: *DENSITY of material `{name}` read but unused (static analysis)"));
+                }
+                "SOLID SECTION" => {
+                    self.model_data_only(line, kw)?;
+                    if Self::param(params, "ORIENTATION").is_some() {
+                        return Err(self.invalid(
+                            line,
+                            kw,
+                            "ORIENTATION= is not supported yet; give the material axes in the scene",
+                        ));
+                    }
+                    self.check_params(line, kw, params, &["ELSET", "MATERIAL"])?;
+                    let elset = self.required(line, kw, params, "ELSET")?;
+                    let material = self.required(line, kw, params, "MATERIAL")?;
+                    if data.len() > 1 {
+                        return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
+                    }
+                    self.deck.solid_sections.push(InpSolidSection {
+                        elset,
+                        material,
+                        line,
+                    });
+                }
+                "COHESIVE SECTION" => {
+                    self.model_data_only(line, kw)?;
+                    self.check_params(
+                        line,
+                        kw,
+                        params,
+                        &["ELSET", "MATERIAL", "RESPONSE", "THICKNESS"],
+                    )?;
+                    let elset = self.required(line, kw, params, "ELSET")?;
+                    let material = self.required(line, kw, params, "MATERIAL")?;
+                    let response = norm_key(&self.required(line, kw, params, "RESPONSE")?);
+                    if response != "TRACTION SEPARATION" {
+                        return Err(InpError::Parameter {
+                            file: self.file.into(),
+                            line,
+                            keyword: kw.into(),
+                            parameter: format!("RESPONSE={response}"),
+                            valid: "RESPONSE=TRACTION SEPARATION".into(),
+                        });
+                    }
+                    if data.len() > 1 {
+                        return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
+                    }
+                    let thickness = match data.first() {
+                        Some((dl, f, _)) if !f.is_empty() && !f[0].is_empty() => {
+                            Some(self.float(*dl, kw, "initial thickness", f[0])?)
+                        }
+                        _ => None,
+                    };
+                    self.deck.cohesive_sections.push(InpCohesiveSection {
+                        elset,
+                        material,
+                        response,
+                        thickness,
+                        line,
+                    });
+                }
+                "ORIENTATION" => {
+                    return Err(self.invalid(
+                        line,
+                        kw,
+                        "not supported yet; give the material axes in the scene instead",
+                    ))
+                }
+                "BOUNDARY" => self.boundary(line, params, &data)?,
+                "CLOAD" => self.cload(line, params, &data)?,
+                "STEP" => {
+                    self.check_params(line, kw, params, &["NAME", "NLGEOM", "INC"])?;
+                    if let Some(s) = self.step_open {
+                        return Err(self.invalid(
+                            line,
+                            kw,
+                            format!("*STEP inside the *STEP of line {s}; close it with *END STEP"),
+                        ));
+                    }
+                    if let Some(s) = self.deck.steps.first() {
+                        return Err(self.invalid(
+                            line,
+                            kw,
+                            format!(
+                                "multi-step decks not supported yet (first *STEP at line {})",
+                                s.line
+                            ),
+                        ));
+                    }
+                    let nlgeom = match Self::param(params, "NLGEOM") {
+                        None => false,
+                        Some((_, None)) => true,
+                        Some((_, Some(v))) => match v.to_uppercase().as_str() {
+                            "YES" => true,
+                            "NO" => false,
+                            _ => {
+                                return Err(InpError::Parameter {
+                                    file: self.file.into(),
+                                    line,
+                                    keyword: kw.into(),
+                                    parameter: format!("NLGEOM={v}"),
+                                    valid: "NLGEOM, NLGEOM=YES, NLGEOM=NO".into(),
+                                })
+                            }
+                        },
+                    };
+                    let max_increments = match Self::param(params, "INC") {
+                        Some((_, Some(v))) => Some(self.label(line, kw, "INC", v)?),
+                        Some((_, None)) => {
+                            return Err(self.invalid(line, kw, "INC needs a value, e.g. INC=100"))
+                        }
+                        None => None,
+                    };
+                    let name = Self::param(params, "NAME").and_then(|(_, v)| v.clone());
+                    if let Some((dl, _, _)) = data.first() {
+                        // Abaqus allows a step description line
+                        self.deck
+                            .notes
+                            .push(format!("line {dl}: *STEP description skipped"));
+                    }
+                    self.deck.steps.push(InpStep {
+                        name,
+                        nlgeom,
+                        max_increments,
+                        static_procedure: None,
+                        line,
+                    });
+                    self.step_open = Some(line);
+                }
+                "STATIC" => {
+                    self.check_params(line, kw, params, &["DIRECT"])?;
+                    if self.step_open.is_none() {
+                        return Err(self.invalid(
+                            line,
+                            kw,
+                            "*STATIC must be inside *STEP ... *END STEP",
+                        ));
+                    }
+                    if data.len() > 1 {
+                        return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
+                    }
+                    let mut v = [None; 4];
+                    if let Some((dl, f, _)) = data.first() {
+                        if f.len() > 4 {
+                            return Err(self.invalid(
+                                *dl,
+                                kw,
+                                "expected at most 4 values: initial increment, period, minimum, maximum increment",
+                            ));
+                        }
+                        let names = [
+                            "initial increment",
+                            "time period",
+                            "minimum increment",
+                            "maximum increment",
+                        ];
+                        for (k, t) in f.iter().enumerate() {
+                            if !t.is_empty() {
+                                v[k] = Some(self.float(*dl, kw, names[k], t)?);
+                            }
+                        }
+                    }
+                    let step = self.deck.steps.last_mut().unwrap();
+                    step.static_procedure = Some(InpStatic {
+                        initial_increment: v[0],
+                        period: v[1],
+                        min_increment: v[2],
+                        max_increment: v[3],
+                        direct: Self::param(params, "DIRECT").is_some(),
+                        line,
+                    });
+                }
+                "END STEP" => {
+                    self.check_params(line, kw, params, &[])?;
+                    if self.step_open.take().is_none() {
+                        return Err(self.invalid(line, kw, "*END STEP without *STEP"));
+                    }
+                }
+                k if OUTPUT_KEYWORDS.contains(&k) => {
+                    self.deck.notes.push(format!(
+                        "line {line}: *{k} ignored (outputs are chosen in the scene); {} data line(s) skipped",
+                        data.len()
+                    ));
+                }
+                _ => {
+                    return Err(InpError::UnknownKeyword {
+                        file: self.file.into(),
+                        line,
+                        keyword: kw.into(),
+                        valid: SUPPORTED_KEYWORDS.into(),
+                    })
+                }
+            }
+        }
+        self.finish_material()?;
+        if let Some(s) = self.step_open {
+            return Err(self.invalid(s, "STEP", "missing *END STEP at the end of the deck"));
+        }
+        Ok(())
+    }
+
+    fn node(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "NODE";
+        self.model_data_only(line, kw)?;
+        self.check_params(line, kw, params, &["NSET"])?;
+        let set = match Self::param(params, "NSET") {
+            Some(_) => {
+                let name = self.required(line, kw, params, "NSET")?;
+                Some(Self::set_mut(&mut self.nsets, &mut self.nset_index, &name))
+            }
+            None => None,
+        };
+        for &(dl, f, _) in data {
+            let f: Vec<&str> = f.iter().copied().filter(|s| !s.is_empty()).collect();
+            if f.len() < 3 || f.len() > 4 {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    format!("expected `label, x, y[, z]`, found {} values", f.len()),
+                ));
+            }
+            let label = self.label(dl, kw, "node label", f[0])?;
+            let mut x = [0.0; 3];
+            for (d, t) in f[1..].iter().enumerate() {
+                x[d] = self.float(dl, kw, ["x", "y", "z"][d], t)?;
+            }
+            if self.node_id.contains_key(&label) {
+                return Err(self.invalid(dl, kw, format!("node label {label} defined twice")));
+            }
+            let id = self.nodes.len();
+            self.node_id.insert(label, id);
+            self.nodes.push(x);
+            self.labels.push(label);
+            if let Some(s) = set {
+                self.nsets[s].members.push(id);
+            }
+        }
+        Ok(())
+    }
+
+    fn element(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "ELEMENT";
+        self.model_data_only(line, kw)?;
+        self.check_params(line, kw, params, &["TYPE", "ELSET"])?;
+        let type_name = self.required(line, kw, params, "TYPE")?.to_uppercase();
+        let (shape, etype) = element_kind(&type_name).ok_or_else(|| InpError::ElementType {
+            file: self.file.into(),
+            line,
+            element_type: type_name.clone(),
+            valid: SUPPORTED_ELEMENT_TYPES.into(),
+        })?;
+        let elset = match Self::param(params, "ELSET") {
+            Some(_) => Some(self.required(line, kw, params, "ELSET")?),
+            None => None,
+        };
+        let key = (
+            type_name.clone(),
+            elset.as_deref().unwrap_or("").to_uppercase(),
+        );
+        let pb = match self.pre_block_key.get(&key) {
+            Some(&b) => b,
+            None => {
+                let base = elset.clone().unwrap_or_else(|| type_name.to_lowercase());
+                let name = if self.pre_blocks.iter().any(|b| b.name == base) {
+                    format!("{base}_{}", type_name.to_lowercase())
+                } else {
+                    base
+                };
+                self.pre_blocks.push(PreBlock {
+                    name,
+                    shape,
+                    element_type: etype,
+                });
+                self.pre_block_key.insert(key, self.pre_blocks.len() - 1);
+                self.pre_blocks.len() - 1
+            }
+        };
+        let set = elset
+            .as_deref()
+            .map(|e| Self::set_mut(&mut self.elsets, &mut self.elset_index, e));
+        let n = shape.num_nodes();
+        let mut k = 0;
+        while k < data.len() {
+            let (dl, first, mut cont) = data[k];
+            let mut fields: Vec<&str> = first.to_vec();
+            let mut full16 = first.len() + usize::from(cont) >= 16;
+            k += 1;
+            while fields.len() < n + 1 && (cont || full16) && k < data.len() {
+                let (_, more, c) = data[k];
+                fields.extend_from_slice(more);
+                cont = c;
+                full16 = more.len() + usize::from(c) >= 16;
+                k += 1;
+            }
+            let fields: Vec<&str> = fields.into_iter().filter(|s| !s.is_empty()).collect();
+            if fields.is_empty() {
+                continue;
+            }
+            let label = self.label(dl, kw, "element label", fields[0])?;
+            if fields.len() != n + 1 {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    format!(
+                        "element {label}: TYPE={type_name} needs {n} nodes, found {} (a long element line continues on the next line when it ends with a comma)",
+                        fields.len() - 1
+                    ),
+                ));
+            }
+            let mut given = Vec::with_capacity(n);
+            for t in &fields[1..] {
+                let l = self.label(dl, kw, "node label", t)?;
+                given.push(self.node_of(dl, kw, l)?);
+            }
+            let conn: Vec<usize> = if shape == CellShape::Hex27 {
+                C3D27_TO_OURS.iter().map(|&a| given[a]).collect()
+            } else {
+                given
+            };
+            if self.elem_id.contains_key(&label) {
+                return Err(self.invalid(dl, kw, format!("element label {label} defined twice")));
+            }
+            let id = self.elems.len();
+            self.elem_id.insert(label, id);
+            self.elems.push(Elem {
+                pre_block: pb,
+                conn,
+                label,
+                material: None,
+            });
+            if let Some(s) = set {
+                self.elsets[s].members.push(id);
+            }
+        }
+        Ok(())
+    }
+
+    fn set(
+        &mut self,
+        line: usize,
+        kw: &str,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        self.model_data_only(line, kw)?;
+        let is_node = kw == "NSET";
+        self.check_params(line, kw, params, &[kw, "GENERATE"])?;
+        let name = self.required(line, kw, params, kw)?;
+        let generate = Self::param(params, "GENERATE").is_some();
+        let mut members = Vec::new();
+        for &(dl, f, _) in data {
+            let f: Vec<&str> = f.iter().copied().filter(|s| !s.is_empty()).collect();
+            if generate {
+                if f.len() < 2 || f.len() > 3 {
+                    return Err(self.invalid(
+                        dl,
+                        kw,
+                        "GENERATE expects `first, last[, increment]`",
+                    ));
+                }
+                let a = self.label(dl, kw, "first label", f[0])?;
+                let b = self.label(dl, kw, "last label", f[1])?;
+                let inc = if f.len() == 3 {
+                    self.label(dl, kw, "increment", f[2])?
+                } else {
+                    1
+                };
+                if b < a {
+                    return Err(self.invalid(
+                        dl,
+                        kw,
+                        format!("GENERATE range {a}..{b} is empty (last < first)"),
+                    ));
+                }
+                // labels missing inside a range are skipped, as gaps are common
+                for l in (a..=b).step_by(inc) {
+                    let hit = if is_node {
+                        self.node_id.get(&l)
+                    } else {
+                        self.elem_id.get(&l)
+                    };
+                    if let Some(&id) = hit {
+                        members.push(id);
+                    }
+                }
+            } else {
+                for t in f {
+                    if t.chars().all(|c| c.is_ascii_digit()) {
+                        let l = self.label(
+                            dl,
+                            kw,
+                            if is_node {
+                                "node label"
+                            } else {
+                                "element label"
+                            },
+                            t,
+                        )?;
+                        if is_node {
+                            members.push(self.node_of(dl, kw, l)?);
+                        } else {
+                            let id = self.elem_id.get(&l).copied().ok_or_else(|| {
+                                InpError::UndefinedLabel {
+                                    file: self.file.into(),
+                                    line: dl,
+                                    keyword: kw.into(),
+                                    kind: "element",
+                                    label: l,
+                                }
+                            })?;
+                            members.push(id);
+                        }
+                    } else {
+                        let (sets, index) = if is_node {
+                            (&self.nsets, &self.nset_index)
+                        } else {
+                            (&self.elsets, &self.elset_index)
+                        };
+                        match index.get(&t.to_uppercase()) {
+                            Some(&s) => members.extend_from_slice(&sets[s].members),
+                            None => {
+                                return Err(self.unknown_set(
+                                    dl,
+                                    kw,
+                                    if is_node { "node set" } else { "element set" },
+                                    t,
+                                ))
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let s = if is_node {
+            Self::set_mut(&mut self.nsets, &mut self.nset_index, &name)
+        } else {
+            Self::set_mut(&mut self.elsets, &mut self.elset_index, &name)
+        };
+        let target = if is_node {
+            &mut self.nsets[s]
+        } else {
+            &mut self.elsets[s]
+        };
+        target.members.extend(members);
+        Ok(())
+    }
+
+    fn elastic(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "ELASTIC";
+        self.check_params(line, kw, params, &["TYPE"])?;
+        if self.current_material.is_none() {
+            return Err(self.invalid(line, kw, "*ELASTIC must follow *MATERIAL"));
+        }
+        let ty = Self::param(params, "TYPE")
+            .and_then(|(_, v)| v.as_deref())
+            .map(norm_key)
+            .unwrap_or_else(|| "ISOTROPIC".into());
+        let (count, names): (usize, &[&str]) = match ty.as_str() {
+            "ISOTROPIC" | "ISO" => (2, &["E", "nu"]),
+            "ENGINEERING CONSTANTS" => (
+                9,
+                &[
+                    "E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23",
+                ],
+            ),
+            "TRACTION" => (3, &["K_nn", "K_ss", "K_tt"]),
+            _ => {
+                return Err(InpError::Parameter {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    parameter: format!("TYPE={ty}"),
+                    valid: "TYPE=ISOTROPIC, TYPE=ENGINEERING CONSTANTS, TYPE=TRACTION".into(),
+                })
+            }
+        };
+        // ENGINEERING CONSTANTS: 8 values on the first line, 1 on the second
+        let lines_needed = if count == 9 { 2 } else { 1 };
+        if data.len() < lines_needed {
+            return Err(self.invalid(
+                line,
+                kw,
+                format!(
+                    "TYPE={ty} expects {count} values ({}) on {lines_needed} data line(s)",
+                    names.join(", ")
+                ),
+            ));
+        }
+        if data.len() > lines_needed {
+            return Err(self.invalid(
+                data[lines_needed].0,
+                kw,
+                "temperature-dependent elastic data is not supported (one set of constants only)",
+            ));
+        }
+        let mut v = Vec::with_capacity(count);
+        for &(dl, f, _) in &data[..lines_needed] {
+            for t in f.iter().filter(|s| !s.is_empty()) {
+                if v.len() == count {
+                    return Err(self.invalid(
+                        dl,
+                        kw,
+                        format!("too many values; TYPE={ty} expects {count} ({}); temperature is not supported", names.join(", ")),
+                    ));
+                }
+                let name = names[v.len()];
+                v.push(self.float(dl, kw, name, t)?);
+            }
+        }
+        if v.len() != count {
+            return Err(self.invalid(
+                data[0].0,
+                kw,
+                format!(
+                    "TYPE={ty} expects {count} values ({}), found {}",
+                    names.join(", "),
+                    v.len()
+                ),
+            ));
+        }
+        let kind = match count {
+            2 => InpMaterialKind::Isotropic { e: v[0], nu: v[1] },
+            3 => InpMaterialKind::Traction([v[0], v[1], v[2]]),
+            _ => {
+                let mut a = [0.0; 9];
+                a.copy_from_slice(&v);
+                InpMaterialKind::EngineeringConstants(a)
+            }
+        };
+        if let Some((name, _, Some(_), _)) = &self.current_material {
+            return Err(self.invalid(line, kw, format!("material `{name}` has two *ELASTIC")));
+        }
+        if let Some(m) = self.current_material.as_mut() {
+            m.2 = Some(kind);
+        }
+        Ok(())
+    }
+
+    fn boundary(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "BOUNDARY";
+        self.check_params(line, kw, params, &["OP"])?;
+        if let Some((_, Some(op))) = Self::param(params, "OP") {
+            if !op.eq_ignore_ascii_case("MOD") {
+                return Err(InpError::Parameter {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    parameter: format!("OP={op}"),
+                    valid: "OP=MOD".into(),
+                });
+            }
+        }
+        for &(dl, f, _) in data {
+            let f: Vec<&str> = f.to_vec();
+            let target = f.first().copied().unwrap_or("");
+            if target.is_empty() || f.len() < 2 || f.len() > 4 {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    "expected `node or node set, first dof[, last dof[, value]]`",
+                ));
+            }
+            let (first, last) = match f[1].to_uppercase().as_str() {
+                "ENCASTRE" | "PINNED" => (1, 3),
+                "XSYMM" => (1, 1),
+                "YSYMM" => (2, 2),
+                "ZSYMM" => (3, 3),
+                _ => {
+                    let a = self.dof(dl, kw, f[1])?;
+                    let b = match f.get(2) {
+                        Some(t) if !t.is_empty() => self.dof(dl, kw, t)?,
+                        _ => a,
+                    };
+                    if b < a {
+                        return Err(self.invalid(
+                            dl,
+                            kw,
+                            format!("last dof {b} is below first dof {a}"),
+                        ));
+                    }
+                    (a, b)
+                }
+            };
+            let value = match f.get(3) {
+                Some(t) if !t.is_empty() => self.float(dl, kw, "value", t)?,
+                _ => 0.0,
+            };
+            self.boundary_targets.push(PendingTarget {
+                target: target.into(),
+                line: dl,
+                keyword: "BOUNDARY",
+            });
+            self.deck.boundaries.push(InpBoundary {
+                target: target.into(),
+                nodes: Vec::new(),
+                first_dof: first,
+                last_dof: last,
+                value,
+                in_step: self.step_open.is_some(),
+                line: dl,
+            });
+        }
+        Ok(())
+    }
+
+    fn cload(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "CLOAD";
+        self.check_params(line, kw, params, &["OP"])?;
+        for &(dl, f, _) in data {
+            if f.len() != 3 || f[0].is_empty() {
+                return Err(self.invalid(dl, kw, "expected `node or node set, dof, value`"));
+            }
+            let dof = self.dof(dl, kw, f[1])?;
+            let value = self.float(dl, kw, "value", f[2])?;
+            self.cload_targets.push(PendingTarget {
+                target: f[0].into(),
+                line: dl,
+                keyword: "CLOAD",
+            });
+            self.deck.cloads.push(InpCload {
+                target: f[0].into(),
+                nodes: Vec::new(),
+                dof,
+                value,
+                in_step: self.step_open.is_some(),
+                line: dl,
+            });
+        }
+        Ok(())
+    }
+
+    /// Resolve targets, assign sections, build the mesh.
+    fn finish(mut self) -> Result<InpDeck, InpError> {
+        for (k, p) in self.boundary_targets.iter().enumerate() {
+            self.deck.boundaries[k].nodes = self.node_target(p.line, p.keyword, &p.target)?;
+        }
+        for (k, p) in self.cload_targets.iter().enumerate() {
+            self.deck.cloads[k].nodes = self.node_target(p.line, p.keyword, &p.target)?;
+        }
+        // sections -> element materials
+        let mut sections: Vec<(String, String, usize, bool)> = self
+            .deck
+            .solid_sections
+            .iter()
+            .map(|s| (s.elset.clone(), s.material.clone(), s.line, false))
+            .collect();
+        sections.extend(
+            self.deck
+                .cohesive_sections
+                .iter()
+                .map(|s| (s.elset.clone(), s.material.clone(), s.line, true)),
+        );
+        for (elset, material, line, cohesive) in sections {
+            let kw = if cohesive {
+                "COHESIVE SECTION"
+            } else {
+                "SOLID SECTION"
+            };
+            let set = match self.elset_index.get(&elset.to_uppercase()) {
+                Some(&s) => s,
+                None => return Err(self.unknown_set(line, kw, "element set", &elset)),
+            };
+            let m = match self.material_index.get(&material.to_uppercase()) {
+                Some(&m) => m,
+                None => {
+                    let valid = if self.deck.materials.is_empty() {
+                        "(none)".to_string()
+                    } else {
+                        self.deck
+                            .materials
+                            .iter()
+                            .map(|m| m.name.as_str())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    };
+                    return Err(InpError::UnknownName {
+                        file: self.file.into(),
+                        line,
+                        keyword: kw.into(),
+                        kind: "material",
+                        name: material,
+                        valid,
+                    });
+                }
+            };
+            let mname = self.deck.materials[m].name.clone();
+            for &e in &self.elsets[set].members.clone() {
+                let el = &self.elems[e];
+                let shape = self.pre_blocks[el.pre_block].shape;
+                if shape.is_interface() != cohesive {
+                    return Err(self.invalid(
+                        line,
+                        kw,
+                        format!(
+                            "element {} is a {} element; use {} for it",
+                            el.label,
+                            shape.name(),
+                            if shape.is_interface() {
+                                "*COHESIVE SECTION"
+                            } else {
+                                "*SOLID SECTION"
+                            }
+                        ),
+                    ));
+                }
+                match &el.material {
+                    Some((other, oline)) if *other != mname => {
+                        return Err(self.invalid(
+                            line,
+                            kw,
+                            format!(
+                                "element {} already has material `{other}` from the section of line {oline}",
+                                el.label
+                            ),
+                        ))
+                    }
+                    _ => self.elems[e].material = Some((mname.clone(), line)),
+                }
+            }
+        }
+        // blocks: one per (pre-block, material), in input order
+        let mut refs = vec![
+            ElementRef {
+                block: 0,
+                element: 0
+            };
+            self.elems.len()
+        ];
+        let mut blocks: Vec<ElementBlock> = Vec::new();
+        for (pb_i, pb) in self.pre_blocks.iter().enumerate() {
+            let mut mats: Vec<String> = Vec::new();
+            for e in self.elems.iter().filter(|e| e.pre_block == pb_i) {
+                let m = e.material.as_ref().map(|m| m.0.clone()).unwrap_or_default();
+                if !mats.contains(&m) {
+                    mats.push(m);
+                }
+            }
+            let split = mats.len() > 1;
+            for m in &mats {
+                let bi = blocks.len();
+                let name = if split {
+                    format!("{}_{}", pb.name, if m.is_empty() { "nosection" } else { m })
+                } else {
+                    pb.name.clone()
+                };
+                let mut b = ElementBlock {
+                    name,
+                    shape: pb.shape,
+                    connectivity: Vec::new(),
+                    element_type: pb.element_type.into(),
+                    material: m.clone(),
+                };
+                for (id, e) in self.elems.iter().enumerate() {
+                    let em = e.material.as_ref().map(|x| x.0.as_str()).unwrap_or("");
+                    if e.pre_block == pb_i && em == m {
+                        refs[id] = ElementRef {
+                            block: bi,
+                            element: b.len(),
+                        };
+                        b.connectivity.extend_from_slice(&e.conn);
+                    }
+                }
+                blocks.push(b);
+            }
+            let unassigned = self
+                .elems
+                .iter()
+                .filter(|e| e.pre_block == pb_i && e.material.is_none())
+                .count();
+            if unassigned > 0 {
+                self.deck.notes.push(format!(
+                    "{unassigned} element(s) of block `{}` have no section (material left empty)",
+                    pb.name
+                ));
+            }
+        }
+        let mut mesh = Mesh {
+            nodes: self.nodes,
+            node_labels: self.labels,
+            blocks,
+            ..Mesh::default()
+        };
+        for s in self.nsets {
+            let mut v = s.members;
+            v.sort_unstable();
+            v.dedup();
+            mesh.node_sets.insert(s.name, v);
+        }
+        for s in self.elsets {
+            let mut v: Vec<ElementRef> = s.members.iter().map(|&e| refs[e]).collect();
+            v.sort_unstable();
+            v.dedup();
+            mesh.element_sets.insert(s.name, v);
+        }
+        for (id, e) in self.elems.iter().enumerate() {
+            self.deck.element_labels.insert(e.label, refs[id]);
+        }
+        mesh.validate().map_err(|e| InpError::Invalid {
+            file: self.file.into(),
+            line: 0,
+            keyword: "(mesh)".into(),
+            message: e.to_string(),
+        })?;
+        self.deck.mesh = mesh;
+        Ok(self.deck)
+    }
+}
+
+/// Parse the text of a deck; `file_name` is used in messages.
+pub fn parse_inp(text: &str, file_name: &str) -> Result<InpDeck, InpError> {
+    let items = lex(text);
+    let mut p = Parser {
+        file: file_name,
+        nodes: Vec::new(),
+        labels: Vec::new(),
+        node_id: HashMap::new(),
+        elems: Vec::new(),
+        elem_id: HashMap::new(),
+        pre_blocks: Vec::new(),
+        pre_block_key: HashMap::new(),
+        nsets: Vec::new(),
+        nset_index: HashMap::new(),
+        elsets: Vec::new(),
+        elset_index: HashMap::new(),
+        deck: InpDeck::default(),
+        material_index: HashMap::new(),
+        current_material: None,
+        step_open: None,
+        boundary_targets: Vec::new(),
+        cload_targets: Vec::new(),
+    };
+    p.run(&items)?;
+    p.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::topology::HEX27_NODES;
+
+    #[test]
+    fn c3d27_permutation_is_geometric() {
+        // Abaqus C3D27 natural coordinates written from the face definitions:
+        // 1-20 as C3D20 (= ours), 21..26 centres of faces 1..6, 27 centroid.
+        let mut abq: Vec<[f64; 3]> = HEX27_NODES[..20].to_vec();
+        let faces: [[usize; 4]; 6] = [
+            [1, 2, 3, 4],
+            [5, 8, 7, 6],
+            [1, 5, 6, 2],
+            [2, 6, 7, 3],
+            [3, 7, 8, 4],
+            [4, 8, 5, 1],
+        ];
+        for f in faces {
+            let mut c = [0.0; 3];
+            for n in f {
+                for d in 0..3 {
+                    c[d] += 0.25 * HEX27_NODES[n - 1][d];
+                }
+            }
+            abq.push(c);
+        }
+        abq.push([0.0; 3]);
+        for (i, &k) in C3D27_TO_OURS.iter().enumerate() {
+            assert_eq!(
+                abq[k],
+                HEX27_NODES[i],
+                "our node {i} <- abaqus node {}",
+                k + 1
+            );
+        }
+    }
+
+    #[test]
+    fn lexer_joins_keyword_continuations() {
+        let items = lex("*element, type=C3D8,\n elset=A\n1,2\n");
+        match &items[0] {
+            Item::Keyword { name, params, .. } => {
+                assert_eq!(name, "ELEMENT");
+                assert_eq!(params[1], ("ELSET".into(), Some("A".into())));
+            }
+            _ => panic!(),
+        }
+    }
+}

@@ -1,0 +1,635 @@
+//! Integration tests of the mesh / deck readers (`mesh::inp`, `mesh::gmsh`).
+
+use junta_core::mesh::gmsh::{parse_msh, read_msh, GmshError};
+use junta_core::mesh::inp::{parse_inp, read_inp, InpDeck, InpError, InpMaterialKind};
+use junta_core::mesh::Mesh;
+use junta_core::topology::{CellShape, HEX27_NODES, HEX_FACES};
+use std::path::PathBuf;
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
+}
+
+/// Every hexahedron of an axis-aligned box mesh has node k at
+/// centre + half-size * HEX27_NODES[k]: a geometric check of node orders.
+fn check_hex_geometry(mesh: &Mesh) {
+    for b in mesh.blocks.iter().filter(|b| b.shape.is_solid()) {
+        for e in 0..b.len() {
+            let conn = b.element(e);
+            let mut lo = [f64::MAX; 3];
+            let mut hi = [f64::MIN; 3];
+            for &n in &conn[..8] {
+                for d in 0..3 {
+                    lo[d] = lo[d].min(mesh.nodes[n][d]);
+                    hi[d] = hi[d].max(mesh.nodes[n][d]);
+                }
+            }
+            for (k, &n) in conn.iter().enumerate() {
+                for d in 0..3 {
+                    let want = 0.5 * (lo[d] + hi[d]) + 0.5 * (hi[d] - lo[d]) * HEX27_NODES[k][d];
+                    assert!(
+                        (mesh.nodes[n][d] - want).abs() < 1e-9,
+                        "block {} element {e} local node {k}: {:?}, expected coordinate {d} = {want}",
+                        b.name,
+                        mesh.nodes[n]
+                    );
+                }
+            }
+        }
+    }
+}
+
+fn err(text: &str) -> InpError {
+    parse_inp(text, "test.inp").expect_err("deck should be rejected")
+}
+
+// ------------------------------------------------------------------ .inp
+
+#[test]
+fn cube_h8_deck() {
+    let deck = read_inp(data("cube_h8_n2.inp")).unwrap();
+    let m = &deck.mesh;
+    assert_eq!(m.nodes.len(), 27);
+    assert_eq!(m.node_labels, (1..=27).collect::<Vec<_>>());
+    assert_eq!(m.num_elements(), 8);
+    assert_eq!(m.blocks.len(), 1);
+    let b = &m.blocks[0];
+    assert_eq!(
+        (
+            b.name.as_str(),
+            b.shape,
+            b.element_type.as_str(),
+            b.material.as_str()
+        ),
+        ("EALL", CellShape::Hex8, "h8", "STEEL")
+    );
+    check_hex_geometry(m);
+    let bottom = m.node_set("BOTTOM").unwrap();
+    let top = m.node_set("TOP").unwrap();
+    assert_eq!((bottom.len(), top.len()), (9, 9));
+    assert!(bottom.iter().all(|&n| m.nodes[n][2] == 0.0));
+    assert!(top.iter().all(|&n| m.nodes[n][2] == 1.0));
+    assert_eq!(m.node_set("NALL").unwrap().len(), 27);
+    assert_eq!(m.element_set("EALL").unwrap().len(), 8);
+    assert_eq!(deck.element_labels.len(), 8);
+
+    assert_eq!(deck.materials.len(), 1);
+    assert_eq!(
+        deck.materials[0].kind,
+        InpMaterialKind::Isotropic {
+            e: 210000.0,
+            nu: 0.3
+        }
+    );
+    assert_eq!(deck.solid_sections.len(), 1);
+
+    assert_eq!(deck.boundaries.len(), 2);
+    let fix = &deck.boundaries[0];
+    assert_eq!(
+        (
+            fix.target.as_str(),
+            fix.first_dof,
+            fix.last_dof,
+            fix.value,
+            fix.in_step
+        ),
+        ("BOTTOM", 1, 3, 0.0, false)
+    );
+    assert_eq!(fix.nodes, bottom);
+    let pull = &deck.boundaries[1];
+    assert_eq!(
+        (
+            pull.target.as_str(),
+            pull.first_dof,
+            pull.last_dof,
+            pull.value,
+            pull.in_step
+        ),
+        ("TOP", 3, 3, -0.01, true)
+    );
+    assert_eq!(pull.nodes, top);
+    assert!(deck.cloads.is_empty());
+
+    assert_eq!(deck.steps.len(), 1);
+    assert!(!deck.steps[0].nlgeom);
+    assert!(deck.steps[0].static_procedure.is_some());
+    assert!(deck.heading.contains("2x2x2 C3D8"));
+    assert!(
+        deck.notes.iter().any(|n| n.contains("*NODE PRINT")),
+        "{:?}",
+        deck.notes
+    );
+}
+
+#[test]
+fn cube_h20_deck_with_continuation_lines() {
+    let deck = read_inp(data("cube_h20_n2.inp")).unwrap();
+    let m = &deck.mesh;
+    assert_eq!(m.nodes.len(), 81);
+    assert_eq!(m.num_elements(), 8);
+    assert_eq!(m.blocks[0].shape, CellShape::Hex20);
+    assert_eq!(m.blocks[0].element_type, "h20");
+    check_hex_geometry(m);
+    assert_eq!(m.node_set("BOTTOM").unwrap().len(), 21);
+    assert_eq!(m.node_set("TOP").unwrap().len(), 21);
+    assert_eq!(deck.boundaries[1].value, -0.01);
+}
+
+/// One C3D27 on [0,2]x[0,4]x[0,6] with scrambled labels; nodes listed in
+/// Abaqus order (21..26 = centres of faces 1..6, 27 = centroid).
+fn c3d27_deck() -> String {
+    let faces = [
+        [1, 2, 3, 4],
+        [5, 8, 7, 6],
+        [1, 5, 6, 2],
+        [2, 6, 7, 3],
+        [3, 7, 8, 4],
+        [4, 8, 5, 1],
+    ];
+    let mut nat: Vec<[f64; 3]> = HEX27_NODES[..20].to_vec();
+    for f in faces {
+        let mut c = [0.0; 3];
+        for n in f {
+            for d in 0..3 {
+                c[d] += 0.25 * HEX27_NODES[n - 1][d];
+            }
+        }
+        nat.push(c);
+    }
+    nat.push([0.0; 3]);
+    let mut s = String::from("*NODE\n");
+    // list nodes in reverse to decouple labels from ids
+    for (i, x) in nat.iter().enumerate().rev() {
+        s += &format!(
+            "{}, {}, {}, {}\n",
+            1000 + 7 * i,
+            1.0 + x[0],
+            2.0 + 2.0 * x[1],
+            3.0 + 3.0 * x[2]
+        );
+    }
+    s += "*ELEMENT, TYPE=c3d27, ELSET=Q\n5";
+    for i in 0..27 {
+        s += &format!(", {}", 1000 + 7 * i);
+        if i == 14 || i == 26 {
+            s += if i == 14 { ",\n" } else { "\n" };
+        }
+    }
+    s.replace(",,", ",").replace("\n,", "\n")
+}
+
+#[test]
+fn c3d27_node_order_is_converted() {
+    let text = c3d27_deck();
+    let deck = parse_inp(&text, "c3d27.inp").unwrap();
+    let m = &deck.mesh;
+    assert_eq!(m.blocks[0].shape, CellShape::Hex27);
+    assert_eq!(m.blocks[0].element_type, "h27");
+    assert_eq!(m.blocks[0].name, "Q");
+    assert_eq!(m.node_label(m.blocks[0].element(0)[0]), 1000);
+    check_hex_geometry(m);
+    // face S1 (z-) of our table holds Abaqus node 21 at its centre
+    let centre = m.blocks[0].element(0)[HEX_FACES[0][8]];
+    assert_eq!(m.node_label(centre), 1000 + 7 * 20);
+    assert_eq!(m.nodes[centre], [1.0, 2.0, 0.0]);
+}
+
+const TWO_BLOCKS_WITH_COHESIVE: &str = "\
+*NODE
+1, 0, 0, 0
+2, 1, 0, 0
+3, 1, 1, 0
+4, 0, 1, 0
+5, 0, 0, 1
+6, 1, 0, 1
+7, 1, 1, 1
+8, 0, 1, 1
+11, 0, 0, 1
+12, 1, 0, 1
+13, 1, 1, 1
+14, 0, 1, 1
+15, 0, 0, 2
+16, 1, 0, 2
+17, 1, 1, 2
+18, 0, 1, 2
+*ELEMENT, TYPE=C3D8, ELSET=LOWER
+1, 1, 2, 3, 4, 5, 6, 7, 8
+*ELEMENT, TYPE=C3D8, ELSET=UPPER
+2, 11, 12, 13, 14, 15, 16, 17, 18
+*ELEMENT, TYPE=COH3D8, ELSET=GLUE
+3, 5, 6, 7, 8, 11, 12, 13, 14
+*ELSET, ELSET=SOLIDS
+LOWER, UPPER
+*MATERIAL, NAME=Steel
+*ELASTIC
+210000., 0.3
+*DENSITY
+7.85e-9
+*MATERIAL, NAME=Glue
+*ELASTIC, TYPE=TRACTION
+1e6, 5e5, 5e5
+*SOLID SECTION, ELSET=solids, MATERIAL=steel
+*COHESIVE SECTION, ELSET=GLUE, MATERIAL=GLUE, RESPONSE=TRACTION SEPARATION
+1.0
+";
+
+#[test]
+fn coh3d8_bottom_then_top() {
+    let deck = parse_inp(TWO_BLOCKS_WITH_COHESIVE, "coh.inp").unwrap();
+    let m = &deck.mesh;
+    let glue = m.blocks.iter().find(|b| b.name == "GLUE").unwrap();
+    assert_eq!(
+        (
+            glue.shape,
+            glue.element_type.as_str(),
+            glue.material.as_str()
+        ),
+        (CellShape::Inter8, "inter8", "Glue")
+    );
+    let lower = m.blocks.iter().find(|b| b.name == "LOWER").unwrap();
+    let upper = m.blocks.iter().find(|b| b.name == "UPPER").unwrap();
+    assert_eq!(lower.material, "Steel");
+    assert_eq!(upper.material, "Steel");
+    let c = glue.element(0);
+    // bottom face = top face (z+) of the lower block, top face = bottom of the upper block
+    let lower_top: Vec<usize> = HEX_FACES[1][..4]
+        .iter()
+        .map(|&k| lower.element(0)[k])
+        .collect();
+    assert_eq!(&c[..4], &lower_top[..]);
+    for k in 0..4 {
+        assert_eq!(m.nodes[c[k]], m.nodes[c[k + 4]], "pair {k} coincides");
+        assert!(upper.element(0).contains(&c[k + 4]));
+    }
+    // right-hand normal of the bottom quad points from the lower to the upper block
+    let p = |i: usize| m.nodes[c[i]];
+    let (a, b) = (
+        [p(1)[0] - p(0)[0], p(1)[1] - p(0)[1]],
+        [p(3)[0] - p(0)[0], p(3)[1] - p(0)[1]],
+    );
+    assert!(a[0] * b[1] - a[1] * b[0] > 0.0);
+    assert_eq!(deck.cohesive_sections.len(), 1);
+    assert_eq!(deck.cohesive_sections[0].response, "TRACTION SEPARATION");
+    assert_eq!(deck.cohesive_sections[0].thickness, Some(1.0));
+    assert_eq!(
+        deck.material("glue").unwrap().kind,
+        InpMaterialKind::Traction([1e6, 5e5, 5e5])
+    );
+    assert_eq!(deck.material("STEEL").unwrap().density, Some(7.85e-9));
+    assert!(deck.notes.iter().any(|n| n.contains("*DENSITY")));
+    assert_eq!(m.element_set("SOLIDS").unwrap().len(), 2);
+    assert_eq!(
+        deck.element_labels[&3].block,
+        m.blocks.iter().position(|b| b.name == "GLUE").unwrap()
+    );
+}
+
+const TWO_MATERIALS: &str = "\
+*NODE
+1, 0, 0, 0
+2, 1, 0, 0
+3, 1, 1, 0
+4, 0, 1, 0
+5, 0, 0, 1
+6, 1, 0, 1
+7, 1, 1, 1
+8, 0, 1, 1
+9, 2, 0, 0
+10, 2, 1, 0
+11, 2, 0, 1
+12, 2, 1, 1
+*ELEMENT, TYPE=C3D8, ELSET=EALL
+10, 1, 2, 3, 4, 5, 6, 7, 8
+20, 2, 9, 10, 3, 6, 11, 12, 7
+*ELSET, ELSET=A
+10
+*ELSET, ELSET=B
+20
+*MATERIAL, NAME=M1
+*ELASTIC, TYPE=ENGINEERING CONSTANTS
+100., 10., 10., 0.3, 0.3, 0.4, 5., 5.,
+4.
+*MATERIAL, NAME=M2
+*ELASTIC
+200., 0.25
+*SOLID SECTION, ELSET=A, MATERIAL=M1
+*SOLID SECTION, ELSET=B, MATERIAL=M2
+*NSET, NSET=LOADED
+11, 12
+*CLOAD
+LOADED, 1, 5.5
+9, 2, -1
+";
+
+#[test]
+fn sections_split_blocks_and_cloads() {
+    let deck = parse_inp(TWO_MATERIALS, "mat.inp").unwrap();
+    let m = &deck.mesh;
+    assert_eq!(m.blocks.len(), 2);
+    assert_eq!(
+        (m.blocks[0].name.as_str(), m.blocks[0].material.as_str()),
+        ("EALL_M1", "M1")
+    );
+    assert_eq!(
+        (m.blocks[1].name.as_str(), m.blocks[1].material.as_str()),
+        ("EALL_M2", "M2")
+    );
+    assert_eq!(deck.element_labels[&10].block, 0);
+    assert_eq!(deck.element_labels[&20].block, 1);
+    assert_eq!(m.element_set("EALL").unwrap().len(), 2);
+    assert_eq!(
+        deck.materials[0].kind,
+        InpMaterialKind::EngineeringConstants([100., 10., 10., 0.3, 0.3, 0.4, 5., 5., 4.])
+    );
+    assert_eq!(deck.cloads.len(), 2);
+    assert_eq!(deck.cloads[0].nodes.len(), 2);
+    assert_eq!((deck.cloads[0].dof, deck.cloads[0].value), (1, 5.5));
+    assert_eq!(m.node_label(deck.cloads[1].nodes[0]), 9);
+    assert!(!deck.cloads[1].in_step);
+    assert!(deck.steps.is_empty());
+}
+
+#[test]
+fn generate_ranges_and_case_insensitive_names() {
+    let text = std::fs::read_to_string(data("cube_h8_n2.inp")).unwrap().replace(
+        "*MATERIAL",
+        "*NSET, NSET=Every13, GENERATE\n1, 27, 13\n*ELSET, ELSET=ODD, GENERATE\n1, 8, 2\n*nset, nset=both\nbottom, Top\n*MATERIAL",
+    );
+    let deck: InpDeck = parse_inp(&text, "gen.inp").unwrap();
+    let m = &deck.mesh;
+    let g: Vec<usize> = m
+        .node_set("Every13")
+        .unwrap()
+        .iter()
+        .map(|&n| m.node_label(n))
+        .collect();
+    assert_eq!(g, vec![1, 14, 27]);
+    assert_eq!(m.element_set("ODD").unwrap().len(), 4);
+    assert_eq!(m.node_set("both").unwrap().len(), 18);
+}
+
+#[test]
+fn error_unsupported_keyword_names_line() {
+    let text = "*NODE\n1, 0, 0, 0\n*DYNAMIC\n0.1, 1.\n";
+    let e = err(text);
+    assert!(
+        matches!(&e, InpError::UnknownKeyword { line: 3, keyword, .. } if keyword == "DYNAMIC"),
+        "{e:?}"
+    );
+    let msg = e.to_string();
+    assert!(
+        msg.contains("test.inp:3") && msg.contains("*DYNAMIC") && msg.contains("*STATIC"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn error_unknown_element_type() {
+    let e = err("*NODE\n1, 0, 0, 0\n*ELEMENT, TYPE=C3D8R, ELSET=E\n1, 1, 1, 1, 1, 1, 1, 1, 1\n");
+    let msg = e.to_string();
+    assert!(matches!(e, InpError::ElementType { line: 3, .. }));
+    assert!(
+        msg.contains("C3D8R") && msg.contains("C3D8, C3D20, C3D20R, C3D27, COH3D8"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn error_undefined_node_label() {
+    let e = err("*NODE\n1, 0, 0, 0\n*ELEMENT, TYPE=C3D8\n1, 1, 1, 1, 1, 1, 1, 1, 99\n");
+    assert!(
+        matches!(
+            e,
+            InpError::UndefinedLabel {
+                line: 4,
+                label: 99,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("node label 99"));
+}
+
+#[test]
+fn error_missing_set_lists_defined_sets() {
+    let text = std::fs::read_to_string(data("cube_h8_n2.inp"))
+        .unwrap()
+        .replace("BOTTOM, 1, 3", "BOTOM, 1, 3");
+    let e = err(&text);
+    let msg = e.to_string();
+    assert!(matches!(e, InpError::UnknownName { .. }), "{e:?}");
+    assert!(
+        msg.contains("BOTOM")
+            && msg.contains("BOTTOM")
+            && msg.contains("TOP")
+            && msg.contains("*BOUNDARY"),
+        "{msg}"
+    );
+    let line = text.lines().position(|l| l == "BOTOM, 1, 3").unwrap() + 1;
+    assert!(msg.contains(&format!("test.inp:{line}:")), "{msg}");
+}
+
+#[test]
+fn error_bad_number() {
+    let e = err("*NODE\n1, 0, 0, 0\n2, 1.0, abc, 0\n");
+    assert!(
+        matches!(&e, InpError::BadNumber { line: 3, text, .. } if text == "abc"),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("test.inp:3"));
+}
+
+#[test]
+fn error_short_element_and_continuation() {
+    // 20-node element on one line is fine without continuation when complete...
+    let ok = std::fs::read_to_string(data("cube_h20_n2.inp")).unwrap();
+    assert!(parse_inp(&ok, "x").is_ok());
+    // a full line of 16 entries continues (Abaqus rule) even without a comma
+    let full16 = ok.replacen(", 40,\n", ", 40\n", 1);
+    assert!(parse_inp(&full16, "x").is_ok());
+    // ...but a short line cut without a trailing comma leaves the element short
+    let broken = ok.replacen(", 32, 37, 40,\n36,", ", 32\n37, 40, 36,", 1);
+    let e = err(&broken);
+    assert!(
+        e.to_string()
+            .contains("element 1: TYPE=C3D20 needs 20 nodes, found 13"),
+        "{e}"
+    );
+    let line = broken
+        .lines()
+        .position(|l| l.starts_with("1, 1, 3, 11"))
+        .unwrap()
+        + 1;
+    assert!(matches!(e, InpError::Invalid { line: l, .. } if l == line));
+    // a short line ending with a comma continues
+    let split = ok.replacen(", 32, 37, 40,\n36,", ", 32,\n 37, 40, 36,", 1);
+    let d = parse_inp(&split, "x").unwrap();
+    assert_eq!(
+        d.mesh.blocks[0].connectivity,
+        parse_inp(&ok, "x").unwrap().mesh.blocks[0].connectivity
+    );
+}
+
+#[test]
+fn error_dofs_and_steps() {
+    let base = std::fs::read_to_string(data("cube_h8_n2.inp")).unwrap();
+    let e = err(&base.replace("BOTTOM, 1, 3", "BOTTOM, 1, 6"));
+    assert!(e.to_string().contains("degree of freedom 6"), "{e}");
+    let e = err(&format!("{base}*STEP\n*STATIC\n*END STEP\n"));
+    assert!(
+        e.to_string().contains("multi-step decks not supported yet"),
+        "{e}"
+    );
+    let e = err(&base.replace("*END STEP\n", ""));
+    assert!(e.to_string().contains("missing *END STEP"), "{e}");
+    let e = err(&base.replace(
+        "*SOLID SECTION, ELSET=EALL",
+        "*SOLID SECTION, ORIENTATION=OR1, ELSET=EALL",
+    ));
+    assert!(e.to_string().contains("ORIENTATION"), "{e}");
+    let e = err(&base.replace("*STEP", "*STEP, FOO=1"));
+    assert!(e.to_string().contains("valid: NAME, NLGEOM, INC"), "{e}");
+    let d = parse_inp(&base.replace("*STEP", "*STEP, NLGEOM, INC=50"), "x").unwrap();
+    assert!(d.steps[0].nlgeom);
+    assert_eq!(d.steps[0].max_increments, Some(50));
+}
+
+#[test]
+fn error_missing_material_and_wrong_section() {
+    let e = err(&TWO_MATERIALS.replace("MATERIAL=M2", "MATERIAL=M3"));
+    assert!(
+        e.to_string()
+            .contains("material `M3` is not defined; defined: M1, M2"),
+        "{e}"
+    );
+    let e = err(&TWO_BLOCKS_WITH_COHESIVE
+        .replace("*SOLID SECTION, ELSET=solids", "*SOLID SECTION, ELSET=GLUE"));
+    assert!(e.to_string().contains("*COHESIVE SECTION"), "{e}");
+}
+
+// ------------------------------------------------------------------ Gmsh
+
+#[test]
+fn gmsh_hex20_fixture() {
+    let m = read_msh(data("box_hex20.msh")).unwrap();
+    assert_eq!(m.nodes.len(), 32);
+    assert_eq!(m.blocks.len(), 1);
+    let b = &m.blocks[0];
+    assert_eq!(
+        (
+            b.name.as_str(),
+            b.shape,
+            b.element_type.as_str(),
+            b.material.as_str()
+        ),
+        ("solid", CellShape::Hex20, "h20", "solid")
+    );
+    assert_eq!(b.len(), 2);
+    check_hex_geometry(&m);
+    assert_eq!(m.element_set("solid").unwrap().len(), 2);
+    let origin = m.node_set("origin").unwrap();
+    assert_eq!(origin.len(), 1);
+    assert_eq!(m.nodes[origin[0]], [0.0, 0.0, 0.0]);
+    for (name, z, face) in [("bottom", 0.0, 0), ("top", 1.0, 1)] {
+        let nodes = m.node_set(name).unwrap();
+        assert_eq!(nodes.len(), 13, "{name}");
+        assert!(nodes.iter().all(|&n| m.nodes[n][2] == z));
+        let faces = m.face_set(name).unwrap();
+        assert_eq!(faces.len(), 2);
+        for &f in faces {
+            assert_eq!(f.face, face, "{name} is face S{} of its element", face + 1);
+            let fnodes = m.face_nodes(f);
+            assert_eq!(fnodes.len(), 8);
+            assert!(fnodes.iter().all(|&n| m.nodes[n][2] == z));
+        }
+        assert_eq!(m.nodes_of_faces(faces), nodes);
+    }
+}
+
+#[test]
+fn gmsh_hex27_fixture() {
+    let m = read_msh(data("box_hex27.msh")).unwrap();
+    assert_eq!(m.nodes.len(), 27);
+    assert_eq!(m.blocks[0].shape, CellShape::Hex27);
+    assert_eq!(m.blocks[0].element_type, "h27");
+    check_hex_geometry(&m);
+    let top = m.face_set("top").unwrap();
+    assert_eq!(top.len(), 1);
+    assert_eq!(m.face_nodes(top[0]).len(), 9);
+    assert_eq!(m.node_set("top").unwrap().len(), 9);
+}
+
+const HEX8_MSH: &str = "$MeshFormat
+4.1 0 8
+$EndMeshFormat
+$PhysicalNames
+2
+2 7 \"load\"
+3 8 \"block\"
+$EndPhysicalNames
+$Entities
+0 0 1 1
+3 0 0 1 1 1 1 1 7 0
+1 0 0 0 1 1 1 1 8 0
+$EndEntities
+$Nodes
+2 8 1 8
+2 3 0 4
+5
+6
+7
+8
+0 0 1
+1 0 1
+1 1 1
+0 1 1
+3 1 0 4
+1
+2
+3
+4
+0 0 0
+1 0 0
+1 1 0
+0 1 0
+$EndNodes
+$Elements
+2 2 1 2
+3 1 5 1
+1 1 2 3 4 5 6 7 8
+2 3 3 1
+2 5 6 7 8
+$EndElements
+";
+
+#[test]
+fn gmsh_hand_written_hex8() {
+    let m = parse_msh(HEX8_MSH, "hand.msh").unwrap();
+    assert_eq!(m.node_labels, vec![5, 6, 7, 8, 1, 2, 3, 4]);
+    assert_eq!(m.blocks[0].name, "block");
+    check_hex_geometry(&m);
+    let f = m.face_set("load").unwrap();
+    assert_eq!(f.len(), 1);
+    assert_eq!(f[0].face, 1);
+    assert_eq!(m.node_set("load").unwrap().len(), 4);
+}
+
+#[test]
+fn gmsh_errors() {
+    let e = parse_msh(&HEX8_MSH.replace("4.1 0 8", "4.1 1 8"), "bin.msh").unwrap_err();
+    assert!(matches!(e, GmshError::Binary { line: 2, .. }), "{e:?}");
+    assert!(e.to_string().contains("binary"));
+    let e = parse_msh(&HEX8_MSH.replace("4.1 0 8", "2.2 0 8"), "old.msh").unwrap_err();
+    assert!(e.to_string().contains("4.1"), "{e}");
+    let e = parse_msh(&HEX8_MSH.replace("3 1 5 1", "3 1 4 1"), "tet.msh").unwrap_err();
+    assert!(matches!(e, GmshError::ElementType { code: 4, .. }), "{e:?}");
+    let e = parse_msh(
+        &HEX8_MSH.replace("1 1 2 3 4 5 6 7 8", "1 1 2 3 4 5 6 7 9"),
+        "bad.msh",
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("undefined node tag 9"), "{e}");
+}
