@@ -1,1 +1,44 @@
-//! junta-elements (see crate docs)
+//! # junta-elements
+//!
+//! Solid finite elements of Junta and what they are made of:
+//!
+//! * [`shape`]: Lagrange / serendipity shape functions and their natural
+//!   derivatives for Q4, Q8, Q9 ([`shape::quad_shape`], also used on the
+//!   faces of the interface elements) and H8, H20, H27
+//!   ([`shape::hex_shape`]), in the node order of [`junta_core::topology`].
+//! * [`quadrature`]: Gauss-Legendre (1-5 points) and Gauss-Lobatto (2-5
+//!   points) rules and their 2D / 3D tensor products.
+//! * [`material`]: linear elastic materials implementing
+//!   [`junta_core::Material`]: [`Isotropic`] (`isotropic`) and
+//!   [`Orthotropic`] (`orthotropic`, with an Abaqus-style orientation).
+//! * [`solid`]: the small-strain hexahedral [`SolidElement`], registered as
+//!   `h8`, `h20`, `h27`, `h20r`, `h27r`.
+//! * [`face_load`]: consistent nodal forces of pressures and tractions on
+//!   solid faces.
+//!
+//! Every material and element is registered in the
+//! [`junta_core::registry`] with `inventory`; a binary that wants them must
+//! reference this crate (`use junta_elements as _;`).
+//!
+//! Embedding without the registry:
+//!
+//! ```
+//! use std::sync::Arc;
+//! use junta_core::{Element, topology::CellShape};
+//! use junta_elements::{Isotropic, SolidElement, solid::Integration};
+//!
+//! let steel = Arc::new(Isotropic::new(210e9, 0.3).unwrap());
+//! let h20 = SolidElement::new(CellShape::Hex20, Integration::Full, steel).unwrap();
+//! assert_eq!(h20.num_points(), 27);
+//! ```
+
+pub mod face_load;
+pub mod material;
+pub mod quadrature;
+pub mod shape;
+pub mod solid;
+
+pub use material::{EngineeringConstants, Isotropic, Orientation, Orthotropic};
+pub use quadrature::{gauss_legendre, gauss_lobatto, tensor_2d, tensor_3d, Rule, Rule1D};
+pub use shape::{hex_shape, quad_shape};
+pub use solid::{Integration, SolidElement};

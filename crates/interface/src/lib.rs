@@ -1,1 +1,16 @@
-//! junta-interface (see crate docs)
+//! # junta-interface
+//!
+//! Zero-thickness interface elements between 3D solids and the traction
+//! laws they use.
+//!
+//! - [`element`]: INTER8 / INTER16 / INTER18 (4+4, 8+8, 9+9 nodes; they match
+//!   H8 / H20 / H27 faces), one generic kernel over the face shape, with
+//!   Gauss or Lobatto (nodal) integration. The paper's element is INTER18.
+//! - [`law`]: traction-separation laws behind [`junta_core::InterfaceLaw`],
+//!   one file each (`linear_penalty`, ...), registered with `inventory`.
+
+pub mod element;
+pub mod law;
+
+pub use element::{InterfaceElement, InterfaceRule};
+pub use law::linear_penalty::LinearPenalty;

@@ -1,0 +1,425 @@
+//! Lagrange and serendipity shape functions of quadrilaterals and hexahedra,
+//! with their derivatives in natural coordinates.
+//!
+//! Node orders are those of [`junta_core::topology`] (VTK order): the
+//! natural coordinates of node `a` are `QUAD9_NODES[a]` / `HEX27_NODES[a]`,
+//! and the first 4 / 8 (Q4, Q8) or 8 / 20 (H8, H20) entries serve the lower
+//! orders.
+//!
+//! ```text
+//! Quadrilateral (Q4 / Q8 / Q9)            Hexahedron (H8 / H20 / H27)
+//!
+//!   eta                                          7 ------14------ 6
+//!    |                                          /|               /|
+//!    3 ----- 6 ----- 2                        15 |    25       13 |
+//!    |               |                        /  19    23     /   18
+//!    |               |                       4 ------12------ 5   |
+//!    7       8       5 --- xi                | 20|     26     | 21|
+//!    |               |                       |   3 ------10---|-- 2
+//!    |               |                      16  /    22      17  /
+//!    0 ----- 4 ----- 1                       | 11     24      | 9
+//!                                            |/               |/
+//!                                            0 ------ 8------ 1
+//! ```
+//!
+//! ## The functions
+//!
+//! With the 1D functions on `[-1, 1]`, for a node at `a`:
+//!
+//! * linear: `l_a(x) = (1 + a x) / 2` for `a = ±1`;
+//! * quadratic Lagrange: `q_{-1}(x) = x (x - 1) / 2`, `q_0(x) = 1 - x^2`,
+//!   `q_{+1}(x) = x (x + 1) / 2`;
+//!
+//! the shapes are, for node `a` at `(xi_a, eta_a[, zeta_a])`:
+//!
+//! * **Q4, H8** (bi/trilinear): `N_a = l(xi) l(eta) [l(zeta)]`
+//!   `= (1 + xi xi_a)(1 + eta eta_a)[(1 + zeta zeta_a)] / 4 [/ 8]`.
+//! * **Q9, H27** (bi/triquadratic Lagrange): `N_a = q(xi) q(eta) [q(zeta)]`.
+//! * **Q8** (serendipity): corners
+//!   `N_a = (1 + xi xi_a)(1 + eta eta_a)(xi xi_a + eta eta_a - 1) / 4`;
+//!   mid-sides with `xi_a = 0`: `N_a = (1 - xi^2)(1 + eta eta_a) / 2`, and
+//!   symmetrically for `eta_a = 0`.
+//! * **H20** (serendipity): corners
+//!   `N_a = (1 + xi xi_a)(1 + eta eta_a)(1 + zeta zeta_a)(xi xi_a + eta eta_a + zeta zeta_a - 2) / 8`;
+//!   mid-edges with `xi_a = 0`: `N_a = (1 - xi^2)(1 + eta eta_a)(1 + zeta zeta_a) / 4`,
+//!   and symmetrically for `eta_a = 0`, `zeta_a = 0`.
+//!
+//! All satisfy `N_a(x_b) = delta_ab` and `sum_a N_a = 1`, and reproduce
+//! linear fields exactly; Q8, Q9, H20, H27 also reproduce complete quadratic
+//! polynomials.
+//!
+//! The functions write into caller buffers (`n.len() >= num_nodes`,
+//! `dn.len() >= num_nodes`) and never allocate. `dn[a][j] = dN_a / d xi_j`.
+
+use junta_core::topology::{CellShape, HEX27_NODES, QUAD9_NODES};
+
+/// 1D linear function of the node at `a = ±1` and its derivative.
+#[inline(always)]
+fn lin(a: f64, x: f64) -> (f64, f64) {
+    (0.5 * (1.0 + a * x), 0.5 * a)
+}
+
+/// 1D quadratic Lagrange function of the node at `a ∈ {-1, 0, 1}` and its derivative.
+#[inline(always)]
+fn quad(a: f64, x: f64) -> (f64, f64) {
+    if a < -0.5 {
+        (0.5 * x * (x - 1.0), x - 0.5)
+    } else if a > 0.5 {
+        (0.5 * x * (x + 1.0), x + 0.5)
+    } else {
+        (1.0 - x * x, -2.0 * x)
+    }
+}
+
+/// Shape functions of a quadrilateral (Q4, Q8 or Q9) at `xi = [xi, eta]`.
+///
+/// Writes `n[a] = N_a(xi)` and `dn[a] = [dN_a/dxi, dN_a/deta]` for the
+/// `shape.num_nodes()` nodes in [`junta_core::topology`] order. This is the
+/// function the interface elements use on each face of INTER8/16/18.
+///
+/// # Panics
+/// If `shape` is not `Quad4`, `Quad8` or `Quad9`, or a buffer is shorter than
+/// the node count (both are programming errors).
+pub fn quad_shape(shape: CellShape, xi: [f64; 2], n: &mut [f64], dn: &mut [[f64; 2]]) {
+    let [x, y] = xi;
+    match shape {
+        CellShape::Quad4 => {
+            for (a, p) in QUAD9_NODES[..4].iter().enumerate() {
+                let (fx, dx) = lin(p[0], x);
+                let (fy, dy) = lin(p[1], y);
+                n[a] = fx * fy;
+                dn[a] = [dx * fy, fx * dy];
+            }
+        }
+        CellShape::Quad9 => {
+            for (a, p) in QUAD9_NODES.iter().enumerate() {
+                let (fx, dx) = quad(p[0], x);
+                let (fy, dy) = quad(p[1], y);
+                n[a] = fx * fy;
+                dn[a] = [dx * fy, fx * dy];
+            }
+        }
+        CellShape::Quad8 => {
+            for (a, p) in QUAD9_NODES[..8].iter().enumerate() {
+                let (xa, ya) = (p[0], p[1]);
+                if xa != 0.0 && ya != 0.0 {
+                    // corner: (1 + x xa)(1 + y ya)(x xa + y ya - 1) / 4
+                    let (px, py) = (1.0 + x * xa, 1.0 + y * ya);
+                    let s = x * xa + y * ya - 1.0;
+                    n[a] = 0.25 * px * py * s;
+                    dn[a] = [0.25 * xa * py * (s + px), 0.25 * ya * px * (s + py)];
+                } else if xa == 0.0 {
+                    // mid-side on eta = ya: (1 - x^2)(1 + y ya) / 2
+                    let py = 1.0 + y * ya;
+                    n[a] = 0.5 * (1.0 - x * x) * py;
+                    dn[a] = [-x * py, 0.5 * (1.0 - x * x) * ya];
+                } else {
+                    // mid-side on xi = xa: (1 + x xa)(1 - y^2) / 2
+                    let px = 1.0 + x * xa;
+                    n[a] = 0.5 * px * (1.0 - y * y);
+                    dn[a] = [0.5 * xa * (1.0 - y * y), -y * px];
+                }
+            }
+        }
+        s => panic!("quad_shape called with non-quadrilateral shape {s:?}"),
+    }
+}
+
+/// Shape functions of a hexahedron (H8, H20 or H27) at `xi = [xi, eta, zeta]`.
+///
+/// Writes `n[a] = N_a(xi)` and `dn[a] = [dN_a/dxi, dN_a/deta, dN_a/dzeta]`
+/// for the `shape.num_nodes()` nodes in [`junta_core::topology`] order.
+///
+/// # Panics
+/// If `shape` is not `Hex8`, `Hex20` or `Hex27`, or a buffer is shorter than
+/// the node count (both are programming errors).
+pub fn hex_shape(shape: CellShape, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64; 3]]) {
+    let [x, y, z] = xi;
+    match shape {
+        CellShape::Hex8 => {
+            for (a, p) in HEX27_NODES[..8].iter().enumerate() {
+                let (fx, dx) = lin(p[0], x);
+                let (fy, dy) = lin(p[1], y);
+                let (fz, dz) = lin(p[2], z);
+                n[a] = fx * fy * fz;
+                dn[a] = [dx * fy * fz, fx * dy * fz, fx * fy * dz];
+            }
+        }
+        CellShape::Hex27 => {
+            for (a, p) in HEX27_NODES.iter().enumerate() {
+                let (fx, dx) = quad(p[0], x);
+                let (fy, dy) = quad(p[1], y);
+                let (fz, dz) = quad(p[2], z);
+                n[a] = fx * fy * fz;
+                dn[a] = [dx * fy * fz, fx * dy * fz, fx * fy * dz];
+            }
+        }
+        CellShape::Hex20 => {
+            for (a, p) in HEX27_NODES[..20].iter().enumerate() {
+                let (xa, ya, za) = (p[0], p[1], p[2]);
+                if a < 8 {
+                    // corner: (1 + x xa)(1 + y ya)(1 + z za)(x xa + y ya + z za - 2) / 8
+                    let (px, py, pz) = (1.0 + x * xa, 1.0 + y * ya, 1.0 + z * za);
+                    let s = x * xa + y * ya + z * za - 2.0;
+                    n[a] = 0.125 * px * py * pz * s;
+                    dn[a] = [
+                        0.125 * xa * py * pz * (s + px),
+                        0.125 * ya * px * pz * (s + py),
+                        0.125 * za * px * py * (s + pz),
+                    ];
+                } else {
+                    // mid-edge: the coordinate with a_i = 0 gets (1 - t^2), the
+                    // two others (1 + t t_a); N = product / 4
+                    let mut f = [0.0; 3];
+                    let mut d = [0.0; 3];
+                    for (i, (&t, &ta)) in [x, y, z].iter().zip([xa, ya, za].iter()).enumerate() {
+                        if ta == 0.0 {
+                            f[i] = 1.0 - t * t;
+                            d[i] = -2.0 * t;
+                        } else {
+                            f[i] = 1.0 + t * ta;
+                            d[i] = ta;
+                        }
+                    }
+                    n[a] = 0.25 * f[0] * f[1] * f[2];
+                    dn[a] = [
+                        0.25 * d[0] * f[1] * f[2],
+                        0.25 * f[0] * d[1] * f[2],
+                        0.25 * f[0] * f[1] * d[2],
+                    ];
+                }
+            }
+        }
+        s => panic!("hex_shape called with non-hexahedral shape {s:?}"),
+    }
+}
+
+/// Natural coordinates of node `a` of a quadrilateral or hexahedron, padded
+/// with zeros to three components.
+pub fn natural_node(shape: CellShape, a: usize) -> [f64; 3] {
+    match shape {
+        CellShape::Quad4 | CellShape::Quad8 | CellShape::Quad9 => {
+            [QUAD9_NODES[a][0], QUAD9_NODES[a][1], 0.0]
+        }
+        _ => HEX27_NODES[a],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const QUADS: [CellShape; 3] = [CellShape::Quad4, CellShape::Quad8, CellShape::Quad9];
+    const HEXES: [CellShape; 3] = [CellShape::Hex8, CellShape::Hex20, CellShape::Hex27];
+
+    /// A few sample points inside the reference cell (not on a symmetry plane).
+    const SAMPLES: [[f64; 3]; 5] = [
+        [0.0, 0.0, 0.0],
+        [0.3, -0.7, 0.45],
+        [-0.91, 0.2, -0.33],
+        [0.77, 0.61, -0.95],
+        [-0.5, -0.5, 0.9],
+    ];
+
+    fn eval_hex(s: CellShape, x: [f64; 3]) -> ([f64; 27], [[f64; 3]; 27]) {
+        let mut n = [0.0; 27];
+        let mut dn = [[0.0; 3]; 27];
+        hex_shape(s, x, &mut n, &mut dn);
+        (n, dn)
+    }
+    fn eval_quad(s: CellShape, x: [f64; 2]) -> ([f64; 9], [[f64; 2]; 9]) {
+        let mut n = [0.0; 9];
+        let mut dn = [[0.0; 2]; 9];
+        quad_shape(s, x, &mut n, &mut dn);
+        (n, dn)
+    }
+
+    #[test]
+    fn partition_of_unity() {
+        for s in HEXES {
+            for x in SAMPLES {
+                let (n, dn) = eval_hex(s, x);
+                let nn = s.num_nodes();
+                assert!((n[..nn].iter().sum::<f64>() - 1.0).abs() < 1e-14, "{s:?}");
+                for j in 0..3 {
+                    assert!(
+                        dn[..nn].iter().map(|d| d[j]).sum::<f64>().abs() < 1e-13,
+                        "{s:?}"
+                    );
+                }
+            }
+        }
+        for s in QUADS {
+            for x in SAMPLES {
+                let (n, dn) = eval_quad(s, [x[0], x[1]]);
+                let nn = s.num_nodes();
+                assert!((n[..nn].iter().sum::<f64>() - 1.0).abs() < 1e-14, "{s:?}");
+                for j in 0..2 {
+                    assert!(
+                        dn[..nn].iter().map(|d| d[j]).sum::<f64>().abs() < 1e-13,
+                        "{s:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn kronecker_delta_at_nodes() {
+        for s in HEXES {
+            let nn = s.num_nodes();
+            for (b, &xb) in HEX27_NODES[..nn].iter().enumerate() {
+                let (n, _) = eval_hex(s, xb);
+                for (a, v) in n[..nn].iter().enumerate() {
+                    let e = if a == b { 1.0 } else { 0.0 };
+                    assert!((v - e).abs() < 1e-15, "{s:?} N_{a}(x_{b}) = {v}");
+                }
+            }
+        }
+        for s in QUADS {
+            let nn = s.num_nodes();
+            for (b, &xb) in QUAD9_NODES[..nn].iter().enumerate() {
+                let (n, _) = eval_quad(s, xb);
+                for (a, v) in n[..nn].iter().enumerate() {
+                    let e = if a == b { 1.0 } else { 0.0 };
+                    assert!((v - e).abs() < 1e-15, "{s:?} N_{a}(x_{b}) = {v}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn derivatives_match_finite_differences() {
+        let h = 1e-6;
+        for s in HEXES {
+            let nn = s.num_nodes();
+            for x in SAMPLES {
+                let (_, dn) = eval_hex(s, x);
+                for j in 0..3 {
+                    let (mut xp, mut xm) = (x, x);
+                    xp[j] += h;
+                    xm[j] -= h;
+                    let (np, _) = eval_hex(s, xp);
+                    let (nm, _) = eval_hex(s, xm);
+                    for a in 0..nn {
+                        let fd = (np[a] - nm[a]) / (2.0 * h);
+                        assert!(
+                            (fd - dn[a][j]).abs() < 1e-8,
+                            "{s:?} a={a} j={j}: {fd} vs {}",
+                            dn[a][j]
+                        );
+                    }
+                }
+            }
+        }
+        for s in QUADS {
+            let nn = s.num_nodes();
+            for x in SAMPLES {
+                let x = [x[0], x[1]];
+                let (_, dn) = eval_quad(s, x);
+                for j in 0..2 {
+                    let (mut xp, mut xm) = (x, x);
+                    xp[j] += h;
+                    xm[j] -= h;
+                    let (np, _) = eval_quad(s, xp);
+                    let (nm, _) = eval_quad(s, xm);
+                    for a in 0..nn {
+                        let fd = (np[a] - nm[a]) / (2.0 * h);
+                        assert!((fd - dn[a][j]).abs() < 1e-8, "{s:?} a={a} j={j}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Monomials x^i y^j z^k of total degree <= `deg` (plus, for the full
+    /// Lagrange shapes, what they span beyond) must be reproduced exactly.
+    fn check_hex_completeness(s: CellShape, deg: u32) {
+        let nn = s.num_nodes();
+        for i in 0..=deg {
+            for j in 0..=(deg - i) {
+                for k in 0..=(deg - i - j) {
+                    let f = |p: [f64; 3]| {
+                        p[0].powi(i as i32) * p[1].powi(j as i32) * p[2].powi(k as i32)
+                    };
+                    let df = |p: [f64; 3]| {
+                        let d = |e: u32, t: f64| {
+                            if e == 0 {
+                                0.0
+                            } else {
+                                e as f64 * t.powi(e as i32 - 1)
+                            }
+                        };
+                        [
+                            d(i, p[0]) * p[1].powi(j as i32) * p[2].powi(k as i32),
+                            p[0].powi(i as i32) * d(j, p[1]) * p[2].powi(k as i32),
+                            p[0].powi(i as i32) * p[1].powi(j as i32) * d(k, p[2]),
+                        ]
+                    };
+                    for x in SAMPLES {
+                        let (n, dn) = eval_hex(s, x);
+                        let v: f64 = (0..nn).map(|a| n[a] * f(HEX27_NODES[a])).sum();
+                        assert!((v - f(x)).abs() < 1e-13, "{s:?} x^{i} y^{j} z^{k}");
+                        let g = df(x);
+                        for c in 0..3 {
+                            let gv: f64 = (0..nn).map(|a| dn[a][c] * f(HEX27_NODES[a])).sum();
+                            assert!((gv - g[c]).abs() < 1e-12, "{s:?} d/dx{c} x^{i} y^{j} z^{k}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    fn check_quad_completeness(s: CellShape, deg: u32) {
+        let nn = s.num_nodes();
+        for i in 0..=deg {
+            for j in 0..=(deg - i) {
+                let f = |p: [f64; 2]| p[0].powi(i as i32) * p[1].powi(j as i32);
+                for x in SAMPLES {
+                    let x = [x[0], x[1]];
+                    let (n, _) = eval_quad(s, x);
+                    let v: f64 = (0..nn).map(|a| n[a] * f(QUAD9_NODES[a])).sum();
+                    assert!((v - f(x)).abs() < 1e-13, "{s:?} x^{i} y^{j}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn completeness() {
+        check_hex_completeness(CellShape::Hex8, 1);
+        check_hex_completeness(CellShape::Hex20, 2);
+        check_hex_completeness(CellShape::Hex27, 2);
+        check_quad_completeness(CellShape::Quad4, 1);
+        check_quad_completeness(CellShape::Quad8, 2);
+        check_quad_completeness(CellShape::Quad9, 2);
+    }
+
+    #[test]
+    fn lagrange_shapes_reproduce_their_tensor_products() {
+        // H8 spans xyz, H27 spans x^2 y^2 z^2, Q9 spans x^2 y^2
+        let (n, _) = eval_hex(CellShape::Hex8, SAMPLES[1]);
+        let v: f64 = (0..8)
+            .map(|a| n[a] * HEX27_NODES[a].iter().product::<f64>())
+            .sum();
+        assert!((v - SAMPLES[1].iter().product::<f64>()).abs() < 1e-14);
+        let f = |p: [f64; 3]| (p[0] * p[1] * p[2]).powi(2);
+        let (n, _) = eval_hex(CellShape::Hex27, SAMPLES[2]);
+        let v: f64 = (0..27).map(|a| n[a] * f(HEX27_NODES[a])).sum();
+        assert!((v - f(SAMPLES[2])).abs() < 1e-14);
+        let (n, _) = eval_quad(CellShape::Quad9, [0.3, -0.8]);
+        let v: f64 = (0..9)
+            .map(|a| n[a] * (QUAD9_NODES[a][0] * QUAD9_NODES[a][1]).powi(2))
+            .sum();
+        assert!((v - (0.3f64 * -0.8f64).powi(2)).abs() < 1e-14);
+    }
+
+    #[test]
+    #[should_panic(expected = "non-hexahedral")]
+    fn hex_shape_rejects_quads() {
+        let mut n = [0.0; 27];
+        let mut dn = [[0.0; 3]; 27];
+        hex_shape(CellShape::Quad4, [0.0; 3], &mut n, &mut dn);
+    }
+}

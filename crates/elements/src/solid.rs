@@ -1,0 +1,518 @@
+//! Isoparametric hexahedral solid elements (H8, H20, H27) for small-strain
+//! linear elasticity.
+//!
+//! ## Kinematics
+//!
+//! Geometry and displacement share the shape functions `N_a` of
+//! [`crate::shape::hex_shape`]: `x(xi) = Σ_a N_a(xi) x_a`,
+//! `u(xi) = Σ_a N_a(xi) u_a`. The Jacobian `J_ij = ∂x_i/∂xi_j = Σ_a x_ai
+//! ∂N_a/∂xi_j` maps natural to physical derivatives,
+//! `∂N_a/∂x_i = Σ_j (J^-1)_ji ∂N_a/∂xi_j`, and `dV = det J dxi`.
+//!
+//! The strain in Voigt order `[xx, yy, zz, xy, yz, zx]` (engineering shear)
+//! is `eps = Σ_a B_a u_a` with, writing `N_a,i = ∂N_a/∂x_i`,
+//!
+//! ```text
+//!       | N,x   0    0  |
+//!       |  0   N,y   0  |
+//! B_a = |  0    0   N,z |
+//!       | N,y  N,x   0  |
+//!       |  0   N,z  N,y |
+//!       | N,z   0   N,x |
+//! ```
+//!
+//! ## Integrals
+//!
+//! With `sigma = C eps` (`C` from the [`Material`]) and a tensor Gauss rule
+//! `(xi_q, w_q)`:
+//!
+//! ```text
+//! f_a  = ∫ B_a^T sigma dV   ≈ Σ_q w_q det J_q B_a^T(xi_q) sigma(xi_q)
+//! K_ab = ∫ B_a^T C B_b dV   ≈ Σ_q w_q det J_q B_a^T C B_b
+//! ```
+//!
+//! so that `f_int = K u` (linear). Rules: H8 2x2x2, H20 / H27 3x3x3 (full),
+//! H20r / H27r 2x2x2 (reduced).
+//!
+//! ## Zero-energy modes (single element, free)
+//!
+//! Full integration: exactly the 6 rigid-body modes. Reduced 2x2x2
+//! integration (8 points x 6 strains = rank <= 48): H20r has 12 zero
+//! eigenvalues (6 rigid + 6 spurious, which do not propagate through a mesh
+//! of more than one element: an assembled 2x2x2 H20r block has only the 6
+//! rigid modes); H27r has 33 (6 rigid + 27 spurious), and the spurious ones
+//! do propagate (an assembled free 2x2x2 block of H27r has 45 zero modes),
+//! so prefer `h27` or `h20r`. The tests in `tests/solids.rs` measure these counts.
+//!
+//! ## Geometry check
+//!
+//! [`Element::check_geometry`] asks `det J > 0` at every integration point
+//! and at the 8 corner nodes (which catches quadratic elements with a
+//! mid-side node past the quarter point, whose Gauss points may still be
+//! fine). Corner `c` is reported as point `num_points + c`. Collapsed
+//! (degenerate) hexahedra therefore fail the check.
+//!
+//! ## Outputs
+//!
+//! Per integration point: `stress` (6), `strain` (6, engineering shear) and
+//! `mises` (1): `sqrt(((sxx-syy)^2 + (syy-szz)^2 + (szz-sxx)^2)/2 +
+//! 3 (sxy^2 + syz^2 + szx^2))`.
+
+use crate::quadrature::{gauss_legendre_3d, Rule};
+use crate::shape::hex_shape;
+use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
+use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
+use junta_core::topology::{CellShape, HEX27_NODES};
+use junta_core::{CoreError, Material, Voigt6};
+use nalgebra::{Matrix3, Vector6};
+use serde::Deserialize;
+use std::sync::Arc;
+
+/// Largest node count of a solid element (H27).
+pub const MAX_NODES: usize = 27;
+
+/// Integration rule choice of a solid element.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Integration {
+    /// H8: 2x2x2, H20 / H27: 3x3x3 Gauss.
+    Full,
+    /// H20 / H27: 2x2x2 Gauss (not available for H8).
+    Reduced,
+}
+
+/// Options table of the solid elements.
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolidOptions {
+    /// `"full"` or `"reduced"`; default: as the key says.
+    pub integration: Option<Integration>,
+}
+
+/// Shape-function data at one point of the reference cell, computed once.
+#[derive(Clone)]
+struct PointData {
+    xi: [f64; 3],
+    w: f64,
+    n: [f64; MAX_NODES],
+    dn: [[f64; 3]; MAX_NODES],
+}
+
+impl PointData {
+    fn new(shape: CellShape, xi: [f64; 3], w: f64) -> Self {
+        let mut n = [0.0; MAX_NODES];
+        let mut dn = [[0.0; 3]; MAX_NODES];
+        hex_shape(shape, xi, &mut n, &mut dn);
+        PointData { xi, w, n, dn }
+    }
+}
+
+/// A small-strain linear elastic hexahedron (H8, H20, H27; full or reduced).
+///
+/// Shape functions are evaluated once at construction; `compute` works on
+/// stack arrays and the caller's buffers and never allocates.
+#[derive(Clone)]
+pub struct SolidElement {
+    key: &'static str,
+    shape: CellShape,
+    integration: Integration,
+    material: Arc<dyn Material>,
+    c: Voigt6,
+    points: Vec<PointData>,
+    corners: Vec<PointData>,
+}
+
+impl std::fmt::Debug for SolidElement {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SolidElement")
+            .field("key", &self.key)
+            .field("shape", &self.shape)
+            .field("integration", &self.integration)
+            .field("num_points", &self.points.len())
+            .field("material", &self.material)
+            .finish()
+    }
+}
+
+/// Registry key of a shape / integration pair, or an error if there is none.
+fn key_of(shape: CellShape, integration: Integration) -> Result<&'static str, String> {
+    match (shape, integration) {
+        (CellShape::Hex8, Integration::Full) => Ok("h8"),
+        (CellShape::Hex8, Integration::Reduced) => Err(
+            "h8 has no reduced integration (a 1-point H8 has 12 hourglass modes and Junta has no \
+             hourglass control); use integration = \"full\", or h20r"
+                .into(),
+        ),
+        (CellShape::Hex20, Integration::Full) => Ok("h20"),
+        (CellShape::Hex20, Integration::Reduced) => Ok("h20r"),
+        (CellShape::Hex27, Integration::Full) => Ok("h27"),
+        (CellShape::Hex27, Integration::Reduced) => Ok("h27r"),
+        (s, _) => Err(format!(
+            "solid elements are hexahedra (hex8, hex20, hex27), not {}",
+            s.name()
+        )),
+    }
+}
+
+impl SolidElement {
+    /// A solid element of `shape` (Hex8 / Hex20 / Hex27) with the given
+    /// integration and material. Errors for non-hexahedral shapes and for
+    /// reduced H8.
+    pub fn new(
+        shape: CellShape,
+        integration: Integration,
+        material: Arc<dyn Material>,
+    ) -> Result<Self, CoreError> {
+        let key = key_of(shape, integration).map_err(|message| CoreError::InvalidParameters {
+            kind: "element",
+            key: shape.name().into(),
+            message,
+        })?;
+        let n1 = match (shape, integration) {
+            (CellShape::Hex8, _) | (_, Integration::Reduced) => 2,
+            _ => 3,
+        };
+        let rule: Rule<3> = gauss_legendre_3d(n1).expect("2 and 3 point rules exist");
+        let points = rule
+            .iter()
+            .map(|(&xi, w)| PointData::new(shape, xi, w))
+            .collect();
+        let corners = HEX27_NODES[..8]
+            .iter()
+            .map(|&xi| PointData::new(shape, xi, 0.0))
+            .collect();
+        let c = material.elasticity();
+        Ok(SolidElement {
+            key,
+            shape,
+            integration,
+            material,
+            c,
+            points,
+            corners,
+        })
+    }
+
+    /// Build for registry key `key` (its shape and default integration),
+    /// honouring the `integration` option.
+    pub fn from_build(
+        key: &'static str,
+        shape: CellShape,
+        default: Integration,
+        build: &ElementBuild<'_>,
+    ) -> Result<Self, CoreError> {
+        let opts: SolidOptions = parse_params("element", key, build.options)?;
+        let integration = opts.integration.unwrap_or(default);
+        if default == Integration::Reduced && integration == Integration::Full {
+            return Err(CoreError::InvalidParameters {
+                kind: "element",
+                key: key.into(),
+                message: format!(
+                    "{key} is the reduced-integration element; for full integration use `{}`",
+                    key.trim_end_matches('r')
+                ),
+            });
+        }
+        let material = build
+            .material
+            .clone()
+            .ok_or_else(|| CoreError::InvalidParameters {
+                kind: "element",
+                key: key.into(),
+                message: format!(
+                "solid element {key} requires a material (e.g. an `isotropic` or `orthotropic` \
+                 material named by the block); none was given"
+            ),
+            })?;
+        Self::new(shape, integration, material).map_err(|e| match e {
+            CoreError::InvalidParameters { message, .. } => CoreError::InvalidParameters {
+                kind: "element",
+                key: key.into(),
+                message,
+            },
+            e => e,
+        })
+    }
+
+    /// The integration rule in use.
+    pub fn integration(&self) -> Integration {
+        self.integration
+    }
+
+    /// The material.
+    pub fn material(&self) -> &Arc<dyn Material> {
+        &self.material
+    }
+
+    /// Natural coordinates and weights of the integration points.
+    pub fn points(&self) -> impl Iterator<Item = ([f64; 3], f64)> + '_ {
+        self.points.iter().map(|p| (p.xi, p.w))
+    }
+
+    /// Physical shape-function gradients `g[a] = ∂N_a/∂x` at point data `p`
+    /// and det J; error if det J <= 0 (`point` is the reported index).
+    #[inline]
+    fn gradients(
+        &self,
+        p: &PointData,
+        coords: &[[f64; 3]],
+        point: usize,
+        g: &mut [[f64; 3]; MAX_NODES],
+    ) -> Result<f64, ElementError> {
+        let nn = self.shape.num_nodes();
+        let mut j = Matrix3::<f64>::zeros();
+        for (x, d) in coords[..nn].iter().zip(&p.dn[..nn]) {
+            for r in 0..3 {
+                for c in 0..3 {
+                    j[(r, c)] += x[r] * d[c];
+                }
+            }
+        }
+        let det = j.determinant();
+        if det.is_nan() || det <= 0.0 {
+            return Err(ElementError::NegativeJacobian { point, det });
+        }
+        // ∂N/∂x_i = Σ_j (J^-1)_ji ∂N/∂xi_j, i.e. g = J^-T dN
+        let jinv = j
+            .try_inverse()
+            .ok_or(ElementError::NegativeJacobian { point, det })?;
+        for (ga, d) in g[..nn].iter_mut().zip(&p.dn[..nn]) {
+            for (i, gi) in ga.iter_mut().enumerate() {
+                *gi = jinv[(0, i)] * d[0] + jinv[(1, i)] * d[1] + jinv[(2, i)] * d[2];
+            }
+        }
+        Ok(det)
+    }
+
+    /// Strain (Voigt, engineering shear) from gradients and displacements.
+    #[inline]
+    fn strain(&self, g: &[[f64; 3]; MAX_NODES], disp: &[f64]) -> Vector6<f64> {
+        let mut e = Vector6::zeros();
+        for (a, d) in g.iter().take(self.shape.num_nodes()).enumerate() {
+            let (ux, uy, uz) = (disp[3 * a], disp[3 * a + 1], disp[3 * a + 2]);
+            e[0] += d[0] * ux;
+            e[1] += d[1] * uy;
+            e[2] += d[2] * uz;
+            e[3] += d[1] * ux + d[0] * uy;
+            e[4] += d[2] * uy + d[1] * uz;
+            e[5] += d[2] * ux + d[0] * uz;
+        }
+        e
+    }
+}
+
+/// `B_a^T s` for the gradient `d` of node `a` and a Voigt 6-vector `s`.
+#[inline(always)]
+fn bt_times(d: &[f64; 3], s: &[f64; 6]) -> [f64; 3] {
+    [
+        d[0] * s[0] + d[1] * s[3] + d[2] * s[5],
+        d[1] * s[1] + d[0] * s[3] + d[2] * s[4],
+        d[2] * s[2] + d[1] * s[4] + d[0] * s[5],
+    ]
+}
+
+/// Von Mises equivalent stress of a Voigt stress.
+pub fn von_mises(s: &[f64; 6]) -> f64 {
+    let [xx, yy, zz, xy, yz, zx] = *s;
+    (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2))
+        + 3.0 * (xy * xy + yz * yz + zx * zx))
+        .sqrt()
+}
+
+impl Element for SolidElement {
+    fn key(&self) -> &'static str {
+        self.key
+    }
+    fn shape(&self) -> CellShape {
+        self.shape
+    }
+    fn num_points(&self) -> usize {
+        self.points.len()
+    }
+
+    fn compute(
+        &self,
+        ctx: &ElementContext<'_>,
+        _state_trial: &mut [f64],
+        f_int: &mut [f64],
+        mut k: Option<&mut [f64]>,
+    ) -> Result<(), ElementError> {
+        let nn = self.shape.num_nodes();
+        let ndof = 3 * nn;
+        debug_assert!(ctx.coords.len() >= nn && ctx.disp.len() >= ndof && f_int.len() >= ndof);
+        let f_int = &mut f_int[..ndof];
+        f_int.fill(0.0);
+        if let Some(k) = k.as_deref_mut() {
+            debug_assert!(k.len() >= ndof * ndof);
+            k[..ndof * ndof].fill(0.0);
+        }
+        let c = &self.c;
+        let mut g = [[0.0; 3]; MAX_NODES];
+        // C B_b, column-wise: cb[b][col] is a Voigt 6-vector
+        let mut cb = [[[0.0; 6]; 3]; MAX_NODES];
+        for (q, p) in self.points.iter().enumerate() {
+            let det = self.gradients(p, ctx.coords, q, &mut g)?;
+            let dv = p.w * det;
+            let eps = self.strain(&g, ctx.disp);
+            let sig = c * eps;
+            let s: [f64; 6] = sig.into();
+            for a in 0..nn {
+                let r = bt_times(&g[a], &s);
+                for i in 0..3 {
+                    f_int[3 * a + i] += dv * r[i];
+                }
+            }
+            if let Some(k) = k.as_deref_mut() {
+                for b in 0..nn {
+                    let d = g[b];
+                    for r in 0..6 {
+                        // columns of B_b: [d0,0,0,d1,0,d2], [0,d1,0,d0,d2,0], [0,0,d2,0,d1,d0]
+                        cb[b][0][r] = d[0] * c[(r, 0)] + d[1] * c[(r, 3)] + d[2] * c[(r, 5)];
+                        cb[b][1][r] = d[1] * c[(r, 1)] + d[0] * c[(r, 3)] + d[2] * c[(r, 4)];
+                        cb[b][2][r] = d[2] * c[(r, 2)] + d[1] * c[(r, 4)] + d[0] * c[(r, 5)];
+                    }
+                }
+                // upper block triangle (b >= a); mirrored below
+                for (a, ga) in g[..nn].iter().enumerate() {
+                    for (b, cbb) in cb.iter().enumerate().take(nn).skip(a) {
+                        for (col, s) in cbb.iter().enumerate() {
+                            let r = bt_times(ga, s);
+                            let base = (3 * a) * ndof + 3 * b + col;
+                            k[base] += dv * r[0];
+                            k[base + ndof] += dv * r[1];
+                            k[base + 2 * ndof] += dv * r[2];
+                        }
+                    }
+                }
+            }
+        }
+        if let Some(k) = k {
+            // mirror: K_ba = K_ab^T for b > a
+            for a in 0..nn {
+                for b in (a + 1)..nn {
+                    for i in 0..3 {
+                        for j in 0..3 {
+                            k[(3 * b + j) * ndof + 3 * a + i] = k[(3 * a + i) * ndof + 3 * b + j];
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn check_geometry(&self, coords: &[[f64; 3]]) -> Result<(), ElementError> {
+        let mut g = [[0.0; 3]; MAX_NODES];
+        for (q, p) in self.points.iter().enumerate() {
+            self.gradients(p, coords, q, &mut g)?;
+        }
+        let np = self.points.len();
+        for (c, p) in self.corners.iter().enumerate() {
+            self.gradients(p, coords, np + c, &mut g)?;
+        }
+        Ok(())
+    }
+
+    fn point_outputs(&self, ctx: &ElementContext<'_>) -> Result<Vec<PointOutput>, ElementError> {
+        let nn = self.shape.num_nodes();
+        let mut g = [[0.0; 3]; MAX_NODES];
+        let mut out = Vec::with_capacity(self.points.len());
+        for (q, p) in self.points.iter().enumerate() {
+            self.gradients(p, ctx.coords, q, &mut g)?;
+            let eps = self.strain(&g, ctx.disp);
+            let sig = self.c * eps;
+            let mut position = [0.0; 3];
+            for a in 0..nn {
+                for (i, x) in position.iter_mut().enumerate() {
+                    *x += p.n[a] * ctx.coords[a][i];
+                }
+            }
+            let s: [f64; 6] = sig.into();
+            out.push(PointOutput {
+                position,
+                values: vec![
+                    ("stress", s.to_vec()),
+                    ("strain", eps.iter().copied().collect()),
+                    ("mises", vec![von_mises(&s)]),
+                ],
+            });
+        }
+        Ok(out)
+    }
+}
+
+const SOLID_PARAMS: &[ParamDoc] = &[ParamDoc {
+    name: "integration",
+    doc: "optional \"full\" or \"reduced\" (default: as the key says; h8 has no reduced rule)",
+}];
+
+macro_rules! register_solid {
+    ($key:literal, $shape:expr, $int:expr, $desc:literal) => {
+        inventory::submit! {
+            ElementEntry {
+                key: $key,
+                description: $desc,
+                params: SOLID_PARAMS,
+                shape: $shape,
+                build: |b| Ok(Arc::new(SolidElement::from_build($key, $shape, $int, b)?)),
+            }
+        }
+    };
+}
+
+register_solid!(
+    "h8",
+    CellShape::Hex8,
+    Integration::Full,
+    "8-node trilinear hexahedron, 2x2x2 Gauss, small-strain elasticity"
+);
+register_solid!(
+    "h20",
+    CellShape::Hex20,
+    Integration::Full,
+    "20-node serendipity hexahedron, 3x3x3 Gauss, small-strain elasticity"
+);
+register_solid!(
+    "h27",
+    CellShape::Hex27,
+    Integration::Full,
+    "27-node triquadratic hexahedron, 3x3x3 Gauss, small-strain elasticity"
+);
+register_solid!(
+    "h20r",
+    CellShape::Hex20,
+    Integration::Reduced,
+    "20-node serendipity hexahedron, reduced 2x2x2 Gauss, small-strain elasticity"
+);
+register_solid!(
+    "h27r",
+    CellShape::Hex27,
+    Integration::Reduced,
+    "27-node triquadratic hexahedron, reduced 2x2x2 Gauss (has spurious modes), small-strain elasticity"
+);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::Isotropic;
+
+    #[test]
+    fn von_mises_of_uniaxial_and_shear() {
+        assert!((von_mises(&[3.0, 0.0, 0.0, 0.0, 0.0, 0.0]) - 3.0).abs() < 1e-15);
+        assert!((von_mises(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0]) - 3f64.sqrt()).abs() < 1e-15);
+        assert!(von_mises(&[2.0, 2.0, 2.0, 0.0, 0.0, 0.0]).abs() < 1e-15);
+    }
+
+    #[test]
+    fn rule_sizes() {
+        let m: Arc<dyn Material> = Arc::new(Isotropic::new(1.0, 0.3).unwrap());
+        let n = |s, i| SolidElement::new(s, i, m.clone()).unwrap().num_points();
+        assert_eq!(n(CellShape::Hex8, Integration::Full), 8);
+        assert_eq!(n(CellShape::Hex20, Integration::Full), 27);
+        assert_eq!(n(CellShape::Hex27, Integration::Full), 27);
+        assert_eq!(n(CellShape::Hex20, Integration::Reduced), 8);
+        assert_eq!(n(CellShape::Hex27, Integration::Reduced), 8);
+        assert!(SolidElement::new(CellShape::Hex8, Integration::Reduced, m.clone()).is_err());
+        assert!(SolidElement::new(CellShape::Quad4, Integration::Full, m).is_err());
+    }
+}

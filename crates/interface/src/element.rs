@@ -1,0 +1,403 @@
+//! INTER8 / INTER16 / INTER18: zero-thickness isoparametric interface
+//! elements (paper section 3, eqs. 15-39), one kernel generic over the face
+//! shape (Q4 / Q8 / Q9).
+//!
+//! Nodes: the `m` nodes of the bottom face, then the `m` nodes of the top
+//! face, each in quadrilateral order (`junta_core::topology`). At each
+//! integration point (xi, eta), with face shape functions N_a:
+//!
+//! ```text
+//! mid-surface     x(xi, eta) = sum_a N_a (x_bot,a + x_top,a) / 2
+//! tangents        V_xi = dx/dxi,  V_eta = dx/deta
+//! normal          e3 = (V_xi x V_eta) / |V_xi x V_eta|   (erratum to eq. 26)
+//! frame           e1 = V_xi / |V_xi|,  e2 = e3 x e1,  theta = [e1 e2 e3]
+//! jump            delta = theta^T sum_a N_a (u_top,a - u_bot,a) = B U_e
+//!                 B = theta^T [-N_bot, N_top]                 (3 x 6m)
+//! traction        t = law(delta),  D = dt/ddelta (local frame)
+//! internal force  f = int B^T t dA,   K = int B^T D B dA,
+//!                 dA = |V_xi x V_eta| dxi deta.
+//! ```
+//!
+//! Node blocks of K are `s_a s_b N_a N_b (theta D theta^T) dA` with
+//! `s = -1` on the bottom face and `+1` on the top face, which is how the
+//! kernel computes them (3x3 blocks, fixed-size arrays, no allocation).
+//!
+//! Integration: `gauss` (2x2 for INTER8, 3x3 for INTER16/18: the paper's) or
+//! `lobatto` (2x2 / 3x3 Gauss-Lobatto points: nodal integration for INTER8
+//! and INTER18, which decouples the node pairs and removes the traction
+//! oscillations of Schellekens & de Borst 1993).
+//!
+//! Small displacements: the frame is built on the reference geometry.
+
+use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
+use junta_core::law::{InterfaceLaw, LawContext};
+use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
+use junta_core::topology::CellShape;
+use junta_core::CoreError;
+use junta_elements::quadrature::{gauss_legendre_2d, gauss_lobatto_2d};
+use junta_elements::shape::quad_shape;
+use serde::Deserialize;
+use std::sync::Arc;
+
+/// Integration rule of an interface element.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InterfaceRule {
+    /// Gauss-Legendre points (2x2 INTER8, 3x3 INTER16/18).
+    Gauss,
+    /// Gauss-Lobatto (nodal) points, same counts.
+    Lobatto,
+}
+
+/// An interface element type bound to its traction law.
+#[derive(Debug, Clone)]
+pub struct InterfaceElement {
+    shape: CellShape,
+    face: CellShape,
+    rule: InterfaceRule,
+    points: Vec<[f64; 2]>,
+    weights: Vec<f64>,
+    law: Arc<dyn InterfaceLaw>,
+    key: &'static str,
+}
+
+/// Local frame and area factor at one point.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    /// Rows: e1, e2, e3.
+    e: [[f64; 3]; 3],
+    /// |V_xi x V_eta|.
+    jac: f64,
+    /// Mid-surface position.
+    x: [f64; 3],
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn norm(a: [f64; 3]) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
+
+impl InterfaceElement {
+    /// Element of `shape` (Inter8/16/18) with `rule` and `law`.
+    pub fn new(
+        shape: CellShape,
+        rule: InterfaceRule,
+        law: Arc<dyn InterfaceLaw>,
+    ) -> Result<Self, CoreError> {
+        let (face, n, key) = match shape {
+            CellShape::Inter8 => (CellShape::Quad4, 2, "inter8"),
+            CellShape::Inter16 => (CellShape::Quad8, 3, "inter16"),
+            CellShape::Inter18 => (CellShape::Quad9, 3, "inter18"),
+            s => {
+                return Err(CoreError::Invalid(format!(
+                    "{} is not an interface shape",
+                    s.name()
+                )))
+            }
+        };
+        let r = match rule {
+            InterfaceRule::Gauss => gauss_legendre_2d(n),
+            InterfaceRule::Lobatto => gauss_lobatto_2d(n),
+        }
+        .map_err(|e| CoreError::Invalid(e.to_string()))?;
+        Ok(InterfaceElement {
+            shape,
+            face,
+            rule,
+            points: r.points,
+            weights: r.weights,
+            law,
+            key,
+        })
+    }
+
+    /// The traction law.
+    pub fn law(&self) -> &Arc<dyn InterfaceLaw> {
+        &self.law
+    }
+
+    /// The integration rule.
+    pub fn rule(&self) -> InterfaceRule {
+        self.rule
+    }
+
+    /// Natural coordinates of the integration points.
+    pub fn points(&self) -> &[[f64; 2]] {
+        &self.points
+    }
+
+    fn m(&self) -> usize {
+        self.face.num_nodes()
+    }
+
+    /// Shape functions and frame at point `q`.
+    fn frame(
+        &self,
+        coords: &[[f64; 3]],
+        q: usize,
+        n: &mut [f64; 9],
+    ) -> Result<Frame, ElementError> {
+        let m = self.m();
+        let mut dn = [[0.0; 2]; 9];
+        quad_shape(self.face, self.points[q], &mut n[..m], &mut dn[..m]);
+        let mut vxi = [0.0; 3];
+        let mut veta = [0.0; 3];
+        let mut x = [0.0; 3];
+        for a in 0..m {
+            for c in 0..3 {
+                let xm = 0.5 * (coords[a][c] + coords[m + a][c]);
+                x[c] += n[a] * xm;
+                vxi[c] += dn[a][0] * xm;
+                veta[c] += dn[a][1] * xm;
+            }
+        }
+        let nv = cross(vxi, veta);
+        let jac = norm(nv);
+        let scale = norm(vxi) * norm(veta);
+        if !(jac > 1e-12 * scale) || !jac.is_finite() {
+            return Err(ElementError::DegenerateSurface {
+                point: q,
+                area: jac,
+            });
+        }
+        let e3 = nv.map(|v| v / jac);
+        let l1 = norm(vxi);
+        let e1 = vxi.map(|v| v / l1);
+        let e2 = cross(e3, e1);
+        Ok(Frame {
+            e: [e1, e2, e3],
+            jac,
+            x,
+        })
+    }
+
+    /// Local jump at point `q`.
+    fn jump(&self, f: &Frame, n: &[f64; 9], disp: &[f64]) -> [f64; 3] {
+        let m = self.m();
+        let mut g = [0.0; 3];
+        for a in 0..m {
+            for c in 0..3 {
+                g[c] += n[a] * (disp[3 * (m + a) + c] - disp[3 * a + c]);
+            }
+        }
+        [0, 1, 2].map(|i| f.e[i][0] * g[0] + f.e[i][1] * g[1] + f.e[i][2] * g[2])
+    }
+}
+
+impl Element for InterfaceElement {
+    fn key(&self) -> &'static str {
+        self.key
+    }
+    fn shape(&self) -> CellShape {
+        self.shape
+    }
+    fn num_points(&self) -> usize {
+        self.points.len()
+    }
+    fn state_len(&self) -> usize {
+        self.points.len() * self.law.state_len()
+    }
+    fn init_state(&self, state: &mut [f64]) {
+        let s = self.law.state_len();
+        if s > 0 {
+            for chunk in state.chunks_mut(s) {
+                self.law.init_state(chunk);
+            }
+        }
+    }
+
+    fn compute(
+        &self,
+        ctx: &ElementContext<'_>,
+        state_trial: &mut [f64],
+        f_int: &mut [f64],
+        mut k: Option<&mut [f64]>,
+    ) -> Result<(), ElementError> {
+        let m = self.m();
+        let nd = 6 * m;
+        f_int[..nd].iter_mut().for_each(|v| *v = 0.0);
+        if let Some(k) = k.as_deref_mut() {
+            k[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
+        }
+        let sl = self.law.state_len();
+        let mut n = [0.0; 9];
+        for q in 0..self.points.len() {
+            let fr = self.frame(ctx.coords, q, &mut n)?;
+            let jump = self.jump(&fr, &n, ctx.disp);
+            let r = self
+                .law
+                .evaluate(
+                    &LawContext {
+                        jump,
+                        state_committed: &ctx.state_committed[q * sl..(q + 1) * sl],
+                        step: ctx.step,
+                    },
+                    &mut state_trial[q * sl..(q + 1) * sl],
+                )
+                .map_err(|e| ElementError::Law {
+                    point: q,
+                    message: e.to_string(),
+                })?;
+            let da = fr.jac * self.weights[q];
+            let e = &fr.e;
+            // global traction t_g = theta t
+            let tg = [0, 1, 2].map(|c| {
+                e[0][c] * r.traction[0] + e[1][c] * r.traction[1] + e[2][c] * r.traction[2]
+            });
+            // node weights s_a N_a over the 2m nodes
+            let mut sn = [0.0; 18];
+            for a in 0..m {
+                sn[a] = -n[a];
+                sn[m + a] = n[a];
+            }
+            for a in 0..2 * m {
+                for c in 0..3 {
+                    f_int[3 * a + c] += sn[a] * tg[c] * da;
+                }
+            }
+            if let Some(k) = k.as_deref_mut() {
+                // G = theta D theta^T (global 3x3)
+                let mut g = [[0.0; 3]; 3];
+                for c in 0..3 {
+                    for d in 0..3 {
+                        let mut s = 0.0;
+                        for i in 0..3 {
+                            for j in 0..3 {
+                                s += e[i][c] * r.tangent[i][j] * e[j][d];
+                            }
+                        }
+                        g[c][d] = s * da;
+                    }
+                }
+                for a in 0..2 * m {
+                    for b in 0..2 * m {
+                        let w = sn[a] * sn[b];
+                        if w == 0.0 {
+                            continue;
+                        }
+                        for c in 0..3 {
+                            let row = (3 * a + c) * nd + 3 * b;
+                            for d in 0..3 {
+                                k[row + d] += w * g[c][d];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn check_geometry(&self, coords: &[[f64; 3]]) -> Result<(), ElementError> {
+        let mut n = [0.0; 9];
+        for q in 0..self.points.len() {
+            self.frame(coords, q, &mut n)?;
+        }
+        Ok(())
+    }
+
+    fn point_outputs(&self, ctx: &ElementContext<'_>) -> Result<Vec<PointOutput>, ElementError> {
+        let sl = self.law.state_len();
+        let mut trial = vec![0.0; sl];
+        let mut n = [0.0; 9];
+        let mut out = Vec::with_capacity(self.points.len());
+        for q in 0..self.points.len() {
+            let fr = self.frame(ctx.coords, q, &mut n)?;
+            let jump = self.jump(&fr, &n, ctx.disp);
+            let committed = &ctx.state_committed[q * sl..(q + 1) * sl];
+            let r = self
+                .law
+                .evaluate(
+                    &LawContext {
+                        jump,
+                        state_committed: committed,
+                        step: ctx.step,
+                    },
+                    &mut trial,
+                )
+                .map_err(|e| ElementError::Law {
+                    point: q,
+                    message: e.to_string(),
+                })?;
+            out.push(PointOutput {
+                position: fr.x,
+                values: vec![
+                    ("jump", jump.to_vec()),
+                    ("traction", r.traction.to_vec()),
+                    ("frame", fr.e.iter().flatten().copied().collect()),
+                    ("area", vec![fr.jac * self.weights[q]]),
+                    ("state", committed.to_vec()),
+                ],
+            });
+        }
+        Ok(out)
+    }
+
+    fn wants_small_increments(&self, state_committed: &[f64]) -> bool {
+        let sl = self.law.state_len();
+        sl > 0
+            && state_committed
+                .chunks(sl)
+                .any(|s| self.law.wants_small_increments(s))
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Options {
+    integration: Option<InterfaceRule>,
+}
+
+fn build(shape: CellShape, key: &str, b: &ElementBuild<'_>) -> Result<Arc<dyn Element>, CoreError> {
+    let o: Options = parse_params("element", key, b.options)?;
+    let law = b.law.clone().ok_or_else(|| CoreError::InvalidParameters {
+        kind: "element",
+        key: key.into(),
+        message: "an interface element needs a traction law (e.g. `law = \"linear_penalty\"`)"
+            .into(),
+    })?;
+    Ok(Arc::new(InterfaceElement::new(
+        shape,
+        o.integration.unwrap_or(InterfaceRule::Gauss),
+        law,
+    )?))
+}
+
+const OPTIONS: &[ParamDoc] = &[ParamDoc {
+    name: "integration",
+    doc: "\"gauss\" (default; the paper's 3x3 for INTER18) or \"lobatto\" (nodal)",
+}];
+
+inventory::submit! {
+    ElementEntry {
+        key: "inter8",
+        description: "8-node zero-thickness interface (4+4), matches H8 faces",
+        params: OPTIONS,
+        shape: CellShape::Inter8,
+        build: |b| build(CellShape::Inter8, "inter8", b),
+    }
+}
+inventory::submit! {
+    ElementEntry {
+        key: "inter16",
+        description: "16-node zero-thickness interface (8+8), matches H20 faces",
+        params: OPTIONS,
+        shape: CellShape::Inter16,
+        build: |b| build(CellShape::Inter16, "inter16", b),
+    }
+}
+inventory::submit! {
+    ElementEntry {
+        key: "inter18",
+        description: "18-node zero-thickness interface (9+9), matches H27 faces (the paper's INTER18)",
+        params: OPTIONS,
+        shape: CellShape::Inter18,
+        build: |b| build(CellShape::Inter18, "inter18", b),
+    }
+}
