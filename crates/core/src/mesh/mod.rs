@@ -6,6 +6,8 @@
 pub mod generate;
 pub mod gmsh;
 pub mod inp;
+pub mod interface;
+pub mod merge;
 
 use crate::error::CoreError;
 use crate::topology::CellShape;

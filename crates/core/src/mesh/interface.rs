@@ -1,0 +1,486 @@
+//! Inserting zero-thickness interface elements between two element sets.
+//!
+//! [`insert_interface`] finds the faces shared by an element of a `bottom`
+//! set and an element of a `top` set, duplicates the nodes of that surface
+//! for the `top` side and adds one interface element (INTER8 / INTER16 /
+//! INTER18) per shared face. The sets typically come from
+//! [`super::merge::merge`] (one element set per part), from Gmsh physical
+//! volumes or from `.inp` ELSETs.
+//!
+//! # Conventions
+//!
+//! * Interface element = the shared face's nodes as seen from the `bottom`
+//!   element (its [`crate::topology::HEX_FACES`] order, right-hand normal out
+//!   of the bottom element), then the copies of the same nodes in the same
+//!   order. Its normal therefore points from `bottom` to `top`.
+//! * Only elements of `top` are moved to the copied nodes. Elements of
+//!   `bottom` **and of every other set** keep the original nodes: a third
+//!   body touching the surface stays attached to the bottom side.
+//! * Node sets: only entries that are duplicated surface nodes `n` change
+//!   (their copy is `n'`).
+//!   - A set belongs to a body when its name is an element set `p` or starts
+//!     with `p.` for an element set `p` (the longest such prefix wins): after
+//!     [`super::merge::merge`], `upper.z0` belongs to part `upper`. Such a
+//!     set holds `n` if the elements of `p` use `n`, and `n'` if they use
+//!     `n'`. Hence the sets of the `top` part (`top.*`) have each `n`
+//!     replaced by `n'`, those of the `bottom` part (`bottom.*`) and of a
+//!     third body are unchanged.
+//!   - Any other set (an `.inp` NSET, a Gmsh physical group, or one whose
+//!     body uses neither `n` nor `n'`), for example a symmetry plane or a
+//!     clamped end crossing the interface, holds both `n` and `n'`, so that
+//!     a condition on it acts on both sides.
+//! * Face sets and element sets need no change: they refer to
+//!   (block, element, face), and the connectivity of the top elements was
+//!   updated in place.
+
+use super::{ElementBlock, ElementRef, Mesh};
+use crate::error::CoreError;
+use std::collections::{HashMap, HashSet};
+
+/// What [`insert_interface`] added.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct InterfaceInsertion {
+    /// Index of the new interface block in [`Mesh::blocks`].
+    pub block: usize,
+    /// Number of interface elements (one per shared face).
+    pub elements: usize,
+    /// Number of nodes duplicated (all nodes of the shared surface,
+    /// mid-side and centre nodes included).
+    pub duplicated_nodes: usize,
+}
+
+/// Elements of a set, checked (in range, solid), sorted and deduplicated.
+fn solid_elements(mesh: &Mesh, set: &str) -> Result<Vec<ElementRef>, CoreError> {
+    let mut v = mesh.element_set(set)?.to_vec();
+    v.sort_unstable();
+    v.dedup();
+    for r in &v {
+        let Some(b) = mesh.blocks.get(r.block) else {
+            return Err(CoreError::Invalid(format!(
+                "element set `{set}` refers to block {}, but the mesh has {} blocks",
+                r.block,
+                mesh.blocks.len()
+            )));
+        };
+        if r.element >= b.len() {
+            return Err(CoreError::Invalid(format!(
+                "element set `{set}` refers to element {} of block `{}`, which has {} elements",
+                r.element,
+                b.name,
+                b.len()
+            )));
+        }
+        if !b.shape.is_solid() {
+            return Err(CoreError::Invalid(format!(
+                "element set `{set}` holds {} elements (block `{}`); interfaces join solid elements (hex8, hex20, hex27)",
+                b.shape.name(),
+                b.name
+            )));
+        }
+    }
+    Ok(v)
+}
+
+/// Sorted corner ids of face `f` of element `r`: the key that identifies a face.
+fn corner_key(mesh: &Mesh, r: ElementRef, f: usize) -> [usize; 4] {
+    let b = &mesh.blocks[r.block];
+    let conn = b.element(r.element);
+    let l = b.shape.face_nodes(f);
+    let mut k = [conn[l[0]], conn[l[1]], conn[l[2]], conn[l[3]]];
+    k.sort_unstable();
+    k
+}
+
+fn face_nodes(mesh: &Mesh, r: ElementRef, f: usize) -> Vec<usize> {
+    let b = &mesh.blocks[r.block];
+    let conn = b.element(r.element);
+    b.shape.face_nodes(f).iter().map(|&l| conn[l]).collect()
+}
+
+fn describe(mesh: &Mesh, r: ElementRef) -> String {
+    format!(
+        "element {} of block `{}`",
+        r.element, mesh.blocks[r.block].name
+    )
+}
+
+/// Insert zero-thickness interface elements on every face shared by an
+/// element of element set `bottom` and an element of element set `top`.
+///
+/// * Shared faces are found by their corner nodes (a hash map keyed by the
+///   sorted corner ids), so the two sides must already share nodes (e.g.
+///   after [`super::merge::merge`]). Both faces must have the same nodes
+///   (same solid order on both sides).
+/// * Every node of the shared surface (corners, mid-sides, centres) gets a
+///   copy at the same position (appended to [`Mesh::nodes`]; labels, if
+///   any, continue after the largest label); elements of `top`, and only
+///   those, are renumbered to the copies.
+/// * One interface element per shared face, appended as a new block named
+///   `name` with shape `bottom_shape.matching_interface()` (element type key
+///   `"inter8"`, `"inter16"` or `"inter18"`) and material `law`; node order
+///   and normal as in the [module docs](self) (bottom face, then top copies;
+///   normal from bottom to top).
+/// * New sets: element set `name`, node sets `name.bottom` (original surface
+///   nodes) and `name.top` (their copies). Existing node sets follow the rule
+///   in the [module docs](self).
+///
+/// Errors ([`CoreError`]): unknown sets, sets that overlap or hold
+/// non-solid elements, names already in use, sets that share no face,
+/// mismatched element orders across the surface, non-conforming faces
+/// (same corners, different mid-side nodes), non-manifold surfaces, or a
+/// surface mixing element orders. On error the mesh is unchanged.
+pub fn insert_interface(
+    mesh: &mut Mesh,
+    bottom: &str,
+    top: &str,
+    name: &str,
+    law: &str,
+) -> Result<InterfaceInsertion, CoreError> {
+    if bottom == top {
+        return Err(CoreError::Invalid(format!(
+            "interface `{name}`: bottom and top are the same element set `{bottom}`; give two different sets"
+        )));
+    }
+    if name.is_empty() {
+        return Err(CoreError::Invalid(format!(
+            "interface between `{bottom}` and `{top}` needs a non-empty name"
+        )));
+    }
+    if mesh.element_sets.contains_key(name) || mesh.blocks.iter().any(|b| b.name == name) {
+        return Err(CoreError::Invalid(format!(
+            "interface name `{name}` is already used by an element set or block; choose another name"
+        )));
+    }
+    for s in ["bottom", "top"] {
+        let n = format!("{name}.{s}");
+        if mesh.node_sets.contains_key(&n) {
+            return Err(CoreError::Invalid(format!(
+                "interface `{name}` would create node set `{n}`, which already exists; choose another name"
+            )));
+        }
+    }
+    let bot_el = solid_elements(mesh, bottom)?;
+    let top_el = solid_elements(mesh, top)?;
+    let top_lookup: HashSet<ElementRef> = top_el.iter().copied().collect();
+    if let Some(&r) = bot_el.iter().find(|r| top_lookup.contains(r)) {
+        return Err(CoreError::Invalid(format!(
+            "element sets `{bottom}` and `{top}` overlap ({} is in both); an interface needs two disjoint sets",
+            describe(mesh, r)
+        )));
+    }
+
+    // faces of the top elements by corner key (internal top faces appear twice)
+    let mut top_faces: HashMap<[usize; 4], Vec<(ElementRef, usize)>> = HashMap::new();
+    for &r in &top_el {
+        for f in 0..mesh.blocks[r.block].shape.num_faces() {
+            top_faces
+                .entry(corner_key(mesh, r, f))
+                .or_default()
+                .push((r, f));
+        }
+    }
+
+    // shared faces in the order of the bottom elements and their faces
+    let mut shared: Vec<(ElementRef, usize)> = Vec::new();
+    let mut used_keys: HashSet<[usize; 4]> = HashSet::new();
+    for &r in &bot_el {
+        for f in 0..mesh.blocks[r.block].shape.num_faces() {
+            let key = corner_key(mesh, r, f);
+            let Some(cands) = top_faces.get(&key) else {
+                continue;
+            };
+            let (tr, tf) = cands[0];
+            if cands.len() > 1 || !used_keys.insert(key) {
+                return Err(CoreError::Invalid(format!(
+                    "face {f} of {} (set `{bottom}`) is shared by more than two elements of `{bottom}`/`{top}` (non-manifold surface, or duplicated elements); cannot insert interface `{name}`",
+                    describe(mesh, r)
+                )));
+            }
+            let bs = mesh.blocks[r.block].shape;
+            let ts = mesh.blocks[tr.block].shape;
+            if bs != ts {
+                let (a, b) = (bs.name(), ts.name());
+                return Err(CoreError::Invalid(format!(
+                    "mismatched element orders across `{bottom}`/`{top}`: {a} faces against {b} faces; interfaces need the same solid order on both sides ({} against {})",
+                    describe(mesh, r),
+                    describe(mesh, tr)
+                )));
+            }
+            let mut bn = face_nodes(mesh, r, f);
+            let mut tn = face_nodes(mesh, tr, tf);
+            bn.sort_unstable();
+            tn.sort_unstable();
+            if bn != tn {
+                return Err(CoreError::Invalid(format!(
+                    "face {f} of {} (set `{bottom}`) and face {tf} of {} (set `{top}`) share their corners but not their mid-side/centre nodes; the mesh is not conforming there (merge the parts with a tolerance?)",
+                    describe(mesh, r),
+                    describe(mesh, tr)
+                )));
+            }
+            shared.push((r, f));
+        }
+    }
+
+    if shared.is_empty() {
+        let bot_nodes: HashSet<usize> = bot_el
+            .iter()
+            .flat_map(|r| mesh.blocks[r.block].element(r.element).iter().copied())
+            .collect();
+        let common: HashSet<usize> = top_el
+            .iter()
+            .flat_map(|r| mesh.blocks[r.block].element(r.element).iter().copied())
+            .filter(|i| bot_nodes.contains(i))
+            .collect();
+        let faces = |v: &[ElementRef]| -> usize {
+            v.iter()
+                .map(|r| mesh.blocks[r.block].shape.num_faces())
+                .sum()
+        };
+        let touch = if common.is_empty() {
+            let hint = if mesh.blocks.iter().any(|b| b.shape.is_interface()) {
+                " (an interface may already separate them, or the parts were not merged)"
+            } else {
+                " (were the parts merged?)"
+            };
+            format!("they have no node in common{hint}")
+        } else {
+            format!(
+                "they touch at {} node(s) only (an edge or a corner); an interface needs whole faces in common",
+                common.len()
+            )
+        };
+        return Err(CoreError::Invalid(format!(
+            "element sets `{bottom}` ({} elements, {} faces) and `{top}` ({} elements, {} faces) share no face, so interface `{name}` would be empty: {touch}",
+            bot_el.len(),
+            faces(&bot_el),
+            top_el.len(),
+            faces(&top_el)
+        )));
+    }
+
+    let shape = mesh.blocks[shared[0].0.block].shape;
+    if let Some(&(r, _)) = shared
+        .iter()
+        .find(|(r, _)| mesh.blocks[r.block].shape != shape)
+    {
+        return Err(CoreError::Invalid(format!(
+            "the surface between `{bottom}` and `{top}` mixes {} and {} elements ({}); insert one interface per element order (split the sets)",
+            shape.name(),
+            mesh.blocks[r.block].shape.name(),
+            describe(mesh, r)
+        )));
+    }
+    let Some(ishape) = shape.matching_interface() else {
+        return Err(CoreError::Invalid(format!(
+            "no interface element matches {} faces",
+            shape.name()
+        )));
+    };
+
+    // --- all checks passed: modify the mesh ---
+    let bottom_faces: Vec<Vec<usize>> = shared
+        .iter()
+        .map(|&(r, f)| face_nodes(mesh, r, f))
+        .collect();
+    let mut surface: Vec<usize> = bottom_faces.iter().flatten().copied().collect();
+    surface.sort_unstable();
+    surface.dedup();
+    let n0 = mesh.nodes.len();
+    let copy: HashMap<usize, usize> = surface
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| (i, n0 + k))
+        .collect();
+    for &i in &surface {
+        let p = mesh.nodes[i];
+        mesh.nodes.push(p);
+    }
+    if !mesh.node_labels.is_empty() {
+        let next = mesh.node_labels.iter().copied().max().unwrap_or(0) + 1;
+        mesh.node_labels.resize(n0, 0);
+        mesh.node_labels.extend(next..next + surface.len());
+    }
+    for r in &top_el {
+        let b = &mut mesh.blocks[r.block];
+        let n = b.nodes_per_element();
+        for i in &mut b.connectivity[r.element * n..(r.element + 1) * n] {
+            if let Some(&c) = copy.get(i) {
+                *i = c;
+            }
+        }
+    }
+    update_node_sets(mesh, &copy);
+
+    let mut connectivity = Vec::with_capacity(bottom_faces.len() * ishape.num_nodes());
+    for face in &bottom_faces {
+        connectivity.extend_from_slice(face);
+        connectivity.extend(face.iter().map(|i| copy[i]));
+    }
+    let block = mesh.blocks.len();
+    let elements = bottom_faces.len();
+    mesh.blocks.push(ElementBlock {
+        name: name.to_string(),
+        shape: ishape,
+        connectivity,
+        element_type: ishape.name().to_string(),
+        material: law.to_string(),
+    });
+    mesh.element_sets.insert(
+        name.to_string(),
+        (0..elements)
+            .map(|element| ElementRef { block, element })
+            .collect(),
+    );
+    mesh.node_sets
+        .insert(format!("{name}.top"), (n0..n0 + surface.len()).collect());
+    mesh.node_sets.insert(format!("{name}.bottom"), surface);
+    mesh.validate()?;
+    Ok(InterfaceInsertion {
+        block,
+        elements,
+        duplicated_nodes: mesh.nodes.len() - n0,
+    })
+}
+
+/// The element set a node set belongs to: the set's own name or its longest
+/// prefix before a `.` that names an element set (`upper.z0` -> `upper`).
+fn owner<'a>(mesh: &Mesh, set: &'a str) -> Option<&'a str> {
+    if mesh.element_sets.contains_key(set) {
+        return Some(set);
+    }
+    let mut end = set.len();
+    while let Some(dot) = set[..end].rfind('.') {
+        if mesh.element_sets.contains_key(&set[..dot]) {
+            return Some(&set[..dot]);
+        }
+        end = dot;
+    }
+    None
+}
+
+/// Apply the node-set rule of the module docs after the top elements were
+/// renumbered; `copy` maps each duplicated node to its copy.
+fn update_node_sets(mesh: &mut Mesh, copy: &HashMap<usize, usize>) {
+    let names: Vec<String> = mesh.node_sets.keys().cloned().collect();
+    // per owner element set: the duplicated nodes and copies its elements use
+    let mut used_by: HashMap<String, HashSet<usize>> = HashMap::new();
+    let copies: HashSet<usize> = copy.values().copied().collect();
+    for s in names {
+        if !mesh.node_sets[&s].iter().any(|i| copy.contains_key(i)) {
+            continue;
+        }
+        let own = owner(mesh, &s).map(str::to_string);
+        if let Some(o) = &own {
+            if !used_by.contains_key(o) {
+                let mut used = HashSet::new();
+                for r in &mesh.element_sets[o] {
+                    let Some(b) = mesh.blocks.get(r.block) else {
+                        continue;
+                    };
+                    if r.element < b.len() {
+                        used.extend(
+                            b.element(r.element)
+                                .iter()
+                                .filter(|i| copy.contains_key(i) || copies.contains(i)),
+                        );
+                    }
+                }
+                used_by.insert(o.clone(), used);
+            }
+        }
+        let set = mesh.node_sets.get_mut(&s).expect("listed above");
+        let mut out = Vec::with_capacity(set.len());
+        for &i in set.iter() {
+            let Some(&c) = copy.get(&i) else {
+                out.push(i);
+                continue;
+            };
+            match own.as_ref().map(|o| &used_by[o]) {
+                Some(used) if used.contains(&i) || used.contains(&c) => {
+                    if used.contains(&i) {
+                        out.push(i);
+                    }
+                    if used.contains(&c) {
+                        out.push(c);
+                    }
+                }
+                // the owner uses neither side (or there is no owner): both
+                _ => {
+                    out.push(i);
+                    out.push(c);
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        *set = out;
+    }
+}
+
+/// The (bottom node, top node) pairs of interface block `block`, sorted and
+/// unique: node `i` of each element's bottom side with node `i` of its top
+/// side. Empty if `block` does not exist or is not an interface block.
+pub fn interface_pairs(mesh: &Mesh, block: usize) -> Vec<(usize, usize)> {
+    let Some(b) = mesh.blocks.get(block) else {
+        return Vec::new();
+    };
+    if !b.shape.is_interface() {
+        return Vec::new();
+    }
+    let half = b.nodes_per_element() / 2;
+    let mut v: Vec<(usize, usize)> = (0..b.len())
+        .flat_map(|e| {
+            let c = b.element(e);
+            (0..half).map(move |i| (c[i], c[half + i]))
+        })
+        .collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::generate::{box_mesh, BoxSpec};
+    use crate::mesh::merge::merge;
+    use crate::topology::CellShape;
+
+    fn two_cubes(shape: CellShape) -> Mesh {
+        let lo = box_mesh(&BoxSpec::new([1.0; 3], [1; 3], shape), "b", "h", "m").unwrap();
+        let mut s = BoxSpec::new([1.0; 3], [1; 3], shape);
+        s.origin = [0.0, 0.0, 1.0];
+        let up = box_mesh(&s, "b", "h", "m").unwrap();
+        merge(vec![("lo".into(), lo), ("up".into(), up)], 1e-9).unwrap()
+    }
+
+    #[test]
+    fn node_set_rule() {
+        let mut m = two_cubes(CellShape::Hex8);
+        m.node_sets
+            .insert("stack".into(), (0..m.nodes.len()).collect());
+        let before_lo = m.node_sets["lo.z1"].clone();
+        let ins = insert_interface(&mut m, "lo", "up", "i", "penalty").unwrap();
+        assert_eq!(ins.duplicated_nodes, 4);
+        // bottom part's sets unchanged; top part's sets moved to the copies
+        assert_eq!(m.node_sets["lo.z1"], before_lo);
+        assert_eq!(m.node_sets["up.z0"], m.node_sets["i.top"]);
+        // neutral sets hold both sides
+        assert_eq!(m.node_sets["stack"].len(), m.nodes.len());
+        assert_eq!(interface_pairs(&m, ins.block).len(), 4);
+        assert!(interface_pairs(&m, 0).is_empty());
+        // second insertion: nothing shared any more, mesh unchanged
+        let copy = m.clone();
+        let err = insert_interface(&mut m, "lo", "up", "j", "penalty").unwrap_err();
+        assert!(err.to_string().contains("share no face"), "{err}");
+        assert_eq!(m, copy);
+    }
+
+    #[test]
+    fn rejects_bad_names() {
+        let mut m = two_cubes(CellShape::Hex8);
+        assert!(insert_interface(&mut m, "lo", "lo", "i", "l").is_err());
+        assert!(insert_interface(&mut m, "lo", "nope", "i", "l").is_err());
+        assert!(insert_interface(&mut m, "lo", "up", "lo", "l").is_err());
+    }
+}
