@@ -1,1 +1,86 @@
-fn main() {}
+//! `junta`: run TOML scenes or Abaqus/CalculiX decks, check them, list plugins.
+//!
+//! ```text
+//! junta run <scene.toml | deck.inp> [-o DIR]   solve and write DIR/summary.json, DIR/results.vtu
+//! junta check <scene.toml | deck.inp>          validate and print a model summary, no solve
+//! junta list                                   every registered plugin with its parameters
+//! ```
+
+// Keep every plugin crate linked so that its `inventory` registrations exist.
+use junta_criteria as _;
+use junta_elements as _;
+use junta_interface as _;
+use junta_solvers as _;
+
+mod deck;
+mod output;
+mod run;
+mod scene;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Junta: solids joined by interfaces.
+#[derive(Parser)]
+#[command(name = "junta", version, about, long_about = None)]
+struct Cli {
+    /// More log output (-v info, -vv debug).
+    #[arg(short, long, action = clap::ArgAction::Count, global = true)]
+    verbose: u8,
+    /// No progress bar.
+    #[arg(short, long, global = true)]
+    quiet: bool,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a scene (.toml) or an Abaqus/CalculiX deck (.inp).
+    Run {
+        /// Scene or deck file.
+        input: PathBuf,
+        /// Output directory (default: the scene's [output] directory, else out/<name>).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+    /// Validate a scene or deck and print a model summary without solving.
+    Check {
+        /// Scene or deck file.
+        input: PathBuf,
+    },
+    /// List every registered element, material, law, criterion and solver.
+    List,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let level = match cli.verbose {
+        0 => "warn",
+        1 => "info",
+        _ => "debug",
+    };
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env()
+                .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new(level)),
+        )
+        .with_writer(std::io::stderr)
+        .init();
+    let result = match cli.command {
+        Command::Run { input, output } => run::run(&input, output.as_deref(), !cli.quiet),
+        Command::Check { input } => run::check(&input),
+        Command::List => {
+            run::list();
+            Ok(())
+        }
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,1 +1,44 @@
-//! junta-solvers (see crate docs)
+//! # junta-solvers
+//!
+//! Linear solver back ends of Junta behind [`junta_core::LinearSolver`]
+//! (`analyze` once per sparsity pattern, `factorize` per matrix,
+//! `solve_in_place` per right-hand side), registered in the plugin registry:
+//!
+//! | key | type | what |
+//! |---|---|---|
+//! | `cholesky` | [`CholeskySolver`] | faer supernodal Cholesky, nested-dissection ([`ordering`]) or AMD ordering, iterative refinement, conditioning warnings |
+//! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi or 3×3 nodal block-Jacobi |
+//!
+//! Embedders can skip the registry:
+//!
+//! ```
+//! use junta_core::LinearSolver;
+//! use junta_solvers::{gallery, CholeskySolver};
+//!
+//! let (a, coords) = gallery::grid_3d(4, 4, 4, 3, gallery::Stencil::Point27);
+//! let mut solver = CholeskySolver::new(Default::default());
+//! solver.analyze(&a, Some(&coords))?;
+//! solver.factorize(&a)?;
+//! let mut x = vec![1.0; a.n];
+//! solver.solve_in_place(&a, &mut x)?;
+//! assert!(solver.report().residual < 1e-12);
+//! # Ok::<(), junta_core::SolverError>(())
+//! ```
+//!
+//! Failures are [`junta_core::SolverError`]s with their numbers (pivot,
+//! iterations, residuals), never a silent NaN. A binary that looks solvers up
+//! by key must reference this crate (`use junta_solvers as _;`) so that the
+//! linker keeps the registrations.
+
+pub mod cg;
+pub mod cholesky;
+mod common;
+pub mod gallery;
+pub mod linear_static;
+pub mod ordering;
+// pub mod newton; // slot for the nonlinear driver (Newton-Raphson with line
+//                 // search, load stepping with cut-back, arc length): a later issue.
+
+pub use cg::{CgSettings, CgSolver, Preconditioner};
+pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats};
+pub use ordering::OrderingKind;

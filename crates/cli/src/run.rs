@@ -1,0 +1,273 @@
+//! The commands: `run`, `check`, `list`.
+
+use crate::{deck, output, scene};
+use anyhow::{anyhow, bail, Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use junta_core::registry::{
+    self, CriterionEntry, ElementEntry, Entry, LawEntry, MaterialEntry, SolverEntry,
+};
+use junta_core::{LinearSolver, Model};
+use junta_solvers::linear_static::solve_linear_static;
+use serde_json::json;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// A model ready to run, from a scene or a deck.
+pub struct Prepared {
+    pub model: Model,
+    pub solver: Box<dyn LinearSolver>,
+    pub title: String,
+    pub output_dir: Option<PathBuf>,
+    pub vtu: bool,
+    pub probes: Vec<String>,
+    pub notes: Vec<String>,
+}
+
+fn build_solver(key: &str, table: &toml::Table, where_: &str) -> Result<Box<dyn LinearSolver>> {
+    let entry = registry::find::<SolverEntry>(key)
+        .map_err(|e| anyhow!("{where_}: key `solver.type`: {e}"))?;
+    (entry.build)(table).map_err(|e| anyhow!("{where_}: key `solver`: {e}"))
+}
+
+/// Read a scene (`.toml`) or a deck (`.inp`) and build the model.
+pub fn prepare(input: &Path) -> Result<Prepared> {
+    let ext = input
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("toml") => {
+            let sf = scene::SceneFile::read(input)?;
+            let model = scene::build_model(&sf)?;
+            let (key, table) = scene::solver_table(&sf);
+            let solver = build_solver(&key, &table, &sf.path.display().to_string())?;
+            Ok(Prepared {
+                model,
+                solver,
+                title: sf.scene.model.title.clone().unwrap_or_default(),
+                output_dir: sf.scene.output.directory.clone(),
+                vtu: sf.scene.output.vtu,
+                probes: sf.scene.output.probes.clone(),
+                notes: Vec::new(),
+            })
+        }
+        Some("inp") => {
+            let (model, notes) = deck::build_model(input)?;
+            let solver = build_solver(
+                "cholesky",
+                &toml::Table::new(),
+                &input.display().to_string(),
+            )?;
+            Ok(Prepared {
+                model,
+                solver,
+                title: String::new(),
+                output_dir: None,
+                vtu: true,
+                probes: Vec::new(),
+                notes,
+            })
+        }
+        _ => bail!(
+            "{}: unknown input type; give a TOML scene (.toml) or an Abaqus/CalculiX deck (.inp)",
+            input.display()
+        ),
+    }
+}
+
+fn spinner(enabled: bool, msg: String) -> ProgressBar {
+    if !enabled {
+        return ProgressBar::hidden();
+    }
+    let pb = ProgressBar::new_spinner();
+    pb.set_style(ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}").unwrap());
+    pb.set_message(msg);
+    pb.enable_steady_tick(Duration::from_millis(200));
+    pb
+}
+
+/// `junta run`.
+pub fn run(input: &Path, out: Option<&Path>, progress: bool) -> Result<()> {
+    let t0 = Instant::now();
+    let pb = spinner(progress, format!("reading {}", input.display()));
+    let mut p = prepare(input)?;
+    for n in &p.notes {
+        pb.suspend(|| eprintln!("note: {n}"));
+    }
+    let read_seconds = t0.elapsed().as_secs_f64();
+    let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("run");
+    let dir = match (out, &p.output_dir) {
+        (Some(o), _) => o.to_path_buf(),
+        (None, Some(d)) => d.clone(),
+        (None, None) => PathBuf::from("out").join(stem),
+    };
+    std::fs::create_dir_all(&dir)
+        .with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    pb.set_message(format!(
+        "solving {} equations ({} elements) with {}",
+        p.model.dofs.num_free,
+        p.model.mesh.num_elements(),
+        p.solver.key()
+    ));
+    let res = solve_linear_static(&p.model, p.solver.as_mut())
+        .with_context(|| format!("solving {}", input.display()))?;
+    for w in &res.report.warnings {
+        pb.suspend(|| eprintln!("warning: {w}"));
+    }
+    if res.free_residual > 1e-6 {
+        pb.suspend(|| {
+            eprintln!(
+                "warning: equilibrium residual after the solve is {:.3e} (relative); the result has lost digits",
+                res.free_residual
+            )
+        });
+    }
+    pb.set_message("writing results");
+    let t_out = Instant::now();
+    if p.vtu {
+        let cells = output::cell_results(&p.model, &res.u, &res.state)?;
+        output::write_vtu(&dir.join("results.vtu"), &p.model, &res.u, &cells)?;
+    }
+    let output_seconds = t_out.elapsed().as_secs_f64();
+    let reactions = output::reactions(&p.model, &res.residual)?;
+    let probes = output::probes(&p.model, &p.probes, &res.u).context("[output] probes")?;
+    let summary = json!({
+        "input": input.display().to_string(),
+        "title": p.title,
+        "analysis": "linear_static",
+        "nodes": p.model.mesh.nodes.len(),
+        "dofs": p.model.dofs.num_dofs(),
+        "equations": p.model.dofs.num_free,
+        "elements": output::element_counts(&p.model),
+        "reactions": reactions,
+        "displacement_max": output::displacement_max(&res.u),
+        "probes": probes,
+        "equilibrium_residual": res.free_residual,
+        "timings": {
+            "read": read_seconds,
+            "pattern": res.timings.pattern,
+            "assemble": res.timings.assemble,
+            "analyze": res.timings.analyze,
+            "factor": res.timings.factor,
+            "solve": res.timings.solve,
+            "output": output_seconds,
+            "total": t0.elapsed().as_secs_f64(),
+        },
+        "solver": {
+            "name": res.report.solver,
+            "iterations": res.report.iterations,
+            "residual": res.report.residual,
+            "factor_nonzeros": res.report.factor_nonzeros,
+            "warnings": res.report.warnings,
+        },
+        "notes": p.notes,
+    });
+    output::write_json(&dir.join("summary.json"), &summary)?;
+    pb.finish_and_clear();
+    println!(
+        "{}: {} equations, max |u| = {:.6e}, total {:.2} s -> {}",
+        input.display(),
+        p.model.dofs.num_free,
+        output::displacement_max(&res.u),
+        t0.elapsed().as_secs_f64(),
+        dir.display()
+    );
+    if let Some(obj) = summary["reactions"].as_object() {
+        for (k, v) in obj {
+            println!("  reaction on {k}: {v}");
+        }
+    }
+    Ok(())
+}
+
+/// `junta check`.
+pub fn check(input: &Path) -> Result<()> {
+    let p = prepare(input)?;
+    let m = &p.model;
+    println!("{}: valid", input.display());
+    if !p.title.is_empty() {
+        println!("  title: {}", p.title);
+    }
+    println!(
+        "  nodes: {}, dofs: {}, equations: {} ({} constrained)",
+        m.mesh.nodes.len(),
+        m.dofs.num_dofs(),
+        m.dofs.num_free,
+        m.dofs.num_dofs() - m.dofs.num_free
+    );
+    for (k, n) in output::element_counts(m) {
+        println!("  elements {k}: {n}");
+    }
+    for (b, el) in m.mesh.blocks.iter().zip(&m.elements) {
+        println!(
+            "  block `{}`: {} x {} ({} integration points each), material `{}`",
+            b.name,
+            b.len(),
+            el.key(),
+            el.num_points(),
+            b.material
+        );
+    }
+    let list = |kind: &str, v: Vec<(String, usize)>| {
+        if !v.is_empty() {
+            let s: Vec<String> = v.into_iter().map(|(k, n)| format!("{k} ({n})")).collect();
+            println!("  {kind} sets: {}", s.join(", "));
+        }
+    };
+    list(
+        "node",
+        m.mesh
+            .node_sets
+            .iter()
+            .map(|(k, v)| (k.clone(), v.len()))
+            .collect(),
+    );
+    list(
+        "element",
+        m.mesh
+            .element_sets
+            .iter()
+            .map(|(k, v)| (k.clone(), v.len()))
+            .collect(),
+    );
+    list(
+        "face",
+        m.mesh
+            .face_sets
+            .iter()
+            .map(|(k, v)| (k.clone(), v.len()))
+            .collect(),
+    );
+    let mut total = [0.0; 3];
+    for (i, f) in m.f_ext.iter().enumerate() {
+        total[i % 3] += f;
+    }
+    println!("  total applied force: {total:?}");
+    println!("  solver: {}", p.solver.key());
+    for n in &p.notes {
+        println!("  note: {n}");
+    }
+    Ok(())
+}
+
+fn print_entries<E: Entry>(title: &str)
+where
+    junta_core::inventory::iter<E>: IntoIterator<Item = &'static E>,
+{
+    println!("{title}:");
+    for e in registry::entries::<E>() {
+        println!("  {:<16} {}", e.key(), e.description());
+        for p in e.params() {
+            println!("      {:<12} {}", p.name, p.doc);
+        }
+    }
+}
+
+/// `junta list`.
+pub fn list() {
+    print_entries::<ElementEntry>("elements");
+    print_entries::<MaterialEntry>("materials");
+    print_entries::<LawEntry>("interface laws");
+    print_entries::<CriterionEntry>("failure criteria");
+    print_entries::<SolverEntry>("linear solvers");
+}

@@ -1,0 +1,676 @@
+//! TOML scenes: the file format users write, its validation, and the
+//! translation to a [`junta_core::Model`].
+//!
+//! Every error names the file, the TOML key path (e.g. `boundary[1].set`),
+//! the line where we know it, and what would be valid. See the README for
+//! an annotated example.
+
+use anyhow::{anyhow, bail, Context, Result};
+use junta_core::mesh::generate::{box_mesh, BoxSpec};
+use junta_core::mesh::Mesh;
+use junta_core::registry::{self, ElementBuild, ElementEntry, Entry, LawEntry, MaterialEntry};
+use junta_core::{Element, InterfaceLaw, Material, Model};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use toml::Spanned;
+
+/// A whole scene file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Title, description, units (informative).
+    #[serde(default)]
+    pub model: ModelInfo,
+    /// Named materials: `[materials.NAME] type = "isotropic", E = .., nu = ..`.
+    #[serde(default)]
+    pub materials: BTreeMap<String, toml::Table>,
+    /// Named interface laws: `[laws.NAME] type = "linear_penalty", d = ..`.
+    #[serde(default)]
+    pub laws: BTreeMap<String, toml::Table>,
+    /// The mesh: built-in box generator or a file.
+    pub mesh: MeshSpec,
+    /// Interface elements inserted between two element sets.
+    #[serde(default)]
+    pub interface: Vec<InterfaceSpec>,
+    /// Traction-free cuts between two element sets (nodes duplicated, no element).
+    #[serde(default)]
+    pub crack: Vec<CrackSpec>,
+    /// Element type and material of imported blocks, by block name.
+    #[serde(default)]
+    pub blocks: Vec<BlockSpec>,
+    /// Dirichlet conditions.
+    #[serde(default)]
+    pub boundary: Vec<BoundarySpec>,
+    /// Loads.
+    #[serde(default)]
+    pub load: Vec<LoadSpec>,
+    /// Linear solver: `type = "cholesky" | "cg"` plus its parameters.
+    #[serde(default)]
+    pub solver: Option<toml::Table>,
+    /// Output options.
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+/// Informative header of a scene.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelInfo {
+    pub title: Option<String>,
+    pub description: Option<String>,
+    pub units: Option<String>,
+}
+
+/// Where the mesh comes from: `type = "box"` (built-in structured box),
+/// `"boxes"` (several boxes merged at coincident nodes), `"gmsh"` or `"inp"`
+/// (a file, path relative to the scene).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// `box`, `boxes`, `gmsh` or `inp`.
+    #[serde(rename = "type")]
+    pub kind: Spanned<String>,
+    /// Box: edge lengths.
+    pub size: Option<[f64; 3]>,
+    /// Box: elements along x, y, z.
+    pub divisions: Option<[usize; 3]>,
+    /// Box: element type key (h8, h20, h27, h20r, h27r).
+    pub element: Option<Spanned<String>>,
+    /// Box: material name (a key of `[materials]`).
+    pub material: Option<Spanned<String>>,
+    /// Box: lower corner.
+    pub origin: Option<[f64; 3]>,
+    /// Box: last/first element size per axis.
+    pub grading: Option<[f64; 3]>,
+    /// Gmsh / inp: the file.
+    pub file: Option<PathBuf>,
+    /// Boxes: the parts, `[[mesh.boxes]]`.
+    #[serde(default)]
+    pub boxes: Vec<BoxPart>,
+}
+
+/// One part of a `type = "boxes"` mesh. Its sets are named `NAME.x0` ...
+/// `NAME.z1` and its elements form the element set `NAME`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxPart {
+    pub name: String,
+    pub size: [f64; 3],
+    pub divisions: [usize; 3],
+    pub element: Spanned<String>,
+    pub material: Spanned<String>,
+    #[serde(default)]
+    pub origin: [f64; 3],
+    #[serde(default = "unit_grading")]
+    pub grading: [f64; 3],
+}
+
+fn unit_grading() -> [f64; 3] {
+    [1.0; 3]
+}
+
+/// Zero-thickness interface elements along the faces shared by two element
+/// sets. The first set is the bottom side: the normal points from it to the
+/// second. The element (INTER8/16/18) follows the solids' order.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InterfaceSpec {
+    /// Name of the interface block (and of its element set; node sets
+    /// `NAME.bottom`, `NAME.top`).
+    pub name: String,
+    /// `[bottom_set, top_set]`.
+    pub between: Spanned<[String; 2]>,
+    /// Law name (a key of `[laws]`).
+    pub law: Spanned<String>,
+    /// `"gauss"` (default) or `"lobatto"`.
+    pub integration: Option<String>,
+    /// Physical thickness of the adhesive layer, if any (for Turon's
+    /// stiffness rule K = 50 E / t in the penalty advisor).
+    pub thickness: Option<f64>,
+}
+
+/// A traction-free cut (e.g. a notch) between two element sets.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CrackSpec {
+    /// Name; node sets `NAME.bottom` and `NAME.top` are created.
+    pub name: String,
+    /// `[bottom_set, top_set]`.
+    pub between: Spanned<[String; 2]>,
+}
+
+/// Element type and material of an imported block.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockSpec {
+    pub name: Spanned<String>,
+    pub element: Option<Spanned<String>>,
+    pub material: Spanned<String>,
+}
+
+/// Either `"all"` or a list of components.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum Fixed {
+    Word(String),
+    List(Vec<String>),
+}
+
+/// Optional x, y, z components.
+#[derive(Debug, Default, Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct Components {
+    pub x: Option<f64>,
+    pub y: Option<f64>,
+    pub z: Option<f64>,
+}
+
+/// A Dirichlet condition on a node set.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundarySpec {
+    /// Node set name.
+    pub set: Spanned<String>,
+    /// Components fixed at zero: `"all"` or `["x", "z"]`.
+    pub fixed: Option<Fixed>,
+    /// Prescribed displacements: `{ z = -0.01 }`.
+    pub displacement: Option<Components>,
+}
+
+/// A load on a node set (nodal force) or a face set (pressure / traction).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    /// Node set that receives `force` at every node.
+    pub set: Option<Spanned<String>>,
+    /// Face set that receives `pressure` or `traction`.
+    pub face_set: Option<Spanned<String>>,
+    /// Force applied at *each* node of `set` (like `*CLOAD`).
+    pub force: Option<[f64; 3]>,
+    /// Pressure on `face_set`, positive pushing into the solid.
+    pub pressure: Option<f64>,
+    /// Traction vector (force per area) on `face_set`.
+    pub traction: Option<[f64; 3]>,
+}
+
+/// Output options.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Output directory (relative to the working directory); `-o` overrides.
+    pub directory: Option<PathBuf>,
+    /// Write `results.vtu` (default true).
+    #[serde(default = "yes")]
+    pub vtu: bool,
+    /// Node sets whose mean displacement is reported in `summary.json`
+    /// (`probes.NAME = [ux, uy, uz]`).
+    #[serde(default)]
+    pub probes: Vec<String>,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        OutputSpec {
+            directory: None,
+            vtu: true,
+            probes: Vec::new(),
+        }
+    }
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// A parsed scene with its source, for messages.
+pub struct SceneFile {
+    pub path: PathBuf,
+    pub text: String,
+    pub scene: Scene,
+}
+
+impl SceneFile {
+    /// Read and parse a scene file; TOML and schema errors name the line.
+    pub fn read(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("cannot read scene file {}", path.display()))?;
+        Self::parse(path, text)
+    }
+
+    /// Parse scene text (the path is used in messages and for relative files).
+    pub fn parse(path: &Path, text: String) -> Result<Self> {
+        let scene: Scene = toml::from_str(&text)
+            .map_err(|e| anyhow!("{}: {}", path.display(), e.to_string().trim_end()))?;
+        Ok(SceneFile {
+            path: path.to_path_buf(),
+            text,
+            scene,
+        })
+    }
+
+    /// `file:line` of a span, for messages.
+    pub fn at(&self, span: std::ops::Range<usize>) -> String {
+        let line = self.text[..span.start.min(self.text.len())]
+            .matches('\n')
+            .count()
+            + 1;
+        format!("{}:{}", self.path.display(), line)
+    }
+
+    fn relative(&self, file: &Path) -> PathBuf {
+        if file.is_absolute() {
+            file.to_path_buf()
+        } else {
+            self.path.parent().unwrap_or(Path::new(".")).join(file)
+        }
+    }
+}
+
+/// Parse a component name.
+fn component(name: &str) -> Option<usize> {
+    match name {
+        "x" => Some(0),
+        "y" => Some(1),
+        "z" => Some(2),
+        _ => None,
+    }
+}
+
+fn list_keys<T>(m: &BTreeMap<String, T>) -> String {
+    if m.is_empty() {
+        "(none)".to_string()
+    } else {
+        m.keys().cloned().collect::<Vec<_>>().join(", ")
+    }
+}
+
+/// Build the registry object of every entry of a `[section.NAME]` table
+/// (`type` picks the registered plugin, the other keys are its parameters).
+pub fn build_plugins<E: Entry, T>(
+    sf: &SceneFile,
+    section: &str,
+    tables: &BTreeMap<String, toml::Table>,
+    build: impl Fn(&E, &toml::Table) -> Result<T, junta_core::CoreError>,
+) -> Result<BTreeMap<String, T>>
+where
+    junta_core::inventory::iter<E>: IntoIterator<Item = &'static E>,
+{
+    let mut out = BTreeMap::new();
+    for (name, table) in tables {
+        let mut t = table.clone();
+        let key = match t.remove("type") {
+            Some(toml::Value::String(s)) => s,
+            _ => {
+                let valid: Vec<_> = registry::entries::<E>().iter().map(|e| e.key()).collect();
+                bail!(
+                    "{}: key `{section}.{name}.type` is missing or not a string; valid types: {}",
+                    sf.path.display(),
+                    valid.join(", ")
+                )
+            }
+        };
+        let entry = registry::find::<E>(&key)
+            .map_err(|e| anyhow!("{}: key `{section}.{name}.type`: {e}", sf.path.display()))?;
+        let m = build(entry, &t)
+            .map_err(|e| anyhow!("{}: key `{section}.{name}`: {e}", sf.path.display()))?;
+        out.insert(name.clone(), m);
+    }
+    Ok(out)
+}
+
+/// Build one box of the generator, checking the element key.
+fn generate_box(
+    sf: &SceneFile,
+    key: &str,
+    size: [f64; 3],
+    divisions: [usize; 3],
+    element: &Spanned<String>,
+    material: &Spanned<String>,
+    origin: [f64; 3],
+    grading: [f64; 3],
+) -> Result<Mesh> {
+    let entry = registry::find::<ElementEntry>(element.get_ref())
+        .map_err(|e| anyhow!("{}: key `{key}.element`: {e}", sf.at(element.span())))?;
+    if !entry.shape.is_solid() {
+        bail!(
+            "{}: key `{key}.element`: `{}` is not a solid element; the box generator makes h8, h20, h27, h20r, h27r",
+            sf.at(element.span()),
+            entry.key
+        );
+    }
+    let spec = BoxSpec {
+        origin,
+        size,
+        divisions,
+        shape: entry.shape,
+        grading,
+    };
+    box_mesh(&spec, "solid", element.get_ref(), material.get_ref())
+        .map_err(|e| anyhow!("{}: key `{key}`: {e}", sf.at(element.span())))
+}
+
+/// Load the mesh of a scene, then insert its interfaces and cracks.
+pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
+    let m = &sf.scene.mesh;
+    let kind = m.kind.get_ref().as_str();
+    let at = sf.at(m.kind.span());
+    let given: Vec<&str> = [
+        ("size", m.size.is_some()),
+        ("divisions", m.divisions.is_some()),
+        ("element", m.element.is_some()),
+        ("material", m.material.is_some()),
+        ("origin", m.origin.is_some()),
+        ("grading", m.grading.is_some()),
+        ("file", m.file.is_some()),
+        ("boxes", !m.boxes.is_empty()),
+    ]
+    .iter()
+    .filter(|(_, g)| *g)
+    .map(|(k, _)| *k)
+    .collect();
+    let allowed: &[&str] = match kind {
+        "box" => &["size", "divisions", "element", "material", "origin", "grading"],
+        "boxes" => &["boxes"],
+        "gmsh" | "inp" => &["file"],
+        other => bail!("{at}: key `mesh.type`: `{other}` is not valid; use \"box\", \"boxes\", \"gmsh\" or \"inp\""),
+    };
+    if let Some(k) = given.iter().find(|k| !allowed.contains(k)) {
+        bail!(
+            "{at}: key `mesh.{k}` is not used with type = \"{kind}\"; valid keys: type, {}",
+            allowed.join(", ")
+        );
+    }
+    let missing = |k: &str| anyhow!("{at}: key `mesh.{k}` is required with type = \"{kind}\"");
+    let mut mesh = match kind {
+        "box" => generate_box(
+            sf,
+            "mesh",
+            m.size.ok_or_else(|| missing("size"))?,
+            m.divisions.ok_or_else(|| missing("divisions"))?,
+            m.element.as_ref().ok_or_else(|| missing("element"))?,
+            m.material.as_ref().ok_or_else(|| missing("material"))?,
+            m.origin.unwrap_or([0.0; 3]),
+            m.grading.unwrap_or([1.0; 3]),
+        )?,
+        "boxes" => {
+            if m.boxes.is_empty() {
+                return Err(missing("boxes"));
+            }
+            let mut parts = Vec::new();
+            for (i, b) in m.boxes.iter().enumerate() {
+                let key = format!("mesh.boxes[{i}]");
+                let part = generate_box(
+                    sf,
+                    &key,
+                    b.size,
+                    b.divisions,
+                    &b.element,
+                    &b.material,
+                    b.origin,
+                    b.grading,
+                )?;
+                parts.push((b.name.clone(), part));
+            }
+            junta_core::mesh::merge::merge(parts, 1e-9)
+                .map_err(|e| anyhow!("{at}: key `mesh.boxes`: {e}"))?
+        }
+        "gmsh" => {
+            let p = sf.relative(m.file.as_ref().ok_or_else(|| missing("file"))?);
+            junta_core::mesh::gmsh::read_msh(&p)
+                .map_err(|e| anyhow!("{at}: key `mesh.file`: {e}"))?
+        }
+        _ => {
+            let p = sf.relative(m.file.as_ref().ok_or_else(|| missing("file"))?);
+            junta_core::mesh::inp::read_inp(&p)
+                .map_err(|e| anyhow!("{at}: key `mesh.file`: {e}"))?
+                .mesh
+        }
+    };
+    for (i, c) in sf.scene.crack.iter().enumerate() {
+        let [a, b] = c.between.get_ref();
+        let ins = junta_core::mesh::interface::insert_interface(&mut mesh, a, b, &c.name, "")
+            .map_err(|e| anyhow!("{}: key `crack[{i}].between`: {e}", sf.at(c.between.span())))?;
+        // keep the duplicated nodes, drop the elements: a traction-free cut
+        mesh.blocks.remove(ins.block);
+        mesh.element_sets.remove(&c.name);
+    }
+    for (i, f) in sf.scene.interface.iter().enumerate() {
+        let [a, b] = f.between.get_ref();
+        junta_core::mesh::interface::insert_interface(&mut mesh, a, b, &f.name, f.law.get_ref())
+            .map_err(|e| {
+                anyhow!(
+                    "{}: key `interface[{i}].between`: {e}",
+                    sf.at(f.between.span())
+                )
+            })?;
+    }
+    Ok(mesh)
+}
+
+/// Build the element object of every block (after `[[blocks]]` overrides).
+pub fn build_elements(
+    sf: &SceneFile,
+    mesh: &mut Mesh,
+    materials: &BTreeMap<String, Arc<dyn Material>>,
+    laws: &BTreeMap<String, Arc<dyn InterfaceLaw>>,
+) -> Result<Vec<Arc<dyn Element>>> {
+    for (i, b) in sf.scene.blocks.iter().enumerate() {
+        let names: Vec<String> = mesh.blocks.iter().map(|b| b.name.clone()).collect();
+        let block = mesh
+            .blocks
+            .iter_mut()
+            .find(|mb| mb.name == *b.name.get_ref())
+            .ok_or_else(|| {
+                anyhow!(
+                    "{}: key `blocks[{i}].name`: no block `{}` in the mesh; blocks: {}",
+                    sf.at(b.name.span()),
+                    b.name.get_ref(),
+                    names.join(", ")
+                )
+            })?;
+        if let Some(el) = &b.element {
+            block.element_type = el.get_ref().clone();
+        }
+        block.material = b.material.get_ref().clone();
+    }
+    let mut out = Vec::new();
+    for block in &mesh.blocks {
+        let override_ = sf
+            .scene
+            .blocks
+            .iter()
+            .position(|b| *b.name.get_ref() == block.name);
+        let part = sf
+            .scene
+            .mesh
+            .boxes
+            .iter()
+            .position(|b| b.name == block.name);
+        let iface = sf.scene.interface.iter().position(|f| f.name == block.name);
+        let where_ = match (override_, part, iface, &sf.scene.mesh.element) {
+            (Some(i), _, _, _) => format!(
+                "{}: key `blocks[{i}]`",
+                sf.at(sf.scene.blocks[i].name.span())
+            ),
+            (_, Some(i), _, _) => format!(
+                "{}: key `mesh.boxes[{i}]`",
+                sf.at(sf.scene.mesh.boxes[i].element.span())
+            ),
+            (_, _, Some(i), _) => format!(
+                "{}: key `interface[{i}]`",
+                sf.at(sf.scene.interface[i].law.span())
+            ),
+            (_, _, _, Some(el)) => format!("{}: key `mesh`", sf.at(el.span())),
+            _ => format!(
+                "{}: block `{}` (give it a [[blocks]] entry)",
+                sf.path.display(),
+                block.name
+            ),
+        };
+        let entry = registry::find::<ElementEntry>(&block.element_type)
+            .map_err(|e| anyhow!("{where_}: {e}"))?;
+        if entry.shape != block.shape {
+            bail!(
+                "{where_}: element type `{}` needs {} cells but block `{}` has {} cells",
+                entry.key,
+                entry.shape.name(),
+                block.name,
+                block.shape.name()
+            );
+        }
+        let mut options = toml::Table::new();
+        let (material, law) = if block.shape.is_interface() {
+            let law = laws.get(&block.material).cloned().ok_or_else(|| {
+                anyhow!(
+                    "{where_}: unknown law `{}`; laws defined in [laws]: {}",
+                    block.material,
+                    list_keys(laws)
+                )
+            })?;
+            if let Some(r) = iface.and_then(|i| sf.scene.interface[i].integration.clone()) {
+                options.insert("integration".into(), toml::Value::String(r));
+            }
+            (None, Some(law))
+        } else {
+            let m = materials.get(&block.material).cloned().ok_or_else(|| {
+                anyhow!(
+                    "{where_}: unknown material `{}`; materials defined in [materials]: {}",
+                    block.material,
+                    list_keys(materials)
+                )
+            })?;
+            (Some(m), None)
+        };
+        let el = (entry.build)(&ElementBuild {
+            material,
+            law,
+            options: &options,
+        })
+        .map_err(|e| anyhow!("{where_}: {e}"))?;
+        out.push(el);
+    }
+    Ok(out)
+}
+
+/// Translate the whole scene into a model.
+pub fn build_model(sf: &SceneFile) -> Result<Model> {
+    let materials =
+        build_plugins::<MaterialEntry, _>(sf, "materials", &sf.scene.materials, |e, t| {
+            (e.build)(t)
+        })?;
+    let laws = build_plugins::<LawEntry, _>(sf, "laws", &sf.scene.laws, |e, t| (e.build)(t))?;
+    let mut mesh = build_mesh(sf)?;
+    let elements = build_elements(sf, &mut mesh, &materials, &laws)?;
+    let mut constraints = Vec::new();
+    let mut reaction_sets = Vec::new();
+    for (i, bc) in sf.scene.boundary.iter().enumerate() {
+        let set = bc.set.get_ref();
+        let nodes = mesh
+            .node_set(set)
+            .map_err(|e| anyhow!("{}: key `boundary[{i}].set`: {e}", sf.at(bc.set.span())))?;
+        let mut comps: Vec<(usize, f64)> = Vec::new();
+        match &bc.fixed {
+            Some(Fixed::Word(w)) if w == "all" => comps.extend([(0, 0.0), (1, 0.0), (2, 0.0)]),
+            Some(Fixed::Word(w)) => bail!(
+                "{}: key `boundary[{i}].fixed`: `{w}` is not valid; use \"all\" or a list such as [\"x\", \"z\"]",
+                sf.at(bc.set.span())
+            ),
+            Some(Fixed::List(l)) => {
+                for c in l {
+                    let k = component(c).ok_or_else(|| {
+                        anyhow!(
+                            "{}: key `boundary[{i}].fixed`: component `{c}` is not valid; use x, y or z",
+                            sf.at(bc.set.span())
+                        )
+                    })?;
+                    comps.push((k, 0.0));
+                }
+            }
+            None => {}
+        }
+        if let Some(d) = bc.displacement {
+            for (k, v) in [d.x, d.y, d.z].into_iter().enumerate() {
+                if let Some(v) = v {
+                    comps.push((k, v));
+                }
+            }
+        }
+        if comps.is_empty() {
+            bail!(
+                "{}: key `boundary[{i}]`: give `fixed` and/or `displacement`",
+                sf.at(bc.set.span())
+            );
+        }
+        for &n in nodes {
+            for &(k, v) in &comps {
+                constraints.push((3 * n + k, v));
+            }
+        }
+        if !reaction_sets.contains(set) {
+            reaction_sets.push(set.clone());
+        }
+    }
+    let mut f_ext = vec![0.0; 3 * mesh.nodes.len()];
+    for (i, l) in sf.scene.load.iter().enumerate() {
+        match (&l.set, &l.face_set) {
+            (Some(set), None) => {
+                let f = l.force.ok_or_else(|| {
+                    anyhow!("{}: key `load[{i}]`: a node-set load needs `force = [fx, fy, fz]`", sf.at(set.span()))
+                })?;
+                if l.pressure.is_some() || l.traction.is_some() {
+                    bail!(
+                        "{}: key `load[{i}]`: `pressure` and `traction` need `face_set`, not `set`",
+                        sf.at(set.span())
+                    );
+                }
+                let nodes = mesh
+                    .node_set(set.get_ref())
+                    .map_err(|e| anyhow!("{}: key `load[{i}].set`: {e}", sf.at(set.span())))?;
+                for &n in nodes {
+                    for c in 0..3 {
+                        f_ext[3 * n + c] += f[c];
+                    }
+                }
+            }
+            (None, Some(fs)) => {
+                let faces = mesh
+                    .face_set(fs.get_ref())
+                    .map_err(|e| anyhow!("{}: key `load[{i}].face_set`: {e}", sf.at(fs.span())))?
+                    .to_vec();
+                let load = match (l.pressure, l.traction, l.force) {
+                    (Some(p), None, None) => junta_elements::face_load::FaceLoad::Pressure(p),
+                    (None, Some(t), None) => junta_elements::face_load::FaceLoad::Traction(t),
+                    _ => bail!(
+                        "{}: key `load[{i}]`: a face-set load needs exactly one of `pressure` or `traction`",
+                        sf.at(fs.span())
+                    ),
+                };
+                junta_elements::face_load::add_face_load(&mesh, &faces, load, &mut f_ext)
+                    .map_err(|e| anyhow!("{}: key `load[{i}]`: {e}", sf.at(fs.span())))?;
+            }
+            _ => bail!(
+                "{}: key `load[{i}]`: give exactly one of `set` (nodal force) or `face_set` (pressure, traction)",
+                sf.path.display()
+            ),
+        }
+    }
+    Model::new(mesh, elements, &constraints, f_ext, reaction_sets)
+        .map_err(|e| anyhow!("{}: {e}", sf.path.display()))
+}
+
+/// The solver table of the scene (`type` plus parameters), or the default.
+pub fn solver_table(sf: &SceneFile) -> (String, toml::Table) {
+    match &sf.scene.solver {
+        Some(t) => {
+            let mut t = t.clone();
+            let key = match t.remove("type") {
+                Some(toml::Value::String(s)) => s,
+                _ => "cholesky".to_string(),
+            };
+            (key, t)
+        }
+        None => ("cholesky".to_string(), toml::Table::new()),
+    }
+}

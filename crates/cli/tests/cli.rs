@@ -1,0 +1,407 @@
+//! End-to-end tests of the `junta` binary: reference values from
+//! shared/BENCHMARKS.md section 1 (CalculiX 2.20 and scikit-fem 12.0.2
+//! agree on them), beam theory for the cantilever, and bad input.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn junta() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_junta"))
+}
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Run `junta run input -o dir`, return summary.json.
+fn run_ok(input: &Path, dir: &Path) -> Value {
+    let out = junta()
+        .arg("run")
+        .arg(input)
+        .arg("-o")
+        .arg(dir)
+        .arg("-q")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "junta run {} failed:\n{}",
+        input.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    serde_json::from_str(&text).unwrap()
+}
+
+/// Run and expect failure; return stderr.
+fn run_err(input: &Path) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let out = junta()
+        .arg("run")
+        .arg(input)
+        .arg("-o")
+        .arg(dir.path())
+        .arg("-q")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(
+        !out.status.success(),
+        "expected failure for {}",
+        input.display()
+    );
+    assert!(!err.contains("panicked"), "panic on bad input:\n{err}");
+    assert!(
+        err.starts_with("error: "),
+        "error message should start with `error: `:\n{err}"
+    );
+    err
+}
+
+/// The cube deck of BENCHMARKS.md section 1 written as `.inp` (C3D8/C3D20, labels 1-based).
+fn cube_deck(etype: &str, n: usize) -> String {
+    let quad = etype == "C3D20";
+    let p = if quad { 2 } else { 1 };
+    let m = p * n + 1;
+    let corners = [
+        [0, 0, 0],
+        [2, 0, 0],
+        [2, 2, 0],
+        [0, 2, 0],
+        [0, 0, 2],
+        [2, 0, 2],
+        [2, 2, 2],
+        [0, 2, 2],
+    ];
+    let edges = [
+        (0, 1),
+        (1, 2),
+        (2, 3),
+        (3, 0),
+        (4, 5),
+        (5, 6),
+        (6, 7),
+        (7, 4),
+        (0, 4),
+        (1, 5),
+        (2, 6),
+        (3, 7),
+    ];
+    let mut local: Vec<[usize; 3]> = corners.to_vec();
+    if quad {
+        for (a, b) in edges {
+            local.push([0, 1, 2].map(|d| (corners[a][d] + corners[b][d]) / 2));
+        }
+    } else {
+        local = local.iter().map(|v| v.map(|c| c / 2)).collect();
+    }
+    let mut label = std::collections::BTreeMap::new();
+    let mut order = Vec::new();
+    let mut elems = Vec::new();
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                let mut conn = Vec::new();
+                for l in &local {
+                    let key = [p * i + l[0], p * j + l[1], p * k + l[2]];
+                    let next = label.len() + 1;
+                    let lab = *label.entry(key).or_insert_with(|| {
+                        order.push(key);
+                        next
+                    });
+                    conn.push(lab);
+                }
+                elems.push(conn);
+            }
+        }
+    }
+    let mut s = String::from("*NODE\n");
+    for (i, key) in order.iter().enumerate() {
+        let c = key.map(|v| v as f64 / (m - 1) as f64);
+        s += &format!("{}, {}, {}, {}\n", i + 1, c[0], c[1], c[2]);
+    }
+    s += &format!("*ELEMENT, TYPE={etype}, ELSET=EALL\n");
+    for (e, conn) in elems.iter().enumerate() {
+        let v: Vec<String> = std::iter::once(e + 1)
+            .chain(conn.iter().copied())
+            .map(|x| x.to_string())
+            .collect();
+        let lines: Vec<String> = v.chunks(16).map(|c| c.join(", ")).collect();
+        s += &lines.join(",\n");
+        s += "\n";
+    }
+    for (name, z) in [("BOTTOM", 0), ("TOP", m - 1)] {
+        s += &format!("*NSET, NSET={name}\n");
+        for (i, key) in order.iter().enumerate() {
+            if key[2] == z {
+                s += &format!("{},\n", i + 1);
+            }
+        }
+    }
+    s += "*MATERIAL, NAME=STEEL\n*ELASTIC\n210000, 0.3\n*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n";
+    s += "*BOUNDARY\nBOTTOM, 1, 3\n*STEP\n*STATIC\n*BOUNDARY\nTOP, 3, 3, -0.01\n";
+    s += "*NODE PRINT, NSET=TOP, TOTALS=ONLY\nRF\n*END STEP\n";
+    s
+}
+
+fn cube_scene(element: &str, n: usize) -> String {
+    let base = std::fs::read_to_string(repo().join("examples/cube.toml")).unwrap();
+    base.replace("element = \"h8\"", &format!("element = \"{element}\""))
+        .replace(
+            "divisions = [2, 2, 2]",
+            &format!("divisions = [{n}, {n}, {n}]"),
+        )
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+/// BENCHMARKS.md section 1: CalculiX 2.20 / scikit-fem 12.0.2 top reactions.
+const CUBE_H8_N2: f64 = -2224.553;
+const CUBE_H20_N2: f64 = -2183.070;
+
+#[test]
+fn cube_deck_matches_calculix_from_inp_and_toml() {
+    for (etype, key, reference) in [("C3D8", "h8", CUBE_H8_N2), ("C3D20", "h20", CUBE_H20_N2)] {
+        let dir = tempfile::tempdir().unwrap();
+        let deck = dir.path().join("cube.inp");
+        std::fs::write(&deck, cube_deck(etype, 2)).unwrap();
+        let s = run_ok(&deck, &dir.path().join("inp"));
+        let fz = s["reactions"]["TOP"][2].as_f64().unwrap();
+        assert!(
+            rel(fz, reference) < 1e-6,
+            "{etype} inp: Fz = {fz}, CalculiX {reference}"
+        );
+        // bottom carries the opposite force
+        let fz_bottom = s["reactions"]["BOTTOM"][2].as_f64().unwrap();
+        assert!(rel(-fz_bottom, reference) < 1e-6);
+
+        let scene = dir.path().join("cube.toml");
+        std::fs::write(&scene, cube_scene(key, 2)).unwrap();
+        let s = run_ok(&scene, &dir.path().join("toml"));
+        let fz = s["reactions"]["z1"][2].as_f64().unwrap();
+        assert!(
+            rel(fz, reference) < 1e-6,
+            "{key} toml: Fz = {fz}, CalculiX {reference}"
+        );
+        assert_eq!(s["elements"][key].as_u64(), Some(8));
+        assert!(dir.path().join("toml/results.vtu").exists());
+    }
+}
+
+#[test]
+fn shipped_cube_examples_agree_with_calculix() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = run_ok(&repo().join("examples/cube.inp"), &dir.path().join("a"));
+    let b = run_ok(&repo().join("examples/cube.toml"), &dir.path().join("b"));
+    assert!(rel(a["reactions"]["TOP"][2].as_f64().unwrap(), CUBE_H8_N2) < 1e-6);
+    assert!(rel(b["reactions"]["z1"][2].as_f64().unwrap(), CUBE_H8_N2) < 1e-6);
+    assert_eq!(a["dofs"], b["dofs"]);
+}
+
+#[test]
+fn cube_with_cg_matches_direct() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("cube.toml");
+    let text = cube_scene("h20", 2).replace("type = \"cholesky\"", "type = \"cg\"");
+    std::fs::write(&scene, text).unwrap();
+    let s = run_ok(&scene, &dir.path().join("o"));
+    assert!(rel(s["reactions"]["z1"][2].as_f64().unwrap(), CUBE_H20_N2) < 1e-6);
+    assert!(s["solver"]["iterations"].as_u64().unwrap() > 0);
+}
+
+/// Timoshenko tip deflection of the cantilever example.
+fn beam_theory() -> f64 {
+    let (e, nu, l, b, h, p) = (2.1e11, 0.3, 1.0, 0.1, 0.1, 1000.0);
+    let i = b * h * h * h / 12.0;
+    let g = e / (2.0 * (1.0 + nu));
+    p * l * l * l / (3.0 * e * i) + p * l / (5.0 / 6.0 * g * b * h)
+}
+
+#[test]
+fn cantilever_converges_to_beam_theory() {
+    let base = std::fs::read_to_string(repo().join("examples/cantilever.toml")).unwrap();
+    let exact = beam_theory();
+    let dir = tempfile::tempdir().unwrap();
+    let mut errors = std::collections::BTreeMap::new();
+    for (el, meshes) in [
+        ("h8", vec![[10, 1, 1], [20, 2, 2], [40, 4, 4]]),
+        ("h20", vec![[10, 1, 1], [20, 2, 2]]),
+        ("h27", vec![[10, 1, 1], [20, 2, 2]]),
+    ] {
+        let mut e = Vec::new();
+        for divs in meshes {
+            let text = base
+                .replace("element = \"h20\"", &format!("element = \"{el}\""))
+                .replace("divisions = [10, 1, 1]", &format!("divisions = {divs:?}"));
+            let name = format!("{el}_{}", divs[0]);
+            let scene = dir.path().join(format!("{name}.toml"));
+            std::fs::write(&scene, text).unwrap();
+            let s = run_ok(&scene, &dir.path().join(&name));
+            // mean deflection of the end face
+            let tip = -s["probes"]["x1"][2].as_f64().unwrap();
+            e.push((tip - exact) / exact);
+            // equilibrium: the clamp carries the applied 1000 N
+            let fz = s["reactions"]["x0"][2].as_f64().unwrap();
+            assert!(rel(fz, 1000.0) < 1e-9, "reaction {fz}");
+        }
+        errors.insert(el, e);
+    }
+    for (el, e) in &errors {
+        // refinement approaches beam theory from the stiff side
+        assert!(
+            e.windows(2).all(|w| w[0] < w[1] && w[1] < 0.0),
+            "{el}: {errors:?}"
+        );
+    }
+    // the fully clamped root (no Poisson contraction, no warping) keeps the
+    // converged 3D answer ~0.7 % stiffer than Timoshenko theory
+    assert!(
+        errors["h20"][1].abs() < 0.012 && errors["h27"][1].abs() < 0.012,
+        "{errors:?}"
+    );
+    assert!(
+        errors["h20"][0].abs() < 0.025 && errors["h27"][0].abs() < 0.025,
+        "{errors:?}"
+    );
+    // H8 locks in bending on coarse meshes
+    assert!(
+        errors["h8"][0].abs() > 0.2 && errors["h8"][2].abs() < 0.05,
+        "{errors:?}"
+    );
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+#[test]
+fn bad_input_gives_clear_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let good = std::fs::read_to_string(repo().join("examples/cube.toml")).unwrap();
+
+    let e = run_err(&write(d, "malformed.toml", "[mesh\ntype = \"box\""));
+    assert!(e.contains("malformed.toml") && e.contains("line 1"), "{e}");
+
+    let e = run_err(&write(
+        d,
+        "unknown_key.toml",
+        &good.replace("nu = 0.3\n", "nu = 0.3\ncolour = 1\n"),
+    ));
+    assert!(
+        e.contains("colour") && e.contains("materials.steel") && e.contains("nu"),
+        "{e}"
+    );
+
+    let e = run_err(&write(
+        d,
+        "unknown_top.toml",
+        &format!("{good}\n[outptu]\ndirectory = \"x\"\n"),
+    ));
+    assert!(e.contains("outptu") && e.contains("line"), "{e}");
+
+    let e = run_err(&write(
+        d,
+        "bad_element.toml",
+        &good.replace("\"h8\"", "\"h9\""),
+    ));
+    assert!(
+        e.contains("h9") && e.contains("h20") && e.contains("mesh.element"),
+        "{e}"
+    );
+
+    let e = run_err(&write(
+        d,
+        "bad_material.toml",
+        &good.replace("material = \"steel\"", "material = \"steal\""),
+    ));
+    assert!(e.contains("steal") && e.contains("steel"), "{e}");
+
+    let e = run_err(&write(
+        d,
+        "bad_type.toml",
+        &good.replace("type = \"isotropic\"", "type = \"isotropik\""),
+    ));
+    assert!(e.contains("isotropik") && e.contains("orthotropic"), "{e}");
+
+    let e = run_err(&write(
+        d,
+        "missing_set.toml",
+        &good.replace("set = \"z0\"", "set = \"bottom\""),
+    ));
+    assert!(
+        e.contains("boundary[0].set") && e.contains("bottom") && e.contains("z0"),
+        "{e}"
+    );
+    assert!(e.contains("missing_set.toml:"), "line number expected: {e}");
+
+    let e = run_err(&write(
+        d,
+        "bad_nu.toml",
+        &good.replace("nu = 0.3\n", "nu = 0.7\n"),
+    ));
+    assert!(e.contains("nu"), "{e}");
+
+    // unconstrained: no boundary at all, a force only
+    let free = good.split("[[boundary]]").next().unwrap().to_string()
+        + "[[load]]\nset = \"z1\"\nforce = [0.0, 0.0, 1.0]\n";
+    let e = run_err(&write(d, "unconstrained.toml", &free));
+    assert!(
+        e.contains("positive definite") || e.contains("singular"),
+        "{e}"
+    );
+
+    // inverted element: z size negative flips the cells? use an .inp with swapped nodes
+    let deck = cube_deck("C3D8", 1);
+    let inverted = deck.replace("1, 1, 2, 3, 4, 5, 6, 7, 8", "1, 5, 6, 7, 8, 1, 2, 3, 4");
+    let e = run_err(&write(d, "inverted.inp", &inverted));
+    assert!(e.contains("Jacobian"), "{e}");
+
+    let e = run_err(&write(
+        d,
+        "dynamic.inp",
+        &deck.replace("*STATIC", "*DYNAMIC"),
+    ));
+    assert!(e.contains("*DYNAMIC") && e.contains("*STATIC"), "{e}");
+    let line = deck.lines().position(|l| l == "*STATIC").unwrap() + 1;
+    assert!(
+        e.contains(&format!("dynamic.inp:{line}:")),
+        "line {line} expected: {e}"
+    );
+
+    let e = run_err(&write(d, "scene.txt", "x"));
+    assert!(e.contains(".toml") && e.contains(".inp"), "{e}");
+}
+
+#[test]
+fn check_prints_summary_and_list_shows_registry() {
+    let out = junta()
+        .arg("check")
+        .arg(repo().join("examples/cube.toml"))
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let s = String::from_utf8_lossy(&out.stdout);
+    assert!(s.contains("nodes: 27") && s.contains("dofs: 81"), "{s}");
+    assert!(s.contains("h8: 8"), "{s}");
+    let out = junta().arg("list").output().unwrap();
+    let s = String::from_utf8_lossy(&out.stdout);
+    for key in [
+        "h8",
+        "h20",
+        "h27",
+        "h20r",
+        "h27r",
+        "isotropic",
+        "orthotropic",
+        "cholesky",
+        "cg",
+    ] {
+        assert!(s.contains(key), "`junta list` lacks {key}:\n{s}");
+    }
+}

@@ -1,0 +1,562 @@
+//! Preconditioned conjugate gradients (PCG) for SPD systems, with a
+//! (block-)Jacobi preconditioner.
+//!
+//! # Algorithm
+//!
+//! With `M ≈ A` SPD, `x_0 = 0`, `r_0 = b`, `z_0 = M^-1 r_0`, `p_0 = z_0`:
+//!
+//! ```text
+//! q_k     = A p_k
+//! alpha_k = (r_k · z_k) / (p_k · q_k)
+//! x_k+1   = x_k + alpha_k p_k
+//! r_k+1   = r_k - alpha_k q_k
+//! z_k+1   = M^-1 r_k+1
+//! beta_k  = (r_k+1 · z_k+1) / (r_k · z_k)
+//! p_k+1   = z_k+1 + beta_k p_k
+//! ```
+//!
+//! `x_k` minimises the `A`-norm of the error over the Krylov space
+//! `span{M^-1 b, (M^-1 A) M^-1 b, ...}`; the error contracts at least like
+//! `2 ((sqrt(κ) - 1) / (sqrt(κ) + 1))^k` with `κ = cond(M^-1 A)`.
+//!
+//! Stopping: the recurrence residual `||r_k|| / ||b|| <= tol`, confirmed by
+//! the true residual `||b - A x_k|| / ||b||` (rounding makes the two drift
+//! apart when `κ` is large); if the true one is above `tol`, CG restarts
+//! from `x_k` with `r = b - A x_k` (at most [`MAX_RESTARTS`] times).
+//!
+//! Failures, always with numbers, never a silent wrong `x`:
+//! * `p·Ap <= 0`: `A` is not positive definite along `p` (breakdown) ->
+//!   [`SolverError::NotPositiveDefinite`];
+//! * `max_iterations` reached, or no decrease of the best residual by a
+//!   factor 2 within `stagnation_window` iterations ->
+//!   [`SolverError::NotConverged`];
+//! * NaN/inf -> [`SolverError::NonFinite`].
+//!
+//! On error `b` is left holding the right-hand side.
+//!
+//! # Preconditioners
+//!
+//! * `jacobi`: `M = diag(A)`.
+//! * `block_jacobi`: `M` = the 3×3 diagonal blocks of the nodes. The node
+//!   blocks are found in `analyze`: runs of consecutive equations with equal
+//!   coordinates (or, without coordinates, with identical couplings, see
+//!   [`crate::ordering::equation_groups`]); a run of length `3m` gives `m`
+//!   3×3 blocks (coincident interface nodes numbered together form runs of
+//!   6), any other run (a node with a constrained, eliminated dof) falls
+//!   back to scalar Jacobi for its equations. Each block is inverted once
+//!   per `factorize` through its Cholesky factor, which also checks that it
+//!   is SPD. Block-Jacobi removes the intra-node coupling (Poisson
+//!   effect, rotated orthotropic materials) that scalar Jacobi cannot see.
+//!
+//! The product `A p` uses both triangles in CSR built once in `analyze`
+//! (rows in parallel, no scatter).
+
+use crate::common::{dot, norm2, validate, FullCsr, Pattern};
+use crate::ordering;
+use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
+use junta_core::{LinearSolver, SolveReport, SolverError, SymmetricCsc};
+use nalgebra::Matrix3;
+use rayon::prelude::*;
+use serde::Deserialize;
+use std::time::Instant;
+
+/// Restarts from the true residual before giving up.
+pub const MAX_RESTARTS: usize = 5;
+
+/// Preconditioner of [`CgSolver`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Preconditioner {
+    /// Diagonal scaling.
+    Jacobi,
+    /// 3×3 nodal blocks, scalar where a node has fewer than 3 dofs.
+    #[default]
+    BlockJacobi,
+}
+
+/// Settings of [`CgSolver`] (TOML parameters of the `cg` key).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CgSettings {
+    /// `"jacobi"` or `"block_jacobi"` (default).
+    pub preconditioner: Preconditioner,
+    /// Relative residual `||b - A x|| / ||b||` to reach (1e-10).
+    pub tol: f64,
+    /// Iteration limit; `None`: `min(10 n, 20000)` (at least 100).
+    pub max_iterations: Option<usize>,
+    /// Give up when the best residual has not halved over this many
+    /// iterations (default 2000).
+    pub stagnation_window: usize,
+}
+
+impl Default for CgSettings {
+    fn default() -> Self {
+        CgSettings {
+            preconditioner: Preconditioner::BlockJacobi,
+            tol: 1e-10,
+            max_iterations: None,
+            stagnation_window: 2000,
+        }
+    }
+}
+
+/// Parameter documentation of the `cg` registry entry.
+pub const CG_PARAMS: &[ParamDoc] = &[
+    ParamDoc {
+        name: "preconditioner",
+        doc: "\"block_jacobi\" (3x3 nodal blocks, default) or \"jacobi\"",
+    },
+    ParamDoc {
+        name: "tol",
+        doc: "relative residual ||b - A x||/||b|| to reach (default 1e-10)",
+    },
+    ParamDoc {
+        name: "max_iterations",
+        doc: "iteration limit (default min(10 n, 20000))",
+    },
+    ParamDoc {
+        name: "stagnation_window",
+        doc: "stop when the best residual has not halved over this many iterations (default 2000)",
+    },
+];
+
+/// Preconditioned conjugate-gradient back end (registry key `"cg"`).
+pub struct CgSolver {
+    settings: CgSettings,
+    pattern: Option<Pattern>,
+    full: FullCsr,
+    /// Node groups (`group_ptr[g]..group_ptr[g+1]`) from `analyze`.
+    group_ptr: Vec<usize>,
+    /// Per equation: first equation of its block, block size (1 or 3), and
+    /// its row of the block inverse.
+    block_start: Vec<usize>,
+    block_size: Vec<u8>,
+    inv_row: Vec<[f64; 3]>,
+    ready: bool,
+    report: SolveReport,
+    analyze_count: usize,
+    blocks3: usize,
+}
+
+impl std::fmt::Debug for CgSolver {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("CgSolver")
+            .field("settings", &self.settings)
+            .field("n", &self.block_size.len())
+            .field("blocks3", &self.blocks3)
+            .field("ready", &self.ready)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Default for CgSolver {
+    fn default() -> Self {
+        Self::new(CgSettings::default())
+    }
+}
+
+impl CgSolver {
+    /// A solver with the given settings.
+    pub fn new(settings: CgSettings) -> Self {
+        CgSolver {
+            settings,
+            pattern: None,
+            full: FullCsr::default(),
+            group_ptr: Vec::new(),
+            block_start: Vec::new(),
+            block_size: Vec::new(),
+            inv_row: Vec::new(),
+            ready: false,
+            report: SolveReport {
+                solver: "cg".into(),
+                ..Default::default()
+            },
+            analyze_count: 0,
+            blocks3: 0,
+        }
+    }
+
+    /// From a TOML parameter table (unknown keys are an error).
+    pub fn from_table(table: &toml::Table) -> Result<Self, junta_core::CoreError> {
+        Ok(Self::new(parse_params("solver", "cg", table)?))
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &CgSettings {
+        &self.settings
+    }
+
+    /// Number of symbolic analyses so far.
+    pub fn analyze_count(&self) -> usize {
+        self.analyze_count
+    }
+
+    /// Number of 3×3 blocks of the block-Jacobi preconditioner (0 for Jacobi).
+    pub fn block_count(&self) -> usize {
+        self.blocks3
+    }
+
+    fn max_iterations(&self, n: usize) -> usize {
+        self.settings
+            .max_iterations
+            .unwrap_or_else(|| (10 * n).clamp(100, 20_000))
+    }
+
+    /// Equation runs of length 3m -> 3x3 blocks, others scalar.
+    fn layout_blocks(&mut self, n: usize) {
+        self.block_start = (0..n).collect();
+        self.block_size = vec![1; n];
+        self.blocks3 = 0;
+        if self.settings.preconditioner == Preconditioner::Jacobi {
+            return;
+        }
+        for g in 0..self.group_ptr.len().saturating_sub(1) {
+            let (s, e) = (self.group_ptr[g], self.group_ptr[g + 1]);
+            if (e - s) % 3 == 0 {
+                for b in (s..e).step_by(3) {
+                    for i in b..b + 3 {
+                        self.block_start[i] = b;
+                        self.block_size[i] = 3;
+                    }
+                    self.blocks3 += 1;
+                }
+            }
+        }
+    }
+
+    /// z = M^-1 r, and returns r · z.
+    fn precondition(&self, r: &[f64], z: &mut [f64]) -> f64 {
+        z.par_iter_mut()
+            .enumerate()
+            .map(|(i, zi)| {
+                let s = self.block_start[i];
+                let row = &self.inv_row[i];
+                let v = match self.block_size[i] {
+                    3 => row[0] * r[s] + row[1] * r[s + 1] + row[2] * r[s + 2],
+                    _ => row[0] * r[i],
+                };
+                *zi = v;
+                v * r[i]
+            })
+            .sum()
+    }
+
+    fn fail(
+        &mut self,
+        t0: Instant,
+        iterations: usize,
+        residual: f64,
+        e: SolverError,
+    ) -> SolverError {
+        self.report.iterations = iterations;
+        self.report.residual = residual;
+        self.report.solve_seconds += t0.elapsed().as_secs_f64();
+        tracing::warn!("{e}");
+        e
+    }
+}
+
+impl LinearSolver for CgSolver {
+    fn key(&self) -> &'static str {
+        "cg"
+    }
+
+    fn analyze(
+        &mut self,
+        matrix: &SymmetricCsc,
+        coords: Option<&[[f64; 3]]>,
+    ) -> Result<(), SolverError> {
+        let t0 = Instant::now();
+        validate(matrix)?;
+        if matrix.n > u32::MAX as usize {
+            return Err(SolverError::Usage("cg: more than 2^32 equations".into()));
+        }
+        self.ready = false;
+        self.full = FullCsr::new(matrix);
+        let coords = coords.filter(|c| c.len() == matrix.n);
+        self.group_ptr = ordering::equation_groups(matrix, coords);
+        self.layout_blocks(matrix.n);
+        self.inv_row = vec![[0.0; 3]; matrix.n];
+        self.pattern = Some(Pattern::of(matrix));
+        self.analyze_count += 1;
+        self.report.analyze_seconds += t0.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    fn factorize(&mut self, matrix: &SymmetricCsc) -> Result<(), SolverError> {
+        let t0 = Instant::now();
+        let Some(pattern) = &self.pattern else {
+            return Err(SolverError::Usage(
+                "cg: factorize called before analyze".into(),
+            ));
+        };
+        pattern.check(matrix, "cg factorize")?;
+        self.ready = false;
+        self.report.warnings.clear();
+        if let Some(p) = matrix.values.iter().position(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite {
+                method: format!(
+                    "cg set-up: the matrix holds {} at stored entry {p}",
+                    matrix.values[p]
+                ),
+            });
+        }
+        self.full.fill(matrix);
+        let n = matrix.n;
+        let diag = matrix.diagonal();
+        let mut i = 0;
+        while i < n {
+            if self.block_size[i] == 3 {
+                let mut m = Matrix3::zeros();
+                for a in 0..3 {
+                    for b in a..3 {
+                        let v = matrix
+                            .position(i + a, i + b)
+                            .map_or(0.0, |p| matrix.values[p]);
+                        m[(a, b)] = v;
+                        m[(b, a)] = v;
+                    }
+                }
+                let inv = m.cholesky().map(|c| c.inverse()).ok_or_else(|| {
+                    SolverError::NotPositiveDefinite {
+                        detail: format!(
+                            ": the 3x3 diagonal block of equations {}..{} is not positive definite (diagonal {:.3e}, {:.3e}, {:.3e})",
+                            i,
+                            i + 2,
+                            m[(0, 0)],
+                            m[(1, 1)],
+                            m[(2, 2)]
+                        ),
+                    }
+                })?;
+                for a in 0..3 {
+                    self.inv_row[i + a] = [inv[(a, 0)], inv[(a, 1)], inv[(a, 2)]];
+                }
+                i += 3;
+            } else {
+                let d = diag[i];
+                if d.is_nan() || d <= 0.0 {
+                    return Err(SolverError::NotPositiveDefinite {
+                        detail: format!(": diagonal entry of equation {i} is {d:e}"),
+                    });
+                }
+                self.inv_row[i] = [1.0 / d, 0.0, 0.0];
+                i += 1;
+            }
+        }
+        let (dmin, dmax) = diag.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &d| {
+            (lo.min(d), hi.max(d))
+        });
+        if n > 0 && dmax / dmin > 1e12 {
+            let w = format!(
+                "cg: the matrix diagonal spans {dmin:.3e} .. {dmax:.3e} (ratio {:.1e}); expect slow convergence (penalty too high?)",
+                dmax / dmin
+            );
+            tracing::warn!("{w}");
+            self.report.warnings.push(w);
+        }
+        self.ready = true;
+        self.report.factor_seconds += t0.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    fn solve_in_place(&mut self, matrix: &SymmetricCsc, b: &mut [f64]) -> Result<(), SolverError> {
+        let t0 = Instant::now();
+        if !self.ready {
+            return Err(SolverError::Usage(
+                "cg: solve called without a successful factorize".into(),
+            ));
+        }
+        let n = self.block_size.len();
+        if b.len() != n {
+            return Err(SolverError::Usage(format!(
+                "cg: right-hand side has {} entries, the matrix {n} equations",
+                b.len()
+            )));
+        }
+        if let Some(p) = &self.pattern {
+            p.check(matrix, "cg solve")?;
+        }
+        if let Some(i) = b.iter().position(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite {
+                method: format!("cg: the right-hand side holds {} at equation {i}", b[i]),
+            });
+        }
+        let tol = self.settings.tol;
+        let max_it = self.max_iterations(n);
+        let bnorm = norm2(b);
+        if bnorm == 0.0 {
+            b.fill(0.0);
+            self.report.iterations = 0;
+            self.report.residual = 0.0;
+            self.report.solve_seconds += t0.elapsed().as_secs_f64();
+            return Ok(());
+        }
+        let mut x = vec![0.0; n];
+        let mut r = b.to_vec();
+        let mut z = vec![0.0; n];
+        let mut q = vec![0.0; n];
+        let mut rz = self.precondition(&r, &mut z);
+        let mut p = z.clone();
+        let mut rel = 1.0;
+        let mut best = rel;
+        let mut best_it = 0usize;
+        let mut restarts = 0;
+        let mut it = 0usize;
+        loop {
+            if it >= max_it {
+                let e = SolverError::NotConverged {
+                    method: format!("cg ({:?} preconditioner)", self.settings.preconditioner),
+                    iterations: it,
+                    residual: rel,
+                    tolerance: tol,
+                };
+                return Err(self.fail(t0, it, rel, e));
+            }
+            it += 1;
+            self.full.mul(&p, &mut q);
+            let pq = dot(&p, &q);
+            if !pq.is_finite() || !rz.is_finite() {
+                let e = SolverError::NonFinite {
+                    method: format!("cg at iteration {it} (p'Ap = {pq:e}, r'z = {rz:e})"),
+                };
+                return Err(self.fail(t0, it, rel, e));
+            }
+            if pq <= 0.0 {
+                let e = SolverError::NotPositiveDefinite {
+                    detail: format!(
+                        ": cg breakdown at iteration {it}, p'Ap = {pq:.3e} <= 0 with ||p|| = {:.3e} (relative residual {rel:.3e})",
+                        norm2(&p)
+                    ),
+                };
+                return Err(self.fail(t0, it, rel, e));
+            }
+            let alpha = rz / pq;
+            let rr: f64 = x
+                .par_iter_mut()
+                .zip(r.par_iter_mut())
+                .zip(p.par_iter().zip(q.par_iter()))
+                .map(|((xi, ri), (pi, qi))| {
+                    *xi += alpha * pi;
+                    *ri -= alpha * qi;
+                    *ri * *ri
+                })
+                .sum();
+            rel = rr.sqrt() / bnorm;
+            if rel < 0.5 * best {
+                best = rel;
+                best_it = it;
+            } else if it - best_it > self.settings.stagnation_window {
+                let e = SolverError::NotConverged {
+                    method: format!(
+                        "cg ({:?} preconditioner; stagnated: best residual {best:.3e} at iteration {best_it})",
+                        self.settings.preconditioner
+                    ),
+                    iterations: it,
+                    residual: rel,
+                    tolerance: tol,
+                };
+                return Err(self.fail(t0, it, rel, e));
+            }
+            if rel <= tol {
+                // Confirm with the true residual.
+                self.full.mul(&x, &mut q);
+                r.par_iter_mut()
+                    .zip(b.par_iter().zip(q.par_iter()))
+                    .for_each(|(ri, (bi, qi))| *ri = bi - qi);
+                rel = norm2(&r) / bnorm;
+                if rel <= tol {
+                    break;
+                }
+                restarts += 1;
+                if restarts > MAX_RESTARTS {
+                    let e = SolverError::NotConverged {
+                        method: format!(
+                            "cg ({:?} preconditioner; true residual stays above the recurrence one after {MAX_RESTARTS} restarts)",
+                            self.settings.preconditioner
+                        ),
+                        iterations: it,
+                        residual: rel,
+                        tolerance: tol,
+                    };
+                    return Err(self.fail(t0, it, rel, e));
+                }
+                rz = self.precondition(&r, &mut z);
+                p.copy_from_slice(&z);
+                continue;
+            }
+            let rz_new = self.precondition(&r, &mut z);
+            let beta = rz_new / rz;
+            rz = rz_new;
+            p.par_iter_mut()
+                .zip(z.par_iter())
+                .for_each(|(pi, zi)| *pi = zi + beta * *pi);
+        }
+        if x.iter().any(|v| !v.is_finite()) {
+            let e = SolverError::NonFinite {
+                method: "cg".into(),
+            };
+            return Err(self.fail(t0, it, rel, e));
+        }
+        b.copy_from_slice(&x);
+        self.report.iterations = it;
+        self.report.residual = rel;
+        self.report.solve_seconds += t0.elapsed().as_secs_f64();
+        tracing::debug!(iterations = it, residual = rel, "cg converged");
+        Ok(())
+    }
+
+    fn report(&self) -> SolveReport {
+        self.report.clone()
+    }
+}
+
+inventory::submit! {
+    SolverEntry {
+        key: "cg",
+        description: "preconditioned conjugate gradients with Jacobi or 3x3 nodal block-Jacobi preconditioning",
+        params: CG_PARAMS,
+        build: |table| Ok(Box::new(CgSolver::from_table(table)?)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gallery::{grid_3d, Stencil};
+
+    #[test]
+    fn block_layout_follows_coordinates() {
+        let (a, mut coords) = grid_3d(2, 2, 1, 3, Stencil::Point7);
+        // pretend node 1 lost a dof: give equation 5 other coordinates
+        coords[5] = [9.0, 9.0, 9.0];
+        let mut s = CgSolver::default();
+        s.analyze(&a, Some(&coords)).unwrap();
+        assert_eq!(s.block_count(), 3);
+        assert_eq!(s.block_size[3], 1);
+        assert_eq!(s.block_size[6], 3);
+        let mut j = CgSolver::new(CgSettings {
+            preconditioner: Preconditioner::Jacobi,
+            ..Default::default()
+        });
+        j.analyze(&a, Some(&coords)).unwrap();
+        assert_eq!(j.block_count(), 0);
+    }
+
+    #[test]
+    fn indefinite_matrix_breaks_down_with_numbers() {
+        // [[1,2],[2,1]], b along the negative eigenvector (1,-1)
+        let mut a = SymmetricCsc::from_columns(vec![vec![0], vec![0, 1]]);
+        a.values = vec![1.0, 2.0, 1.0];
+        let mut s = CgSolver::new(CgSettings {
+            preconditioner: Preconditioner::Jacobi,
+            ..Default::default()
+        });
+        s.analyze(&a, None).unwrap();
+        s.factorize(&a).unwrap();
+        let mut b = vec![1.0, -1.0];
+        let e = s.solve_in_place(&a, &mut b).unwrap_err();
+        assert!(matches!(e, SolverError::NotPositiveDefinite { .. }), "{e}");
+        assert_eq!(b, vec![1.0, -1.0]);
+    }
+}
