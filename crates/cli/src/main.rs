@@ -14,8 +14,10 @@ use junta_solvers as _;
 
 mod deck;
 mod output;
+mod plot;
 mod run;
 mod scene;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -52,6 +54,33 @@ enum Command {
     },
     /// List every registered element, material, law, criterion and solver.
     List,
+    /// Run a scene over a range of a parameter and chart accuracy and speed.
+    Sweep {
+        #[command(subcommand)]
+        what: SweepKind,
+    },
+}
+
+#[derive(Subcommand)]
+enum SweepKind {
+    /// Penalty stiffness d of every `linear_penalty` law, log-spaced; direct
+    /// and CG back ends; writes sweep.csv and sweep.svg.
+    Penalty {
+        /// Scene file (.toml) with at least one interface.
+        input: PathBuf,
+        /// Smallest d.
+        #[arg(long, default_value_t = 1e12)]
+        from: f64,
+        /// Largest d.
+        #[arg(long, default_value_t = 1e30)]
+        to: f64,
+        /// Values per decade.
+        #[arg(long, default_value_t = 1)]
+        per_decade: usize,
+        /// Output directory (default out/<name>-sweep).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -63,8 +92,9 @@ fn main() -> ExitCode {
     };
     tracing_subscriber::fmt()
         .with_env_filter(
-            tracing_subscriber::EnvFilter::try_from_default_env()
-                .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new(level)),
+            tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| {
+                tracing_subscriber::EnvFilter::new(format!("{level},junta_solvers=error"))
+            }),
         )
         .with_writer(std::io::stderr)
         .init();
@@ -74,6 +104,26 @@ fn main() -> ExitCode {
         Command::List => {
             run::list();
             Ok(())
+        }
+        Command::Sweep {
+            what:
+                SweepKind::Penalty {
+                    input,
+                    from,
+                    to,
+                    per_decade,
+                    output,
+                },
+        } => {
+            let out = output.unwrap_or_else(|| run::default_dir(&input, "-sweep"));
+            sweep::sweep_penalty(&input, from, to, per_decade, &out).map(|rows| {
+                sweep::report(&rows);
+                println!(
+                    "wrote {}/sweep.csv and {}/sweep.svg",
+                    out.display(),
+                    out.display()
+                );
+            })
         }
     };
     match result {

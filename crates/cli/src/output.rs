@@ -15,36 +15,38 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::Path;
 
-/// Cell-averaged output of every element, in block order.
+/// Cell-averaged output of every solid element, in block order, and the
+/// range of each stress component over the integration points per block.
 pub struct CellResults {
+    /// Per solid block: (name, stress_min, stress_max) over all points.
+    pub ranges: Vec<(String, [f64; 6], [f64; 6])>,
     /// Average stress per cell (Voigt `[xx, yy, zz, xy, yz, zx]`).
     pub stress: Vec<[f64; 6]>,
     /// Average von Mises stress per cell.
     pub mises: Vec<f64>,
 }
 
-/// Average integration-point outputs over each cell.
+/// Average integration-point outputs over each solid cell.
 pub fn cell_results(model: &Model, u: &[f64], state: &StateStore) -> Result<CellResults> {
     let mut stress = Vec::with_capacity(model.mesh.num_elements());
     let mut mises = Vec::with_capacity(model.mesh.num_elements());
+    let mut ranges = Vec::new();
     for (bi, b) in model.mesh.blocks.iter().enumerate() {
-        let n = b.nodes_per_element();
-        let mut coords = vec![[0.0; 3]; n];
-        let mut disp = vec![0.0; 3 * n];
+        if !b.shape.is_solid() {
+            continue;
+        }
+        let mut lo = [f64::INFINITY; 6];
+        let mut hi = [f64::NEG_INFINITY; 6];
         for e in 0..b.len() {
-            for (a, &node) in b.element(e).iter().enumerate() {
-                coords[a] = model.mesh.nodes[node];
-                disp[3 * a..3 * a + 3].copy_from_slice(&u[3 * node..3 * node + 3]);
+            let pts = element_points(model, u, state, bi, e)?;
+            for p in &pts {
+                if let Some(v) = p.get("stress") {
+                    for k in 0..6 {
+                        lo[k] = lo[k].min(v[k]);
+                        hi[k] = hi[k].max(v[k]);
+                    }
+                }
             }
-            let ctx = ElementContext {
-                coords: &coords,
-                disp: &disp,
-                state_committed: &state.committed[state.range(bi, e)],
-                step: StepInfo::default(),
-            };
-            let pts = model.elements[bi]
-                .point_outputs(&ctx)
-                .with_context(|| format!("output of element {e} of block `{}`", b.name))?;
             let mut s = [0.0; 6];
             let mut m = 0.0;
             let np = pts.len().max(1) as f64;
@@ -61,8 +63,39 @@ pub fn cell_results(model: &Model, u: &[f64], state: &StateStore) -> Result<Cell
             stress.push(s);
             mises.push(m);
         }
+        ranges.push((b.name.clone(), lo, hi));
     }
-    Ok(CellResults { stress, mises })
+    Ok(CellResults {
+        ranges,
+        stress,
+        mises,
+    })
+}
+
+/// Integration-point outputs of element `e` of block `bi`.
+pub fn element_points(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+    bi: usize,
+    e: usize,
+) -> Result<Vec<junta_core::PointOutput>> {
+    let b = &model.mesh.blocks[bi];
+    let nodes = b.element(e);
+    let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| model.mesh.nodes[n]).collect();
+    let disp: Vec<f64> = nodes
+        .iter()
+        .flat_map(|&n| u[3 * n..3 * n + 3].iter().copied())
+        .collect();
+    let ctx = ElementContext {
+        coords: &coords,
+        disp: &disp,
+        state_committed: &state.committed[state.range(bi, e)],
+        step: StepInfo::default(),
+    };
+    model.elements[bi]
+        .point_outputs(&ctx)
+        .with_context(|| format!("output of element {e} of block `{}`", b.name))
 }
 
 fn write_array<W: Write>(
@@ -86,66 +119,62 @@ fn write_array<W: Write>(
     writeln!(w, "\n        </DataArray>")
 }
 
-/// Write `results.vtu`.
+/// Write `results.vtu` (solid blocks; interfaces go to `interfaces.vtu`).
 pub fn write_vtu(path: &Path, model: &Model, u: &[f64], cells: &CellResults) -> Result<()> {
     let f =
         std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
     let mut w = std::io::BufWriter::new(f);
     let mesh = &model.mesh;
-    let ncells = mesh.num_elements();
+    let solids: Vec<&junta_core::mesh::ElementBlock> =
+        mesh.blocks.iter().filter(|b| b.shape.is_solid()).collect();
+    let ncells: usize = solids.iter().map(|b| b.len()).sum();
+    let conn = solids
+        .iter()
+        .flat_map(|b| b.connectivity.iter().map(|&n| n as u64));
+    let offsets = solids
+        .iter()
+        .flat_map(|b| std::iter::repeat(b.nodes_per_element()).take(b.len()))
+        .scan(0u64, |acc, n| {
+            *acc += n as u64;
+            Some(*acc)
+        });
+    let types = solids
+        .iter()
+        .flat_map(|b| std::iter::repeat(b.shape.vtk_type() as u64).take(b.len()));
+    let block_ids = mesh
+        .blocks
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| b.shape.is_solid())
+        .flat_map(|(i, b)| std::iter::repeat(i as f64).take(b.len()));
     (|| -> std::io::Result<()> {
-        writeln!(w, "<?xml version=\"1.0\"?>")?;
-        writeln!(w, "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">")?;
-        writeln!(w, "  <UnstructuredGrid>")?;
-        writeln!(w, "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{ncells}\">", mesh.nodes.len())?;
-        writeln!(w, "      <Points>")?;
-        write_array(&mut w, "Points", 3, mesh.nodes.iter().flat_map(|p| p.iter().copied()))?;
-        writeln!(w, "      </Points>")?;
-        writeln!(w, "      <Cells>")?;
-        writeln!(w, "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">")?;
-        for b in &mesh.blocks {
-            for e in 0..b.len() {
-                for n in b.element(e) {
-                    write!(w, "{n} ")?;
-                }
-                writeln!(w)?;
-            }
-        }
-        writeln!(w, "        </DataArray>")?;
-        writeln!(w, "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">")?;
-        let mut off = 0;
-        for b in &mesh.blocks {
-            for _ in 0..b.len() {
-                off += b.nodes_per_element();
-                write!(w, "{off} ")?;
-            }
-        }
-        writeln!(w, "\n        </DataArray>")?;
-        writeln!(w, "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">")?;
-        for b in &mesh.blocks {
-            for _ in 0..b.len() {
-                write!(w, "{} ", b.shape.vtk_type())?;
-            }
-        }
-        writeln!(w, "\n        </DataArray>")?;
-        writeln!(w, "      </Cells>")?;
-        writeln!(w, "      <PointData Vectors=\"displacement\">")?;
+        vtu_head(&mut w, mesh.nodes.len(), ncells)?;
+        write_array(
+            &mut w,
+            "Points",
+            3,
+            mesh.nodes.iter().flat_map(|p| p.iter().copied()),
+        )?;
+        writeln!(w, "      </Points>\n      <Cells>")?;
+        write_ints(&mut w, "connectivity", "Int64", conn)?;
+        write_ints(&mut w, "offsets", "Int64", offsets)?;
+        write_ints(&mut w, "types", "UInt8", types)?;
+        writeln!(
+            w,
+            "      </Cells>\n      <PointData Vectors=\"displacement\">"
+        )?;
         write_array(&mut w, "displacement", 3, u.iter().copied())?;
-        writeln!(w, "      </PointData>")?;
-        writeln!(w, "      <CellData Tensors=\"stress\">")?;
-        write_array(&mut w, "stress", 6, cells.stress.iter().flat_map(|s| s.iter().copied()))?;
+        writeln!(w, "      </PointData>\n      <CellData Tensors=\"stress\">")?;
+        write_array(
+            &mut w,
+            "stress",
+            6,
+            cells.stress.iter().flat_map(|s| s.iter().copied()),
+        )?;
         write_array(&mut w, "mises", 1, cells.mises.iter().copied())?;
-        let blocks = mesh
-            .blocks
-            .iter()
-            .enumerate()
-            .flat_map(|(i, b)| std::iter::repeat(i as f64).take(b.len()));
-        write_array(&mut w, "block", 1, blocks)?;
+        write_array(&mut w, "block", 1, block_ids)?;
         writeln!(w, "      </CellData>")?;
-        writeln!(w, "    </Piece>")?;
-        writeln!(w, "  </UnstructuredGrid>")?;
-        writeln!(w, "</VTKFile>")?;
-        w.flush()
+        vtu_tail(&mut w)
     })()
     .with_context(|| format!("cannot write {}", path.display()))
 }
@@ -195,4 +224,362 @@ pub fn probes(model: &Model, sets: &[String], u: &[f64]) -> Result<Value> {
         m.insert(s.clone(), json!(mean));
     }
     Ok(Value::Object(m))
+}
+
+/// Integration-point output of one interface block.
+pub struct InterfaceResults {
+    /// Block index.
+    pub block: usize,
+    /// Points of every element, element-major (`points_per_element` each).
+    pub points: Vec<junta_core::PointOutput>,
+    /// Points per element.
+    pub points_per_element: usize,
+}
+
+/// Point outputs of every interface block.
+pub fn interface_results(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+) -> Result<Vec<InterfaceResults>> {
+    let mut out = Vec::new();
+    for (bi, b) in model.mesh.blocks.iter().enumerate() {
+        if !b.shape.is_interface() {
+            continue;
+        }
+        let mut points = Vec::new();
+        for e in 0..b.len() {
+            points.extend(element_points(model, u, state, bi, e)?);
+        }
+        out.push(InterfaceResults {
+            block: bi,
+            points_per_element: model.elements[bi].num_points(),
+            points,
+        });
+    }
+    Ok(out)
+}
+
+fn component_range(points: &[junta_core::PointOutput], name: &str) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        if let Some(v) = p.get(name) {
+            for c in 0..3 {
+                lo[c] = lo[c].min(v[c]);
+                hi[c] = hi[c].max(v[c]);
+            }
+        }
+    }
+    (lo, hi)
+}
+
+/// `summary.json` entry `interfaces`: per block, ranges of the local
+/// tractions `[t1, t2, tn]` and jumps over all integration points.
+pub fn interface_summary(model: &Model, res: &[InterfaceResults]) -> Value {
+    let mut m = serde_json::Map::new();
+    for r in res {
+        let (tmin, tmax) = component_range(&r.points, "traction");
+        let (jmin, jmax) = component_range(&r.points, "jump");
+        let area: f64 = r
+            .points
+            .iter()
+            .filter_map(|p| p.get("area"))
+            .map(|a| a[0])
+            .sum();
+        let b = &model.mesh.blocks[r.block];
+        m.insert(
+            b.name.clone(),
+            json!({
+                "element": b.element_type,
+                "elements": b.len(),
+                "points": r.points.len(),
+                "area": area,
+                "traction_min": tmin,
+                "traction_max": tmax,
+                "jump_min": jmin,
+                "jump_max": jmax,
+            }),
+        );
+    }
+    Value::Object(m)
+}
+
+/// Write `interfaces.vtu` (every interface element as a quadrilateral on
+/// its mid-surface, cell data: mean local traction and jump; point data:
+/// the global displacement jump `u_top - u_bottom` of each node pair) and
+/// `interface_points.vtu` (one vertex per integration point with its local
+/// traction, jump, normal and law state), so that ParaView shows the
+/// interfaces as they are computed.
+pub fn write_interface_vtu(
+    dir: &Path,
+    model: &Model,
+    u: &[f64],
+    res: &[InterfaceResults],
+) -> Result<()> {
+    if res.is_empty() {
+        return Ok(());
+    }
+    let mesh = &model.mesh;
+    // mid-surface cells
+    let mut points: Vec<[f64; 3]> = Vec::new();
+    let mut jumps: Vec<[f64; 3]> = Vec::new();
+    let mut conn: Vec<usize> = Vec::new();
+    let mut offsets = Vec::new();
+    let mut types = Vec::new();
+    let mut cell_t = Vec::new();
+    let mut cell_j = Vec::new();
+    let mut cell_block = Vec::new();
+    let mut index = std::collections::HashMap::new();
+    for r in res {
+        let b = &mesh.blocks[r.block];
+        let m = b.nodes_per_element() / 2;
+        for e in 0..b.len() {
+            let nodes = b.element(e);
+            for a in 0..m {
+                let (bot, top) = (nodes[a], nodes[m + a]);
+                let id = *index.entry((bot, top)).or_insert_with(|| {
+                    let p = mesh.nodes[bot];
+                    let q = mesh.nodes[top];
+                    points.push([
+                        0.5 * (p[0] + q[0]),
+                        0.5 * (p[1] + q[1]),
+                        0.5 * (p[2] + q[2]),
+                    ]);
+                    jumps.push([0, 1, 2].map(|c| u[3 * top + c] - u[3 * bot + c]));
+                    points.len() - 1
+                });
+                conn.push(id);
+            }
+            offsets.push(conn.len());
+            types.push(b.shape.vtk_type());
+            let pts = &r.points[e * r.points_per_element..(e + 1) * r.points_per_element];
+            let mean = |name: &str| {
+                let mut s = [0.0; 3];
+                for p in pts {
+                    if let Some(v) = p.get(name) {
+                        for c in 0..3 {
+                            s[c] += v[c] / pts.len() as f64;
+                        }
+                    }
+                }
+                s
+            };
+            cell_t.push(mean("traction"));
+            cell_j.push(mean("jump"));
+            cell_block.push(r.block as f64);
+        }
+    }
+    let path = dir.join("interfaces.vtu");
+    let f = std::fs::File::create(&path)
+        .with_context(|| format!("cannot create {}", path.display()))?;
+    let mut w = std::io::BufWriter::new(f);
+    (|| -> std::io::Result<()> {
+        vtu_head(&mut w, points.len(), types.len())?;
+        write_array(
+            &mut w,
+            "Points",
+            3,
+            points.iter().flat_map(|p| p.iter().copied()),
+        )?;
+        writeln!(w, "      </Points>\n      <Cells>")?;
+        write_ints(
+            &mut w,
+            "connectivity",
+            "Int64",
+            conn.iter().map(|&v| v as u64),
+        )?;
+        write_ints(
+            &mut w,
+            "offsets",
+            "Int64",
+            offsets.iter().map(|&v| v as u64),
+        )?;
+        write_ints(&mut w, "types", "UInt8", types.iter().map(|&v| v as u64))?;
+        writeln!(
+            w,
+            "      </Cells>\n      <PointData Vectors=\"jump_global\">"
+        )?;
+        write_array(
+            &mut w,
+            "jump_global",
+            3,
+            jumps.iter().flat_map(|p| p.iter().copied()),
+        )?;
+        writeln!(w, "      </PointData>\n      <CellData>")?;
+        write_array(
+            &mut w,
+            "traction_local",
+            3,
+            cell_t.iter().flat_map(|p| p.iter().copied()),
+        )?;
+        write_array(
+            &mut w,
+            "jump_local",
+            3,
+            cell_j.iter().flat_map(|p| p.iter().copied()),
+        )?;
+        write_array(&mut w, "block", 1, cell_block.iter().copied())?;
+        writeln!(w, "      </CellData>")?;
+        vtu_tail(&mut w)
+    })()
+    .with_context(|| format!("cannot write {}", path.display()))?;
+
+    // integration points
+    let all: Vec<&junta_core::PointOutput> = res.iter().flat_map(|r| r.points.iter()).collect();
+    let path = dir.join("interface_points.vtu");
+    let f = std::fs::File::create(&path)
+        .with_context(|| format!("cannot create {}", path.display()))?;
+    let mut w = std::io::BufWriter::new(f);
+    let get3 = |p: &junta_core::PointOutput, name: &str, from: usize| -> [f64; 3] {
+        p.get(name)
+            .map_or([0.0; 3], |v| [v[from], v[from + 1], v[from + 2]])
+    };
+    let state_len = all
+        .iter()
+        .filter_map(|p| p.get("state"))
+        .map(|s| s.len())
+        .max()
+        .unwrap_or(0);
+    (|| -> std::io::Result<()> {
+        vtu_head(&mut w, all.len(), all.len())?;
+        write_array(&mut w, "Points", 3, all.iter().flat_map(|p| p.position))?;
+        writeln!(w, "      </Points>\n      <Cells>")?;
+        write_ints(&mut w, "connectivity", "Int64", 0..all.len() as u64)?;
+        write_ints(&mut w, "offsets", "Int64", 1..=all.len() as u64)?;
+        write_ints(&mut w, "types", "UInt8", all.iter().map(|_| 1))?;
+        writeln!(w, "      </Cells>\n      <PointData>")?;
+        write_array(
+            &mut w,
+            "traction_local",
+            3,
+            all.iter().flat_map(|p| get3(p, "traction", 0)),
+        )?;
+        write_array(
+            &mut w,
+            "jump_local",
+            3,
+            all.iter().flat_map(|p| get3(p, "jump", 0)),
+        )?;
+        write_array(
+            &mut w,
+            "normal",
+            3,
+            all.iter().flat_map(|p| get3(p, "frame", 6)),
+        )?;
+        if state_len > 0 {
+            write_array(
+                &mut w,
+                "state",
+                state_len,
+                all.iter().flat_map(|p| {
+                    (0..state_len).map(move |k| {
+                        p.get("state")
+                            .and_then(|s| s.get(k))
+                            .copied()
+                            .unwrap_or(0.0)
+                    })
+                }),
+            )?;
+        }
+        writeln!(w, "      </PointData>")?;
+        vtu_tail(&mut w)
+    })()
+    .with_context(|| format!("cannot write {}", path.display()))
+}
+
+fn vtu_head<W: Write>(w: &mut W, points: usize, cells: usize) -> std::io::Result<()> {
+    writeln!(w, "<?xml version=\"1.0\"?>")?;
+    writeln!(w, "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">")?;
+    writeln!(w, "  <UnstructuredGrid>")?;
+    writeln!(
+        w,
+        "    <Piece NumberOfPoints=\"{points}\" NumberOfCells=\"{cells}\">"
+    )?;
+    writeln!(w, "      <Points>")
+}
+
+fn vtu_tail<W: Write>(w: &mut W) -> std::io::Result<()> {
+    writeln!(w, "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>")?;
+    w.flush()
+}
+
+fn write_ints<W: Write>(
+    w: &mut W,
+    name: &str,
+    ty: &str,
+    data: impl Iterator<Item = u64>,
+) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "        <DataArray type=\"{ty}\" Name=\"{name}\" format=\"ascii\">"
+    )?;
+    for (i, v) in data.enumerate() {
+        write!(w, "{v} ")?;
+        if i % 20 == 19 {
+            writeln!(w)?;
+        }
+    }
+    writeln!(w, "\n        </DataArray>")
+}
+
+/// `summary.json` entry `solids`: per solid block, the range of each stress
+/// component (Voigt `[xx, yy, zz, xy, yz, zx]`) over its integration points.
+pub fn solid_summary(cells: &CellResults) -> Value {
+    let mut m = serde_json::Map::new();
+    for (name, lo, hi) in &cells.ranges {
+        m.insert(name.clone(), json!({ "stress_min": lo, "stress_max": hi }));
+    }
+    Value::Object(m)
+}
+
+/// The penalty advisor of every interface block, as JSON and as text lines.
+pub fn penalty_advice(
+    model: &Model,
+    thickness: &dyn Fn(&str) -> Option<f64>,
+) -> Result<(Value, Vec<String>)> {
+    let mut m = serde_json::Map::new();
+    let mut lines = Vec::new();
+    for (bi, b) in model.mesh.blocks.iter().enumerate() {
+        if !b.shape.is_interface() {
+            continue;
+        }
+        let a = junta_interface::penalty_advice(model, bi, thickness(&b.name))?;
+        let verdict = match a.verdict {
+            junta_interface::PenaltyVerdict::TooLow => {
+                "too low: the constraint error dominates (interpenetration / slip)"
+            }
+            junta_interface::PenaltyVerdict::Good => "good: within 10x of the error balance",
+            junta_interface::PenaltyVerdict::TooHigh => {
+                "too high: round-off dominates (the solve loses digits)"
+            }
+        };
+        lines.push(format!(
+            "interface `{}`: k_min = {:.3e}, n = {}, eps_op = k_min/sqrt(n e_c) = {:.3e} (force/length); \
+             area per node pair {:.3e} -> recommended d_op = {:.3e}; scene d3 = {:.3e}: {verdict} \
+             (estimated constraint error {:.1e}, round-off {:.1e}; best attainable {:.1e}){}",
+            a.block,
+            a.k_min,
+            a.n,
+            a.eps_op,
+            a.area_per_pair,
+            a.d_op,
+            a.d_scene[2],
+            a.constraint_error,
+            a.roundoff_error,
+            a.best_error,
+            a.turon.map(|k| format!("; Turon K = 50 E/t = {k:.3e}")).unwrap_or_default()
+        ));
+        m.insert(
+            a.block.clone(),
+            json!({
+                "k_min": a.k_min, "n": a.n, "e_c": a.e_c, "eps_op": a.eps_op,
+                "area": a.area, "pairs": a.pairs, "area_per_pair": a.area_per_pair,
+                "d_op": a.d_op, "d_scene": a.d_scene,
+                "constraint_error": a.constraint_error, "roundoff_error": a.roundoff_error,
+                "best_error": a.best_error, "verdict": format!("{:?}", a.verdict), "turon": a.turon,
+            }),
+        );
+    }
+    Ok((Value::Object(m), lines))
 }

@@ -20,6 +20,8 @@ pub struct Prepared {
     pub output_dir: Option<PathBuf>,
     pub vtu: bool,
     pub probes: Vec<String>,
+    pub reference: Option<(scene::ReferenceSpec, usize)>,
+    pub thickness: std::collections::BTreeMap<String, f64>,
     pub notes: Vec<String>,
 }
 
@@ -48,6 +50,16 @@ pub fn prepare(input: &Path) -> Result<Prepared> {
                 output_dir: sf.scene.output.directory.clone(),
                 vtu: sf.scene.output.vtu,
                 probes: sf.scene.output.probes.clone(),
+                reference: match &sf.scene.reference {
+                    Some(r) => Some((r.clone(), r.component_index(&sf.path)?)),
+                    None => None,
+                },
+                thickness: sf
+                    .scene
+                    .interface
+                    .iter()
+                    .filter_map(|f| f.thickness.map(|t| (f.name.clone(), t)))
+                    .collect(),
                 notes: Vec::new(),
             })
         }
@@ -65,6 +77,8 @@ pub fn prepare(input: &Path) -> Result<Prepared> {
                 output_dir: None,
                 vtu: true,
                 probes: Vec::new(),
+                reference: None,
+                thickness: Default::default(),
                 notes,
             })
         }
@@ -86,6 +100,12 @@ fn spinner(enabled: bool, msg: String) -> ProgressBar {
     pb
 }
 
+/// `out/<file stem><suffix>`.
+pub fn default_dir(input: &Path, suffix: &str) -> PathBuf {
+    let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("run");
+    PathBuf::from("out").join(format!("{stem}{suffix}"))
+}
+
 /// `junta run`.
 pub fn run(input: &Path, out: Option<&Path>, progress: bool) -> Result<()> {
     let t0 = Instant::now();
@@ -95,11 +115,10 @@ pub fn run(input: &Path, out: Option<&Path>, progress: bool) -> Result<()> {
         pb.suspend(|| eprintln!("note: {n}"));
     }
     let read_seconds = t0.elapsed().as_secs_f64();
-    let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("run");
     let dir = match (out, &p.output_dir) {
         (Some(o), _) => o.to_path_buf(),
         (None, Some(d)) => d.clone(),
-        (None, None) => PathBuf::from("out").join(stem),
+        (None, None) => default_dir(input, ""),
     };
     std::fs::create_dir_all(&dir)
         .with_context(|| format!("cannot create output directory {}", dir.display()))?;
@@ -124,10 +143,30 @@ pub fn run(input: &Path, out: Option<&Path>, progress: bool) -> Result<()> {
     }
     pb.set_message("writing results");
     let t_out = Instant::now();
+    let interfaces = output::interface_results(&p.model, &res.u, &res.state)?;
+    let cells = output::cell_results(&p.model, &res.u, &res.state)?;
     if p.vtu {
-        let cells = output::cell_results(&p.model, &res.u, &res.state)?;
         output::write_vtu(&dir.join("results.vtu"), &p.model, &res.u, &cells)?;
+        output::write_interface_vtu(&dir, &p.model, &res.u, &interfaces)?;
     }
+    let (advice, advice_lines) =
+        output::penalty_advice(&p.model, &|b| p.thickness.get(b).copied())?;
+    for l in advice_lines.iter().filter(|l| !l.contains(": good:")) {
+        pb.suspend(|| eprintln!("warning: {l}"));
+    }
+    let reference = match &p.reference {
+        Some((r, c)) => {
+            let computed = p
+                .model
+                .set_total(&r.set, &res.residual)
+                .context("key `reference.set`")?[*c];
+            json!({
+                "set": r.set, "component": r.component, "value": r.value, "source": r.source,
+                "computed": computed, "relative_error": (computed - r.value).abs() / r.value.abs(),
+            })
+        }
+        None => serde_json::Value::Null,
+    };
     let output_seconds = t_out.elapsed().as_secs_f64();
     let reactions = output::reactions(&p.model, &res.residual)?;
     let probes = output::probes(&p.model, &p.probes, &res.u).context("[output] probes")?;
@@ -142,6 +181,10 @@ pub fn run(input: &Path, out: Option<&Path>, progress: bool) -> Result<()> {
         "reactions": reactions,
         "displacement_max": output::displacement_max(&res.u),
         "probes": probes,
+        "solids": output::solid_summary(&cells),
+        "interfaces": output::interface_summary(&p.model, &interfaces),
+        "penalty_advice": advice,
+        "reference": reference,
         "equilibrium_residual": res.free_residual,
         "timings": {
             "read": read_seconds,
@@ -244,6 +287,10 @@ pub fn check(input: &Path) -> Result<()> {
     }
     println!("  total applied force: {total:?}");
     println!("  solver: {}", p.solver.key());
+    let (_, advice) = output::penalty_advice(m, &|b| p.thickness.get(b).copied())?;
+    for l in advice {
+        println!("  penalty advisor: {l}");
+    }
     for n in &p.notes {
         println!("  note: {n}");
     }

@@ -52,6 +52,37 @@ pub struct Scene {
     /// Output options.
     #[serde(default)]
     pub output: OutputSpec,
+    /// An outside reference value the run is compared with (reported in
+    /// `summary.json`, used by `junta sweep`).
+    pub reference: Option<ReferenceSpec>,
+}
+
+/// A reference reaction: the total reaction component on a node set that
+/// an outside source (closed form, paper, peer code) gives.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceSpec {
+    /// Node set carrying a boundary condition.
+    pub set: String,
+    /// `x`, `y` or `z`.
+    pub component: String,
+    /// The reference value.
+    pub value: f64,
+    /// Where the value comes from.
+    pub source: Option<String>,
+}
+
+impl ReferenceSpec {
+    /// Component index 0..3, or an error naming the key.
+    pub fn component_index(&self, file: &Path) -> Result<usize> {
+        component(&self.component).ok_or_else(|| {
+            anyhow!(
+                "{}: key `reference.component`: `{}` is not valid; use x, y or z",
+                file.display(),
+                self.component
+            )
+        })
+    }
 }
 
 /// Informative header of a scene.

@@ -103,6 +103,16 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     fn check_geometry(&self, coords: &[[f64; 3]]) -> Result<(), ElementError>;
     /// Integration-point output for post-processing (may allocate).
     fn point_outputs(&self, ctx: &ElementContext<'_>) -> Result<Vec<PointOutput>, ElementError>;
+    /// A representative Young's modulus of the element's material (solids),
+    /// for diagnostics such as the penalty advisor.
+    fn reference_modulus(&self) -> Option<f64> {
+        None
+    }
+    /// Initial stiffness `[d1, d2, d3]` of the element's traction law
+    /// (interfaces), for diagnostics.
+    fn interface_stiffness(&self) -> Option<[f64; 3]> {
+        None
+    }
     /// Requests from the element for small increments (e.g. a point being
     /// released); the driver may honour it. Default: none.
     fn wants_small_increments(&self, _state_committed: &[f64]) -> bool {

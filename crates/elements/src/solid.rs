@@ -329,6 +329,9 @@ impl Element for SolidElement {
     fn num_points(&self) -> usize {
         self.points.len()
     }
+    fn reference_modulus(&self) -> Option<f64> {
+        Some(self.material.reference_modulus())
+    }
 
     fn compute(
         &self,

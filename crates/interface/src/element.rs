@@ -339,6 +339,10 @@ impl Element for InterfaceElement {
         Ok(out)
     }
 
+    fn interface_stiffness(&self) -> Option<[f64; 3]> {
+        Some(self.law.initial_stiffness())
+    }
+
     fn wants_small_increments(&self, state_committed: &[f64]) -> bool {
         let sl = self.law.state_len();
         sl > 0

@@ -8,9 +8,13 @@
 //!   Gauss or Lobatto (nodal) integration. The paper's element is INTER18.
 //! - [`law`]: traction-separation laws behind [`junta_core::InterfaceLaw`],
 //!   one file each (`linear_penalty`, ...), registered with `inventory`.
+//! - [`advisor`]: the paper's penalty choice from its error analysis
+//!   (eqs. 41-55) on an assembled model.
 
+pub mod advisor;
 pub mod element;
 pub mod law;
 
+pub use advisor::{penalty_advice, PenaltyAdvice, PenaltyVerdict};
 pub use element::{InterfaceElement, InterfaceRule};
 pub use law::linear_penalty::LinearPenalty;

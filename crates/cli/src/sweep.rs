@@ -1,0 +1,330 @@
+//! `junta sweep penalty`: the speed/accuracy chart of the penalty method.
+//!
+//! Runs a scene over a log range of the penalty stiffness d (every
+//! `linear_penalty` law of the scene gets `d`), with the direct (`cholesky`)
+//! and the iterative (`cg`) back end, and records for each run: the relative
+//! error of the reference reaction (`[reference]` of the scene, e.g. the
+//! perfectly bonded closed form of the confined prism), the largest normal
+//! jump |delta_3| (interpenetration or opening), the solve time, and what
+//! the solver reported (warnings, failures with their numbers). Writes
+//! `sweep.csv` and `sweep.svg`; the chart also draws the paper's error
+//! estimate (eq. 53) and the advisor's optimum d_op (eq. 55).
+
+use crate::{output, plot, scene};
+use anyhow::{anyhow, bail, Context, Result};
+use junta_core::registry::{self, SolverEntry};
+use junta_solvers::linear_static::solve_linear_static;
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+/// One run of the sweep.
+#[derive(Debug, Clone)]
+pub struct SweepRow {
+    pub d: f64,
+    pub solver: String,
+    pub ok: bool,
+    pub rel_error: Option<f64>,
+    pub max_normal_jump: Option<f64>,
+    pub seconds: f64,
+    pub iterations: usize,
+    pub residual: f64,
+    pub equilibrium: f64,
+    pub warnings: Vec<String>,
+    pub message: String,
+}
+
+/// Log-spaced values from `from` to `to`, `per_decade` per decade.
+pub fn log_range(from: f64, to: f64, per_decade: usize) -> Vec<f64> {
+    let (a, b) = (from.log10(), to.log10());
+    let n = ((b - a) * per_decade as f64).round().max(0.0) as usize;
+    (0..=n)
+        .map(|i| 10f64.powf(a + (b - a) * i as f64 / n.max(1) as f64))
+        .collect()
+}
+
+fn set_penalty(sf: &mut scene::SceneFile, d: f64) -> usize {
+    let mut n = 0;
+    for t in sf.scene.laws.values_mut() {
+        if t.get("type").and_then(|v| v.as_str()) == Some("linear_penalty") {
+            for k in ["d1", "d2", "d3"] {
+                t.remove(k);
+            }
+            t.insert("d".into(), toml::Value::Float(d));
+            n += 1;
+        }
+    }
+    n
+}
+
+/// Run the sweep and write `sweep.csv` and `sweep.svg` into `out`.
+pub fn sweep_penalty(
+    input: &Path,
+    from: f64,
+    to: f64,
+    per_decade: usize,
+    out: &Path,
+) -> Result<Vec<SweepRow>> {
+    if !(from > 0.0 && to > from && from.is_finite() && to.is_finite()) {
+        bail!("--from and --to must be positive with from < to (got {from:e}, {to:e})");
+    }
+    let mut sf = scene::SceneFile::read(input)?;
+    if set_penalty(&mut sf, from) == 0 {
+        bail!(
+            "{}: the sweep changes the `d` of `linear_penalty` laws, and the scene has none in [laws]",
+            input.display()
+        );
+    }
+    let reference = match &sf.scene.reference {
+        Some(r) => Some((r.clone(), r.component_index(&sf.path)?)),
+        None => None,
+    };
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    // the advisor's numbers do not depend on d
+    let model0 = scene::build_model(&sf)?;
+    let advice_block = model0
+        .mesh
+        .blocks
+        .iter()
+        .position(|b| b.shape.is_interface())
+        .ok_or_else(|| anyhow!("{}: the scene has no interface", input.display()))?;
+    let advice = junta_interface::penalty_advice(&model0, advice_block, None)?;
+    drop(model0);
+    let mut rows = Vec::new();
+    for d in log_range(from, to, per_decade) {
+        set_penalty(&mut sf, d);
+        let model = scene::build_model(&sf)?;
+        for key in ["cholesky", "cg"] {
+            let entry = registry::find::<SolverEntry>(key)?;
+            let mut solver = (entry.build)(&toml::Table::new())?;
+            let t = Instant::now();
+            let res = solve_linear_static(&model, solver.as_mut());
+            let seconds = t.elapsed().as_secs_f64();
+            let mut row = SweepRow {
+                d,
+                solver: key.into(),
+                ok: false,
+                rel_error: None,
+                max_normal_jump: None,
+                seconds,
+                iterations: 0,
+                residual: f64::NAN,
+                equilibrium: f64::NAN,
+                warnings: Vec::new(),
+                message: String::new(),
+            };
+            match res {
+                Ok(r) => {
+                    row.ok = true;
+                    row.seconds = r.timings.analyze + r.timings.factor + r.timings.solve;
+                    row.iterations = r.report.iterations;
+                    row.residual = r.report.residual;
+                    row.equilibrium = r.free_residual;
+                    row.warnings = r.report.warnings.clone();
+                    if let Some((rs, c)) = &reference {
+                        let v = model.set_total(&rs.set, &r.residual)?[*c];
+                        row.rel_error = Some((v - rs.value).abs() / rs.value.abs());
+                    }
+                    let ifs = output::interface_results(&model, &r.u, &r.state)?;
+                    row.max_normal_jump = ifs
+                        .iter()
+                        .flat_map(|i| i.points.iter())
+                        .filter_map(|p| p.get("jump"))
+                        .map(|j| j[2].abs())
+                        .reduce(f64::max);
+                }
+                Err(e) => row.message = format!("{e:#}"),
+            }
+            rows.push(row);
+        }
+    }
+    // CSV
+    let mut csv = String::from(
+        "d,solver,status,relative_error,max_abs_normal_jump,solve_seconds,iterations,solver_residual,equilibrium_residual,eq53_estimate,message\n",
+    );
+    for r in &rows {
+        let (ce, re) = advice.errors_at(r.d);
+        let msg = if r.ok {
+            r.warnings.join(" | ")
+        } else {
+            r.message.clone()
+        };
+        writeln!(
+            csv,
+            "{:e},{},{},{},{},{:e},{},{:e},{:e},{:e},\"{}\"",
+            r.d,
+            r.solver,
+            if !r.ok {
+                "failed"
+            } else if r.warnings.is_empty() {
+                "ok"
+            } else {
+                "warning"
+            },
+            r.rel_error.map(|v| format!("{v:e}")).unwrap_or_default(),
+            r.max_normal_jump
+                .map(|v| format!("{v:e}"))
+                .unwrap_or_default(),
+            r.seconds,
+            r.iterations,
+            r.residual,
+            r.equilibrium,
+            ce + re,
+            msg.replace('"', "'")
+        )?;
+    }
+    std::fs::write(out.join("sweep.csv"), csv).context("cannot write sweep.csv")?;
+    // chart
+    let series = |solver: &str, color: usize, f: &dyn Fn(&SweepRow) -> Option<f64>| plot::Series {
+        name: solver.to_string(),
+        points: rows
+            .iter()
+            .filter(|r| r.solver == solver && r.ok)
+            .filter_map(|r| f(r).map(|v| (r.d, v)))
+            .collect(),
+        color,
+        markers_only: false,
+    };
+    let failed = |solver: &str, color: usize, y: f64| plot::Series {
+        name: format!("{solver} failed / warned"),
+        points: rows
+            .iter()
+            .filter(|r| r.solver == solver && (!r.ok || !r.warnings.is_empty()))
+            .map(|r| (r.d, r.rel_error.unwrap_or(y)))
+            .collect(),
+        color,
+        markers_only: true,
+    };
+    let ds = log_range(from, to, per_decade * 4);
+    let mut error_series = vec![
+        series("cholesky", 0, &|r| r.rel_error),
+        series("cg", 1, &|r| r.rel_error),
+        failed("cholesky", 4, 1.0),
+        failed("cg", 3, 1.0),
+    ];
+    error_series.push(plot::Series {
+        name: "eq. 53 estimate k/(d a) + n e_c d a / k".into(),
+        points: ds
+            .iter()
+            .map(|&d| {
+                let (c, r) = advice.errors_at(d);
+                (d, c + r)
+            })
+            .collect(),
+        color: 5,
+        markers_only: false,
+    });
+    let panels = vec![
+        plot::Panel {
+            title: format!(
+                "relative error of the reference reaction ({})",
+                reference
+                    .as_ref()
+                    .map(|(r, _)| r.set.as_str())
+                    .unwrap_or("no [reference] in the scene")
+            ),
+            x_label: "penalty d".into(),
+            y_label: "relative error".into(),
+            log_x: true,
+            log_y: true,
+            series: error_series,
+            vlines: vec![(
+                advice.d_op,
+                format!("advisor d_op = {:.2e} (eq. 55)", advice.d_op),
+            )],
+        },
+        plot::Panel {
+            title: "largest |delta_3| at the interface (interpenetration / opening)".into(),
+            x_label: "penalty d".into(),
+            y_label: "|delta_3|".into(),
+            log_x: true,
+            log_y: true,
+            series: vec![
+                series("cholesky", 0, &|r| r.max_normal_jump),
+                series("cg", 1, &|r| r.max_normal_jump),
+            ],
+            vlines: vec![],
+        },
+        plot::Panel {
+            title: "solve time (analysis + factorisation + solve, or CG iterations)".into(),
+            x_label: "penalty d".into(),
+            y_label: "seconds".into(),
+            log_x: true,
+            log_y: true,
+            series: vec![
+                series("cholesky", 0, &|r| Some(r.seconds)),
+                series("cg", 1, &|r| Some(r.seconds)),
+            ],
+            vlines: vec![],
+        },
+    ];
+    plot::write_svg(&out.join("sweep.svg"), &panels)?;
+    Ok(rows)
+}
+
+/// Print the sweep's table and its findings.
+pub fn report(rows: &[SweepRow]) {
+    println!(
+        "{:>10} {:>9} {:>8} {:>11} {:>11} {:>9} {:>6}  note",
+        "d", "solver", "status", "rel.error", "|delta_3|", "seconds", "iters"
+    );
+    for r in rows {
+        let status = if !r.ok {
+            "FAILED"
+        } else if r.warnings.is_empty() {
+            "ok"
+        } else {
+            "warning"
+        };
+        let note = if r.ok {
+            r.warnings.first().cloned().unwrap_or_default()
+        } else {
+            r.message.clone()
+        };
+        println!(
+            "{:>10.2e} {:>9} {:>8} {:>11} {:>11} {:>9.2e} {:>6}  {}",
+            r.d,
+            r.solver,
+            status,
+            r.rel_error
+                .map(|v| format!("{v:.2e}"))
+                .unwrap_or("-".into()),
+            r.max_normal_jump
+                .map(|v| format!("{v:.2e}"))
+                .unwrap_or("-".into()),
+            r.seconds,
+            r.iterations,
+            note.chars().take(100).collect::<String>()
+        );
+    }
+    for solver in ["cholesky", "cg"] {
+        let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.solver == solver).collect();
+        if let Some(best) = mine
+            .iter()
+            .filter(|r| r.ok && r.rel_error.is_some())
+            .min_by(|a, b| a.rel_error.partial_cmp(&b.rel_error).unwrap())
+        {
+            println!(
+                "{solver}: best relative error {:.2e} at d = {:.2e}",
+                best.rel_error.unwrap(),
+                best.d
+            );
+        }
+        if let Some(first) = mine.iter().find(|r| !r.ok || !r.warnings.is_empty()) {
+            println!(
+                "{solver}: {} from d = {:.2e}: {}",
+                if first.ok {
+                    "warns (lost digits)"
+                } else {
+                    "fails"
+                },
+                first.d,
+                if first.ok {
+                    first.warnings.join("; ")
+                } else {
+                    first.message.clone()
+                }
+            );
+        }
+    }
+}
