@@ -17,6 +17,7 @@ pub struct Prepared {
     pub model: Model,
     pub solver: Box<dyn LinearSolver>,
     pub title: String,
+    pub units: Option<String>,
     pub output_dir: Option<PathBuf>,
     pub vtu: bool,
     pub probes: Vec<String>,
@@ -47,6 +48,7 @@ pub fn prepare(input: &Path) -> Result<Prepared> {
                 model,
                 solver,
                 title: sf.scene.model.title.clone().unwrap_or_default(),
+                units: sf.scene.model.units.clone(),
                 output_dir: sf.scene.output.directory.clone(),
                 vtu: sf.scene.output.vtu,
                 probes: sf.scene.output.probes.clone(),
@@ -74,6 +76,7 @@ pub fn prepare(input: &Path) -> Result<Prepared> {
                 model,
                 solver,
                 title: String::new(),
+                units: None,
                 output_dir: None,
                 vtu: true,
                 probes: Vec::new(),
@@ -173,6 +176,7 @@ pub fn run(input: &Path, out: Option<&Path>, progress: bool) -> Result<()> {
     let summary = json!({
         "input": input.display().to_string(),
         "title": p.title,
+        "units": p.units,
         "analysis": "linear_static",
         "nodes": p.model.mesh.nodes.len(),
         "dofs": p.model.dofs.num_dofs(),
@@ -230,6 +234,9 @@ pub fn check(input: &Path) -> Result<()> {
     println!("{}: valid", input.display());
     if !p.title.is_empty() {
         println!("  title: {}", p.title);
+    }
+    if let Some(u) = &p.units {
+        println!("  units: {u}");
     }
     println!(
         "  nodes: {}, dofs: {}, equations: {} ({} constrained)",

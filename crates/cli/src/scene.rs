@@ -90,7 +90,6 @@ impl ReferenceSpec {
 #[serde(deny_unknown_fields)]
 pub struct ModelInfo {
     pub title: Option<String>,
-    pub description: Option<String>,
     pub units: Option<String>,
 }
 

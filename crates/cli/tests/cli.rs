@@ -2,62 +2,8 @@
 //! shared/BENCHMARKS.md section 1 (CalculiX 2.20 and scikit-fem 12.0.2
 //! agree on them), beam theory for the cantilever, and bad input.
 
-use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn junta() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_junta"))
-}
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// Run `junta run input -o dir`, return summary.json.
-fn run_ok(input: &Path, dir: &Path) -> Value {
-    let out = junta()
-        .arg("run")
-        .arg(input)
-        .arg("-o")
-        .arg(dir)
-        .arg("-q")
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "junta run {} failed:\n{}",
-        input.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
-    serde_json::from_str(&text).unwrap()
-}
-
-/// Run and expect failure; return stderr.
-fn run_err(input: &Path) -> String {
-    let dir = tempfile::tempdir().unwrap();
-    let out = junta()
-        .arg("run")
-        .arg(input)
-        .arg("-o")
-        .arg(dir.path())
-        .arg("-q")
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr).to_string();
-    assert!(
-        !out.status.success(),
-        "expected failure for {}",
-        input.display()
-    );
-    assert!(!err.contains("panicked"), "panic on bad input:\n{err}");
-    assert!(
-        err.starts_with("error: "),
-        "error message should start with `error: `:\n{err}"
-    );
-    err
-}
+mod common;
+use common::*;
 
 /// The cube deck of BENCHMARKS.md section 1 written as `.inp` (C3D8/C3D20, labels 1-based).
 fn cube_deck(etype: &str, n: usize) -> String {
@@ -152,10 +98,6 @@ fn cube_scene(element: &str, n: usize) -> String {
             "divisions = [2, 2, 2]",
             &format!("divisions = [{n}, {n}, {n}]"),
         )
-}
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs()
 }
 
 /// BENCHMARKS.md section 1: CalculiX 2.20 / scikit-fem 12.0.2 top reactions.
@@ -271,12 +213,6 @@ fn cantilever_converges_to_beam_theory() {
         errors["h8"][0].abs() > 0.2 && errors["h8"][2].abs() < 0.05,
         "{errors:?}"
     );
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
 }
 
 #[test]
