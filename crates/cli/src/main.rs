@@ -81,6 +81,21 @@ enum SweepKind {
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
+    /// Gauss against Lobatto (nodal) integration of every interface: the
+    /// normal traction along an axis (traction.csv, traction.svg).
+    Integration {
+        /// Scene file (.toml) with at least one interface.
+        input: PathBuf,
+        /// Penalty values to run (comma separated); default: the scene's.
+        #[arg(long, value_delimiter = ',')]
+        d: Vec<f64>,
+        /// Axis along which to plot: x, y or z.
+        #[arg(long, default_value = "y")]
+        axis: String,
+        /// Output directory (default out/<name>-integration).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -124,6 +139,35 @@ fn main() -> ExitCode {
                     out.display()
                 );
             })
+        }
+        Command::Sweep {
+            what:
+                SweepKind::Integration {
+                    input,
+                    d,
+                    axis,
+                    output,
+                },
+        } => {
+            let out = output.unwrap_or_else(|| run::default_dir(&input, "-integration"));
+            match ["x", "y", "z"].iter().position(|a| *a == axis) {
+                None => Err(anyhow::anyhow!("--axis {axis}: use x, y or z")),
+                Some(ax) => sweep::sweep_integration(&input, &d, ax, &out).map(|profiles| {
+                    for p in &profiles {
+                        println!(
+                            "d = {:>9} {:>8}: {} points, roughness {:.3}, {} local extrema, t_n in [{:.4e}, {:.4e}]",
+                            p.d.map(|v| format!("{v:.1e}")).unwrap_or("scene".into()),
+                            p.rule,
+                            p.points.len(),
+                            p.roughness,
+                            p.extrema,
+                            p.points.iter().map(|q| q.1).fold(f64::INFINITY, f64::min),
+                            p.points.iter().map(|q| q.1).fold(f64::NEG_INFINITY, f64::max)
+                        );
+                    }
+                    println!("wrote {}/traction.csv and {}/traction.svg", out.display(), out.display());
+                }),
+            }
         }
     };
     match result {

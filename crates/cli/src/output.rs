@@ -583,3 +583,36 @@ pub fn penalty_advice(
     }
     Ok((Value::Object(m), lines))
 }
+
+/// The linear solution scaled to each fraction of the load:
+/// `results_<f>.vtu` (and `interfaces_<f>.vtu`) plus `results.pvd`, so that
+/// ParaView plays the load steps (valid for linear analyses only).
+pub fn write_fractions(
+    dir: &Path,
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+    fractions: &[f64],
+) -> Result<()> {
+    let mut frames = Vec::new();
+    for &f in fractions {
+        let uf: Vec<f64> = u.iter().map(|v| v * f).collect();
+        let cells = cell_results(model, &uf, state)?;
+        let name = format!("results_{:03}.vtu", (f * 100.0).round() as i64);
+        write_vtu(&dir.join(&name), model, &uf, &cells)?;
+        frames.push((f, name));
+    }
+    write_pvd(&dir.join("results.pvd"), &frames)
+}
+
+/// A ParaView collection file listing `(time, file)` frames.
+pub fn write_pvd(path: &Path, frames: &[(f64, String)]) -> Result<()> {
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n",
+    );
+    for (t, f) in frames {
+        s += &format!("    <DataSet timestep=\"{t}\" part=\"0\" file=\"{f}\"/>\n");
+    }
+    s += "  </Collection>\n</VTKFile>\n";
+    std::fs::write(path, s).with_context(|| format!("cannot write {}", path.display()))
+}

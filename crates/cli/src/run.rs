@@ -21,6 +21,7 @@ pub struct Prepared {
     pub output_dir: Option<PathBuf>,
     pub vtu: bool,
     pub probes: Vec<String>,
+    pub fractions: Vec<f64>,
     pub reference: Option<(scene::ReferenceSpec, usize)>,
     pub thickness: std::collections::BTreeMap<String, f64>,
     pub notes: Vec<String>,
@@ -52,6 +53,7 @@ pub fn prepare(input: &Path) -> Result<Prepared> {
                 output_dir: sf.scene.output.directory.clone(),
                 vtu: sf.scene.output.vtu,
                 probes: sf.scene.output.probes.clone(),
+                fractions: sf.scene.output.fractions.clone(),
                 reference: match &sf.scene.reference {
                     Some(r) => Some((r.clone(), r.component_index(&sf.path)?)),
                     None => None,
@@ -80,6 +82,7 @@ pub fn prepare(input: &Path) -> Result<Prepared> {
                 output_dir: None,
                 vtu: true,
                 probes: Vec::new(),
+                fractions: Vec::new(),
                 reference: None,
                 thickness: Default::default(),
                 notes,
@@ -151,6 +154,9 @@ pub fn run(input: &Path, out: Option<&Path>, progress: bool) -> Result<()> {
     if p.vtu {
         output::write_vtu(&dir.join("results.vtu"), &p.model, &res.u, &cells)?;
         output::write_interface_vtu(&dir, &p.model, &res.u, &interfaces)?;
+        if !p.fractions.is_empty() {
+            output::write_fractions(&dir, &p.model, &res.u, &res.state, &p.fractions)?;
+        }
     }
     let (advice, advice_lines) =
         output::penalty_advice(&p.model, &|b| p.thickness.get(b).copied())?;

@@ -37,6 +37,9 @@ pub struct Scene {
     /// Traction-free cuts between two element sets (nodes duplicated, no element).
     #[serde(default)]
     pub crack: Vec<CrackSpec>,
+    /// Node sets selected by a box of coordinates.
+    #[serde(default)]
+    pub node_set: Vec<NodeSetSpec>,
     /// Element type and material of imported blocks, by block name.
     #[serde(default)]
     pub blocks: Vec<BlockSpec>,
@@ -159,6 +162,21 @@ pub struct InterfaceSpec {
     /// Physical thickness of the adhesive layer, if any (for Turon's
     /// stiffness rule K = 50 E / t in the penalty advisor).
     pub thickness: Option<f64>,
+    /// Keep only the interface elements whose centre lies in this box
+    /// `[[xmin, ymin, zmin], [xmax, ymax, zmax]]`; the rest of the shared
+    /// surface is cut (traction free), e.g. a notch ahead of a ligament.
+    pub within: Option<Spanned<[[f64; 3]; 2]>>,
+}
+
+/// A node set of all nodes inside an axis-aligned box (bounds inclusive,
+/// with a tolerance of 1e-9 of the mesh size).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NodeSetSpec {
+    /// Name of the new set.
+    pub name: String,
+    /// `[[xmin, ymin, zmin], [xmax, ymax, zmax]]`.
+    pub within: Spanned<[[f64; 3]; 2]>,
 }
 
 /// A traction-free cut (e.g. a notch) between two element sets.
@@ -219,6 +237,8 @@ pub struct LoadSpec {
     pub face_set: Option<Spanned<String>>,
     /// Force applied at *each* node of `set` (like `*CLOAD`).
     pub force: Option<[f64; 3]>,
+    /// Total force shared equally by the nodes of `set`.
+    pub total_force: Option<[f64; 3]>,
     /// Pressure on `face_set`, positive pushing into the solid.
     pub pressure: Option<f64>,
     /// Traction vector (force per area) on `face_set`.
@@ -238,6 +258,10 @@ pub struct OutputSpec {
     /// (`probes.NAME = [ux, uy, uz]`).
     #[serde(default)]
     pub probes: Vec<String>,
+    /// Also write the (linear) solution scaled to these fractions of the
+    /// load, as `results_<f>.vtu` with a `results.pvd` index.
+    #[serde(default)]
+    pub fractions: Vec<f64>,
 }
 
 impl Default for OutputSpec {
@@ -246,6 +270,7 @@ impl Default for OutputSpec {
             directory: None,
             vtu: true,
             probes: Vec::new(),
+            fractions: Vec::new(),
         }
     }
 }
@@ -381,7 +406,19 @@ fn generate_box(
         .map_err(|e| anyhow!("{}: key `{key}`: {e}", sf.at(element.span())))
 }
 
-/// Load the mesh of a scene, then insert its interfaces and cracks.
+fn mesh_diagonal(mesh: &Mesh) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &mesh.nodes {
+        for c in 0..3 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// Load the mesh of a scene, then insert its cracks, box node sets and interfaces.
 pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
     let m = &sf.scene.mesh;
     let kind = m.kind.get_ref().as_str();
@@ -466,17 +503,90 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
         mesh.blocks.remove(ins.block);
         mesh.element_sets.remove(&c.name);
     }
+    for (i, ns) in sf.scene.node_set.iter().enumerate() {
+        let [lo, hi] = *ns.within.get_ref();
+        let size = (0..3)
+            .map(|c| hi[c] - lo[c])
+            .fold(0.0f64, f64::max)
+            .max(1e-300);
+        let diag = mesh_diagonal(&mesh).max(size);
+        let tol = 1e-9 * diag;
+        let nodes: Vec<usize> = (0..mesh.nodes.len())
+            .filter(|&n| {
+                (0..3).all(|c| mesh.nodes[n][c] >= lo[c] - tol && mesh.nodes[n][c] <= hi[c] + tol)
+            })
+            .collect();
+        if nodes.is_empty() {
+            bail!(
+                "{}: key `node_set[{i}].within`: no node lies in {lo:?} .. {hi:?}",
+                sf.at(ns.within.span())
+            );
+        }
+        if mesh.node_sets.insert(ns.name.clone(), nodes).is_some() {
+            bail!(
+                "{}: key `node_set[{i}].name`: a node set `{}` already exists",
+                sf.at(ns.within.span()),
+                ns.name
+            );
+        }
+    }
     for (i, f) in sf.scene.interface.iter().enumerate() {
         let [a, b] = f.between.get_ref();
-        junta_core::mesh::interface::insert_interface(&mut mesh, a, b, &f.name, f.law.get_ref())
-            .map_err(|e| {
-                anyhow!(
-                    "{}: key `interface[{i}].between`: {e}",
-                    sf.at(f.between.span())
-                )
-            })?;
+        let ins = junta_core::mesh::interface::insert_interface(
+            &mut mesh,
+            a,
+            b,
+            &f.name,
+            f.law.get_ref(),
+        )
+        .map_err(|e| {
+            anyhow!(
+                "{}: key `interface[{i}].between`: {e}",
+                sf.at(f.between.span())
+            )
+        })?;
+        if let Some(w) = &f.within {
+            keep_within(&mut mesh, ins.block, &f.name, *w.get_ref())
+                .map_err(|e| anyhow!("{}: key `interface[{i}].within`: {e}", sf.at(w.span())))?;
+        }
     }
     Ok(mesh)
+}
+
+/// Keep only the elements of interface block `block` whose centre lies in
+/// the box `[lo, hi]`; the rest of the surface stays cut (traction free).
+fn keep_within(mesh: &mut Mesh, block: usize, name: &str, [lo, hi]: [[f64; 3]; 2]) -> Result<()> {
+    let tol = 1e-9 * mesh_diagonal(mesh);
+    let nodes = &mesh.nodes;
+    let b = &mut mesh.blocks[block];
+    let npe = b.nodes_per_element();
+    let kept: Vec<usize> = b
+        .connectivity
+        .chunks(npe)
+        .filter(|c| {
+            let mut centre = [0.0; 3];
+            for &n in c.iter() {
+                for k in 0..3 {
+                    centre[k] += nodes[n][k] / npe as f64;
+                }
+            }
+            (0..3).all(|k| centre[k] >= lo[k] - tol && centre[k] <= hi[k] + tol)
+        })
+        .flatten()
+        .copied()
+        .collect();
+    if kept.is_empty() {
+        bail!("no interface element lies in {lo:?} .. {hi:?}");
+    }
+    b.connectivity = kept;
+    let n = b.len();
+    mesh.element_sets.insert(
+        name.to_string(),
+        (0..n)
+            .map(|element| junta_core::mesh::ElementRef { block, element })
+            .collect(),
+    );
+    Ok(())
 }
 
 /// Build the element object of every block (after `[[blocks]]` overrides).
@@ -646,9 +756,6 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
     for (i, l) in sf.scene.load.iter().enumerate() {
         match (&l.set, &l.face_set) {
             (Some(set), None) => {
-                let f = l.force.ok_or_else(|| {
-                    anyhow!("{}: key `load[{i}]`: a node-set load needs `force = [fx, fy, fz]`", sf.at(set.span()))
-                })?;
                 if l.pressure.is_some() || l.traction.is_some() {
                     bail!(
                         "{}: key `load[{i}]`: `pressure` and `traction` need `face_set`, not `set`",
@@ -658,6 +765,14 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
                 let nodes = mesh
                     .node_set(set.get_ref())
                     .map_err(|e| anyhow!("{}: key `load[{i}].set`: {e}", sf.at(set.span())))?;
+                let f = match (l.force, l.total_force) {
+                    (Some(f), None) => f,
+                    (None, Some(t)) if !nodes.is_empty() => t.map(|v| v / nodes.len() as f64),
+                    _ => bail!(
+                        "{}: key `load[{i}]`: a node-set load needs exactly one of `force = [fx, fy, fz]` (per node) or `total_force` (shared equally)",
+                        sf.at(set.span())
+                    ),
+                };
                 for &n in nodes {
                     for c in 0..3 {
                         f_ext[3 * n + c] += f[c];
@@ -669,7 +784,7 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
                     .face_set(fs.get_ref())
                     .map_err(|e| anyhow!("{}: key `load[{i}].face_set`: {e}", sf.at(fs.span())))?
                     .to_vec();
-                let load = match (l.pressure, l.traction, l.force) {
+                let load = match (l.pressure, l.traction, l.force.or(l.total_force)) {
                     (Some(p), None, None) => junta_elements::face_load::FaceLoad::Pressure(p),
                     (None, Some(t), None) => junta_elements::face_load::FaceLoad::Traction(t),
                     _ => bail!(

@@ -328,3 +328,164 @@ pub fn report(rows: &[SweepRow]) {
         }
     }
 }
+
+/// Normal-traction profile along one axis for one (d, rule) run.
+#[derive(Debug, Clone)]
+pub struct Profile {
+    pub d: Option<f64>,
+    pub rule: String,
+    /// `(coordinate, mean normal traction of the points at that coordinate)`, sorted.
+    pub points: Vec<(f64, f64)>,
+    /// Oscillation measure: sum |t_{i+1} - 2 t_i + t_{i-1}| / (max - min).
+    pub roughness: f64,
+    /// Number of sign changes of the slope dt/dx (local extrema).
+    pub extrema: usize,
+}
+
+fn set_integration(sf: &mut scene::SceneFile, rule: &str) {
+    for f in sf.scene.interface.iter_mut() {
+        f.integration = Some(rule.to_string());
+    }
+}
+
+/// Roughness and extrema of a sorted profile.
+pub fn oscillation(points: &[(f64, f64)]) -> (f64, usize) {
+    if points.len() < 3 {
+        return (0.0, 0);
+    }
+    let (lo, hi) = points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.1), b.max(p.1))
+        });
+    let span = (hi - lo).max(f64::MIN_POSITIVE);
+    let mut rough = 0.0;
+    let mut extrema = 0;
+    for w in points.windows(3) {
+        rough += (w[2].1 - 2.0 * w[1].1 + w[0].1).abs();
+        let (s1, s2) = (w[1].1 - w[0].1, w[2].1 - w[1].1);
+        if s1 * s2 < 0.0 {
+            extrema += 1;
+        }
+    }
+    (rough / span, extrema)
+}
+
+/// `junta sweep integration`: run the scene with Gauss and Lobatto
+/// integration of every interface (and, if given, for several penalty
+/// values), and write the normal traction along `axis` (traction.csv,
+/// traction.svg).
+pub fn sweep_integration(
+    input: &Path,
+    ds: &[f64],
+    axis: usize,
+    out: &Path,
+) -> Result<Vec<Profile>> {
+    let mut sf = scene::SceneFile::read(input)?;
+    if sf.scene.interface.is_empty() {
+        bail!("{}: the scene has no [[interface]]", input.display());
+    }
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let d_values: Vec<Option<f64>> = if ds.is_empty() {
+        vec![None]
+    } else {
+        ds.iter().map(|&d| Some(d)).collect()
+    };
+    let mut profiles = Vec::new();
+    let mut csv = String::from("d,rule,x,y,z,t1,t2,tn\n");
+    for d in &d_values {
+        if let Some(d) = d {
+            if set_penalty(&mut sf, *d) == 0 {
+                bail!(
+                    "{}: --d needs `linear_penalty` laws in [laws]",
+                    input.display()
+                );
+            }
+        }
+        for rule in ["gauss", "lobatto"] {
+            set_integration(&mut sf, rule);
+            let model = scene::build_model(&sf)?;
+            let (key, table) = scene::solver_table(&sf);
+            let mut solver = (registry::find::<SolverEntry>(&key)?.build)(&table)?;
+            let res = solve_linear_static(&model, solver.as_mut())
+                .with_context(|| format!("solving with {rule} integration"))?;
+            let ifs = output::interface_results(&model, &res.u, &res.state)?;
+            let mut pts: Vec<(f64, f64)> = Vec::new();
+            for p in ifs.iter().flat_map(|i| i.points.iter()) {
+                let t = p.get("traction").unwrap_or(&[0.0; 3]);
+                writeln!(
+                    csv,
+                    "{},{rule},{:e},{:e},{:e},{:e},{:e},{:e}",
+                    d.map(|v| format!("{v:e}")).unwrap_or_default(),
+                    p.position[0],
+                    p.position[1],
+                    p.position[2],
+                    t[0],
+                    t[1],
+                    t[2]
+                )?;
+                pts.push((p.position[axis], t[2]));
+            }
+            pts.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap());
+            // average the points that share a coordinate (through the depth)
+            let scale = pts
+                .last()
+                .map_or(1.0, |l| (l.0 - pts[0].0).abs())
+                .max(1e-300);
+            let mut profile: Vec<(f64, f64, usize)> = Vec::new();
+            for (x, t) in pts {
+                match profile.last_mut() {
+                    Some(last) if (x - last.0).abs() <= 1e-9 * scale => {
+                        last.1 += t;
+                        last.2 += 1;
+                    }
+                    _ => profile.push((x, t, 1)),
+                }
+            }
+            let points: Vec<(f64, f64)> = profile
+                .iter()
+                .map(|(x, t, n)| (*x, t / *n as f64))
+                .collect();
+            let (roughness, extrema) = oscillation(&points);
+            profiles.push(Profile {
+                d: *d,
+                rule: rule.into(),
+                points,
+                roughness,
+                extrema,
+            });
+        }
+    }
+    std::fs::write(out.join("traction.csv"), csv).context("cannot write traction.csv")?;
+    let axis_name = ["x", "y", "z"][axis];
+    let panels: Vec<plot::Panel> = d_values
+        .iter()
+        .map(|d| plot::Panel {
+            title: format!(
+                "normal traction along {axis_name}{}",
+                d.map(|v| format!(", d = {v:.1e}")).unwrap_or_default()
+            ),
+            x_label: axis_name.into(),
+            y_label: "normal traction t_n".into(),
+            log_x: false,
+            log_y: false,
+            series: profiles
+                .iter()
+                .filter(|p| p.d == *d)
+                .enumerate()
+                .map(|(i, p)| plot::Series {
+                    name: format!(
+                        "{} (roughness {:.2}, {} extrema)",
+                        p.rule, p.roughness, p.extrema
+                    ),
+                    points: p.points.clone(),
+                    color: i,
+                    markers_only: false,
+                })
+                .collect(),
+            vlines: vec![],
+        })
+        .collect();
+    plot::write_svg(&out.join("traction.svg"), &panels)?;
+    Ok(profiles)
+}

@@ -292,3 +292,40 @@ fn bad_interface_input_gives_clear_errors() {
     ));
     assert!(e.contains("top") && e.contains("upper"), "{e}");
 }
+
+#[test]
+fn lobatto_removes_gauss_traction_oscillations() {
+    // BENCHMARKS.md section 5 (Schellekens & de Borst 1993): Gauss-integrated
+    // stiff interfaces oscillate where the traction gradient is steep;
+    // nodal (Lobatto) integration does not.
+    let dir = tempfile::tempdir().unwrap();
+    let out = junta()
+        .args(["sweep", "integration"])
+        .arg(repo().join("examples/oscillation/notched_beam.toml"))
+        .args(["--d", "1e5,1e9", "-o"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(
+        out.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(dir.path().join("traction.svg").exists());
+    let extrema = |d: &str, rule: &str| -> usize {
+        let line = stdout
+            .lines()
+            .find(|l| l.contains(&format!("d = {d:>9}")) && l.contains(rule))
+            .unwrap_or_else(|| panic!("no line for {d} {rule}:\n{stdout}"));
+        let i = line.find(" local extrema").unwrap();
+        line[..i].rsplit(' ').next().unwrap().parse().unwrap()
+    };
+    assert_eq!(extrema("1.0e5", "gauss"), 0, "{stdout}");
+    assert_eq!(extrema("1.0e5", "lobatto"), 0, "{stdout}");
+    assert!(extrema("1.0e9", "gauss") >= 4, "{stdout}");
+    assert_eq!(extrema("1.0e9", "lobatto"), 0, "{stdout}");
+    // equilibrium: both rules carry the same resultant (the csv has every point)
+    let csv = std::fs::read_to_string(dir.path().join("traction.csv")).unwrap();
+    assert!(csv.lines().count() > 64);
+}

@@ -35,9 +35,8 @@ pub mod cholesky;
 mod common;
 pub mod gallery;
 pub mod linear_static;
+pub mod newton;
 pub mod ordering;
-// pub mod newton; // slot for the nonlinear driver (Newton-Raphson with line
-//                 // search, load stepping with cut-back, arc length): a later issue.
 
 pub use cg::{CgSettings, CgSolver, Preconditioner};
 pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats};

@@ -1,0 +1,1027 @@
+//! Nonlinear static analysis: proportional load program, incremental
+//! Newton-Raphson with line search, adaptive increments with cut-back, the
+//! paper's small-increment rule, and checkpoint / restart.
+//!
+//! # Load program
+//!
+//! Everything the model applies is scaled by one load factor `lambda`: the
+//! external forces `model.f_ext` and the prescribed displacements
+//! `model.dofs.prescribed`. A program is a list of step ends
+//! `[lambda_1, lambda_2, ...]`; step `s` goes from `lambda_{s-1}` (0 for the
+//! first step) to `lambda_s`, so `[1.0]` loads, `[1.0, 0.0]` loads and
+//! unloads. Force control and displacement control are the same thing here:
+//! it depends on what the model prescribes.
+//!
+//! Increment sizes are *fractions of the step* (`t` in `[0, 1]`,
+//! `lambda = lambda_start + t (lambda_end - lambda_start)`); the last
+//! increment of a step is shortened to end exactly on `lambda_end`.
+//!
+//! # Equations
+//!
+//! With `u` the full displacement vector (constrained dofs hold
+//! `lambda * prescribed`), the residual is
+//!
+//! ```text
+//! r(u, lambda) = f_int(u) - lambda f_ext        (all dofs)
+//! ```
+//!
+//! Its free part must vanish; on constrained dofs it is the reaction.
+//! Each increment `lambda_n -> lambda_{n+1}` starts from the converged
+//! free displacements of the previous increment with the constrained dofs
+//! moved to `lambda_{n+1} * prescribed` (the prescribed jump enters the first
+//! residual through `f_int`, exactly as in [`crate::linear_static`]). Full
+//! Newton then iterates with the consistent tangent `K = d f_int / d u`
+//! assembled by the elements:
+//!
+//! ```text
+//! K_ff(u_i) du = -r_f(u_i),    u_{i+1} = u_i + s du
+//! ```
+//!
+//! where the step length `s` comes from a backtracking line search on the
+//! residual norm: `s = 1, 1/2, 1/4, ...` (at most `max_line_search`
+//! halvings), the first `s` with `|r_f(u_i + s du)| <= (1 - 1e-4 s) |r_f(u_i)|`
+//! is taken; if none passes, the `s` with the smallest residual is taken.
+//!
+//! # Convergence
+//!
+//! An increment has converged after iteration `i >= 1` when both hold:
+//!
+//! ```text
+//! force:   |r_f(u_i)| / max(|lambda f_ext,f|, |reactions|, floor) <= tol_force
+//! energy:  |s du_i . r_f(u_i)| / |s du_1 . r_f(u_0)|             <= tol_energy
+//! ```
+//!
+//! The energy of an iteration is the work of the remaining out-of-balance
+//! force on the last correction; it is measured relative to the first
+//! iteration's work of the increment. `floor` = `force_floor` times the
+//! largest force scale `max(|lambda f_ext,f|, |reactions|)` met at a
+//! converged increment of the run so far: it keeps the criterion meaningful
+//! when the current load is zero (e.g. at the end of an unloading step).
+//! An increment that changes nothing (zero load-factor increment) may
+//! converge with zero iterations; a model without free dofs always does.
+//!
+//! # Cut-back
+//!
+//! An attempt fails on: the iteration limit, a non-finite residual or
+//! correction, a residual growing past `divergence_ratio` times the first
+//! one of the attempt, a linear-solver error (e.g. a tangent that is not
+//! positive definite past a limit point), or an element error (e.g. a law
+//! failure). The driver then restores the trial state
+//! ([`StateStore::restore`]), `u` and `lambda` to the last converged
+//! increment, multiplies the increment by `cutback` and retries. Below
+//! `min_increment` it stops with [`NonlinearError::IncrementTooSmall`];
+//! every converged increment has been reported to the observer by then.
+//!
+//! Before every assembly the trial state is reset to the committed one, so
+//! the trial state is always the result of exactly one evaluation from the
+//! last converged state, whatever an element leaves untouched.
+//!
+//! # Increment size
+//!
+//! The first increment of each step is `initial_increment` (fraction of the
+//! step). After an increment that converged without cut-back in at most
+//! `growth_iterations` iterations, the next one is `growth` times larger
+//! (capped at `max_increment`); otherwise it keeps its size. *Release rule*
+//! (paper, section 4): after every converged increment the driver asks
+//! every element [`Element::wants_small_increments`] with its committed
+//! state; while any says yes, every increment is `small_increment`
+//! (constant). When none does any more, the adaptive rule resumes from the
+//! small size.
+//!
+//! # Observer, checkpoint, restart
+//!
+//! After each converged increment the driver commits the state
+//! ([`StateStore::commit`]), decides the next increment's size, and calls
+//! the observer with an [`IncrementView`]: the [`IncrementReport`], the full
+//! `u`, the full residual `f_int - lambda f_ext` (reactions on constrained
+//! dofs), the state, and [`IncrementView::checkpoint`]. The observer returns
+//! [`Control::Stop`] to end the run cleanly. A [`Checkpoint`] holds
+//! everything the driver's future depends on (step, fraction of the step,
+//! lambda, increment counter, next increment size, small-increment flag,
+//! force-scale floor, `u`, committed state), so a run restarted from it
+//! computes exactly the increments of an uninterrupted run.
+//!
+//! The symbolic analysis of the linear solver is done once per run (on the
+//! first tangent), then `factorize` once per Newton iteration. Work vectors
+//! are allocated once per run.
+//!
+//! [`Element::wants_small_increments`]: junta_core::Element::wants_small_increments
+
+use crate::linear_static::Timings;
+use junta_core::assembly::Assembler;
+use junta_core::dof::CONSTRAINED;
+use junta_core::element::StepInfo;
+use junta_core::state::StateStore;
+use junta_core::{CoreError, LinearSolver, Model, SolverError, SymmetricCsc};
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+use thiserror::Error;
+
+/// Settings of the incremental-iterative driver. Increment sizes are
+/// fractions of the current step's load-factor range.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct NewtonSettings {
+    /// First increment of each step, as a fraction of the step. Default 0.1.
+    pub initial_increment: f64,
+    /// Smallest increment (fraction of the step) before giving up with
+    /// [`NonlinearError::IncrementTooSmall`]. Default 1e-6.
+    pub min_increment: f64,
+    /// Largest increment (fraction of the step). Default 0.25.
+    pub max_increment: f64,
+    /// Newton iterations allowed per increment attempt. Default 25.
+    pub max_iterations: usize,
+    /// Relative force tolerance:
+    /// `|r_f| / max(|lambda f_ext,f|, |reactions|, floor)`. Default 1e-6.
+    pub tol_force: f64,
+    /// Relative energy tolerance: `|du_i . r_i| / |du_1 . r_0|`.
+    /// Default 1e-12.
+    pub tol_energy: f64,
+    /// Backtracking line search on the residual norm. Default true.
+    pub line_search: bool,
+    /// Maximum halvings of the step length in the line search. Default 5.
+    pub max_line_search: usize,
+    /// Growth factor of the increment after a fast increment. Default 1.5.
+    pub growth: f64,
+    /// An increment converged in at most this many iterations (and without
+    /// cut-back) lets the next one grow. Default 4.
+    pub growth_iterations: usize,
+    /// Factor applied to the increment on a cut-back. Default 0.5.
+    pub cutback: f64,
+    /// Constant increment (fraction of the step) used while any element
+    /// wants small increments (paper, section 4: a point is being released).
+    /// `None` (default) means `min(initial_increment, 0.01)`.
+    pub small_increment: Option<f64>,
+    /// An attempt whose residual norm exceeds this many times its first
+    /// residual norm is diverging and is cut back. Default 1e6.
+    pub divergence_ratio: f64,
+    /// Floor of the force scale of the force criterion, as a fraction of the
+    /// largest force scale met at a converged increment. Default 1e-3.
+    pub force_floor: f64,
+}
+
+impl Default for NewtonSettings {
+    fn default() -> Self {
+        NewtonSettings {
+            initial_increment: 0.1,
+            min_increment: 1e-6,
+            max_increment: 0.25,
+            max_iterations: 25,
+            tol_force: 1e-6,
+            tol_energy: 1e-12,
+            line_search: true,
+            max_line_search: 5,
+            growth: 1.5,
+            growth_iterations: 4,
+            cutback: 0.5,
+            small_increment: None,
+            divergence_ratio: 1e6,
+            force_floor: 1e-3,
+        }
+    }
+}
+
+impl NewtonSettings {
+    /// The small increment in use: `small_increment` or
+    /// `min(initial_increment, 0.01)`.
+    pub fn small_increment(&self) -> f64 {
+        self.small_increment
+            .unwrap_or(self.initial_increment.min(0.01))
+    }
+
+    fn validate(&self) -> Result<(), CoreError> {
+        let bad = |what: &str| Err(CoreError::Invalid(format!("Newton settings: {what}")));
+        let pos = |x: f64| x > 0.0 && x.is_finite();
+        if !(pos(self.min_increment) && pos(self.initial_increment) && pos(self.max_increment)) {
+            return bad("increments must be positive and finite");
+        }
+        if self.min_increment > self.initial_increment.min(self.max_increment) {
+            return bad("min_increment must not exceed initial_increment and max_increment");
+        }
+        if !pos(self.small_increment()) || self.small_increment() < self.min_increment {
+            return bad("small_increment must be positive and at least min_increment");
+        }
+        if !(self.cutback > 0.0 && self.cutback < 1.0) {
+            return bad("cutback must lie in (0, 1)");
+        }
+        if !(self.growth >= 1.0 && self.growth.is_finite()) {
+            return bad("growth must be >= 1");
+        }
+        if self.max_iterations == 0 {
+            return bad("max_iterations must be >= 1");
+        }
+        if !(pos(self.tol_force) && pos(self.tol_energy)) {
+            return bad("tolerances must be positive");
+        }
+        if !(self.divergence_ratio > 1.0) || !(self.force_floor >= 0.0) {
+            return bad("divergence_ratio must exceed 1 and force_floor must be >= 0");
+        }
+        Ok(())
+    }
+}
+
+/// What the observer wants after an increment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Control {
+    /// Go on with the next increment.
+    Continue,
+    /// End the run now (the increment just reported is kept).
+    Stop,
+}
+
+/// Why an increment attempt failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum IncrementFailure {
+    /// `max_iterations` reached without convergence.
+    IterationLimit,
+    /// NaN or infinity in the residual or the correction.
+    NonFinite,
+    /// The residual norm grew past `divergence_ratio` times the first one.
+    Diverging {
+        /// Residual norm reached.
+        residual: f64,
+        /// First residual norm of the attempt.
+        initial: f64,
+    },
+    /// The linear solver failed (e.g. the tangent is not positive definite).
+    Solver(SolverError),
+    /// An element failed (e.g. its law), with the message.
+    Element(String),
+}
+
+impl std::fmt::Display for IncrementFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            IncrementFailure::IterationLimit => write!(f, "iteration limit reached"),
+            IncrementFailure::NonFinite => write!(f, "residual or correction not finite"),
+            IncrementFailure::Diverging { residual, initial } => write!(
+                f,
+                "diverging: residual norm {residual:.3e} against {initial:.3e} at the start"
+            ),
+            IncrementFailure::Solver(e) => write!(f, "linear solver: {e}"),
+            IncrementFailure::Element(m) => write!(f, "element: {m}"),
+        }
+    }
+}
+
+/// Failure of a nonlinear analysis.
+#[derive(Debug, Error)]
+pub enum NonlinearError {
+    /// Cut-backs drove the increment below `min_increment`.
+    #[error(
+        "load increment too small: stopped at lambda = {lambda:.9e} (step {step}), the last \
+         attempted increment {increment:.3e} failed with relative residual {last_residual:.3e} \
+         after {iterations} iterations: {reason}"
+    )]
+    IncrementTooSmall {
+        /// Step index (0-based) of the failed increment.
+        step: usize,
+        /// Load factor of the last converged increment.
+        lambda: f64,
+        /// Load-factor increment of the last failed attempt.
+        increment: f64,
+        /// Relative force residual at the end of the last failed attempt.
+        last_residual: f64,
+        /// Iterations made by the last failed attempt.
+        iterations: usize,
+        /// Why the last attempt failed.
+        reason: IncrementFailure,
+    },
+    /// Model, input or non-recoverable element failure.
+    #[error(transparent)]
+    Core(#[from] CoreError),
+    /// Fatal linear solver failure (the symbolic analysis).
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+}
+
+/// What one converged increment did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IncrementReport {
+    /// Step index (0-based) in the program.
+    pub step: usize,
+    /// Global index of the increment (1-based, converged increments only,
+    /// counted from the start of the analysis across restarts).
+    pub increment_index: usize,
+    /// Load factor reached.
+    pub lambda: f64,
+    /// Load-factor increment.
+    pub delta_lambda: f64,
+    /// Fraction of the step done after this increment.
+    pub step_fraction: f64,
+    /// Newton iterations of the converged attempt.
+    pub iterations: usize,
+    /// Final relative force residual.
+    pub residual: f64,
+    /// Final relative energy.
+    pub energy: f64,
+    /// Cut-backs before this increment converged.
+    pub cutbacks: usize,
+    /// Seconds spent on this increment, failed attempts included
+    /// (`analyze` only on the run's first increment; `pattern` unused).
+    pub seconds: Timings,
+    /// True when this increment was sized by the small-increment rule.
+    pub small_increment_mode: bool,
+}
+
+/// The driver's position in the program: everything its future depends on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Cursor {
+    step: usize,
+    t: f64,
+    lambda: f64,
+    increment_index: usize,
+    size: f64,
+    small: bool,
+    force_peak: f64,
+}
+
+/// A restart point after a converged increment. Serialisable, so that a
+/// front end can write it to disk; [`solve_nonlinear`] continues from it
+/// with exactly the increments an uninterrupted run would make (same
+/// program and settings required).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Checkpoint {
+    /// Step index (0-based) of the last converged increment.
+    pub step: usize,
+    /// Fraction of that step done (1 = step finished).
+    pub step_fraction: f64,
+    /// Load factor reached.
+    pub lambda: f64,
+    /// Converged increments so far (global).
+    pub increment_index: usize,
+    /// Size of the next increment (fraction of the step).
+    pub increment_size: f64,
+    /// Whether the small-increment rule is active for the next increment.
+    pub small_increment_mode: bool,
+    /// Largest force scale met so far (floor of the force criterion).
+    pub force_peak: f64,
+    /// Full displacement vector.
+    pub u: Vec<f64>,
+    /// Committed state.
+    pub state_committed: Vec<f64>,
+}
+
+impl Checkpoint {
+    fn cursor(&self) -> Cursor {
+        Cursor {
+            step: self.step,
+            t: self.step_fraction,
+            lambda: self.lambda,
+            increment_index: self.increment_index,
+            size: self.increment_size,
+            small: self.small_increment_mode,
+            force_peak: self.force_peak,
+        }
+    }
+
+    fn new(c: &Cursor, u: &[f64], state: &StateStore) -> Self {
+        Checkpoint {
+            step: c.step,
+            step_fraction: c.t,
+            lambda: c.lambda,
+            increment_index: c.increment_index,
+            increment_size: c.size,
+            small_increment_mode: c.small,
+            force_peak: c.force_peak,
+            u: u.to_vec(),
+            state_committed: state.committed.clone(),
+        }
+    }
+}
+
+/// What the observer sees after a converged increment.
+#[derive(Debug)]
+pub struct IncrementView<'a> {
+    /// The increment's report.
+    pub report: &'a IncrementReport,
+    /// Full displacement vector.
+    pub u: &'a [f64],
+    /// Full residual `f_int - lambda f_ext` (reactions on constrained dofs).
+    pub residual: &'a [f64],
+    /// State (committed = trial = this increment's).
+    pub state: &'a StateStore,
+    /// Relative force residual after each iteration of the converged attempt
+    /// (index 0: before the first correction).
+    pub residual_history: &'a [f64],
+    cursor: Cursor,
+}
+
+impl IncrementView<'_> {
+    /// A restart point after this increment.
+    pub fn checkpoint(&self) -> Checkpoint {
+        Checkpoint::new(&self.cursor, self.u, self.state)
+    }
+}
+
+/// Totals of a run (of this call only, for a restarted run).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct NonlinearSummary {
+    /// Converged increments.
+    pub increments: usize,
+    /// Newton iterations, failed attempts included.
+    pub newton_iterations_total: usize,
+    /// Most iterations of a converged increment.
+    pub newton_iterations_max: usize,
+    /// Cut-backs.
+    pub cutbacks: usize,
+    /// Seconds per phase (`pattern`: sparsity pattern; `analyze`: symbolic).
+    pub timings: Timings,
+    /// Symbolic analyses done (1, or 0 without free dofs / increments).
+    pub analyze_count: usize,
+    /// Load factor reached.
+    pub final_lambda: f64,
+    /// True when the observer stopped the run.
+    pub stopped_by_observer: bool,
+}
+
+/// Result of [`solve_nonlinear`] that ran to the end of its program or was
+/// stopped by the observer.
+#[derive(Debug, Clone)]
+pub struct NonlinearRun {
+    /// Totals.
+    pub summary: NonlinearSummary,
+    /// Final full displacement vector.
+    pub u: Vec<f64>,
+    /// Final full residual `f_int - lambda f_ext`.
+    pub residual: Vec<f64>,
+    /// Final state.
+    pub state: StateStore,
+    cursor: Cursor,
+}
+
+impl NonlinearRun {
+    /// A restart point at the end of this run.
+    pub fn checkpoint(&self) -> Checkpoint {
+        Checkpoint::new(&self.cursor, &self.u, &self.state)
+    }
+}
+
+/// One residual evaluation.
+#[derive(Debug, Clone, Copy)]
+struct Eval {
+    /// |r_f|
+    abs: f64,
+    /// |r_f| / scale
+    rel: f64,
+    /// max(|lambda f_ext,f|, |reactions|)
+    scale_now: f64,
+}
+
+/// Outcome of one increment attempt.
+enum Attempt {
+    Converged {
+        iterations: usize,
+        eval: Eval,
+        energy: f64,
+    },
+    Failed {
+        iterations: usize,
+        rel: f64,
+        reason: IncrementFailure,
+    },
+}
+
+/// Buffers and counters of one run, allocated once.
+struct Work<'m> {
+    model: &'m Model,
+    asm: Assembler,
+    k: SymmetricCsc,
+    coords: Vec<[f64; 3]>,
+    free_dofs: Vec<usize>,
+    fext_free_norm: f64,
+    f_int: Vec<f64>,
+    res: Vec<f64>,
+    u: Vec<f64>,
+    u_base: Vec<f64>,
+    u_conv: Vec<f64>,
+    du: Vec<f64>,
+    r_prev: Vec<f64>,
+    history: Vec<f64>,
+    timings: Timings,
+    analyzed: bool,
+    iterations: usize,
+    settings: NewtonSettings,
+}
+
+fn is_element_error(e: &CoreError) -> bool {
+    matches!(e, CoreError::Element { .. })
+}
+
+impl Work<'_> {
+    /// Assemble at `self.u` and fill the residual.
+    fn evaluate(
+        &mut self,
+        state: &mut StateStore,
+        step: StepInfo,
+        lambda: f64,
+        force_peak: f64,
+    ) -> Result<Eval, CoreError> {
+        let m = self.model;
+        state.restore();
+        let t = Instant::now();
+        let r = self.asm.assemble(
+            &m.mesh,
+            &m.elements,
+            &m.dofs,
+            &self.u,
+            state,
+            step,
+            Some(&mut self.k),
+            &mut self.f_int,
+        );
+        self.timings.assemble += t.elapsed().as_secs_f64();
+        r?;
+        let (mut free2, mut reac2) = (0.0, 0.0);
+        for (d, (r, (&fi, &fe))) in self
+            .res
+            .iter_mut()
+            .zip(self.f_int.iter().zip(&m.f_ext))
+            .enumerate()
+        {
+            *r = fi - lambda * fe;
+            if m.dofs.eq[d] != CONSTRAINED {
+                free2 += *r * *r;
+            } else if !m.dofs.orphan[d] {
+                reac2 += *r * *r;
+            }
+        }
+        let abs = free2.sqrt();
+        let scale_now = (lambda.abs() * self.fext_free_norm).max(reac2.sqrt());
+        let scale = scale_now
+            .max(self.settings.force_floor * force_peak)
+            .max(f64::MIN_POSITIVE);
+        Ok(Eval {
+            abs,
+            rel: abs / scale,
+            scale_now,
+        })
+    }
+
+    /// `u = u_base + s du` on the free dofs.
+    fn set_trial(&mut self, s: f64) {
+        for (e, &d) in self.free_dofs.iter().enumerate() {
+            self.u[d] = self.u_base[d] + s * self.du[e];
+        }
+    }
+
+    /// One attempt of an increment from the converged state in `u_conv`.
+    fn attempt(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+        state: &mut StateStore,
+        step: StepInfo,
+        force_peak: f64,
+    ) -> Result<Attempt, NonlinearError> {
+        let st = self.settings.clone();
+        let lambda = step.load_factor;
+        let m = self.model;
+        for (d, u) in self.u.iter_mut().enumerate() {
+            *u = if m.dofs.eq[d] == CONSTRAINED {
+                lambda * m.dofs.prescribed[d]
+            } else {
+                self.u_conv[d]
+            };
+        }
+        self.history.clear();
+        let fail = |iterations, rel, reason| Attempt::Failed {
+            iterations,
+            rel,
+            reason,
+        };
+        let mut ev = match self.evaluate(state, step, lambda, force_peak) {
+            Ok(e) => e,
+            Err(e) if is_element_error(&e) => {
+                return Ok(fail(0, f64::NAN, IncrementFailure::Element(e.to_string())))
+            }
+            Err(e) => return Err(e.into()),
+        };
+        if !ev.abs.is_finite() {
+            return Ok(fail(0, ev.rel, IncrementFailure::NonFinite));
+        }
+        self.history.push(ev.rel);
+        let nf = self.free_dofs.len();
+        if nf == 0 || (step.delta_load_factor == 0.0 && ev.rel <= st.tol_force) {
+            return Ok(Attempt::Converged {
+                iterations: 0,
+                eval: ev,
+                energy: 0.0,
+            });
+        }
+        let rho0 = ev.abs;
+        let mut e_ref = 0.0;
+        for it in 1..=st.max_iterations {
+            self.iterations += 1;
+            if !self.analyzed {
+                let t = Instant::now();
+                solver.analyze(&self.k, Some(&self.coords))?;
+                self.timings.analyze += t.elapsed().as_secs_f64();
+                self.analyzed = true;
+            }
+            let t = Instant::now();
+            let r = solver.factorize(&self.k);
+            self.timings.factor += t.elapsed().as_secs_f64();
+            if let Err(e) = r {
+                return Ok(fail(it, ev.rel, IncrementFailure::Solver(e)));
+            }
+            for (e, &d) in self.free_dofs.iter().enumerate() {
+                self.r_prev[e] = self.res[d];
+                self.du[e] = -self.res[d];
+            }
+            let t = Instant::now();
+            let r = solver.solve_in_place(&self.k, &mut self.du);
+            self.timings.solve += t.elapsed().as_secs_f64();
+            if let Err(e) = r {
+                return Ok(fail(it, ev.rel, IncrementFailure::Solver(e)));
+            }
+            if !self.du.iter().all(|v| v.is_finite()) {
+                return Ok(fail(it, ev.rel, IncrementFailure::NonFinite));
+            }
+            self.u_base.copy_from_slice(&self.u);
+            // backtracking line search on |r_f|
+            let rho_prev = ev.abs;
+            let tries = if st.line_search {
+                st.max_line_search + 1
+            } else {
+                1
+            };
+            let mut s = 1.0;
+            let mut best: Option<(f64, Eval)> = None;
+            let mut last_s = f64::NAN;
+            let mut last_err: Option<CoreError> = None;
+            for _ in 0..tries {
+                self.set_trial(s);
+                last_s = s;
+                match self.evaluate(state, step, lambda, force_peak) {
+                    Ok(e) if e.abs.is_finite() => {
+                        if best.map_or(true, |(_, b)| e.abs < b.abs) {
+                            best = Some((s, e));
+                        }
+                        if e.abs <= (1.0 - 1e-4 * s) * rho_prev {
+                            break;
+                        }
+                    }
+                    Ok(_) => {}
+                    Err(e) if is_element_error(&e) => last_err = Some(e),
+                    Err(e) => return Err(e.into()),
+                }
+                s *= 0.5;
+            }
+            let Some((s, e)) = best else {
+                let reason = match last_err {
+                    Some(e) => IncrementFailure::Element(e.to_string()),
+                    None => IncrementFailure::NonFinite,
+                };
+                return Ok(fail(it, ev.rel, reason));
+            };
+            if s != last_s {
+                self.set_trial(s);
+                match self.evaluate(state, step, lambda, force_peak) {
+                    Ok(e2) => ev = e2,
+                    Err(e) if is_element_error(&e) => {
+                        return Ok(fail(it, ev.rel, IncrementFailure::Element(e.to_string())))
+                    }
+                    Err(e) => return Err(e.into()),
+                }
+            } else {
+                ev = e;
+            }
+            self.history.push(ev.rel);
+            if !ev.abs.is_finite() {
+                return Ok(fail(it, ev.rel, IncrementFailure::NonFinite));
+            }
+            let (mut w_new, mut w_old) = (0.0, 0.0);
+            for (e, &d) in self.free_dofs.iter().enumerate() {
+                w_new += s * self.du[e] * self.res[d];
+                w_old += s * self.du[e] * self.r_prev[e];
+            }
+            if it == 1 {
+                e_ref = w_old.abs();
+            }
+            let energy = if e_ref > 0.0 {
+                w_new.abs() / e_ref
+            } else {
+                0.0
+            };
+            tracing::debug!(
+                iteration = it,
+                residual = ev.rel,
+                energy,
+                step_length = s,
+                "Newton iteration"
+            );
+            if ev.rel <= st.tol_force && energy <= st.tol_energy {
+                return Ok(Attempt::Converged {
+                    iterations: it,
+                    eval: ev,
+                    energy,
+                });
+            }
+            if ev.abs > st.divergence_ratio * rho0 {
+                return Ok(fail(
+                    it,
+                    ev.rel,
+                    IncrementFailure::Diverging {
+                        residual: ev.abs,
+                        initial: rho0,
+                    },
+                ));
+            }
+        }
+        Ok(fail(
+            st.max_iterations,
+            ev.rel,
+            IncrementFailure::IterationLimit,
+        ))
+    }
+}
+
+/// Does any element want small increments (committed state)?
+fn any_wants_small(model: &Model, state: &StateStore) -> bool {
+    model.mesh.blocks.iter().enumerate().any(|(b, block)| {
+        let el = &model.elements[b];
+        (0..block.len()).any(|e| el.wants_small_increments(&state.committed[state.range(b, e)]))
+    })
+}
+
+/// Run the load program `program` (end load factor of each step) on `model`
+/// with full Newton-Raphson, from the unloaded state or from `restart`.
+///
+/// `observer` is called after every converged increment and may stop the
+/// run ([`Control::Stop`]). Returns the totals and the final state, or an
+/// error; when the increment falls below `min_increment` the error is
+/// [`NonlinearError::IncrementTooSmall`] and every converged increment has
+/// been reported already. See the module documentation for the algorithm.
+pub fn solve_nonlinear<F>(
+    model: &Model,
+    solver: &mut dyn LinearSolver,
+    program: &[f64],
+    settings: &NewtonSettings,
+    restart: Option<&Checkpoint>,
+    mut observer: F,
+) -> Result<NonlinearRun, NonlinearError>
+where
+    F: FnMut(&IncrementView<'_>) -> Control,
+{
+    let t_run = Instant::now();
+    settings.validate()?;
+    if program.is_empty() || program.iter().any(|l| !l.is_finite()) {
+        return Err(CoreError::Invalid(
+            "load program: give at least one finite step end load factor".into(),
+        )
+        .into());
+    }
+    let ndof = model.dofs.num_dofs();
+    let mut state = model.initial_state();
+    let small_size = settings.small_increment();
+    let initial_size = settings.initial_increment.min(settings.max_increment);
+    let mut u_start = model.dofs.expand(None, 0.0);
+    let mut cur = match restart {
+        Some(c) => {
+            if c.u.len() != ndof || c.state_committed.len() != state.committed.len() {
+                return Err(CoreError::Invalid(format!(
+                    "checkpoint does not fit the model: {} displacements and {} state values, \
+                     the model has {} dofs and {} state values",
+                    c.u.len(),
+                    c.state_committed.len(),
+                    ndof,
+                    state.committed.len()
+                ))
+                .into());
+            }
+            if c.step >= program.len() {
+                return Err(CoreError::Invalid(format!(
+                    "checkpoint is in step {} but the program has {} steps",
+                    c.step + 1,
+                    program.len()
+                ))
+                .into());
+            }
+            state.committed.copy_from_slice(&c.state_committed);
+            state.restore();
+            u_start.copy_from_slice(&c.u);
+            c.cursor()
+        }
+        None => {
+            let small = any_wants_small(model, &state);
+            Cursor {
+                step: 0,
+                t: 0.0,
+                lambda: 0.0,
+                increment_index: 0,
+                size: if small { small_size } else { initial_size },
+                small,
+                force_peak: 0.0,
+            }
+        }
+    };
+
+    let t = Instant::now();
+    let asm = model.assembler();
+    let mut timings = Timings {
+        pattern: t.elapsed().as_secs_f64(),
+        ..Default::default()
+    };
+    let nf = model.dofs.num_free;
+    let mut free_dofs = vec![0; nf];
+    for (d, &e) in model.dofs.eq.iter().enumerate() {
+        if e != CONSTRAINED {
+            free_dofs[e] = d;
+        }
+    }
+    let fext_free_norm = free_dofs
+        .iter()
+        .map(|&d| model.f_ext[d] * model.f_ext[d])
+        .sum::<f64>()
+        .sqrt();
+    let mut w = Work {
+        model,
+        k: asm.pattern.clone(),
+        asm,
+        coords: model.dofs.equation_coords(&model.mesh.nodes),
+        free_dofs,
+        fext_free_norm,
+        f_int: vec![0.0; ndof],
+        res: vec![0.0; ndof],
+        u: u_start.clone(),
+        u_base: u_start.clone(),
+        u_conv: u_start,
+        du: vec![0.0; nf],
+        r_prev: vec![0.0; nf],
+        history: Vec::with_capacity(settings.max_iterations + 1),
+        timings: Timings::default(),
+        analyzed: false,
+        iterations: 0,
+        settings: settings.clone(),
+    };
+    let mut summary = NonlinearSummary {
+        final_lambda: cur.lambda,
+        ..Default::default()
+    };
+    // residual of the starting point, so that a run with nothing to do
+    // still returns a consistent residual
+    if restart.is_some() {
+        let step = StepInfo {
+            increment: cur.increment_index,
+            load_factor: cur.lambda,
+            delta_load_factor: 0.0,
+        };
+        w.evaluate(&mut state, step, cur.lambda, cur.force_peak)?;
+        state.restore();
+    }
+
+    'program: loop {
+        if cur.t >= 1.0 {
+            if cur.step + 1 >= program.len() {
+                break 'program;
+            }
+            cur.step += 1;
+            cur.t = 0.0;
+            cur.size = if cur.small { small_size } else { initial_size };
+            continue;
+        }
+        let start = if cur.step == 0 {
+            0.0
+        } else {
+            program[cur.step - 1]
+        };
+        let end = program[cur.step];
+        let span = end - start;
+        let before = w.timings;
+        let mut size = cur.size;
+        let mut cutbacks = 0;
+        let (t_new, lambda_new, iterations, eval, energy) = loop {
+            let t_new = if span == 0.0 || cur.t + size >= 1.0 - 1e-9 {
+                1.0
+            } else {
+                cur.t + size
+            };
+            let lambda_new = if t_new == 1.0 {
+                end
+            } else {
+                start + t_new * span
+            };
+            let step = StepInfo {
+                increment: cur.increment_index + 1,
+                load_factor: lambda_new,
+                delta_load_factor: lambda_new - cur.lambda,
+            };
+            match w.attempt(solver, &mut state, step, cur.force_peak)? {
+                Attempt::Converged {
+                    iterations,
+                    eval,
+                    energy,
+                } => break (t_new, lambda_new, iterations, eval, energy),
+                Attempt::Failed {
+                    iterations,
+                    rel,
+                    reason,
+                } => {
+                    state.restore();
+                    w.u.copy_from_slice(&w.u_conv);
+                    summary.cutbacks += 1;
+                    cutbacks += 1;
+                    let next = (t_new - cur.t) * settings.cutback;
+                    tracing::warn!(
+                        lambda = lambda_new,
+                        iterations,
+                        residual = rel,
+                        next_increment = next,
+                        "increment failed ({reason}); cutting back"
+                    );
+                    if next < settings.min_increment || span == 0.0 {
+                        return Err(NonlinearError::IncrementTooSmall {
+                            step: cur.step,
+                            lambda: cur.lambda,
+                            increment: lambda_new - cur.lambda,
+                            last_residual: rel,
+                            iterations,
+                            reason,
+                        });
+                    }
+                    size = next;
+                }
+            }
+        };
+        state.commit();
+        w.u_conv.copy_from_slice(&w.u);
+        let delta_lambda = lambda_new - cur.lambda;
+        let was_small = cur.small;
+        cur.t = t_new;
+        cur.lambda = lambda_new;
+        cur.increment_index += 1;
+        cur.force_peak = cur.force_peak.max(eval.scale_now);
+        cur.small = any_wants_small(model, &state);
+        cur.size = if cur.small {
+            small_size
+        } else if cutbacks == 0 && iterations <= settings.growth_iterations {
+            (size * settings.growth).min(settings.max_increment)
+        } else {
+            size
+        };
+        summary.increments += 1;
+        summary.newton_iterations_max = summary.newton_iterations_max.max(iterations);
+        summary.final_lambda = cur.lambda;
+        let now = w.timings;
+        let seconds = Timings {
+            pattern: 0.0,
+            assemble: now.assemble - before.assemble,
+            analyze: now.analyze - before.analyze,
+            factor: now.factor - before.factor,
+            solve: now.solve - before.solve,
+            total: (now.assemble + now.analyze + now.factor + now.solve)
+                - (before.assemble + before.analyze + before.factor + before.solve),
+        };
+        let report = IncrementReport {
+            step: cur.step,
+            increment_index: cur.increment_index,
+            lambda: cur.lambda,
+            delta_lambda,
+            step_fraction: cur.t,
+            iterations,
+            residual: eval.rel,
+            energy,
+            cutbacks,
+            seconds,
+            small_increment_mode: was_small,
+        };
+        tracing::info!(
+            increment = report.increment_index,
+            step = report.step,
+            lambda = report.lambda,
+            delta_lambda,
+            iterations,
+            residual = report.residual,
+            cutbacks,
+            small = was_small,
+            "increment converged"
+        );
+        let view = IncrementView {
+            report: &report,
+            u: &w.u,
+            residual: &w.res,
+            state: &state,
+            residual_history: &w.history,
+            cursor: cur,
+        };
+        if observer(&view) == Control::Stop {
+            summary.stopped_by_observer = true;
+            break 'program;
+        }
+    }
+    summary.newton_iterations_total = w.iterations;
+    summary.analyze_count = usize::from(w.analyzed);
+    timings.assemble = w.timings.assemble;
+    timings.analyze = w.timings.analyze;
+    timings.factor = w.timings.factor;
+    timings.solve = w.timings.solve;
+    timings.total = t_run.elapsed().as_secs_f64();
+    summary.timings = timings;
+    Ok(NonlinearRun {
+        summary,
+        u: w.u,
+        residual: w.res,
+        state,
+        cursor: cur,
+    })
+}
