@@ -329,3 +329,130 @@ fn lobatto_removes_gauss_traction_oscillations() {
     let csv = std::fs::read_to_string(dir.path().join("traction.csv")).unwrap();
     assert!(csv.lines().count() > 64);
 }
+
+#[test]
+fn punch_transmits_compression_and_tension() {
+    for (file, sign) in [
+        ("punch_compression.toml", -1.0),
+        ("punch_tension.toml", 1.0),
+    ] {
+        let s = run_scene(file, |t| {
+            t.replace(
+                "law = \"paper\"",
+                "law = \"paper\"\nintegration = \"lobatto\"",
+            )
+        });
+        let b = &s["interfaces"]["bond"];
+        // every interface point carries normal traction of the punch's sign
+        let (lo, hi) = (f(&b["traction_min"][2]), f(&b["traction_max"][2]));
+        assert!(
+            sign * lo > 0.0 && sign * hi > 0.0,
+            "{file}: t_n in [{lo:e}, {hi:e}]"
+        );
+        // the nearly rigid punch moves with its top (2.5e-4) and drags the foundation
+        let punch = f(&s["probes"]["punch.z0"][2]);
+        assert!(
+            rel(punch, sign * 2.5e-4) < 1e-3,
+            "{file}: punch bottom {punch:e}"
+        );
+        // equilibrium: punch force = foundation reaction
+        let fp = f(&s["reactions"]["punch.z1"][2]);
+        let ff = f(&s["reactions"]["foundation.z0"][2]);
+        assert!(
+            rel(-fp, ff) < 1e-6 && sign * fp > 0.0,
+            "{file}: {fp} vs {ff}"
+        );
+    }
+}
+
+#[test]
+fn interfaces_in_imported_meshes_and_cohesive_decks() {
+    // two C3D8 stacked in a deck, ELSETs LOWER / UPPER; the interface is
+    // inserted by the scene between the two sets; confined uniaxial strain
+    // gives the closed form of BENCHMARKS.md section 3.
+    let mut deck = String::from("*NODE\n");
+    let mut id = 0;
+    for z in [0.0, 0.5, 1.0] {
+        for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            id += 1;
+            deck += &format!("{id}, {x}, {y}, {z}\n");
+        }
+    }
+    deck += "*ELEMENT, TYPE=C3D8, ELSET=LOWER\n1, 1, 2, 3, 4, 5, 6, 7, 8\n";
+    deck += "*ELEMENT, TYPE=C3D8, ELSET=UPPER\n2, 5, 6, 7, 8, 9, 10, 11, 12\n";
+    deck += "*NSET, NSET=ALL, GENERATE\n1, 12, 1\n*NSET, NSET=BOTTOM\n1, 2, 3, 4\n*NSET, NSET=TOP\n9, 10, 11, 12\n";
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "stack.inp", &deck);
+    let scene = r#"
+[materials.steel]
+type = "isotropic"
+E = 2.1e11
+nu = 0.3
+[laws.glue]
+type = "linear_penalty"
+d = 1.0e11
+[mesh]
+type = "inp"
+file = "stack.inp"
+[[blocks]]
+name = "LOWER"
+element = "h8"
+material = "steel"
+[[blocks]]
+name = "UPPER"
+element = "h8"
+material = "steel"
+[[interface]]
+name = "bond"
+between = ["LOWER", "UPPER"]
+law = "glue"
+[[boundary]]
+set = "ALL"
+fixed = ["x", "y"]
+[[boundary]]
+set = "BOTTOM"
+fixed = "all"
+[[boundary]]
+set = "TOP"
+displacement = { z = 1.0e-4 }
+"#;
+    let s = run_ok(
+        &write(dir.path(), "stack.toml", scene),
+        &dir.path().join("a"),
+    );
+    assert_eq!(s["elements"]["inter8"].as_u64(), Some(1));
+    let sigma = 1e-4 / (1.0 / p_modulus() + 1.0 / 1e11);
+    assert!(
+        rel(f(&s["reactions"]["TOP"][2]), sigma) < 1e-9,
+        "{}",
+        s["reactions"]["TOP"]
+    );
+    // the same model as a deck with a ready-made COH3D8 (nodes 13-16 on top)
+    let mut coh = deck.replace(
+        "*NSET, NSET=TOP\n9, 10, 11, 12\n",
+        "*NSET, NSET=TOP\n9, 10, 11, 12\n",
+    );
+    coh = coh.replace(
+        "*ELEMENT, TYPE=C3D8, ELSET=UPPER\n2, 5, 6, 7, 8, 9, 10, 11, 12\n",
+        "*ELEMENT, TYPE=C3D8, ELSET=UPPER\n2, 13, 14, 15, 16, 9, 10, 11, 12\n*ELEMENT, TYPE=COH3D8, ELSET=GLUE\n3, 5, 6, 7, 8, 13, 14, 15, 16\n",
+    );
+    coh = coh.replace(
+        "*NODE\n",
+        "*NODE\n13, 0, 0, 0.5\n14, 1, 0, 0.5\n15, 1, 1, 0.5\n16, 0, 1, 0.5\n",
+    );
+    coh = coh.replace(
+        "*NSET, NSET=ALL, GENERATE\n1, 12, 1\n",
+        "*NSET, NSET=ALL, GENERATE\n1, 16, 1\n",
+    );
+    coh += "*MATERIAL, NAME=STEEL\n*ELASTIC\n2.1e11, 0.3\n*MATERIAL, NAME=GLUE\n*ELASTIC, TYPE=TRACTION\n1e11, 1e11, 1e11\n";
+    coh += "*SOLID SECTION, ELSET=LOWER, MATERIAL=STEEL\n*SOLID SECTION, ELSET=UPPER, MATERIAL=STEEL\n";
+    coh += "*COHESIVE SECTION, ELSET=GLUE, MATERIAL=GLUE, RESPONSE=TRACTION SEPARATION\n";
+    coh += "*BOUNDARY\nALL, 1, 2\nBOTTOM, 1, 3\n*STEP\n*STATIC\n*BOUNDARY\nTOP, 3, 3, 1.0e-4\n*END STEP\n";
+    let s = run_ok(&write(dir.path(), "coh.inp", &coh), &dir.path().join("b"));
+    assert_eq!(s["elements"]["inter8"].as_u64(), Some(1));
+    assert!(
+        rel(f(&s["reactions"]["TOP"][2]), sigma) < 1e-9,
+        "{}",
+        s["reactions"]["TOP"]
+    );
+}

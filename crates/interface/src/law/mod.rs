@@ -5,3 +5,4 @@
 //! its `inventory::submit!`.
 
 pub mod linear_penalty;
+pub mod paper_debond;
