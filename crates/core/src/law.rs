@@ -55,4 +55,13 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     fn wants_small_increments(&self, _state_committed: &[f64]) -> bool {
         false
     }
+    /// True when the point has failed (for output: failed fractions,
+    /// crack fronts). Laws without failure return false.
+    fn is_failed(&self, _state: &[f64]) -> bool {
+        false
+    }
+    /// The last failure index stored in the state, if the law keeps one.
+    fn failure_index(&self, _state: &[f64]) -> Option<f64> {
+        None
+    }
 }

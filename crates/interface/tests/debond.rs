@@ -17,23 +17,18 @@ use junta_core::element::{Element, ElementContext, StepInfo};
 use junta_core::law::{InterfaceLaw, LawContext, LawResponse};
 use junta_core::registry::{find, LawEntry};
 use junta_core::topology::CellShape;
+use junta_criteria::{CompressionRule, MaxStress, Quadratic};
 use junta_interface as _;
 use junta_interface::law::paper_debond::{
     debond_status, slot, DebondMode, DebondPhase, PaperDebond,
 };
 use junta_interface::{InterfaceElement, InterfaceRule};
-use junta_criteria::{CompressionRule, MaxStress, Quadratic};
 use std::sync::Arc;
 
 const D: f64 = 1e12;
 
 fn law_with(rule: CompressionRule) -> PaperDebond {
-    PaperDebond::new(
-        [D; 3],
-        4,
-        Arc::new(Quadratic::new(2e6, 4e6, rule).unwrap()),
-    )
-    .unwrap()
+    PaperDebond::new([D; 3], 4, Arc::new(Quadratic::new(2e6, 4e6, rule).unwrap())).unwrap()
 }
 
 fn law() -> PaperDebond {
@@ -218,8 +213,18 @@ fn opening_and_closing_after_full_failure() {
     assert_eq!(debond_status(&p.committed).phase, DebondPhase::Failed);
     let seq: [([f64; 3], [f64; 3], [[f64; 3]; 3], bool); 5] = [
         ([1e-6, 2e-6, 1e-6], [0.0; 3], [[0.0; 3]; 3], false),
-        ([1e-6, 2e-6, -1e-6], [0.0, 0.0, -1e6], diag(0.0, 0.0, D), true),
-        ([3e-6, 0.0, -2.5e-6], [0.0, 0.0, -2.5e6], diag(0.0, 0.0, D), true),
+        (
+            [1e-6, 2e-6, -1e-6],
+            [0.0, 0.0, -1e6],
+            diag(0.0, 0.0, D),
+            true,
+        ),
+        (
+            [3e-6, 0.0, -2.5e-6],
+            [0.0, 0.0, -2.5e6],
+            diag(0.0, 0.0, D),
+            true,
+        ),
         ([1e-6, 2e-6, 0.5e-6], [0.0; 3], [[0.0; 3]; 3], false),
         ([1e-6, 2e-6, 0.0], [0.0; 3], [[0.0; 3]; 3], false),
     ];
@@ -324,17 +329,44 @@ fn tangent_matches_finite_differences_in_every_regime() {
     check_tangent(&law, &p.committed, [1e-7, -2e-7, -3e-7], 0, "intact closed");
     // failed in tension at increment 0
     let p = failed_in_tension(&law);
-    check_tangent(&law, &p.committed, [1e-6, 1e-6, 1e-6], 0, "failing increment");
+    check_tangent(
+        &law,
+        &p.committed,
+        [1e-6, 1e-6, 1e-6],
+        0,
+        "failing increment",
+    );
     check_tangent(&law, &p.committed, [1e-6, 1e-6, 1e-6], 2, "releasing open");
-    check_tangent(&law, &p.committed, [1e-6, 1e-6, -1e-6], 2, "releasing closed");
+    check_tangent(
+        &law,
+        &p.committed,
+        [1e-6, 1e-6, -1e-6],
+        2,
+        "releasing closed",
+    );
     check_tangent(&law, &p.committed, [1e-6, 1e-6, 1e-6], 9, "failed open");
     check_tangent(&law, &p.committed, [1e-6, 1e-6, -1e-6], 9, "failed closed");
     // failed in compression
     let mut p = Point::new(&law);
     p.step([5e-6, 0.0, -1e-6], 0);
-    assert_eq!(debond_status(&p.committed).mode, Some(DebondMode::Compression));
-    check_tangent(&law, &p.committed, [1e-6, 1e-6, -1e-6], 1, "compression releasing closed");
-    check_tangent(&law, &p.committed, [1e-6, 1e-6, 1e-6], 1, "compression releasing open");
+    assert_eq!(
+        debond_status(&p.committed).mode,
+        Some(DebondMode::Compression)
+    );
+    check_tangent(
+        &law,
+        &p.committed,
+        [1e-6, 1e-6, -1e-6],
+        1,
+        "compression releasing closed",
+    );
+    check_tangent(
+        &law,
+        &p.committed,
+        [1e-6, 1e-6, 1e-6],
+        1,
+        "compression releasing open",
+    );
 }
 
 // ------------------------------------------------------------------- 6
@@ -381,7 +413,11 @@ fn wants_small_increments_exactly_while_releasing() {
     assert!(!law.wants_small_increments(&p.committed));
     let mut flags = Vec::new();
     for inc in 0..10 {
-        let d3 = if inc < 2 { 1e-6 } else { 2e-6 + 1e-6 * inc as f64 };
+        let d3 = if inc < 2 {
+            1e-6
+        } else {
+            2e-6 + 1e-6 * inc as f64
+        };
         p.step([0.0, 0.0, d3], inc);
         flags.push(law.wants_small_increments(&p.committed));
     }
@@ -423,18 +459,24 @@ fn parameters_are_checked() {
     assert_eq!(ok.criterion().key(), "max_stress");
 
     let e = from_toml("d = 1e12").unwrap_err();
-    assert!(e.contains("missing `criterion`") && e.contains("quadratic"), "{e}");
+    assert!(
+        e.contains("missing `criterion`") && e.contains("quadratic"),
+        "{e}"
+    );
     let e = from_toml("d = 1e12\ncriterion = { type = \"hashin\" }").unwrap_err();
     assert!(
         e.contains("hashin") && e.contains("quadratic") && e.contains("max_stress"),
         "{e}"
     );
     let e = from_toml("d = 1e12\ncriterion = { sigma_lim = 1.0 }").unwrap_err();
-    assert!(e.contains("needs `type`") && e.contains("max_stress"), "{e}");
+    assert!(
+        e.contains("needs `type`") && e.contains("max_stress"),
+        "{e}"
+    );
     let e = from_toml("d = 1e12\ncriterion = \"quadratic\"").unwrap_err();
     assert!(e.contains("must be a table"), "{e}");
-    let e = from_toml("d = 1e12\ncriterion = { type = \"quadratic\", sigma_lim = 2e6 }")
-        .unwrap_err();
+    let e =
+        from_toml("d = 1e12\ncriterion = { type = \"quadratic\", sigma_lim = 2e6 }").unwrap_err();
     assert!(e.contains("criterion") && e.contains("tau_lim"), "{e}");
     let e = from_toml(
         "d = 1e12\ncriterion = { type = \"quadratic\", sigma_lim = 2e6, tau_lim = 4e6, sigma_max = 1.0 }",
@@ -451,10 +493,16 @@ fn parameters_are_checked() {
     assert!(e.contains("d2"), "{e}");
     for bad in ["0", "-2"] {
         let e = from_toml(&format!("d = 1e12\nrelease_increments = {bad}\n{CRIT}")).unwrap_err();
-        assert!(e.contains("release_increments") && e.contains("at least 1"), "{e}");
+        assert!(
+            e.contains("release_increments") && e.contains("at least 1"),
+            "{e}"
+        );
     }
     let e = from_toml(&format!("d = 1e12\nrelease_steps = 4\n{CRIT}")).unwrap_err();
-    assert!(e.contains("release_steps") && e.contains("release_increments"), "{e}");
+    assert!(
+        e.contains("release_steps") && e.contains("release_increments"),
+        "{e}"
+    );
     let c = Arc::new(Quadratic::new(1.0, 1.0, CompressionRule::PositivePart).unwrap());
     assert!(PaperDebond::new([D; 3], 0, c.clone()).is_err());
     assert!(PaperDebond::new([D, f64::NAN, D], 4, c).is_err());
@@ -524,9 +572,16 @@ fn inter8_top_face_pulled_uniformly() {
                 assert_eq!(f[3 * a + c], -f[12 + c], "inc {inc}");
             }
         }
-        let phases: Vec<_> = committed.chunks(sl).map(|s| debond_status(s).phase).collect();
+        let phases: Vec<_> = committed
+            .chunks(sl)
+            .map(|s| debond_status(s).phase)
+            .collect();
         assert!(phases.windows(2).all(|p| p[0] == p[1]), "{phases:?}");
-        forces.push(([f[12], f[13], f[14]], phases[0], el.wants_small_increments(&committed)));
+        forces.push((
+            [f[12], f[13], f[14]],
+            phases[0],
+            el.wants_small_increments(&committed),
+        ));
         if inc >= 4 {
             // released: the normal and shear rows of K are zero (open)
             assert!(k.iter().all(|v| *v == 0.0), "inc {inc}");
@@ -537,11 +592,20 @@ fn inter8_top_face_pulled_uniformly() {
     assert_eq!(forces[2].1, DebondPhase::Intact);
     assert_eq!(forces[3], (tf, DebondPhase::Releasing, true));
     for (k, frac) in [0.75, 0.5, 0.25].iter().enumerate() {
-        assert_eq!(forces[4 + k], (tf.map(|v| frac * v), DebondPhase::Releasing, true));
+        assert_eq!(
+            forces[4 + k],
+            (tf.map(|v| frac * v), DebondPhase::Releasing, true)
+        );
     }
     assert_eq!(forces[7], ([0.0; 3], DebondPhase::Failed, false));
     assert_eq!(forces[8], ([0.0; 3], DebondPhase::Failed, false));
     for s in committed.chunks(sl) {
         assert_eq!(debond_status(s).failed_at, Some(3));
+        assert!(law.is_failed(s));
+        assert_eq!(law.failure_index(s), Some(1.015625));
     }
+    let mut fresh = vec![0.0; sl];
+    law.init_state(&mut fresh);
+    assert!(!law.is_failed(&fresh));
+    assert_eq!(law.failure_index(&fresh), Some(0.0));
 }

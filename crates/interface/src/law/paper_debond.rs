@@ -421,6 +421,14 @@ impl InterfaceLaw for PaperDebond {
     fn wants_small_increments(&self, state_committed: &[f64]) -> bool {
         state_committed.get(slot::STATUS) == Some(&RELEASING)
     }
+
+    fn is_failed(&self, state: &[f64]) -> bool {
+        debond_status(state).phase != DebondPhase::Intact
+    }
+
+    fn failure_index(&self, state: &[f64]) -> Option<f64> {
+        state.get(slot::INDEX).copied()
+    }
 }
 
 inventory::submit! {
