@@ -333,8 +333,18 @@ impl Element for InterfaceElement {
                     ("frame", fr.e.iter().flatten().copied().collect()),
                     ("area", vec![fr.jac * self.weights[q]]),
                     ("state", committed.to_vec()),
-                    ("failed", vec![if self.law.is_failed(committed) { 1.0 } else { 0.0 }]),
-                    ("failure_index", vec![self.law.failure_index(committed).unwrap_or(0.0)]),
+                    (
+                        "failed",
+                        vec![if self.law.is_failed(committed) {
+                            1.0
+                        } else {
+                            0.0
+                        }],
+                    ),
+                    (
+                        "failure_index",
+                        vec![self.law.failure_index(committed).unwrap_or(0.0)],
+                    ),
                 ],
             });
         }

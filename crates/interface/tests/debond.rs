@@ -140,11 +140,11 @@ fn failure_in_tension_with_shear_releases_shear_and_normal() {
     // t = i [1e6, -0.5e6, 0.5e6]: index 0.140625, 0.5625, 1.265625
     let base = [1e-6, -0.5e-6, 0.5e-6];
     let idx = [0.140625, 0.5625, 1.265625];
-    for inc in 0..3 {
+    for (inc, index) in idx.iter().enumerate() {
         let s = (inc + 1) as f64;
         let r = p.step(base.map(|v| s * v), inc);
         assert_eq!(r.traction, base.map(|v| D * s * v));
-        assert_eq!(debond_status(&p.committed).failure_index, idx[inc]);
+        assert_eq!(debond_status(&p.committed).failure_index, *index);
     }
     let tf = [3e6, -1.5e6, 1.5e6];
     let st = debond_status(&p.committed);
@@ -203,6 +203,9 @@ fn failed_in_tension(law: &PaperDebond) -> Point<'_> {
     p
 }
 
+/// (jump, expected traction, expected tangent, closed)
+type Expect = ([f64; 3], [f64; 3], [[f64; 3]; 3], bool);
+
 #[test]
 fn opening_and_closing_after_full_failure() {
     let law = law();
@@ -211,7 +214,7 @@ fn opening_and_closing_after_full_failure() {
         p.step([0.0, 0.0, 3e-6], inc);
     }
     assert_eq!(debond_status(&p.committed).phase, DebondPhase::Failed);
-    let seq: [([f64; 3], [f64; 3], [[f64; 3]; 3], bool); 5] = [
+    let seq: [Expect; 5] = [
         ([1e-6, 2e-6, 1e-6], [0.0; 3], [[0.0; 3]; 3], false),
         (
             [1e-6, 2e-6, -1e-6],
@@ -450,9 +453,9 @@ fn parameters_are_checked() {
     assert_eq!(ok.d, [D; 3]);
     assert_eq!(ok.release_increments, 4);
     assert_eq!(ok.criterion().key(), "quadratic");
-    let ok = from_toml(&format!(
-        "d = 1e12\nd3 = 2e12\nrelease_increments = 6\ncriterion = {{ type = \"max_stress\", sigma_lim = 1.0, tau_lim = 2.0, compression = \"as_written\" }}"
-    ))
+    let ok = from_toml(
+        "d = 1e12\nd3 = 2e12\nrelease_increments = 6\ncriterion = { type = \"max_stress\", sigma_lim = 1.0, tau_lim = 2.0, compression = \"as_written\" }",
+    )
     .unwrap();
     assert_eq!(ok.d, [D, D, 2e12]);
     assert_eq!(ok.release_increments, 6);

@@ -282,12 +282,11 @@ impl PaperDebond {
     }
 
     fn intact_response(&self, jump: [f64; 3]) -> LawResponse {
-        let mut r = LawResponse::default();
-        for i in 0..3 {
-            r.traction[i] = self.d[i] * jump[i];
-            r.tangent[i][i] = self.d[i];
+        let [d1, d2, d3] = self.d;
+        LawResponse {
+            traction: [d1 * jump[0], d2 * jump[1], d3 * jump[2]],
+            tangent: [[d1, 0.0, 0.0], [0.0, d2, 0.0], [0.0, 0.0, d3]],
         }
-        r
     }
 }
 
