@@ -287,6 +287,11 @@ pub fn interface_summary(model: &Model, res: &[InterfaceResults]) -> Value {
             .filter_map(|p| p.get("area"))
             .map(|a| a[0])
             .sum();
+        let failed = r
+            .points
+            .iter()
+            .filter(|p| p.get("failed").is_some_and(|f| f[0] > 0.5))
+            .count();
         let b = &model.mesh.blocks[r.block];
         m.insert(
             b.name.clone(),
@@ -299,6 +304,8 @@ pub fn interface_summary(model: &Model, res: &[InterfaceResults]) -> Value {
                 "traction_max": tmax,
                 "jump_min": jmin,
                 "jump_max": jmax,
+                "failed_points": failed,
+                "failed_fraction": failed as f64 / r.points.len().max(1) as f64,
             }),
         );
     }
@@ -466,6 +473,14 @@ pub fn write_interface_vtu(
             "normal",
             3,
             all.iter().flat_map(|p| get3(p, "frame", 6)),
+        )?;
+        let scalar = |p: &junta_core::PointOutput, name: &str| p.get(name).map_or(0.0, |v| v[0]);
+        write_array(&mut w, "failed", 1, all.iter().map(|p| scalar(p, "failed")))?;
+        write_array(
+            &mut w,
+            "failure_index",
+            1,
+            all.iter().map(|p| scalar(p, "failure_index")),
         )?;
         if state_len > 0 {
             write_array(
