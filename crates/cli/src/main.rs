@@ -13,6 +13,7 @@ use junta_interface as _;
 use junta_solvers as _;
 
 mod deck;
+mod nonlinear;
 mod output;
 mod plot;
 mod run;
@@ -41,11 +42,19 @@ struct Cli {
 enum Command {
     /// Solve a scene (.toml) or an Abaqus/CalculiX deck (.inp).
     Run {
-        /// Scene or deck file.
-        input: PathBuf,
+        /// Scene or deck file (not with --restart).
+        #[arg(required_unless_present = "restart")]
+        input: Option<PathBuf>,
         /// Output directory (default: the scene's [output] directory, else out/<name>).
         #[arg(short, long)]
         output: Option<PathBuf>,
+        /// Continue the incremental run whose output directory is DIR from its
+        /// last converged increment.
+        #[arg(long, value_name = "DIR", conflicts_with = "input")]
+        restart: Option<PathBuf>,
+        /// Incremental runs: stop after this many increments (a restart point is kept).
+        #[arg(long)]
+        max_increments: Option<usize>,
     },
     /// Validate a scene or deck and print a model summary without solving.
     Check {
@@ -114,7 +123,16 @@ fn main() -> ExitCode {
         .with_writer(std::io::stderr)
         .init();
     let result = match cli.command {
-        Command::Run { input, output } => run::run(&input, output.as_deref(), !cli.quiet),
+        Command::Run {
+            input,
+            output,
+            restart,
+            max_increments,
+        } => match (input, restart) {
+            (_, Some(dir)) => run::restart(&dir, !cli.quiet, max_increments),
+            (Some(input), None) => run::run(&input, output.as_deref(), !cli.quiet, max_increments),
+            (None, None) => Err(anyhow::anyhow!("give a scene or --restart DIR")),
+        },
         Command::Check { input } => run::check(&input),
         Command::List => {
             run::list();

@@ -324,6 +324,17 @@ pub fn write_interface_vtu(
     u: &[f64],
     res: &[InterfaceResults],
 ) -> Result<()> {
+    write_interface_vtu_named(dir, "", model, u, res)
+}
+
+/// [`write_interface_vtu`] with a suffix on the file names (`interfaces<suffix>.vtu`).
+pub fn write_interface_vtu_named(
+    dir: &Path,
+    suffix: &str,
+    model: &Model,
+    u: &[f64],
+    res: &[InterfaceResults],
+) -> Result<()> {
     if res.is_empty() {
         return Ok(());
     }
@@ -377,7 +388,7 @@ pub fn write_interface_vtu(
             cell_block.push(r.block as f64);
         }
     }
-    let path = dir.join("interfaces.vtu");
+    let path = dir.join(format!("interfaces{suffix}.vtu"));
     let f = std::fs::File::create(&path)
         .with_context(|| format!("cannot create {}", path.display()))?;
     let mut w = std::io::BufWriter::new(f);
@@ -434,7 +445,7 @@ pub fn write_interface_vtu(
 
     // integration points
     let all: Vec<&junta_core::PointOutput> = res.iter().flat_map(|r| r.points.iter()).collect();
-    let path = dir.join("interface_points.vtu");
+    let path = dir.join(format!("interface_points{suffix}.vtu"));
     let f = std::fs::File::create(&path)
         .with_context(|| format!("cannot create {}", path.display()))?;
     let mut w = std::io::BufWriter::new(f);

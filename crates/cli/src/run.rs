@@ -23,6 +23,9 @@ pub struct Prepared {
     pub probes: Vec<String>,
     pub fractions: Vec<f64>,
     pub reference: Option<(scene::ReferenceSpec, usize)>,
+    pub analysis: scene::AnalysisSpec,
+    pub curve: Option<scene::CurveSpec>,
+    pub every: usize,
     pub thickness: std::collections::BTreeMap<String, f64>,
     pub notes: Vec<String>,
 }
@@ -54,6 +57,9 @@ pub fn prepare(input: &Path) -> Result<Prepared> {
                 vtu: sf.scene.output.vtu,
                 probes: sf.scene.output.probes.clone(),
                 fractions: sf.scene.output.fractions.clone(),
+                analysis: sf.scene.analysis.clone(),
+                curve: sf.scene.output.curve.clone(),
+                every: sf.scene.output.every,
                 reference: match &sf.scene.reference {
                     Some(r) => Some((r.clone(), r.component_index(&sf.path)?)),
                     None => None,
@@ -83,6 +89,9 @@ pub fn prepare(input: &Path) -> Result<Prepared> {
                 vtu: true,
                 probes: Vec::new(),
                 fractions: Vec::new(),
+                analysis: Default::default(),
+                curve: None,
+                every: 1,
                 reference: None,
                 thickness: Default::default(),
                 notes,
@@ -113,10 +122,32 @@ pub fn default_dir(input: &Path, suffix: &str) -> PathBuf {
 }
 
 /// `junta run`.
-pub fn run(input: &Path, out: Option<&Path>, progress: bool) -> Result<()> {
+pub fn run(
+    input: &Path,
+    out: Option<&Path>,
+    progress: bool,
+    max_increments: Option<usize>,
+) -> Result<()> {
     let t0 = Instant::now();
     let pb = spinner(progress, format!("reading {}", input.display()));
     let mut p = prepare(input)?;
+    match p.analysis.kind.as_str() {
+        "linear" => {}
+        "static" => {
+            let dir = match (out, &p.output_dir) {
+                (Some(o), _) => o.to_path_buf(),
+                (None, Some(d)) => d.clone(),
+                (None, None) => default_dir(input, ""),
+            };
+            std::fs::create_dir_all(&dir)
+                .with_context(|| format!("cannot create output directory {}", dir.display()))?;
+            return crate::nonlinear::run_static(input, &mut p, &dir, &pb, None, max_increments);
+        }
+        other => bail!(
+            "{}: key `analysis.type`: `{other}` is not valid; use \"linear\" or \"static\"",
+            input.display()
+        ),
+    }
     for n in &p.notes {
         pb.suspend(|| eprintln!("note: {n}"));
     }
@@ -231,6 +262,29 @@ pub fn run(input: &Path, out: Option<&Path>, progress: bool) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// `junta run --restart DIR`: continue an incremental run from its last
+/// converged increment.
+pub fn restart(dir: &Path, progress: bool, max_increments: Option<usize>) -> Result<()> {
+    let r = crate::nonlinear::read_restart(dir)?;
+    let input = r.input.clone();
+    let pb = spinner(
+        progress,
+        format!(
+            "restarting {} from increment {}",
+            input.display(),
+            r.checkpoint.increment_index
+        ),
+    );
+    let mut p = prepare(&input)?;
+    if p.analysis.kind != "static" {
+        bail!(
+            "{}: only incremental runs ([analysis] type = \"static\") can be restarted",
+            input.display()
+        );
+    }
+    crate::nonlinear::run_static(&input, &mut p, dir, &pb, Some(r), max_increments)
 }
 
 /// `junta check`.

@@ -58,6 +58,61 @@ pub struct Scene {
     /// An outside reference value the run is compared with (reported in
     /// `summary.json`, used by `junta sweep`).
     pub reference: Option<ReferenceSpec>,
+    /// Analysis type: linear (default) or incremental-iterative.
+    #[serde(default)]
+    pub analysis: AnalysisSpec,
+}
+
+/// `[analysis]`: `type = "linear"` (default, one solve) or `"static"`
+/// (incremental-iterative Newton-Raphson over a proportional load program:
+/// forces and prescribed displacements scale with the load factor).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnalysisSpec {
+    /// `linear` or `static`.
+    #[serde(rename = "type", default = "linear")]
+    pub kind: String,
+    /// Load factor at the end of each step (default `[1.0]`).
+    #[serde(default = "one_step")]
+    pub steps: Vec<f64>,
+    /// Stop as soon as every interface point has failed (the body split).
+    #[serde(default)]
+    pub stop_when_separated: bool,
+    /// Newton-Raphson settings (`[analysis.newton]`, see `junta_solvers::newton::NewtonSettings`).
+    #[serde(default)]
+    pub newton: junta_solvers::newton::NewtonSettings,
+}
+
+fn linear() -> String {
+    "linear".into()
+}
+fn one_step() -> Vec<f64> {
+    vec![1.0]
+}
+
+impl Default for AnalysisSpec {
+    fn default() -> Self {
+        AnalysisSpec {
+            kind: linear(),
+            steps: one_step(),
+            stop_when_separated: false,
+            newton: Default::default(),
+        }
+    }
+}
+
+/// `[output.curve]`: the load-displacement curve of an incremental run.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CurveSpec {
+    /// Node set whose total reaction is recorded.
+    pub reaction_set: String,
+    /// Its component: x, y or z.
+    pub reaction_component: String,
+    /// Node set whose mean displacement is recorded.
+    pub point_set: String,
+    /// Its component: x, y or z.
+    pub point_component: String,
 }
 
 /// A reference reaction: the total reaction component on a node set that
@@ -262,6 +317,15 @@ pub struct OutputSpec {
     /// load, as `results_<f>.vtu` with a `results.pvd` index.
     #[serde(default)]
     pub fractions: Vec<f64>,
+    /// Incremental runs: the load-displacement curve to record.
+    pub curve: Option<CurveSpec>,
+    /// Incremental runs: write a VTU frame every this many increments (default 1).
+    #[serde(default = "every_one")]
+    pub every: usize,
+}
+
+fn every_one() -> usize {
+    1
 }
 
 impl Default for OutputSpec {
@@ -271,6 +335,8 @@ impl Default for OutputSpec {
             vtu: true,
             probes: Vec::new(),
             fractions: Vec::new(),
+            curve: None,
+            every: 1,
         }
     }
 }
@@ -324,7 +390,7 @@ impl SceneFile {
 }
 
 /// Parse a component name.
-fn component(name: &str) -> Option<usize> {
+pub fn component(name: &str) -> Option<usize> {
     match name {
         "x" => Some(0),
         "y" => Some(1),

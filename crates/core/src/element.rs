@@ -24,7 +24,8 @@ pub enum ElementError {
 /// Increment information handed down to elements and laws.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StepInfo {
-    /// Index of the current increment (0-based).
+    /// Index of the increment being computed: 1 + the number of converged
+    /// increments (1-based; the same on every iteration and cut-back retry).
     pub increment: usize,
     /// Load factor at the end of the current increment.
     pub load_factor: f64,

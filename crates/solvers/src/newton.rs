@@ -213,7 +213,11 @@ impl NewtonSettings {
         if !(pos(self.tol_force) && pos(self.tol_energy)) {
             return bad("tolerances must be positive");
         }
-        if !(self.divergence_ratio > 1.0) || !(self.force_floor >= 0.0) {
+        if self.divergence_ratio.is_nan()
+            || self.divergence_ratio <= 1.0
+            || self.force_floor.is_nan()
+            || self.force_floor < 0.0
+        {
             return bad("divergence_ratio must exceed 1 and force_floor must be >= 0");
         }
         Ok(())
@@ -654,7 +658,7 @@ impl Work<'_> {
                 last_s = s;
                 match self.evaluate(state, step, lambda, force_peak) {
                     Ok(e) if e.abs.is_finite() => {
-                        if best.map_or(true, |(_, b)| e.abs < b.abs) {
+                        if !matches!(best, Some((_, b)) if b.abs <= e.abs) {
                             best = Some((s, e));
                         }
                         if e.abs <= (1.0 - 1e-4 * s) * rho_prev {

@@ -1,0 +1,397 @@
+//! Incremental-iterative runs (`[analysis] type = "static"`): the Newton
+//! driver of `junta_solvers::newton`, with everything a user needs on disk
+//! after every converged increment, whatever stops the run:
+//!
+//! - `frames/results_NNNN.vtu`, `frames/interfaces_NNNN.vtu`,
+//!   `frames/interface_points_NNNN.vtu` and `results.pvd` (ParaView plays
+//!   the crack growing);
+//! - `curve.csv`: increment, step, load factor, reaction, displacement,
+//!   failed points, Newton iterations, cut-backs, wall time;
+//! - `checkpoint.json`: the restart point (`junta run --restart DIR`);
+//! - at the end (also after a failure or Ctrl-C): `summary.json` and
+//!   `curve.svg` (load-displacement).
+
+use crate::run::Prepared;
+use crate::{output, plot, scene};
+use anyhow::{anyhow, bail, Context, Result};
+use indicatif::ProgressBar;
+use junta_solvers::newton::{solve_nonlinear, Checkpoint, Control, NonlinearError};
+use serde::{Deserialize, Serialize};
+use serde_json::json;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+/// What `checkpoint.json` holds.
+#[derive(Debug, Serialize, Deserialize)]
+pub struct RestartFile {
+    /// The scene that was run.
+    pub input: PathBuf,
+    /// The driver's restart point.
+    pub checkpoint: Checkpoint,
+    /// First failure so far, if any.
+    pub first_failure: Option<FirstFailure>,
+    /// Frames written so far `(load factor, file)`.
+    pub frames: Vec<(f64, String)>,
+}
+
+/// When the first interface point failed.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct FirstFailure {
+    pub increment: usize,
+    pub load_factor: f64,
+    pub reaction: Option<f64>,
+    pub displacement: Option<f64>,
+}
+
+/// One row of `curve.csv`.
+#[derive(Debug, Clone)]
+struct Row {
+    increment: usize,
+    step: usize,
+    lambda: f64,
+    reaction: Option<f64>,
+    displacement: Option<f64>,
+    failed: usize,
+    points: usize,
+    iterations: usize,
+    cutbacks: usize,
+    seconds: f64,
+    small: bool,
+}
+
+const CURVE_HEADER: &str =
+    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment\n";
+
+fn opt(v: Option<f64>) -> String {
+    v.map(|x| format!("{x:e}")).unwrap_or_default()
+}
+
+impl Row {
+    fn csv(&self) -> String {
+        format!(
+            "{},{},{:e},{},{},{},{},{},{},{:e},{}\n",
+            self.increment,
+            self.step,
+            self.lambda,
+            opt(self.reaction),
+            opt(self.displacement),
+            self.failed,
+            self.points,
+            self.iterations,
+            self.cutbacks,
+            self.seconds,
+            self.small as u8
+        )
+    }
+    fn parse(line: &str) -> Option<Row> {
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() != 11 {
+            return None;
+        }
+        Some(Row {
+            increment: f[0].parse().ok()?,
+            step: f[1].parse().ok()?,
+            lambda: f[2].parse().ok()?,
+            reaction: f[3].parse().ok(),
+            displacement: f[4].parse().ok(),
+            failed: f[5].parse().ok()?,
+            points: f[6].parse().ok()?,
+            iterations: f[7].parse().ok()?,
+            cutbacks: f[8].parse().ok()?,
+            seconds: f[9].parse().ok()?,
+            small: f[10].trim() == "1",
+        })
+    }
+}
+
+/// Write `path` atomically (temporary file, then rename).
+fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let tmp = path.with_extension("tmp");
+    std::fs::write(&tmp, bytes).with_context(|| format!("cannot write {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("cannot write {}", path.display()))
+}
+
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// Run an incremental analysis into `dir`, from the start or from `restart`.
+pub fn run_static(
+    input: &Path,
+    p: &mut Prepared,
+    dir: &Path,
+    pb: &ProgressBar,
+    restart: Option<RestartFile>,
+    max_increments: Option<usize>,
+) -> Result<()> {
+    let t0 = Instant::now();
+    let frames_dir = dir.join("frames");
+    std::fs::create_dir_all(&frames_dir)
+        .with_context(|| format!("cannot create {}", frames_dir.display()))?;
+    let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, Ordering::SeqCst));
+    let model = &p.model;
+    let analysis = p.analysis.clone();
+    let file = input.display().to_string();
+    // curve definition
+    let curve = match &p.curve {
+        Some(c) => {
+            let rc = scene::component(&c.reaction_component).ok_or_else(|| {
+                anyhow!("{file}: key `output.curve.reaction_component`: use x, y or z")
+            })?;
+            let pc = scene::component(&c.point_component).ok_or_else(|| {
+                anyhow!("{file}: key `output.curve.point_component`: use x, y or z")
+            })?;
+            model
+                .mesh
+                .node_set(&c.reaction_set)
+                .map_err(|e| anyhow!("{file}: key `output.curve.reaction_set`: {e}"))?;
+            let pts = model
+                .mesh
+                .node_set(&c.point_set)
+                .map_err(|e| anyhow!("{file}: key `output.curve.point_set`: {e}"))?
+                .to_vec();
+            Some((c.reaction_set.clone(), rc, pts, pc))
+        }
+        None => None,
+    };
+    // previous rows (restart) and the curve file
+    let curve_path = dir.join("curve.csv");
+    let (mut rows, checkpoint, mut first_failure, mut frames) = match restart {
+        Some(r) => {
+            let text = std::fs::read_to_string(&curve_path).unwrap_or_default();
+            let rows: Vec<Row> = text
+                .lines()
+                .skip(1)
+                .filter_map(Row::parse)
+                .filter(|row| row.increment <= r.checkpoint.increment_index)
+                .collect();
+            (rows, Some(r.checkpoint), r.first_failure, r.frames)
+        }
+        None => (Vec::new(), None, None, Vec::new()),
+    };
+    {
+        let mut text = String::from(CURVE_HEADER);
+        for r in &rows {
+            text += &r.csv();
+        }
+        std::fs::write(&curve_path, text)
+            .with_context(|| format!("cannot write {}", curve_path.display()))?;
+    }
+    let mut curve_file = std::fs::OpenOptions::new()
+        .append(true)
+        .open(&curve_path)
+        .with_context(|| format!("cannot open {}", curve_path.display()))?;
+    let mut io_error: Option<anyhow::Error> = None;
+    let mut last_increment = checkpoint.as_ref().map_or(0, |c| c.increment_index);
+    let start_increment = last_increment;
+    let mut separated = false;
+    let every = p.every.max(1);
+    let result = {
+        let mut observer = |v: &junta_solvers::newton::IncrementView<'_>| -> Control {
+            let r = v.report;
+            let step_out = (|| -> Result<()> {
+                let ifs = output::interface_results(model, v.u, v.state)?;
+                let points: usize = ifs.iter().map(|i| i.points.len()).sum();
+                let failed: usize = ifs
+                    .iter()
+                    .flat_map(|i| i.points.iter())
+                    .filter(|pt| pt.get("failed").is_some_and(|f| f[0] > 0.5))
+                    .count();
+                let (reaction, displacement) = match &curve {
+                    Some((set, rc, pts, pc)) => (
+                        Some(model.set_total(set, v.residual)?[*rc]),
+                        Some(
+                            pts.iter().map(|&n| v.u[3 * n + pc]).sum::<f64>()
+                                / pts.len().max(1) as f64,
+                        ),
+                    ),
+                    None => (None, None),
+                };
+                if failed > 0 && first_failure.is_none() {
+                    first_failure = Some(FirstFailure {
+                        increment: r.increment_index,
+                        load_factor: r.lambda,
+                        reaction,
+                        displacement,
+                    });
+                }
+                separated = points > 0 && failed == points;
+                let row = Row {
+                    increment: r.increment_index,
+                    step: r.step,
+                    lambda: r.lambda,
+                    reaction,
+                    displacement,
+                    failed,
+                    points,
+                    iterations: r.iterations,
+                    cutbacks: r.cutbacks,
+                    seconds: r.seconds.total,
+                    small: r.small_increment_mode,
+                };
+                curve_file.write_all(row.csv().as_bytes())?;
+                curve_file.flush()?;
+                rows.push(row);
+                if r.increment_index % every == 0 || separated {
+                    let tag = format!("_{:04}", r.increment_index);
+                    let cells = output::cell_results(model, v.u, v.state)?;
+                    let name = format!("frames/results{tag}.vtu");
+                    output::write_vtu(&dir.join(&name), model, v.u, &cells)?;
+                    output::write_interface_vtu_named(&frames_dir, &tag, model, v.u, &ifs)?;
+                    frames.push((r.lambda, name));
+                    output::write_pvd(&dir.join("results.pvd"), &frames)?;
+                }
+                let restart = RestartFile {
+                    input: std::fs::canonicalize(input).unwrap_or_else(|_| input.to_path_buf()),
+                    checkpoint: v.checkpoint(),
+                    first_failure: first_failure.clone(),
+                    frames: frames.clone(),
+                };
+                write_atomic(&dir.join("checkpoint.json"), &serde_json::to_vec(&restart)?)?;
+                pb.set_message(format!(
+                    "increment {} lambda = {:.5} ({} iterations{}), {failed}/{points} interface points failed",
+                    r.increment_index,
+                    r.lambda,
+                    r.iterations,
+                    if r.small_increment_mode { ", small increments" } else { "" }
+                ));
+                Ok(())
+            })();
+            last_increment = r.increment_index;
+            if let Err(e) = step_out {
+                io_error = Some(e);
+                return Control::Stop;
+            }
+            if INTERRUPTED.load(Ordering::SeqCst)
+                || (analysis.stop_when_separated && separated)
+                || max_increments.is_some_and(|m| r.increment_index - start_increment >= m)
+            {
+                return Control::Stop;
+            }
+            Control::Continue
+        };
+        solve_nonlinear(
+            model,
+            p.solver.as_mut(),
+            &analysis.steps,
+            &analysis.newton,
+            checkpoint.as_ref(),
+            &mut observer,
+        )
+    };
+    if let Some(e) = io_error {
+        return Err(e.context("writing the results of an increment"));
+    }
+    let (status, run, failure) = match result {
+        Ok(run) => {
+            let status = if INTERRUPTED.load(Ordering::SeqCst) {
+                "interrupted (Ctrl-C)".to_string()
+            } else if run.summary.stopped_by_observer && separated {
+                "stopped: every interface point has failed".to_string()
+            } else if run.summary.stopped_by_observer {
+                "stopped after the requested number of increments".to_string()
+            } else {
+                "completed".to_string()
+            };
+            (status, Some(run), None)
+        }
+        Err(e @ NonlinearError::IncrementTooSmall { .. }) => {
+            (format!("failed: {e}"), None, Some(e))
+        }
+        Err(e) => return Err(anyhow!(e).context(format!("solving {file}"))),
+    };
+    // final summary, from the rows on disk (they include a restarted run's past)
+    let total_iterations: usize = rows.iter().map(|r| r.iterations).sum();
+    let max_iterations = rows.iter().map(|r| r.iterations).max().unwrap_or(0);
+    let mut summary = json!({
+        "input": file,
+        "title": p.title,
+        "units": p.units,
+        "analysis": "static",
+        "status": status,
+        "nodes": model.mesh.nodes.len(),
+        "dofs": model.dofs.num_dofs(),
+        "equations": model.dofs.num_free,
+        "elements": output::element_counts(model),
+        "increments": last_increment,
+        "newton_iterations": { "total": total_iterations, "max_per_increment": max_iterations },
+        "load_factor": rows.last().map(|r| r.lambda),
+        "first_failure": first_failure,
+        "restarted_from_increment": if start_increment > 0 { Some(start_increment) } else { None },
+    });
+    if let Some(run) = &run {
+        let ifs = output::interface_results(model, &run.u, &run.state)?;
+        summary["interfaces"] = output::interface_summary(model, &ifs);
+        summary["reactions"] = output::reactions(model, &run.residual)?;
+        summary["displacement_max"] = json!(output::displacement_max(&run.u));
+        let t = run.summary.timings;
+        summary["timings"] = json!({
+            "assemble": t.assemble, "analyze": t.analyze, "factor": t.factor, "solve": t.solve,
+            "driver_total": t.total, "total": t0.elapsed().as_secs_f64(),
+        });
+        summary["symbolic_analyses"] = json!(run.summary.analyze_count);
+        summary["cutbacks"] = json!(run.summary.cutbacks);
+    } else if let Some(last) = rows.last() {
+        // failed run: the state of the last converged increment is in the checkpoint
+        summary["failed_points_at_last_increment"] = json!(last.failed);
+    }
+    output::write_json(&dir.join("summary.json"), &summary)?;
+    if curve.is_some() && rows.len() >= 2 {
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .filter_map(|r| Some((r.displacement?, r.reaction?)))
+            .collect();
+        let c = p.curve.as_ref().unwrap();
+        plot::write_svg(
+            &dir.join("curve.svg"),
+            &[plot::Panel {
+                title: format!("{}: load-displacement", p.title),
+                x_label: format!("displacement of {} ({})", c.point_set, c.point_component),
+                y_label: format!("reaction on {} ({})", c.reaction_set, c.reaction_component),
+                log_x: false,
+                log_y: false,
+                series: vec![plot::Series {
+                    name: "converged increments".into(),
+                    points: pts,
+                    color: 0,
+                    markers_only: false,
+                }],
+                vlines: vec![],
+            }],
+        )?;
+    }
+    pb.finish_and_clear();
+    println!(
+        "{file}: {status}; {} increments, {} Newton iterations, load factor {:.6} -> {}",
+        last_increment,
+        total_iterations,
+        rows.last().map_or(0.0, |r| r.lambda),
+        dir.display()
+    );
+    match failure {
+        Some(e) => Err(anyhow!(e).context(format!(
+            "{file}: the run stopped; the {} converged increments are in {} (restart with `junta run --restart {}` after changing [analysis.newton])",
+            last_increment,
+            dir.display(),
+            dir.display()
+        ))),
+        None if INTERRUPTED.load(Ordering::SeqCst) => {
+            bail!("interrupted; the converged increments are in {}", dir.display())
+        }
+        None => Ok(()),
+    }
+}
+
+/// Read `DIR/checkpoint.json`.
+pub fn read_restart(dir: &Path) -> Result<RestartFile> {
+    let path = dir.join("checkpoint.json");
+    let text = std::fs::read_to_string(&path).with_context(|| {
+        format!(
+            "cannot read {} (is {} the output directory of an incremental run?)",
+            path.display(),
+            dir.display()
+        )
+    })?;
+    serde_json::from_str(&text)
+        .with_context(|| format!("{}: not a Junta checkpoint", path.display()))
+}
