@@ -190,7 +190,12 @@ pub fn run_static(
         let mut observer = |v: &junta_solvers::newton::IncrementView<'_>| -> Control {
             let r = v.report;
             let step_out = (|| -> Result<()> {
-                let ifs = output::interface_results(model, v.u, v.state)?;
+                let step = junta_core::element::StepInfo {
+                    increment: r.increment_index,
+                    load_factor: r.lambda,
+                    delta_load_factor: r.delta_lambda,
+                };
+                let ifs = output::interface_results_at(model, v.u, v.state, step)?;
                 let points: usize = ifs.iter().map(|i| i.points.len()).sum();
                 let failed: usize = ifs
                     .iter()
@@ -215,7 +220,16 @@ pub fn run_static(
                         displacement,
                     });
                 }
-                separated = points > 0 && failed == points;
+                // split: every point failed and none is still being released
+                separated = points > 0
+                    && failed == points
+                    && !model.mesh.blocks.iter().enumerate().any(|(b, block)| {
+                        block.shape.is_interface()
+                            && (0..block.len()).any(|e| {
+                                model.elements[b]
+                                    .wants_small_increments(&v.state.committed[v.state.range(b, e)])
+                            })
+                    });
                 let row = Row {
                     increment: r.increment_index,
                     step: r.step,
@@ -234,7 +248,7 @@ pub fn run_static(
                 rows.push(row);
                 if r.increment_index % every == 0 || separated {
                     let tag = format!("_{:04}", r.increment_index);
-                    let cells = output::cell_results(model, v.u, v.state)?;
+                    let cells = output::cell_results_at(model, v.u, v.state, step)?;
                     let name = format!("frames/results{tag}.vtu");
                     output::write_vtu(&dir.join(&name), model, v.u, &cells)?;
                     output::write_interface_vtu_named(&frames_dir, &tag, model, v.u, &ifs)?;
@@ -320,7 +334,12 @@ pub fn run_static(
         "restarted_from_increment": if start_increment > 0 { Some(start_increment) } else { None },
     });
     if let Some(run) = &run {
-        let ifs = output::interface_results(model, &run.u, &run.state)?;
+        let step = junta_core::element::StepInfo {
+            increment: last_increment,
+            load_factor: rows.last().map_or(0.0, |r| r.lambda),
+            delta_load_factor: 0.0,
+        };
+        let ifs = output::interface_results_at(model, &run.u, &run.state, step)?;
         summary["interfaces"] = output::interface_summary(model, &ifs);
         summary["reactions"] = output::reactions(model, &run.residual)?;
         summary["displacement_max"] = json!(output::displacement_max(&run.u));

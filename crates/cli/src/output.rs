@@ -28,6 +28,17 @@ pub struct CellResults {
 
 /// Average integration-point outputs over each solid cell.
 pub fn cell_results(model: &Model, u: &[f64], state: &StateStore) -> Result<CellResults> {
+    cell_results_at(model, u, state, StepInfo::default())
+}
+
+/// [`cell_results`] for the state of increment `step` (laws whose answer
+/// depends on the increment, such as a release schedule, need it).
+pub fn cell_results_at(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+    step: StepInfo,
+) -> Result<CellResults> {
     let mut stress = Vec::with_capacity(model.mesh.num_elements());
     let mut mises = Vec::with_capacity(model.mesh.num_elements());
     let mut ranges = Vec::new();
@@ -38,7 +49,7 @@ pub fn cell_results(model: &Model, u: &[f64], state: &StateStore) -> Result<Cell
         let mut lo = [f64::INFINITY; 6];
         let mut hi = [f64::NEG_INFINITY; 6];
         for e in 0..b.len() {
-            let pts = element_points(model, u, state, bi, e)?;
+            let pts = element_points(model, u, state, bi, e, step)?;
             for p in &pts {
                 if let Some(v) = p.get("stress") {
                     for k in 0..6 {
@@ -79,6 +90,7 @@ pub fn element_points(
     state: &StateStore,
     bi: usize,
     e: usize,
+    step: StepInfo,
 ) -> Result<Vec<junta_core::PointOutput>> {
     let b = &model.mesh.blocks[bi];
     let nodes = b.element(e);
@@ -91,7 +103,7 @@ pub fn element_points(
         coords: &coords,
         disp: &disp,
         state_committed: &state.committed[state.range(bi, e)],
-        step: StepInfo::default(),
+        step,
     };
     model.elements[bi]
         .point_outputs(&ctx)
@@ -242,6 +254,16 @@ pub fn interface_results(
     u: &[f64],
     state: &StateStore,
 ) -> Result<Vec<InterfaceResults>> {
+    interface_results_at(model, u, state, StepInfo::default())
+}
+
+/// [`interface_results`] for the state of increment `step`.
+pub fn interface_results_at(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+    step: StepInfo,
+) -> Result<Vec<InterfaceResults>> {
     let mut out = Vec::new();
     for (bi, b) in model.mesh.blocks.iter().enumerate() {
         if !b.shape.is_interface() {
@@ -249,7 +271,7 @@ pub fn interface_results(
         }
         let mut points = Vec::new();
         for e in 0..b.len() {
-            points.extend(element_points(model, u, state, bi, e)?);
+            points.extend(element_points(model, u, state, bi, e, step)?);
         }
         out.push(InterfaceResults {
             block: bi,
