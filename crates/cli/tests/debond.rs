@@ -60,6 +60,12 @@ fn beam_peel_splits_from_the_free_end_and_load_moves_to_the_clamps() {
     let dir = tempfile::tempdir().unwrap();
     let s = run_ok(&repo().join("examples/paper/beam_peel.toml"), dir.path());
     assert_eq!(f(&s["interfaces"]["bond"]["failed_fraction"]), 1.0);
+    // split: the interface transmits nothing any more (every traction zero)
+    for key in ["traction_min", "traction_max"] {
+        for k in 0..3 {
+            assert_eq!(f(&s["interfaces"]["bond"][key][k]), 0.0, "{key}[{k}]");
+        }
+    }
     // bonded, the opposite end forces equilibrate through the interface and
     // the upper clamp carries nothing; split, the upper arm is a cantilever
     // whose clamp carries the whole 3 x 1000 N x lambda
