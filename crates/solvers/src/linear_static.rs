@@ -76,7 +76,7 @@ pub fn solve_linear_static(
     let t0 = Instant::now();
     let mut timings = Timings::default();
     let t = Instant::now();
-    let asm = model.assembler();
+    let mut asm = model.assembler();
     timings.pattern = t.elapsed().as_secs_f64();
     tracing::info!(
         equations = model.dofs.num_free,
@@ -84,7 +84,10 @@ pub fn solve_linear_static(
         colors = asm.colors.len(),
         "pattern built"
     );
-    let mut k = asm.pattern.clone();
+    // Assemble into the assembler's own pattern (taken, not cloned: one copy
+    // of K is 130 MB at 100k 3D equations); `assemble` only reads the
+    // pattern of the matrix it is given.
+    let mut k = std::mem::take(&mut asm.pattern);
     let ndof = model.dofs.num_dofs();
     let mut f_int = vec![0.0; ndof];
     let mut state = model.initial_state();
