@@ -32,15 +32,7 @@ struct Params {
 impl LinearPenalty {
     /// A law with stiffness `[d1, d2, d3]`; each must be positive and finite.
     pub fn new(d: [f64; 3]) -> Result<Self, CoreError> {
-        for (i, v) in d.iter().enumerate() {
-            if !(*v > 0.0 && v.is_finite()) {
-                return Err(CoreError::InvalidParameters {
-                    kind: "law",
-                    key: "linear_penalty".into(),
-                    message: format!("d{} = {v} must be positive and finite (a penalty stiffness in force/length^3)", i + 1),
-                });
-            }
-        }
+        let d = super::penalty_stiffness("linear_penalty", None, d.map(Some))?;
         Ok(LinearPenalty { d })
     }
 
@@ -48,14 +40,11 @@ impl LinearPenalty {
     /// (each overrides `d`).
     pub fn from_table(t: &toml::Table) -> Result<Self, CoreError> {
         let p: Params = parse_params("law", "linear_penalty", t)?;
-        let get = |v: Option<f64>, name: &str| {
-            v.or(p.d).ok_or_else(|| CoreError::InvalidParameters {
-                kind: "law",
-                key: "linear_penalty".into(),
-                message: format!("give `d` (all directions) or `{name}`"),
-            })
-        };
-        Self::new([get(p.d1, "d1")?, get(p.d2, "d2")?, get(p.d3, "d3")?])
+        Self::new(super::penalty_stiffness(
+            "linear_penalty",
+            p.d,
+            [p.d1, p.d2, p.d3],
+        )?)
     }
 }
 

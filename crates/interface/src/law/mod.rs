@@ -6,3 +6,34 @@
 
 pub mod linear_penalty;
 pub mod paper_debond;
+
+use junta_core::CoreError;
+
+/// The penalty stiffness `[d1, d2, d3]` of a law's parameter table: `d` for
+/// all three directions, each of `d1`, `d2`, `d3` overriding it; every value
+/// positive and finite. Errors name the law `key`.
+pub fn penalty_stiffness(
+    key: &str,
+    d: Option<f64>,
+    d123: [Option<f64>; 3],
+) -> Result<[f64; 3], CoreError> {
+    let invalid = |message: String| CoreError::InvalidParameters {
+        kind: "law",
+        key: key.into(),
+        message,
+    };
+    let mut out = [0.0; 3];
+    for (i, v) in d123.iter().enumerate() {
+        let v = v
+            .or(d)
+            .ok_or_else(|| invalid(format!("give `d` (all directions) or `d{}`", i + 1)))?;
+        if !(v > 0.0 && v.is_finite()) {
+            return Err(invalid(format!(
+                "d{} = {v} must be positive and finite (a penalty stiffness in force/length^3)",
+                i + 1
+            )));
+        }
+        out[i] = v;
+    }
+    Ok(out)
+}

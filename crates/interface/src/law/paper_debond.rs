@@ -191,14 +191,7 @@ impl PaperDebond {
         release_increments: usize,
         criterion: Arc<dyn FailureCriterion>,
     ) -> Result<Self, CoreError> {
-        for (i, v) in d.iter().enumerate() {
-            if !(*v > 0.0 && v.is_finite()) {
-                return Err(invalid(format!(
-                    "d{} = {v} must be positive and finite (a penalty stiffness in force/length^3)",
-                    i + 1
-                )));
-            }
-        }
+        let d = super::penalty_stiffness("paper_debond", None, d.map(Some))?;
         if release_increments == 0 {
             return Err(invalid(
                 "`release_increments` = 0; it must be at least 1 (the paper uses 4)".into(),
@@ -216,11 +209,7 @@ impl PaperDebond {
     /// tau_lim = .. }` built through the criterion registry.
     pub fn from_table(t: &toml::Table) -> Result<Self, CoreError> {
         let p: Params = parse_params("law", "paper_debond", t)?;
-        let get = |v: Option<f64>, name: &str| {
-            v.or(p.d)
-                .ok_or_else(|| invalid(format!("give `d` (all directions) or `{name}`")))
-        };
-        let d = [get(p.d1, "d1")?, get(p.d2, "d2")?, get(p.d3, "d3")?];
+        let d = super::penalty_stiffness("paper_debond", p.d, [p.d1, p.d2, p.d3])?;
         let n = match p.release_increments {
             None => Self::DEFAULT_RELEASE_INCREMENTS,
             Some(n) if n >= 1 => n as usize,
