@@ -246,7 +246,7 @@ pub fn run_static(
                 curve_file.write_all(row.csv().as_bytes())?;
                 curve_file.flush()?;
                 rows.push(row);
-                if r.increment_index % every == 0 || separated {
+                if r.increment_index.is_multiple_of(every) || separated {
                     let tag = format!("_{:04}", r.increment_index);
                     let cells = output::cell_results_at(model, v.u, v.state, step)?;
                     let name = format!("frames/results{tag}.vtu");

@@ -145,20 +145,20 @@ pub fn write_vtu(path: &Path, model: &Model, u: &[f64], cells: &CellResults) -> 
         .flat_map(|b| b.connectivity.iter().map(|&n| n as u64));
     let offsets = solids
         .iter()
-        .flat_map(|b| std::iter::repeat(b.nodes_per_element()).take(b.len()))
+        .flat_map(|b| std::iter::repeat_n(b.nodes_per_element(), b.len()))
         .scan(0u64, |acc, n| {
             *acc += n as u64;
             Some(*acc)
         });
     let types = solids
         .iter()
-        .flat_map(|b| std::iter::repeat(b.shape.vtk_type() as u64).take(b.len()));
+        .flat_map(|b| std::iter::repeat_n(b.shape.vtk_type() as u64, b.len()));
     let block_ids = mesh
         .blocks
         .iter()
         .enumerate()
         .filter(|(_, b)| b.shape.is_solid())
-        .flat_map(|(i, b)| std::iter::repeat(i as f64).take(b.len()));
+        .flat_map(|(i, b)| std::iter::repeat_n(i as f64, b.len()));
     (|| -> std::io::Result<()> {
         vtu_head(&mut w, mesh.nodes.len(), ncells)?;
         write_array(
