@@ -121,6 +121,19 @@ pub fn default_dir(input: &Path, suffix: &str) -> PathBuf {
     PathBuf::from("out").join(format!("{stem}{suffix}"))
 }
 
+/// The output directory (`-o`, else the scene's `[output] directory`, else
+/// `out/<file stem>`), created.
+fn output_dir(input: &Path, out: Option<&Path>, p: &Prepared) -> Result<PathBuf> {
+    let dir = match (out, &p.output_dir) {
+        (Some(o), _) => o.to_path_buf(),
+        (None, Some(d)) => d.clone(),
+        (None, None) => default_dir(input, ""),
+    };
+    std::fs::create_dir_all(&dir)
+        .with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    Ok(dir)
+}
+
 /// `junta run`.
 pub fn run(
     input: &Path,
@@ -134,13 +147,7 @@ pub fn run(
     match p.analysis.kind.as_str() {
         "linear" => {}
         "static" => {
-            let dir = match (out, &p.output_dir) {
-                (Some(o), _) => o.to_path_buf(),
-                (None, Some(d)) => d.clone(),
-                (None, None) => default_dir(input, ""),
-            };
-            std::fs::create_dir_all(&dir)
-                .with_context(|| format!("cannot create output directory {}", dir.display()))?;
+            let dir = output_dir(input, out, &p)?;
             return crate::nonlinear::run_static(input, &mut p, &dir, &pb, None, max_increments);
         }
         other => bail!(
@@ -152,13 +159,7 @@ pub fn run(
         pb.suspend(|| eprintln!("note: {n}"));
     }
     let read_seconds = t0.elapsed().as_secs_f64();
-    let dir = match (out, &p.output_dir) {
-        (Some(o), _) => o.to_path_buf(),
-        (None, Some(d)) => d.clone(),
-        (None, None) => default_dir(input, ""),
-    };
-    std::fs::create_dir_all(&dir)
-        .with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    let dir = output_dir(input, out, &p)?;
     pb.set_message(format!(
         "solving {} equations ({} elements) with {}",
         p.model.dofs.num_free,
