@@ -55,6 +55,10 @@ enum Command {
         /// Incremental runs: stop after this many increments (a restart point is kept).
         #[arg(long)]
         max_increments: Option<usize>,
+        /// Override a solver parameter of the scene or deck (repeatable), e.g.
+        /// `--solver precision=double`, `--solver type=cg` (see `junta list`).
+        #[arg(long = "solver", value_name = "KEY=VALUE", conflicts_with = "restart")]
+        solver: Vec<String>,
     },
     /// Validate a scene or deck and print a model summary without solving.
     Check {
@@ -128,9 +132,16 @@ fn main() -> ExitCode {
             output,
             restart,
             max_increments,
+            solver,
         } => match (input, restart) {
             (_, Some(dir)) => run::restart(&dir, !cli.quiet, max_increments),
-            (Some(input), None) => run::run(&input, output.as_deref(), !cli.quiet, max_increments),
+            (Some(input), None) => run::run(
+                &input,
+                output.as_deref(),
+                !cli.quiet,
+                max_increments,
+                &solver,
+            ),
             (None, None) => Err(anyhow::anyhow!("give a scene or --restart DIR")),
         },
         Command::Check { input } => run::check(&input),

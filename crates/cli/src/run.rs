@@ -36,8 +36,42 @@ fn build_solver(key: &str, table: &toml::Table, where_: &str) -> Result<Box<dyn 
     (entry.build)(table).map_err(|e| anyhow!("{where_}: key `solver`: {e}"))
 }
 
-/// Read a scene (`.toml`) or a deck (`.inp`) and build the model.
-pub fn prepare(input: &Path) -> Result<Prepared> {
+/// Apply `--solver KEY=VALUE` overrides to the solver key and table. A
+/// value is read as a TOML value (`1e-10`, `true`, `"amd"`), or else as a
+/// bare string (`precision=double`); `type=...` changes the back end.
+fn apply_solver_overrides(
+    key: &mut String,
+    table: &mut toml::Table,
+    overrides: &[String],
+) -> Result<()> {
+    for o in overrides {
+        let Some((k, v)) = o.split_once('=') else {
+            bail!("--solver {o}: expected KEY=VALUE, e.g. --solver precision=double");
+        };
+        let (k, v) = (k.trim(), v.trim());
+        let value = toml::from_str::<toml::Table>(&format!("v = {v}"))
+            .ok()
+            .and_then(|mut t| t.remove("v"))
+            .unwrap_or_else(|| toml::Value::String(v.to_string()));
+        if k == "type" {
+            let toml::Value::String(name) = value else {
+                bail!("--solver {o}: the solver type is a name such as cholesky or cg");
+            };
+            if name != *key {
+                // parameters of the old back end do not apply to the new one
+                table.clear();
+            }
+            *key = name;
+        } else {
+            table.insert(k.to_string(), value);
+        }
+    }
+    Ok(())
+}
+
+/// Read a scene (`.toml`) or a deck (`.inp`) and build the model;
+/// `solver_overrides` are `--solver KEY=VALUE` options.
+pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
     let ext = input
         .extension()
         .and_then(|e| e.to_str())
@@ -46,7 +80,8 @@ pub fn prepare(input: &Path) -> Result<Prepared> {
         Some("toml") => {
             let sf = scene::SceneFile::read(input)?;
             let model = scene::build_model(&sf)?;
-            let (key, table) = scene::solver_table(&sf);
+            let (mut key, mut table) = scene::solver_table(&sf);
+            apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
             let solver = build_solver(&key, &table, &sf.path.display().to_string())?;
             Ok(Prepared {
                 model,
@@ -75,11 +110,9 @@ pub fn prepare(input: &Path) -> Result<Prepared> {
         }
         Some("inp") => {
             let (model, notes) = deck::build_model(input)?;
-            let solver = build_solver(
-                "cholesky",
-                &toml::Table::new(),
-                &input.display().to_string(),
-            )?;
+            let (mut key, mut table) = ("cholesky".to_string(), toml::Table::new());
+            apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
+            let solver = build_solver(&key, &table, &input.display().to_string())?;
             Ok(Prepared {
                 model,
                 solver,
@@ -140,10 +173,11 @@ pub fn run(
     out: Option<&Path>,
     progress: bool,
     max_increments: Option<usize>,
+    solver_overrides: &[String],
 ) -> Result<()> {
     let t0 = Instant::now();
     let pb = spinner(progress, format!("reading {}", input.display()));
-    let mut p = prepare(input)?;
+    let mut p = prepare(input, solver_overrides)?;
     match p.analysis.kind.as_str() {
         "linear" => {}
         "static" => {
@@ -243,6 +277,8 @@ pub fn run(
             "iterations": res.report.iterations,
             "residual": res.report.residual,
             "factor_nonzeros": res.report.factor_nonzeros,
+            "precision": res.report.precision,
+            "refinement_steps": res.report.refinement_steps,
             "warnings": res.report.warnings,
         },
         "notes": p.notes,
@@ -278,7 +314,7 @@ pub fn restart(dir: &Path, progress: bool, max_increments: Option<usize>) -> Res
             r.checkpoint.increment_index
         ),
     );
-    let mut p = prepare(&input)?;
+    let mut p = prepare(&input, &[])?;
     if p.analysis.kind != "static" {
         bail!(
             "{}: only incremental runs ([analysis] type = \"static\") can be restarted",
@@ -290,7 +326,7 @@ pub fn restart(dir: &Path, progress: bool, max_increments: Option<usize>) -> Res
 
 /// `junta check`.
 pub fn check(input: &Path) -> Result<()> {
-    let p = prepare(input)?;
+    let p = prepare(input, &[])?;
     let m = &p.model;
     println!("{}: valid", input.display());
     if !p.title.is_empty() {

@@ -143,6 +143,68 @@ fn shipped_cube_examples_agree_with_calculix() {
     assert_eq!(a["dofs"], b["dofs"]);
 }
 
+/// CalculiX 2.20 top reaction of the H20 n=12 cube (`bench/make_cube_deck.py
+/// C3D20 12`, `ccx -i`): -2.165699E+03 (7 digits).
+const CUBE_H20_N12: f64 = -2165.699;
+
+/// 22,919 equations: enough for the default `auto` precision of the direct
+/// solver to factorise in single precision and refine in double. The
+/// answer matches CalculiX to its printed digits and the double-precision
+/// factor to 1e-10.
+#[test]
+fn cube_h20_n12_in_mixed_precision_matches_calculix_and_double() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("cube.inp");
+    std::fs::write(&deck, cube_deck("C3D20", 12)).unwrap();
+    let mixed = run_ok(&deck, &dir.path().join("mixed"));
+    assert_eq!(mixed["solver"]["precision"], "mixed");
+    assert!(mixed["solver"]["refinement_steps"].as_u64().unwrap() >= 1);
+    assert!(mixed["solver"]["residual"].as_f64().unwrap() < 1e-12);
+    let fz_mixed = mixed["reactions"]["TOP"][2].as_f64().unwrap();
+    assert!(
+        rel(fz_mixed, CUBE_H20_N12) < 5e-7,
+        "Fz = {fz_mixed}, CalculiX {CUBE_H20_N12}"
+    );
+    let scene = dir.path().join("cube.toml");
+    let text = cube_scene("h20", 12).replace(
+        "type = \"cholesky\"",
+        "type = \"cholesky\"\nprecision = \"double\"",
+    );
+    std::fs::write(&scene, text).unwrap();
+    let double = run_ok(&scene, &dir.path().join("double"));
+    assert_eq!(double["solver"]["precision"], "double");
+    let fz_double = double["reactions"]["z1"][2].as_f64().unwrap();
+    assert!(
+        rel(fz_mixed, fz_double) < 1e-10,
+        "{fz_mixed} vs {fz_double}"
+    );
+    // the deck with the precision forced from the command line
+    let out = dir.path().join("flag");
+    let o = junta()
+        .args(["run", "-q", "--solver", "precision=double", "-o"])
+        .arg(&out)
+        .arg(&deck)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let flag: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(flag["solver"]["precision"], "double");
+    assert!(rel(flag["reactions"]["TOP"][2].as_f64().unwrap(), fz_double) < 1e-12);
+    // a misspelt override names the key and the valid ones
+    let o = junta()
+        .args(["run", "-q", "--solver", "precison=double"])
+        .arg(&deck)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("precison") && err.contains("precision"),
+        "{err}"
+    );
+}
+
 #[test]
 fn cube_with_cg_matches_direct() {
     let dir = tempfile::tempdir().unwrap();

@@ -44,6 +44,12 @@ pub struct SolveReport {
     pub solve_seconds: f64,
     /// Non-zeros of the factor (direct back ends).
     pub factor_nonzeros: usize,
+    /// Working precision of the factor (direct back ends): `"double"`, or
+    /// `"mixed"` for a single-precision factor whose solutions are refined
+    /// to double-precision residuals. Empty for iterative back ends.
+    pub precision: String,
+    /// Iterative-refinement steps of the last solve (direct back ends).
+    pub refinement_steps: usize,
     /// Warnings the caller should show (e.g. loss of digits).
     pub warnings: Vec<String>,
 }

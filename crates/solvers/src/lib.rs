@@ -6,7 +6,7 @@
 //!
 //! | key | type | what |
 //! |---|---|---|
-//! | `cholesky` | [`CholeskySolver`] | faer supernodal Cholesky, nested-dissection ([`ordering`]) or AMD ordering, iterative refinement, conditioning warnings |
+//! | `cholesky` | [`CholeskySolver`] | supernodal Cholesky on faer's symbolic analysis and dense kernels, nested-dissection ([`ordering`]) or AMD ordering, double or mixed precision ([`Precision`]), iterative refinement, conditioning warnings |
 //! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi or 3×3 nodal block-Jacobi |
 //!
 //! Embedders can skip the registry:
@@ -37,7 +37,8 @@ pub mod gallery;
 pub mod linear_static;
 pub mod newton;
 pub mod ordering;
+mod supernodal;
 
 pub use cg::{CgSettings, CgSolver, Preconditioner};
-pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats};
+pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats, Precision};
 pub use ordering::OrderingKind;

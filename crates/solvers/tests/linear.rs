@@ -5,7 +5,9 @@ use junta_core::{LinearSolver, SolverError, SymmetricCsc};
 use junta_solvers as _;
 use junta_solvers::gallery::{grid_3d, grid_3d_neumann, Stencil};
 use junta_solvers::ordering::{self, OrderingKind};
-use junta_solvers::{CgSettings, CgSolver, CholeskySettings, CholeskySolver, Preconditioner};
+use junta_solvers::{
+    CgSettings, CgSolver, CholeskySettings, CholeskySolver, Precision, Preconditioner,
+};
 use std::time::Instant;
 
 /// A known, non-trivial solution.
@@ -320,6 +322,106 @@ fn cholesky_warns_on_a_penalty_that_ruins_digits() {
             assert!(!s.report().warnings.is_empty());
         },
     );
+}
+
+/// The mixed mode (single-precision factor, refinement in double) reaches
+/// the accuracy of the double factor on a well-conditioned matrix, and
+/// falls back to double by itself where single precision cannot work: a
+/// penalty (caught by the pivot ratio of the single factor) and an
+/// ill-conditioned chain with a uniform diagonal (caught by refinement
+/// that does not converge).
+#[test]
+fn mixed_precision_refines_to_double_accuracy_or_falls_back() {
+    // auto's size threshold off, so that these small matrices qualify
+    let solver = |precision| {
+        CholeskySolver::new(CholeskySettings {
+            precision,
+            mixed_min_equations: 0,
+            ..Default::default()
+        })
+    };
+    // 1. well conditioned: mixed (forced, and chosen by auto)
+    let (a, coords) = grid_3d(12, 12, 12, 3, Stencil::Point27);
+    let xs = exact(a.n);
+    let mut d = solver(Precision::Double);
+    let xd = solve_with(&mut d, &a, &coords);
+    assert_eq!(d.report().precision, "double");
+    // the default auto keeps 5184 equations (< mixed_min_equations) in double
+    let mut d = CholeskySolver::new(Default::default());
+    solve_with(&mut d, &a, &coords);
+    assert_eq!(d.report().precision, "double");
+    for precision in [Precision::Mixed, Precision::Auto] {
+        let mut s = solver(precision);
+        let x = solve_with(&mut s, &a, &coords);
+        let r = s.report();
+        println!(
+            "{precision:?}: {} with {} refinement steps, residual {:.2e}, error {:.2e} (double: {:.2e})",
+            r.precision,
+            r.refinement_steps,
+            r.residual,
+            max_rel_error(&x, &xs),
+            max_rel_error(&xd, &xs)
+        );
+        assert_eq!(r.precision, "mixed");
+        // a single-precision solve alone leaves a residual near 1e-7
+        assert!(r.refinement_steps >= 1);
+        assert!(r.residual <= 1e-12, "{}", r.residual);
+        assert!(max_rel_error(&x, &xs) < 1e-10);
+        assert!(max_rel_error(&x, &xd) < 1e-12);
+        assert_eq!(s.stats().mixed_fallbacks, 0);
+        assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+    }
+    // 2. a penalty of 1e6 on unit stiffness: the diagonal spread (~1e5)
+    // lets auto try single precision, whose pivot ratio (~1e-5) is refused
+    let (a, coords) = penalised(1e6);
+    let xs = exact(a.n);
+    let mut s = solver(Precision::Auto);
+    let x = solve_with(&mut s, &a, &coords);
+    println!("penalty 1e6: {}", s.stats().mixed_fallback_reason);
+    assert_eq!(s.report().precision, "double");
+    assert_eq!(s.stats().mixed_fallbacks, 1);
+    assert!(s.stats().mixed_fallback_reason.contains("pivot"));
+    assert!(max_rel_error(&x, &xs) < 1e-6);
+    // ... while a higher penalty (spread > mixed_max_spread) goes straight
+    // to double
+    let (a, coords) = penalised(1e9);
+    let mut s = solver(Precision::Auto);
+    solve_with(&mut s, &a, &coords);
+    assert_eq!(s.report().precision, "double");
+    assert_eq!(s.stats().mixed_fallbacks, 0);
+    // 3. the 1D chain tridiag(-1, 2, -1) in its natural order: pivots
+    // (k+1)/k are harmless but cond = 4 n^2 / pi^2 = 1.6e8 makes refinement
+    // diverge (rate ~ cond eps_32 = 10); the solve refactorises in double
+    // and stays there
+    let n = 20_000;
+    let mut a = SymmetricCsc::from_columns(
+        (0..n)
+            .map(|j| if j == 0 { vec![0] } else { vec![j - 1, j] })
+            .collect(),
+    );
+    for j in 0..n {
+        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+            a.values[p] = if a.row_idx[p] == j { 2.0 } else { -1.0 };
+        }
+    }
+    let coords: Vec<[f64; 3]> = (0..n).map(|i| [i as f64, 0.0, 0.0]).collect();
+    let xs = exact(n);
+    let mut s = CholeskySolver::new(CholeskySettings {
+        precision: Precision::Mixed,
+        ordering: OrderingKind::Natural,
+        ..Default::default()
+    });
+    let x = solve_with(&mut s, &a, &coords);
+    println!("chain: {}", s.stats().mixed_fallback_reason);
+    assert_eq!(s.report().precision, "double");
+    assert_eq!(s.stats().mixed_fallbacks, 1);
+    assert!(s.stats().mixed_fallback_reason.contains("refinement"));
+    // double precision: error ~ cond eps_64 = 2e-8
+    assert!(max_rel_error(&x, &xs) < 1e-6, "{}", max_rel_error(&x, &xs));
+    // the fallback is for good: the next factorisation is double at once
+    s.factorize(&a).unwrap();
+    assert_eq!(s.report().precision, "double");
+    assert_eq!(s.stats().mixed_fallbacks, 1);
 }
 
 #[test]

@@ -1,0 +1,568 @@
+//! Supernodal Cholesky numeric kernels in panel storage, generic over the
+//! working precision (`f64`, or `f32` for the mixed-precision mode of
+//! [`crate::CholeskySolver`]).
+//!
+//! The structure ([`PanelFactor`]) comes from faer's supernodal symbolic
+//! analysis and does not depend on the precision; the values live in a
+//! separate buffer (`Vec<T>`) so that one structure serves a single- and a
+//! double-precision factor. The maths:
+//!
+//! * factorisation `P A P^T = L L^T`, left-looking over panels: panel `s`
+//!   (columns `J`) receives `A[J', J] - sum_d L[J', K_d] L[J, K_d]^T` from
+//!   every descendant panel `d` whose rows meet `J` (`J'` = `J` plus the
+//!   rows below), then the dense Cholesky of its diagonal block
+//!   `L[J, J] L[J, J]^T` and the triangular solve `L[R, J] = A'[R, J]
+//!   L[J, J]^-T` for the rows `R` below it;
+//! * solve `L y = b` (forward, panels in order) and `L^T x = y` (backward,
+//!   panels in reverse order).
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::{LltError as DenseLltError, LltRegularization};
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::{Accum, MatMut, MatRef, Par};
+use junta_core::SymmetricCsc;
+use rayon::prelude::*;
+
+/// Working precision of a factor: `f64` or `f32`.
+pub(crate) trait FactorScalar:
+    faer::traits::RealField + Copy + Send + Sync + Default + 'static
+{
+    /// Rounded from `f64`.
+    fn of_f64(x: f64) -> Self;
+    /// Widened to `f64`.
+    fn to_f64(self) -> f64;
+}
+
+impl FactorScalar for f64 {
+    #[inline(always)]
+    fn of_f64(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self
+    }
+}
+
+impl FactorScalar for f32 {
+    #[inline(always)]
+    fn of_f64(x: f64) -> Self {
+        x as f32
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+}
+
+/// Widest block of columns stored as one dense panel. faer's supernodal
+/// layout stores the whole square diagonal block of every supernode (the
+/// root separator of a 100k-equation cube is a 5459-column supernode: 120 MB
+/// of zeros above its diagonal); splitting wide supernodes into panels of at
+/// most this width bounds that waste by `PANEL / 2` entries per column.
+pub(crate) const PANEL: usize = 256;
+
+/// Branching depth of the elimination tree down to which subtrees become
+/// separate rayon tasks (2^depth subtrees is plenty for a few threads).
+const MAX_TASK_DEPTH: usize = 12;
+
+/// Supernodal Cholesky factor `P A P^T = L L^T` in panel storage, factorised
+/// left-looking with subtree parallelism (independent subtrees of the
+/// supernodal elimination tree run as rayon tasks; the dense kernels of
+/// large panels run in parallel too). The supernode partition and row
+/// structure come from faer's symbolic analysis; wide supernodes are split
+/// into panels (a panel of a supernode is itself a valid supernode whose
+/// structure is the rest of its supernode plus the supernode's rows).
+///
+/// Panel `s` covers the permuted columns `begin[s]..begin[s + 1]` (width
+/// `w`), with below-diagonal rows `pat[pat_ptr[s]..pat_ptr[s + 1]]` (`r`
+/// rows); its values are the column-major `(w + r) x w` block at
+/// `values[val_ptr[s]..]` (the upper triangle of the `w x w` diagonal block
+/// is unused).
+#[derive(Debug, Default)]
+pub(crate) struct PanelFactor {
+    n: usize,
+    begin: Vec<usize>,
+    pat_ptr: Vec<usize>,
+    pat: Vec<u32>,
+    val_ptr: Vec<usize>,
+    /// Panel of each permuted column.
+    panel_of: Vec<u32>,
+    /// Children in the panel elimination tree (CSR) and the roots.
+    child_ptr: Vec<usize>,
+    child: Vec<u32>,
+    roots: Vec<u32>,
+    /// Descendants updating each panel (CSR).
+    desc_ptr: Vec<usize>,
+    desc: Vec<u32>,
+}
+
+/// `dst (+)= alpha lhs rhs^T` where the top `mid x mid` block of the
+/// product (`mid` = rows of `rhs`) is symmetric: only its lower triangle is
+/// computed (the rest of `dst`'s top block is left alone), then the
+/// rectangle below it with a plain product.
+fn sym_update<T: FactorScalar>(
+    dst: MatMut<'_, T>,
+    lhs: MatRef<'_, T>,
+    rhs: MatRef<'_, T>,
+    beta: Accum,
+    alpha: T,
+    par: Par,
+) {
+    use faer::linalg::matmul::triangular::{self, BlockStructure};
+    let mid = rhs.nrows();
+    let (dst_top, dst_bot) = dst.split_at_row_mut(mid);
+    let (lhs_top, lhs_bot) = lhs.split_at_row(mid);
+    triangular::matmul(
+        dst_top,
+        BlockStructure::TriangularLower,
+        beta,
+        lhs_top,
+        BlockStructure::Rectangular,
+        rhs.transpose(),
+        BlockStructure::Rectangular,
+        alpha,
+        par,
+    );
+    if dst_bot.nrows() > 0 {
+        faer::linalg::matmul::matmul(dst_bot, beta, lhs_bot, rhs.transpose(), alpha, par);
+    }
+}
+
+/// Pointer wrapper for writes to disjoint parts of the factor from rayon tasks.
+struct SharedPtr<T>(*mut T);
+impl<T> Clone for SharedPtr<T> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<T> Copy for SharedPtr<T> {}
+unsafe impl<T> Send for SharedPtr<T> {}
+unsafe impl<T> Sync for SharedPtr<T> {}
+impl<T> SharedPtr<T> {
+    /// The pointer (a method, so closures capture the `Sync` wrapper).
+    #[inline]
+    fn get(self) -> *mut T {
+        self.0
+    }
+}
+
+impl PanelFactor {
+    pub(crate) fn n_panels(&self) -> usize {
+        self.begin.len() - 1
+    }
+
+    /// Columns of the widest panel.
+    #[cfg(test)]
+    pub(crate) fn widest_panel(&self) -> usize {
+        self.begin
+            .windows(2)
+            .map(|p| p[1] - p[0])
+            .max()
+            .unwrap_or(0)
+    }
+
+    fn pattern(&self, s: usize) -> &[u32] {
+        &self.pat[self.pat_ptr[s]..self.pat_ptr[s + 1]]
+    }
+
+    /// Stored entries (lower trapezoids only).
+    pub(crate) fn nonzeros(&self) -> usize {
+        (0..self.n_panels())
+            .map(|s| {
+                let w = self.begin[s + 1] - self.begin[s];
+                w * (w + 1) / 2 + w * (self.pat_ptr[s + 1] - self.pat_ptr[s])
+            })
+            .sum()
+    }
+
+    /// Panels from faer's supernodal symbolic structure.
+    pub(crate) fn new(
+        sym: &faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky<usize>,
+    ) -> Self {
+        let n = sym.nrows();
+        let ns = sym.n_supernodes();
+        let sb = sym.supernode_begin();
+        let se = sym.supernode_end();
+        let cpr = sym.col_ptr_for_row_idx();
+        let nps = sym.nnz_per_super();
+        let rows = sym.row_idx();
+        let mut begin = vec![0usize];
+        let mut pat_ptr = vec![0usize];
+        let mut pat: Vec<u32> = Vec::new();
+        let mut val_ptr = vec![0usize];
+        let pw = PANEL;
+        for k in 0..ns {
+            let (b, e) = (sb[k], se[k]);
+            let below = &rows[cpr[k]..cpr[k] + nps[k]];
+            let mut c0 = b;
+            while c0 < e {
+                let c1 = (c0 + pw).min(e);
+                pat.extend((c1..e).map(|i| i as u32));
+                pat.extend(below.iter().map(|&i| i as u32));
+                let r = (e - c1) + below.len();
+                let w = c1 - c0;
+                begin.push(c1);
+                pat_ptr.push(pat.len());
+                val_ptr.push(val_ptr.last().unwrap() + (w + r) * w);
+                c0 = c1;
+            }
+        }
+        let np = begin.len() - 1;
+        let mut panel_of = vec![0u32; n];
+        for s in 0..np {
+            panel_of[begin[s]..begin[s + 1]].fill(s as u32);
+        }
+        // elimination tree of panels: parent = panel of the first row below
+        let mut parent = vec![u32::MAX; np];
+        let mut nchild = vec![0usize; np + 1];
+        let mut roots = Vec::new();
+        for s in 0..np {
+            match pat[pat_ptr[s]..pat_ptr[s + 1]].first() {
+                Some(&r) => {
+                    let p = panel_of[r as usize];
+                    parent[s] = p;
+                    nchild[p as usize + 1] += 1;
+                }
+                None => roots.push(s as u32),
+            }
+        }
+        for s in 0..np {
+            nchild[s + 1] += nchild[s];
+        }
+        let child_ptr = nchild.clone();
+        let mut next = nchild;
+        let mut child = vec![0u32; np.saturating_sub(roots.len())];
+        for s in 0..np {
+            if parent[s] != u32::MAX {
+                let p = parent[s] as usize;
+                child[next[p]] = s as u32;
+                next[p] += 1;
+            }
+        }
+        // descendants updating each panel: panels hit by d's rows
+        let mut count = vec![0usize; np + 1];
+        for d in 0..np {
+            let mut last = u32::MAX;
+            for &r in &pat[pat_ptr[d]..pat_ptr[d + 1]] {
+                let s = panel_of[r as usize];
+                if s != last {
+                    count[s as usize + 1] += 1;
+                    last = s;
+                }
+            }
+        }
+        for s in 0..np {
+            count[s + 1] += count[s];
+        }
+        let desc_ptr = count.clone();
+        let mut next = count;
+        let mut desc = vec![0u32; desc_ptr[np]];
+        for d in 0..np {
+            let mut last = u32::MAX;
+            for &r in &pat[pat_ptr[d]..pat_ptr[d + 1]] {
+                let s = panel_of[r as usize];
+                if s != last {
+                    desc[next[s as usize]] = d as u32;
+                    next[s as usize] += 1;
+                    last = s;
+                }
+            }
+        }
+        PanelFactor {
+            n,
+            begin,
+            pat_ptr,
+            pat,
+            val_ptr,
+            panel_of,
+            child_ptr,
+            child,
+            roots,
+            desc_ptr,
+            desc,
+        }
+    }
+
+    pub(crate) fn len_val(&self) -> usize {
+        *self.val_ptr.last().unwrap()
+    }
+
+    /// Numeric factorisation of `P A P^T` (`A` upper CSC, `perm_inv[old] =
+    /// new`) into `values` (resized to [`Self::len_val`]; the allocation is
+    /// reused when it already has that length). `Err(k)`: non-positive
+    /// pivot at permuted column `k`.
+    pub(crate) fn factorize<T: FactorScalar>(
+        &self,
+        values: &mut Vec<T>,
+        a: &SymmetricCsc,
+        perm_inv: &[usize],
+        par: Par,
+    ) -> Result<(), usize> {
+        if values.len() != self.len_val() {
+            *values = Vec::new();
+            *values = vec![T::default(); self.len_val()];
+        } else {
+            values.par_iter_mut().for_each(|v| *v = T::default());
+        }
+        let ptr = SharedPtr(values.as_mut_ptr());
+        let this = self;
+        // scatter A: entry (i, j) of P A P^T with i >= j goes to the panel of j
+        (0..a.n).into_par_iter().with_min_len(256).for_each(|c| {
+            let jc = perm_inv[c];
+            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+                let ir = perm_inv[a.row_idx[p]];
+                let (i, j) = if ir >= jc { (ir, jc) } else { (jc, ir) };
+                let s = this.panel_of[j] as usize;
+                let (b, e) = (this.begin[s], this.begin[s + 1]);
+                let w = e - b;
+                let pat = this.pattern(s);
+                let m = w + pat.len();
+                let lr = if i < e {
+                    i - b
+                } else {
+                    w + pat.binary_search(&(i as u32)).expect("structure covers A")
+                };
+                // SAFETY: every entry of A maps to its own position.
+                unsafe {
+                    *ptr.get().add(this.val_ptr[s] + (j - b) * m + lr) = T::of_f64(a.values[p])
+                };
+            }
+        });
+        let threads = match par {
+            Par::Seq => 1,
+            Par::Rayon(t) => t.get(),
+        };
+        if threads > 1 {
+            this.roots
+                .par_iter()
+                .try_for_each(|&s| this.run_subtree(s as usize, ptr, threads, 0))
+        } else {
+            // panels are numbered in elimination order: descendants first
+            let mut tmp = Vec::new();
+            for s in 0..this.n_panels() {
+                this.factor_panel(s, ptr, 1, &mut tmp)?;
+            }
+            Ok(())
+        }
+    }
+
+    /// Factor the subtree rooted at `s`: children subtrees in parallel, then
+    /// the chain of single-child ancestors up to `s` in order. Below
+    /// [`MAX_TASK_DEPTH`] branchings (where there are far more subtrees than
+    /// threads) a subtree is factorised sequentially, without recursion.
+    fn run_subtree<T: FactorScalar>(
+        &self,
+        s: usize,
+        ptr: SharedPtr<T>,
+        threads: usize,
+        depth: usize,
+    ) -> Result<(), usize> {
+        let children = |x: usize| &self.child[self.child_ptr[x]..self.child_ptr[x + 1]];
+        let mut tmp = Vec::new();
+        if depth >= MAX_TASK_DEPTH {
+            let mut nodes = Vec::new();
+            let mut stack = vec![s as u32];
+            while let Some(x) = stack.pop() {
+                nodes.push(x);
+                stack.extend_from_slice(children(x as usize));
+            }
+            // descendants have smaller numbers than their ancestors
+            nodes.sort_unstable();
+            for &x in &nodes {
+                self.factor_panel(x as usize, ptr, threads, &mut tmp)?;
+            }
+            return Ok(());
+        }
+        let mut chain = vec![s];
+        let mut cur = s;
+        while let [only] = children(cur) {
+            cur = *only as usize;
+            chain.push(cur);
+        }
+        children(cur)
+            .par_iter()
+            .try_for_each(|&c| self.run_subtree(c as usize, ptr, threads, depth + 1))?;
+        for &x in chain.iter().rev() {
+            self.factor_panel(x, ptr, threads, &mut tmp)?;
+        }
+        Ok(())
+    }
+
+    /// Left-looking update and dense factorisation of panel `s`.
+    fn factor_panel<T: FactorScalar>(
+        &self,
+        s: usize,
+        ptr: SharedPtr<T>,
+        threads: usize,
+        tmp: &mut Vec<T>,
+    ) -> Result<(), usize> {
+        let (b, e) = (self.begin[s], self.begin[s + 1]);
+        let w = e - b;
+        let pat_s = self.pattern(s);
+        let m = w + pat_s.len();
+        // SAFETY: panel s is written only here; its descendants are complete
+        // and only read.
+        let ls_slice =
+            unsafe { std::slice::from_raw_parts_mut(ptr.get().add(self.val_ptr[s]), m * w) };
+        let mut ls = MatMut::from_column_major_slice_mut(ls_slice, m, w);
+        let big = threads > 1 && m * w >= 128 * 128;
+        let par = if big { Par::rayon(threads) } else { Par::Seq };
+        let mut loc: Vec<u32> = Vec::new();
+        for &d in &self.desc[self.desc_ptr[s]..self.desc_ptr[s + 1]] {
+            let d = d as usize;
+            let wd = self.begin[d + 1] - self.begin[d];
+            let pd = self.pattern(d);
+            let md = wd + pd.len();
+            let k0 = pd.partition_point(|&x| (x as usize) < b);
+            let k1 = k0 + pd[k0..].partition_point(|&x| (x as usize) < e);
+            let (len, mid) = (pd.len() - k0, k1 - k0);
+            let ld = unsafe {
+                std::slice::from_raw_parts(ptr.get().add(self.val_ptr[d]) as *const T, md * wd)
+            };
+            let ld = MatRef::from_column_major_slice(ld, md, wd);
+            let lhs = ld.subrows(wd + k0, len);
+            let rhs = ld.subrows(wd + k0, mid);
+            let p = if threads > 1 && len * mid * wd >= 1 << 21 {
+                Par::rayon(threads)
+            } else {
+                Par::Seq
+            };
+            // local rows in panel s
+            loc.clear();
+            let mut q = 0usize;
+            for &g in &pd[k0..] {
+                let g = g as usize;
+                if g < e {
+                    loc.push((g - b) as u32);
+                } else {
+                    while pat_s[q] as usize != g {
+                        q += 1;
+                    }
+                    loc.push((w + q) as u32);
+                }
+            }
+            let (l0, ln) = (loc[0] as usize, loc[len - 1] as usize);
+            if ln - l0 == len - 1 {
+                // contiguous rows (e.g. an earlier panel of the same
+                // supernode): update in place, no scatter
+                let dst = ls.rb_mut().submatrix_mut(l0, l0, len, mid);
+                sym_update(dst, lhs, rhs, Accum::Add, T::of_f64(-1.0), p);
+                continue;
+            }
+            tmp.clear();
+            tmp.resize(len * mid, T::default());
+            let t = MatMut::from_column_major_slice_mut(&mut tmp[..], len, mid);
+            sym_update(t, lhs, rhs, Accum::Replace, T::of_f64(1.0), p);
+            for jj in 0..mid {
+                let lc = loc[jj] as usize;
+                let col = ls
+                    .rb_mut()
+                    .col_mut(lc)
+                    .try_as_col_major_mut()
+                    .unwrap()
+                    .as_slice_mut();
+                let tc = &tmp[jj * len..(jj + 1) * len];
+                for ii in jj..len {
+                    col[loc[ii] as usize] -= tc[ii];
+                }
+            }
+        }
+        let (mut top, bot) = ls.rb_mut().split_at_row_mut(w);
+        let mut mem = MemBuffer::new(
+            faer::linalg::cholesky::llt::factor::cholesky_in_place_scratch::<T>(
+                w,
+                par,
+                Default::default(),
+            ),
+        );
+        match faer::linalg::cholesky::llt::factor::cholesky_in_place(
+            top.rb_mut(),
+            LltRegularization::default(),
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        ) {
+            Ok(_) => {}
+            Err(DenseLltError::NonPositivePivot { index }) => return Err(b + index),
+        }
+        if bot.nrows() > 0 {
+            faer::linalg::triangular_solve::solve_lower_triangular_in_place(
+                top.rb().conjugate(),
+                bot.transpose_mut(),
+                par,
+            );
+        }
+        Ok(())
+    }
+
+    /// Diagonal of `L` (permuted numbering), widened to `f64`.
+    pub(crate) fn diagonal<T: FactorScalar>(&self, values: &[T]) -> Vec<f64> {
+        let mut d = vec![0.0; self.n];
+        for s in 0..self.n_panels() {
+            let (b, e) = (self.begin[s], self.begin[s + 1]);
+            let m = (e - b) + self.pat_ptr[s + 1] - self.pat_ptr[s];
+            for c in 0..e - b {
+                d[b + c] = values[self.val_ptr[s] + c * m + c].to_f64();
+            }
+        }
+        d
+    }
+
+    /// `x <- (L L^T)^-1 x` in the permuted numbering.
+    pub(crate) fn solve_permuted<T: FactorScalar>(&self, values: &[T], x: &mut [T]) {
+        use faer::linalg::triangular_solve as tri;
+        let np = self.n_panels();
+        let mut tmp: Vec<T> = Vec::new();
+        // forward: x_J <- L_JJ^-1 x_J, then x_R -= L_RJ x_J (one dense
+        // triangular solve and one dense product per panel)
+        for s in 0..np {
+            let (b, e) = (self.begin[s], self.begin[s + 1]);
+            let w = e - b;
+            let pat = self.pattern(s);
+            let m = w + pat.len();
+            let v = &values[self.val_ptr[s]..self.val_ptr[s] + m * w];
+            let panel = MatRef::from_column_major_slice(v, m, w);
+            let (top, bot) = panel.split_at_row(w);
+            let xj = MatMut::from_column_major_slice_mut(&mut x[b..e], w, 1);
+            tri::solve_lower_triangular_in_place(top, xj, Par::Seq);
+            if pat.is_empty() {
+                continue;
+            }
+            tmp.clear();
+            tmp.resize(pat.len(), T::default());
+            let t = MatMut::from_column_major_slice_mut(&mut tmp[..], pat.len(), 1);
+            let xj = MatRef::from_column_major_slice(&x[b..e], w, 1);
+            faer::linalg::matmul::matmul(t, Accum::Replace, bot, xj, T::of_f64(1.0), Par::Seq);
+            for (&g, &t) in pat.iter().zip(&tmp) {
+                x[g as usize] -= t;
+            }
+        }
+        // backward: x_J <- L_JJ^-T (x_J - L_RJ^T x_R)
+        for s in (0..np).rev() {
+            let (b, e) = (self.begin[s], self.begin[s + 1]);
+            let w = e - b;
+            let pat = self.pattern(s);
+            let m = w + pat.len();
+            let v = &values[self.val_ptr[s]..self.val_ptr[s] + m * w];
+            let panel = MatRef::from_column_major_slice(v, m, w);
+            let (top, bot) = panel.split_at_row(w);
+            if !pat.is_empty() {
+                tmp.clear();
+                tmp.extend(pat.iter().map(|&g| x[g as usize]));
+                let t = MatRef::from_column_major_slice(&tmp[..], pat.len(), 1);
+                let xj = MatMut::from_column_major_slice_mut(&mut x[b..e], w, 1);
+                faer::linalg::matmul::matmul(
+                    xj,
+                    Accum::Add,
+                    bot.transpose(),
+                    t,
+                    T::of_f64(-1.0),
+                    Par::Seq,
+                );
+            }
+            let xj = MatMut::from_column_major_slice_mut(&mut x[b..e], w, 1);
+            tri::solve_upper_triangular_in_place(top.transpose(), xj, Par::Seq);
+        }
+    }
+}
