@@ -441,17 +441,29 @@ where
     Ok(out)
 }
 
+/// Geometry of one generated box (scene keys `size`, `divisions`, `origin`,
+/// `grading`).
+struct BoxGeometry {
+    size: [f64; 3],
+    divisions: [usize; 3],
+    origin: [f64; 3],
+    grading: [f64; 3],
+}
+
 /// Build one box of the generator, checking the element key.
 fn generate_box(
     sf: &SceneFile,
     key: &str,
-    size: [f64; 3],
-    divisions: [usize; 3],
+    geometry: BoxGeometry,
     element: &Spanned<String>,
     material: &Spanned<String>,
-    origin: [f64; 3],
-    grading: [f64; 3],
 ) -> Result<Mesh> {
+    let BoxGeometry {
+        size,
+        divisions,
+        origin,
+        grading,
+    } = geometry;
     let entry = registry::find::<ElementEntry>(element.get_ref())
         .map_err(|e| anyhow!("{}: key `{key}.element`: {e}", sf.at(element.span())))?;
     if !entry.shape.is_solid() {
@@ -520,12 +532,14 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
         "box" => generate_box(
             sf,
             "mesh",
-            m.size.ok_or_else(|| missing("size"))?,
-            m.divisions.ok_or_else(|| missing("divisions"))?,
+            BoxGeometry {
+                size: m.size.ok_or_else(|| missing("size"))?,
+                divisions: m.divisions.ok_or_else(|| missing("divisions"))?,
+                origin: m.origin.unwrap_or([0.0; 3]),
+                grading: m.grading.unwrap_or([1.0; 3]),
+            },
             m.element.as_ref().ok_or_else(|| missing("element"))?,
             m.material.as_ref().ok_or_else(|| missing("material"))?,
-            m.origin.unwrap_or([0.0; 3]),
-            m.grading.unwrap_or([1.0; 3]),
         )?,
         "boxes" => {
             if m.boxes.is_empty() {
@@ -537,12 +551,14 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
                 let part = generate_box(
                     sf,
                     &key,
-                    b.size,
-                    b.divisions,
+                    BoxGeometry {
+                        size: b.size,
+                        divisions: b.divisions,
+                        origin: b.origin,
+                        grading: b.grading,
+                    },
                     &b.element,
                     &b.material,
-                    b.origin,
-                    b.grading,
                 )?;
                 parts.push((b.name.clone(), part));
             }

@@ -87,14 +87,14 @@ impl Assembler {
         });
         // columns of the upper triangle: eq(i) <= eq(j); equations are in node order
         let mut col_ptr = vec![0usize; dofs.num_free + 1];
-        for node in 0..nn {
+        for (node, nbrs) in adj.iter().enumerate() {
             for c in 0..3 {
                 let j = dofs.eq[3 * node + c];
                 if j == CONSTRAINED {
                     continue;
                 }
                 let mut count = 0;
-                for &a in &adj[node] {
+                for &a in nbrs {
                     for c2 in 0..3 {
                         let i = dofs.eq[3 * a as usize + c2];
                         if i != CONSTRAINED && i <= j {
@@ -109,14 +109,14 @@ impl Assembler {
             col_ptr[j + 1] += col_ptr[j];
         }
         let mut row_idx = vec![0usize; col_ptr[dofs.num_free]];
-        for node in 0..nn {
+        for (node, nbrs) in adj.iter().enumerate() {
             for c in 0..3 {
                 let j = dofs.eq[3 * node + c];
                 if j == CONSTRAINED {
                     continue;
                 }
                 let mut p = col_ptr[j];
-                for &a in &adj[node] {
+                for &a in nbrs {
                     for c2 in 0..3 {
                         let i = dofs.eq[3 * a as usize + c2];
                         if i != CONSTRAINED && i <= j {

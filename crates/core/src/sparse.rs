@@ -85,8 +85,7 @@ impl SymmetricCsc {
             *yj = acc;
         });
         // U x without the diagonal: y_i += a_ij x_j for i < j (serial scatter)
-        for j in 0..n {
-            let xj = x[j];
+        for (j, &xj) in x.iter().enumerate().take(n) {
             for p in self.col_ptr[j]..self.col_ptr[j + 1] {
                 let i = self.row_idx[p];
                 if i != j {

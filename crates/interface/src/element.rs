@@ -160,7 +160,7 @@ impl InterfaceElement {
         let nv = cross(vxi, veta);
         let jac = norm(nv);
         let scale = norm(vxi) * norm(veta);
-        if !(jac > 1e-12 * scale) || !jac.is_finite() {
+        if !jac.is_finite() || !scale.is_finite() || jac <= 1e-12 * scale {
             return Err(ElementError::DegenerateSurface {
                 point: q,
                 area: jac,
@@ -281,10 +281,10 @@ impl Element for InterfaceElement {
                         if w == 0.0 {
                             continue;
                         }
-                        for c in 0..3 {
+                        for (c, gc) in g.iter().enumerate() {
                             let row = (3 * a + c) * nd + 3 * b;
-                            for d in 0..3 {
-                                k[row + d] += w * g[c][d];
+                            for (d, gcd) in gc.iter().enumerate() {
+                                k[row + d] += w * gcd;
                             }
                         }
                     }

@@ -1,13 +1,15 @@
 //! Criterion benches of the linear back ends on the 7-point 12^3 grid with
 //! 3 dofs per node (5184 equations) and a 27-point 16^3 grid (12288):
 //! Cholesky factor + solve with nested dissection vs AMD (analysis done
-//! once outside the timed loop), and block-Jacobi / Jacobi CG.
+//! once outside the timed loop), double against mixed precision (nested
+//! dissection; the 27-point grid with 24,576 equations), and block-Jacobi /
+//! Jacobi CG.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use junta_core::{LinearSolver, SymmetricCsc};
 use junta_solvers::gallery::{grid_3d, Stencil};
 use junta_solvers::{
-    CgSettings, CgSolver, CholeskySettings, CholeskySolver, OrderingKind, Preconditioner,
+    CgSettings, CgSolver, CholeskySettings, CholeskySolver, OrderingKind, Precision, Preconditioner,
 };
 use std::hint::black_box;
 
@@ -25,6 +27,7 @@ fn cholesky(c: &mut Criterion) {
         for ordering in [OrderingKind::NestedDissection, OrderingKind::Amd] {
             let mut s = CholeskySolver::new(CholeskySettings {
                 ordering,
+                precision: Precision::Double,
                 ..Default::default()
             });
             s.analyze(&a, Some(&coords)).unwrap();
@@ -37,6 +40,33 @@ fn cholesky(c: &mut Criterion) {
                 })
             });
         }
+    }
+    group.finish();
+}
+
+fn precision(c: &mut Criterion) {
+    let mut group = c.benchmark_group("cholesky_precision");
+    group.sample_size(10);
+    let (a, coords) = grid_3d(16, 16, 32, 3, Stencil::Point27);
+    let rhs = vec![1.0; a.n];
+    for precision in [Precision::Double, Precision::Mixed] {
+        let mut s = CholeskySolver::new(CholeskySettings {
+            precision,
+            ..Default::default()
+        });
+        s.analyze(&a, Some(&coords)).unwrap();
+        group.bench_function(
+            BenchmarkId::new(precision.name(), "grid16x16x32_p27"),
+            |bench| {
+                bench.iter(|| {
+                    s.factorize(&a).unwrap();
+                    let mut x = rhs.clone();
+                    s.solve_in_place(&a, &mut x).unwrap();
+                    assert_eq!(s.report().precision, precision.name());
+                    black_box(x)
+                })
+            },
+        );
     }
     group.finish();
 }
@@ -67,5 +97,5 @@ fn cg(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, cholesky, cg);
+criterion_group!(benches, cholesky, precision, cg);
 criterion_main!(benches);

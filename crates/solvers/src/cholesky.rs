@@ -396,7 +396,7 @@ impl CholeskySolver {
         let (rmin, eq) = self.min_pivot_ratio(&ldiag, diag);
         self.stats.min_pivot_ratio = rmin;
         self.stats.min_pivot_equation = eq;
-        if !(rmin >= SINGLE_PIVOT_MIN) {
+        if rmin.is_nan() || rmin < SINGLE_PIVOT_MIN {
             return Err(format!(
                 "single-precision pivot ratio {rmin:.3e} at equation {eq} is below {SINGLE_PIVOT_MIN:.0e}"
             ));

@@ -233,9 +233,9 @@ impl PanelFactor {
         let child_ptr = nchild.clone();
         let mut next = nchild;
         let mut child = vec![0u32; np.saturating_sub(roots.len())];
-        for s in 0..np {
-            if parent[s] != u32::MAX {
-                let p = parent[s] as usize;
+        for (s, &ps) in parent.iter().enumerate() {
+            if ps != u32::MAX {
+                let p = ps as usize;
                 child[next[p]] = s as u32;
                 next[p] += 1;
             }

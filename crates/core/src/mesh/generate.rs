@@ -80,13 +80,13 @@ pub fn box_mesh(
         if spec.divisions[a] == 0 {
             return Err(CoreError::Invalid("box divisions must be >= 1".into()));
         }
-        if !(spec.size[a] > 0.0) || !spec.size[a].is_finite() {
+        if !spec.size[a].is_finite() || spec.size[a] <= 0.0 {
             return Err(CoreError::Invalid(format!(
                 "box size must be positive and finite, got {:?}",
                 spec.size
             )));
         }
-        if !(spec.grading[a] > 0.0) || !spec.grading[a].is_finite() {
+        if !spec.grading[a].is_finite() || spec.grading[a] <= 0.0 {
             return Err(CoreError::Invalid(format!(
                 "box grading must be positive, got {:?}",
                 spec.grading
