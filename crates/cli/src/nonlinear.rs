@@ -4,7 +4,8 @@
 //!
 //! - `frames/results_NNNN.vtu`, `frames/interfaces_NNNN.vtu`,
 //!   `frames/interface_points_NNNN.vtu` and `results.pvd` (ParaView plays
-//!   the crack growing);
+//!   the crack growing), every `[output] every` increments, at separation,
+//!   and for the last converged increment when the run ends or stops;
 //! - `curve.csv`: increment, step, load factor, reaction, displacement,
 //!   failed points, Newton iterations, cut-backs, wall time;
 //! - `checkpoint.json`: the restart point (`junta run --restart DIR`);
@@ -340,6 +341,26 @@ pub fn run_static(
             delta_load_factor: 0.0,
         };
         let ifs = output::interface_results_at(model, &run.u, &run.state, step)?;
+        // the last converged increment is always a frame, whatever stopped
+        // the run (end of the program, Ctrl-C, --max-increments), so that
+        // nothing computed is lost
+        let tag = format!("_{last_increment:04}");
+        let name = format!("frames/results{tag}.vtu");
+        if last_increment > start_increment && frames.last().map(|f| &f.1) != Some(&name) {
+            let cells = output::cell_results_at(model, &run.u, &run.state, step)?;
+            output::write_vtu(&dir.join(&name), model, &run.u, &cells)?;
+            output::write_interface_vtu_named(&frames_dir, &tag, model, &run.u, &ifs)?;
+            frames.push((step.load_factor, name));
+            output::write_pvd(&dir.join("results.pvd"), &frames)?;
+            // keep the restart point's frame list in step with the pvd
+            let path = dir.join("checkpoint.json");
+            let mut restart: RestartFile = serde_json::from_slice(
+                &std::fs::read(&path).with_context(|| format!("cannot read {}", path.display()))?,
+            )
+            .with_context(|| format!("cannot parse {}", path.display()))?;
+            restart.frames = frames.clone();
+            write_atomic(&path, &serde_json::to_vec(&restart)?)?;
+        }
         summary["interfaces"] = output::interface_summary(model, &ifs);
         summary["reactions"] = output::reactions(model, &run.residual)?;
         summary["displacement_max"] = json!(output::displacement_max(&run.u));

@@ -211,3 +211,78 @@ curve = { reaction_set = "lower.z0", reaction_component = "z", point_set = "uppe
     let last: f64 = s["load_factor"].as_f64().unwrap();
     assert!((1.9..2.6).contains(&last), "last converged lambda {last}");
 }
+
+/// Ctrl-C (SIGINT) during an incremental run: the run stops after the
+/// increment in progress with a non-zero exit, says so in `summary.json`,
+/// keeps the converged frames, curve and checkpoint, and the restart from
+/// there finishes the run (the beam splits).
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_cleanly_and_the_run_can_be_restarted() {
+    let scene = repo().join("examples/paper/beam_shear.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let child = junta()
+        .args(["run", "-q", "-o"])
+        .arg(dir.path())
+        .arg(&scene)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // interrupt as soon as the first increment is on disk
+    let checkpoint = dir.path().join("checkpoint.json");
+    let t0 = std::time::Instant::now();
+    while !checkpoint.exists() {
+        assert!(
+            t0.elapsed().as_secs() < 120,
+            "no checkpoint after two minutes"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    let killed = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "an interrupted run exits non-zero");
+    assert!(stderr.contains("interrupted"), "{stderr}");
+    let s = summary(dir.path());
+    assert!(
+        s["status"].as_str().unwrap().contains("interrupted"),
+        "{}",
+        s["status"]
+    );
+    let done = s["increments"].as_u64().unwrap();
+    // beam_shear takes 77 increments uninterrupted
+    assert!((1..70).contains(&done), "{done} increments before the stop");
+    assert_eq!(
+        curve(dir.path()).len() as u64,
+        done + 1,
+        "header + one row per increment"
+    );
+    // the last converged increment is a frame, listed in the pvd
+    let last = format!("frames/results_{done:04}.vtu");
+    assert!(dir.path().join(&last).exists(), "{last}");
+    let pvd = std::fs::read_to_string(dir.path().join("results.pvd")).unwrap();
+    assert!(pvd.contains(&last), "{pvd}");
+    // the restart finishes the job
+    run_restart_ok(dir.path());
+    let s = summary(dir.path());
+    assert_eq!(s["restarted_from_increment"].as_u64(), Some(done));
+    assert_eq!(f(&s["interfaces"]["bond"]["failed_fraction"]), 1.0);
+}
+
+fn run_restart_ok(dir: &Path) {
+    let out = junta()
+        .args(["run", "-q", "--restart"])
+        .arg(dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
