@@ -30,13 +30,14 @@ pub struct Panel {
     pub vlines: Vec<(f64, String)>,
 }
 
-const PALETTE: [RGBColor; 6] = [
+const PALETTE: [RGBColor; 7] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
     RGBColor(148, 103, 189),
     RGBColor(255, 127, 14),
     RGBColor(127, 127, 127),
+    RGBColor(140, 86, 75),
 ];
 
 fn range(values: impl Iterator<Item = f64>, log: bool) -> Option<(f64, f64)> {

@@ -205,6 +205,9 @@ pub fn run(
     for w in &res.report.warnings {
         pb.suspend(|| eprintln!("warning: {w}"));
     }
+    for n in &res.report.notes {
+        pb.suspend(|| eprintln!("note: {n}"));
+    }
     if res.free_residual > 1e-6 {
         pb.suspend(|| {
             eprintln!(
@@ -280,6 +283,7 @@ pub fn run(
             "precision": res.report.precision,
             "refinement_steps": res.report.refinement_steps,
             "warnings": res.report.warnings,
+            "notes": res.report.notes,
         },
         "notes": p.notes,
     });

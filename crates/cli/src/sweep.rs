@@ -1,8 +1,11 @@
 //! `junta sweep penalty`: the speed/accuracy chart of the penalty method.
 //!
 //! Runs a scene over a log range of the penalty stiffness d (every
-//! `linear_penalty` law of the scene gets `d`), with the direct (`cholesky`)
-//! and the iterative (`cg`) back end, and records for each run: the relative
+//! `linear_penalty` law of the scene gets `d`), with the direct (`cholesky`,
+//! double precision), the mixed-precision direct (`cholesky_mixed`: single
+//! precision factor refined in double, which falls back to double by itself
+//! when the penalty makes single precision useless) and the iterative (`cg`)
+//! back end, and records for each run: the relative
 //! error of the reference reaction (`[reference]` of the scene, e.g. the
 //! perfectly bonded closed form of the confined prism), the largest normal
 //! jump |delta_3| (interpenetration or opening), the solve time, and what
@@ -31,8 +34,23 @@ pub struct SweepRow {
     pub residual: f64,
     pub equilibrium: f64,
     pub warnings: Vec<String>,
+    /// Precision of the direct solver's final factor (`double`/`mixed`).
+    pub precision: String,
+    /// What the back end decided on its own (mixed-precision fallback).
+    pub notes: Vec<String>,
     pub message: String,
 }
+
+/// The back ends of the sweep: label, registry key, parameters.
+const SWEEP_SOLVERS: [(&str, &str, &str); 3] = [
+    ("cholesky", "cholesky", "precision = \"double\""),
+    (
+        "cholesky_mixed",
+        "cholesky",
+        "precision = \"mixed\"\nmixed_min_equations = 0",
+    ),
+    ("cg", "cg", ""),
+];
 
 /// Log-spaced values from `from` to `to`, `per_decade` per decade.
 pub fn log_range(from: f64, to: f64, per_decade: usize) -> Vec<f64> {
@@ -94,15 +112,16 @@ pub fn sweep_penalty(
     for d in log_range(from, to, per_decade) {
         set_penalty(&mut sf, d);
         let model = scene::build_model(&sf)?;
-        for key in ["cholesky", "cg"] {
+        for (label, key, params) in SWEEP_SOLVERS {
             let entry = registry::find::<SolverEntry>(key)?;
-            let mut solver = (entry.build)(&toml::Table::new())?;
+            let table: toml::Table = toml::from_str(params)?;
+            let mut solver = (entry.build)(&table)?;
             let t = Instant::now();
             let res = solve_linear_static(&model, solver.as_mut());
             let seconds = t.elapsed().as_secs_f64();
             let mut row = SweepRow {
                 d,
-                solver: key.into(),
+                solver: label.into(),
                 ok: false,
                 rel_error: None,
                 max_normal_jump: None,
@@ -111,6 +130,8 @@ pub fn sweep_penalty(
                 residual: f64::NAN,
                 equilibrium: f64::NAN,
                 warnings: Vec::new(),
+                precision: String::new(),
+                notes: Vec::new(),
                 message: String::new(),
             };
             match res {
@@ -121,6 +142,8 @@ pub fn sweep_penalty(
                     row.residual = r.report.residual;
                     row.equilibrium = r.free_residual;
                     row.warnings = r.report.warnings.clone();
+                    row.precision = r.report.precision.clone();
+                    row.notes = r.report.notes.clone();
                     if let Some((rs, c)) = &reference {
                         let v = model.set_total(&rs.set, &r.residual)?[*c];
                         row.rel_error = Some((v - rs.value).abs() / rs.value.abs());
@@ -140,18 +163,23 @@ pub fn sweep_penalty(
     }
     // CSV
     let mut csv = String::from(
-        "d,solver,status,relative_error,max_abs_normal_jump,solve_seconds,iterations,solver_residual,equilibrium_residual,eq53_estimate,message\n",
+        "d,solver,status,relative_error,max_abs_normal_jump,solve_seconds,iterations,solver_residual,equilibrium_residual,eq53_estimate,precision,message\n",
     );
     for r in &rows {
         let (ce, re) = advice.errors_at(r.d);
         let msg = if r.ok {
-            r.warnings.join(" | ")
+            r.warnings
+                .iter()
+                .chain(&r.notes)
+                .cloned()
+                .collect::<Vec<_>>()
+                .join(" | ")
         } else {
             r.message.clone()
         };
         writeln!(
             csv,
-            "{:e},{},{},{},{},{:e},{},{:e},{:e},{:e},\"{}\"",
+            "{:e},{},{},{},{},{:e},{},{:e},{:e},{:e},{},\"{}\"",
             r.d,
             r.solver,
             if !r.ok {
@@ -170,6 +198,7 @@ pub fn sweep_penalty(
             r.residual,
             r.equilibrium,
             ce + re,
+            r.precision,
             msg.replace('"', "'")
         )?;
     }
@@ -196,9 +225,26 @@ pub fn sweep_penalty(
         markers_only: true,
     };
     let ds = log_range(from, to, per_decade * 4);
+    // the mixed mode as markers over the double line: where it holds, the
+    // two coincide
+    let dots = |mut s: plot::Series| {
+        s.markers_only = true;
+        s
+    };
     let mut error_series = vec![
-        series("cholesky", 0, &|r| r.rel_error),
         series("cg", 1, &|r| r.rel_error),
+        series("cholesky", 0, &|r| r.rel_error),
+        dots(series("cholesky_mixed", 2, &|r| r.rel_error)),
+        plot::Series {
+            name: "cholesky_mixed fell back to double".into(),
+            points: rows
+                .iter()
+                .filter(|r| r.solver == "cholesky_mixed" && !r.notes.is_empty())
+                .map(|r| (r.d, r.rel_error.unwrap_or(1.0)))
+                .collect(),
+            color: 6,
+            markers_only: true,
+        },
         failed("cholesky", 4, 1.0),
         failed("cg", 3, 1.0),
     ];
@@ -240,8 +286,9 @@ pub fn sweep_penalty(
             log_x: true,
             log_y: true,
             series: vec![
-                series("cholesky", 0, &|r| r.max_normal_jump),
                 series("cg", 1, &|r| r.max_normal_jump),
+                series("cholesky", 0, &|r| r.max_normal_jump),
+                dots(series("cholesky_mixed", 2, &|r| r.max_normal_jump)),
             ],
             vlines: vec![],
         },
@@ -253,6 +300,7 @@ pub fn sweep_penalty(
             log_y: true,
             series: vec![
                 series("cholesky", 0, &|r| Some(r.seconds)),
+                series("cholesky_mixed", 2, &|r| Some(r.seconds)),
                 series("cg", 1, &|r| Some(r.seconds)),
             ],
             vlines: vec![],
@@ -297,8 +345,15 @@ pub fn report(rows: &[SweepRow]) {
             note.chars().take(100).collect::<String>()
         );
     }
-    for solver in ["cholesky", "cg"] {
+    for (solver, _, _) in SWEEP_SOLVERS {
         let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.solver == solver).collect();
+        if let Some(first) = mine.iter().find(|r| !r.notes.is_empty()) {
+            println!(
+                "{solver}: falls back to double precision from d = {:.2e}: {}",
+                first.d,
+                first.notes.join("; ")
+            );
+        }
         if let Some(best) = mine
             .iter()
             .filter(|r| r.ok && r.rel_error.is_some())

@@ -141,7 +141,7 @@ fn penalty_sweep_charts_where_methods_fail() {
     let rows: Vec<Vec<String>> = csv
         .lines()
         .skip(1)
-        .map(|l| l.splitn(11, ',').map(str::to_string).collect())
+        .map(|l| l.splitn(12, ',').map(str::to_string).collect())
         .collect();
     let get = |solver: &str| -> Vec<(f64, String, Option<f64>)> {
         rows.iter()
@@ -152,6 +152,38 @@ fn penalty_sweep_charts_where_methods_fail() {
     let direct = get("cholesky");
     let cg = get("cg");
     assert_eq!(direct.len(), 19);
+    // the mixed-precision direct solve: single precision while the penalty
+    // leaves it usable, with the double's answer; from some d on it falls
+    // back to double by itself (and says so), never a silent wrong answer
+    let mixed: Vec<(f64, String, Option<f64>, String)> = rows
+        .iter()
+        .filter(|r| r[1] == "cholesky_mixed")
+        .map(|r| {
+            (
+                r[0].parse().unwrap(),
+                r[2].clone(),
+                r[3].parse().ok(),
+                r[10].clone(),
+            )
+        })
+        .collect();
+    assert_eq!(mixed.len(), 19);
+    let first_fallback = mixed
+        .iter()
+        .position(|r| r.3 == "double")
+        .expect("the mixed mode falls back to double at high penalties");
+    assert!(first_fallback >= 3, "mixed holds at low penalties");
+    assert!(mixed[first_fallback..].iter().all(|r| r.3 != "mixed"));
+    assert!(csv.contains("mixed precision abandoned"));
+    for (m, d) in mixed[..first_fallback].iter().zip(&direct) {
+        assert_eq!(m.3, "mixed");
+        let (em, ed) = (m.2.unwrap(), d.2.unwrap());
+        assert!(
+            (em - ed).abs() <= 1e-9 * ed.max(1e-6),
+            "d = {:e}: mixed error {em:e}, double {ed:e}",
+            m.0
+        );
+    }
     // constraint regime: error ~ 1/d (eq. 51)
     let e = |d: f64| {
         direct

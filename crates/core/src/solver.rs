@@ -52,6 +52,9 @@ pub struct SolveReport {
     pub refinement_steps: usize,
     /// Warnings the caller should show (e.g. loss of digits).
     pub warnings: Vec<String>,
+    /// Information on what the back end decided on its own (e.g. that it
+    /// gave up single precision and refactorised in double).
+    pub notes: Vec<String>,
 }
 
 /// A linear solver for symmetric positive-definite systems stored as the

@@ -409,9 +409,13 @@ impl CholeskySolver {
 
     /// Record why the mixed mode was abandoned; double from now on.
     fn give_up_single(&mut self, reason: String) {
-        tracing::info!(
-            "cholesky: mixed precision abandoned, refactorising in double precision: {reason}"
+        let note = format!(
+            "cholesky: mixed precision abandoned, refactorised in double precision: {reason}"
         );
+        tracing::info!("{note}");
+        if !self.report.notes.contains(&note) {
+            self.report.notes.push(note);
+        }
         self.single = false;
         self.single_failed = true;
         self.values32 = Vec::new();
@@ -651,6 +655,7 @@ impl LinearSolver for CholeskySolver {
         self.stats.analyze_count += 1;
         // a new pattern is a new problem: the mixed mode may be tried again
         self.single_failed = false;
+        self.report.notes.clear();
         self.single = false;
         self.values32 = Vec::new();
         self.values64 = Vec::new();
