@@ -784,13 +784,15 @@ impl LinearSolver for CholeskySolver {
                 Err(reason) => {
                     // refactorise in double precision and solve afresh
                     self.give_up_single(reason);
+                    // no usable factor until the double one succeeds
+                    self.factored = false;
+                    b.copy_from_slice(&rhs);
                     let tf = Instant::now();
                     let diag = matrix.diagonal();
                     let (dmin, dmax) = (self.stats.matrix_diag_min, self.stats.matrix_diag_max);
                     let fac = self.factor_double(matrix, &diag, dmin, dmax);
                     self.report.factor_seconds += tf.elapsed().as_secs_f64();
                     fac?;
-                    b.copy_from_slice(&rhs);
                 }
             }
         }
