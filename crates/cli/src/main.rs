@@ -57,6 +57,7 @@ enum Command {
         max_increments: Option<usize>,
         /// Override a solver parameter of the scene or deck (repeatable), e.g.
         /// `--solver precision=double`, `--solver type=cg` (see `junta list`).
+        /// A restart reuses the overrides of the run it continues.
         #[arg(long = "solver", value_name = "KEY=VALUE", conflicts_with = "restart")]
         solver: Vec<String>,
     },

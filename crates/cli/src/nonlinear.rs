@@ -35,6 +35,9 @@ pub struct RestartFile {
     pub first_failure: Option<FirstFailure>,
     /// Frames written so far `(load factor, file)`.
     pub frames: Vec<(f64, String)>,
+    /// The run's `--solver KEY=VALUE` overrides (applied again on restart).
+    #[serde(default)]
+    pub solver_overrides: Vec<String>,
 }
 
 /// When the first interface point failed.
@@ -187,6 +190,7 @@ pub fn run_static(
     let start_increment = last_increment;
     let mut separated = false;
     let every = p.every.max(1);
+    let solver_overrides = p.solver_overrides.clone();
     let result = {
         let mut observer = |v: &junta_solvers::newton::IncrementView<'_>| -> Control {
             let r = v.report;
@@ -261,6 +265,7 @@ pub fn run_static(
                     checkpoint: v.checkpoint(),
                     first_failure: first_failure.clone(),
                     frames: frames.clone(),
+                    solver_overrides: solver_overrides.clone(),
                 };
                 write_atomic(&dir.join("checkpoint.json"), &serde_json::to_vec(&restart)?)?;
                 pb.set_message(format!(
@@ -334,33 +339,24 @@ pub fn run_static(
         "first_failure": first_failure,
         "restarted_from_increment": if start_increment > 0 { Some(start_increment) } else { None },
     });
+    let step = junta_core::element::StepInfo {
+        increment: last_increment,
+        load_factor: rows.last().map_or(0.0, |r| r.lambda),
+        delta_load_factor: 0.0,
+    };
+    // the last converged increment is always a frame, whatever stopped the
+    // run (end of the program, Ctrl-C, --max-increments, an increment
+    // below min_increment), so that nothing computed is lost
+    let frame_ctx = FrameContext {
+        model,
+        dir,
+        frames_dir: &frames_dir,
+        step,
+        start_increment,
+    };
     if let Some(run) = &run {
-        let step = junta_core::element::StepInfo {
-            increment: last_increment,
-            load_factor: rows.last().map_or(0.0, |r| r.lambda),
-            delta_load_factor: 0.0,
-        };
         let ifs = output::interface_results_at(model, &run.u, &run.state, step)?;
-        // the last converged increment is always a frame, whatever stopped
-        // the run (end of the program, Ctrl-C, --max-increments), so that
-        // nothing computed is lost
-        let tag = format!("_{last_increment:04}");
-        let name = format!("frames/results{tag}.vtu");
-        if last_increment > start_increment && frames.last().map(|f| &f.1) != Some(&name) {
-            let cells = output::cell_results_at(model, &run.u, &run.state, step)?;
-            output::write_vtu(&dir.join(&name), model, &run.u, &cells)?;
-            output::write_interface_vtu_named(&frames_dir, &tag, model, &run.u, &ifs)?;
-            frames.push((step.load_factor, name));
-            output::write_pvd(&dir.join("results.pvd"), &frames)?;
-            // keep the restart point's frame list in step with the pvd
-            let path = dir.join("checkpoint.json");
-            let mut restart: RestartFile = serde_json::from_slice(
-                &std::fs::read(&path).with_context(|| format!("cannot read {}", path.display()))?,
-            )
-            .with_context(|| format!("cannot parse {}", path.display()))?;
-            restart.frames = frames.clone();
-            write_atomic(&path, &serde_json::to_vec(&restart)?)?;
-        }
+        write_final_frame(&frame_ctx, &mut frames, &run.u, &run.state, &ifs)?;
         summary["interfaces"] = output::interface_summary(model, &ifs);
         summary["reactions"] = output::reactions(model, &run.residual)?;
         summary["displacement_max"] = json!(output::displacement_max(&run.u));
@@ -372,9 +368,27 @@ pub fn run_static(
         summary["symbolic_analyses"] = json!(run.summary.analyze_count);
         summary["cutbacks"] = json!(run.summary.cutbacks);
     } else if let Some(last) = rows.last() {
-        // failed run: the state of the last converged increment is in the checkpoint
+        // failed run: the state of the last converged increment is in the
+        // checkpoint
         summary["failed_points_at_last_increment"] = json!(last.failed);
+        if last_increment > start_increment {
+            let r = read_restart(dir)?;
+            let mut state = model.initial_state();
+            state
+                .committed
+                .copy_from_slice(&r.checkpoint.state_committed);
+            state.restore();
+            let ifs = output::interface_results_at(model, &r.checkpoint.u, &state, step)?;
+            write_final_frame(&frame_ctx, &mut frames, &r.checkpoint.u, &state, &ifs)?;
+        }
     }
+    let report = p.solver.report();
+    summary["solver"] = json!({
+        "name": report.solver,
+        "precision": report.precision,
+        "warnings": report.warnings,
+        "notes": report.notes,
+    });
     output::write_json(&dir.join("summary.json"), &summary)?;
     if curve.is_some() && rows.len() >= 2 {
         let pts: Vec<(f64, f64)> = rows
@@ -420,6 +434,44 @@ pub fn run_static(
         }
         None => Ok(()),
     }
+}
+
+/// What [`write_final_frame`] needs besides the state.
+struct FrameContext<'a> {
+    model: &'a junta_core::Model,
+    dir: &'a Path,
+    frames_dir: &'a Path,
+    step: junta_core::element::StepInfo,
+    start_increment: usize,
+}
+
+/// Write the frame of the last converged increment (`step.increment`)
+/// unless this run wrote none or it is already the last frame, list it in
+/// `results.pvd`, and keep the checkpoint's frame list in step.
+fn write_final_frame(
+    ctx: &FrameContext<'_>,
+    frames: &mut Vec<(f64, String)>,
+    u: &[f64],
+    state: &junta_core::state::StateStore,
+    ifs: &[output::InterfaceResults],
+) -> Result<()> {
+    let last = ctx.step.increment;
+    let tag = format!("_{last:04}");
+    let name = format!("frames/results{tag}.vtu");
+    if last <= ctx.start_increment || frames.last().map(|f| &f.1) == Some(&name) {
+        return Ok(());
+    }
+    let cells = output::cell_results_at(ctx.model, u, state, ctx.step)?;
+    output::write_vtu(&ctx.dir.join(&name), ctx.model, u, &cells)?;
+    output::write_interface_vtu_named(ctx.frames_dir, &tag, ctx.model, u, ifs)?;
+    frames.push((ctx.step.load_factor, name));
+    output::write_pvd(&ctx.dir.join("results.pvd"), frames)?;
+    let mut restart = read_restart(ctx.dir)?;
+    restart.frames = frames.clone();
+    write_atomic(
+        &ctx.dir.join("checkpoint.json"),
+        &serde_json::to_vec(&restart)?,
+    )
 }
 
 /// Read `DIR/checkpoint.json`.

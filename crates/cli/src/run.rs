@@ -28,6 +28,8 @@ pub struct Prepared {
     pub every: usize,
     pub thickness: std::collections::BTreeMap<String, f64>,
     pub notes: Vec<String>,
+    /// The `--solver KEY=VALUE` overrides applied (kept for restarts).
+    pub solver_overrides: Vec<String>,
 }
 
 fn build_solver(key: &str, table: &toml::Table, where_: &str) -> Result<Box<dyn LinearSolver>> {
@@ -44,6 +46,7 @@ fn apply_solver_overrides(
     table: &mut toml::Table,
     overrides: &[String],
 ) -> Result<()> {
+    let mut parsed = Vec::with_capacity(overrides.len());
     for o in overrides {
         let Some((k, v)) = o.split_once('=') else {
             bail!("--solver {o}: expected KEY=VALUE, e.g. --solver precision=double");
@@ -53,16 +56,24 @@ fn apply_solver_overrides(
             .ok()
             .and_then(|mut t| t.remove("v"))
             .unwrap_or_else(|| toml::Value::String(v.to_string()));
-        if k == "type" {
+        parsed.push((o, k, value));
+    }
+    // `type` first, wherever it is given: the other keys are parameters of
+    // the back end it selects
+    for (o, k, value) in &parsed {
+        if *k == "type" {
             let toml::Value::String(name) = value else {
                 bail!("--solver {o}: the solver type is a name such as cholesky or cg");
             };
-            if name != *key {
-                // parameters of the old back end do not apply to the new one
+            if name != key {
+                // parameters of the scene's back end do not apply to another
                 table.clear();
+                *key = name.clone();
             }
-            *key = name;
-        } else {
+        }
+    }
+    for (_, k, value) in parsed {
+        if k != "type" {
             table.insert(k.to_string(), value);
         }
     }
@@ -106,6 +117,7 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
                     .filter_map(|f| f.thickness.map(|t| (f.name.clone(), t)))
                     .collect(),
                 notes: Vec::new(),
+                solver_overrides: solver_overrides.to_vec(),
             })
         }
         Some("inp") => {
@@ -128,6 +140,7 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
                 reference: None,
                 thickness: Default::default(),
                 notes,
+                solver_overrides: solver_overrides.to_vec(),
             })
         }
         _ => bail!(
@@ -318,7 +331,8 @@ pub fn restart(dir: &Path, progress: bool, max_increments: Option<usize>) -> Res
             r.checkpoint.increment_index
         ),
     );
-    let mut p = prepare(&input, &[])?;
+    // the run's own --solver overrides carry over
+    let mut p = prepare(&input, &r.solver_overrides)?;
     if p.analysis.kind != "static" {
         bail!(
             "{}: only incremental runs ([analysis] type = \"static\") can be restarted",
@@ -425,4 +439,48 @@ pub fn list() {
     print_entries::<LawEntry>("interface laws");
     print_entries::<CriterionEntry>("failure criteria");
     print_entries::<SolverEntry>("linear solvers");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::apply_solver_overrides;
+
+    fn apply(key: &str, table: &str, overrides: &[&str]) -> (String, toml::Table) {
+        let mut key = key.to_string();
+        let mut table: toml::Table = toml::from_str(table).unwrap();
+        let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+        apply_solver_overrides(&mut key, &mut table, &o).unwrap();
+        (key, table)
+    }
+
+    #[test]
+    fn solver_overrides_parse_values_and_apply_type_first() {
+        let (key, t) = apply(
+            "cholesky",
+            "ordering = \"amd\"",
+            &[
+                "refine_tol=1e-10",
+                "precision=double",
+                "max_refinements = 5",
+            ],
+        );
+        assert_eq!(key, "cholesky");
+        assert_eq!(t["refine_tol"].as_float(), Some(1e-10));
+        assert_eq!(t["precision"].as_str(), Some("double"));
+        assert_eq!(t["max_refinements"].as_integer(), Some(5));
+        assert_eq!(t["ordering"].as_str(), Some("amd"));
+        // a new back end drops the scene's parameters but keeps the other
+        // overrides, whatever their order
+        let (key, t) = apply("cg", "tol = 1e-12", &["precision=double", "type=cholesky"]);
+        assert_eq!(key, "cholesky");
+        assert_eq!(t.len(), 1);
+        assert_eq!(t["precision"].as_str(), Some("double"));
+        // the same back end keeps them
+        let (_, t) = apply("cg", "tol = 1e-12", &["type=cg"]);
+        assert_eq!(t["tol"].as_float(), Some(1e-12));
+        let mut key = "cholesky".to_string();
+        let mut t = toml::Table::new();
+        assert!(apply_solver_overrides(&mut key, &mut t, &["novalue".into()]).is_err());
+        assert!(apply_solver_overrides(&mut key, &mut t, &["type=3".into()]).is_err());
+    }
 }

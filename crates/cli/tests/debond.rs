@@ -178,6 +178,7 @@ max_increment = 0.1
 min_increment = 1e-4
 [output]
 curve = { reaction_set = "lower.z0", reaction_component = "z", point_set = "upper.z1", point_component = "z" }
+every = 1000
 "#;
     let dir = tempfile::tempdir().unwrap();
     let path = write(dir.path(), "pull.toml", &scene);
@@ -205,8 +206,15 @@ curve = { reaction_set = "lower.z0", reaction_component = "z", point_set = "uppe
     assert!(n >= 2, "{s}");
     assert_eq!(curve(&out_dir).len() as u64, n + 1);
     assert!(out_dir.join("checkpoint.json").exists());
+    // no periodic frames (every = 1000), but the last converged increment
+    // is a frame, listed in the pvd and in the checkpoint
     let pvd = std::fs::read_to_string(out_dir.join("results.pvd")).unwrap();
-    assert_eq!(pvd.matches("<DataSet").count() as u64, n);
+    let last_frame = format!("frames/results_{n:04}.vtu");
+    assert!(pvd.contains(&last_frame), "{pvd}");
+    assert!(out_dir.join(&last_frame).exists());
+    assert!(pvd.matches("<DataSet").count() as u64 <= 2, "{pvd}");
+    let checkpoint = std::fs::read_to_string(out_dir.join("checkpoint.json")).unwrap();
+    assert!(checkpoint.contains(&last_frame));
     // failure at sigma_lim: the top traction 1e6 x lambda reaches 2e6 at lambda = 2
     let last: f64 = s["load_factor"].as_f64().unwrap();
     assert!((1.9..2.6).contains(&last), "last converged lambda {last}");
@@ -221,8 +229,12 @@ curve = { reaction_set = "lower.z0", reaction_component = "z", point_set = "uppe
 fn ctrl_c_stops_cleanly_and_the_run_can_be_restarted() {
     let scene = repo().join("examples/paper/beam_shear.toml");
     let dir = tempfile::tempdir().unwrap();
+    // forced mixed precision: under the default auto this small model
+    // would always be solved in double, so "mixed" (or a note that the
+    // solver fell back from it) shows that the override is applied, also by
+    // the restart below
     let child = junta()
-        .args(["run", "-q", "-o"])
+        .args(["run", "-q", "--solver", "precision=mixed", "-o"])
         .arg(dir.path())
         .arg(&scene)
         .stdout(std::process::Stdio::null())
@@ -254,6 +266,15 @@ fn ctrl_c_stops_cleanly_and_the_run_can_be_restarted() {
         "{}",
         s["status"]
     );
+    let forced_mixed = |s: &Value| {
+        s["solver"]["precision"] == "mixed"
+            || s["solver"]["notes"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|n| n.as_str().unwrap().contains("mixed precision abandoned"))
+    };
+    assert!(forced_mixed(&s), "{}", s["solver"]);
     let done = s["increments"].as_u64().unwrap();
     // beam_shear takes 77 increments uninterrupted
     assert!((1..70).contains(&done), "{done} increments before the stop");
@@ -271,6 +292,11 @@ fn ctrl_c_stops_cleanly_and_the_run_can_be_restarted() {
     run_restart_ok(dir.path());
     let s = summary(dir.path());
     assert_eq!(s["restarted_from_increment"].as_u64(), Some(done));
+    assert!(
+        forced_mixed(&s),
+        "the restart reuses --solver: {}",
+        s["solver"]
+    );
     assert_eq!(f(&s["interfaces"]["bond"]["failed_fraction"]), 1.0);
 }
 

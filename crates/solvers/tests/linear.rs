@@ -370,6 +370,15 @@ fn mixed_precision_refines_to_double_accuracy_or_falls_back() {
         assert!(max_rel_error(&x, &xd) < 1e-12);
         assert_eq!(s.stats().mixed_fallbacks, 0);
         assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+        // a right-hand side far below single precision's range (1e-38) is
+        // scaled before it meets the single-precision factor
+        let mut tiny = rhs(&a, &xs);
+        tiny.iter_mut().for_each(|v| *v *= 1e-42);
+        s.solve_in_place(&a, &mut tiny).unwrap();
+        let back: Vec<f64> = tiny.iter().map(|v| v * 1e42).collect();
+        assert!(max_rel_error(&back, &xs) < 1e-10);
+        assert_eq!(s.report().precision, "mixed");
+        assert_eq!(s.stats().mixed_fallbacks, 0);
     }
     // 2. a penalty of 1e6 on unit stiffness: the diagonal spread (~1e5)
     // lets auto try single precision, whose pivot ratio (~1e-5) is refused
