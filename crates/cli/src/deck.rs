@@ -4,9 +4,20 @@
 //! `orthotropic`, TRACTION -> `linear_penalty` law for COH3D8), its
 //! `*BOUNDARY` lines constraints and its `*CLOAD` lines nodal forces.
 //! Reactions are reported for every `*BOUNDARY` target.
+//!
+//! Several `*STEP`s are several linear load cases, with CalculiX's rules
+//! (checked against `ccx` 2.20 on a 4-step deck):
+//! - boundary conditions and loads of earlier steps (and the model data)
+//!   stay; a step's value on a dof replaces the earlier one (`OP=MOD`, the
+//!   default);
+//! - `OP=NEW` on a keyword removes everything of its kind given before it;
+//! - several `*CLOAD` values on one dof within a step add up; two different
+//!   `*BOUNDARY` values on one dof within a step are an error;
+//! - each step is solved from the unloaded state (linear analysis: the
+//!   result of a step is the response to its loads, not an increment).
 
 use anyhow::{anyhow, Result};
-use junta_core::mesh::inp::{parse_inp, InpMaterialKind};
+use junta_core::mesh::inp::{parse_inp, InpDeck, InpMaterialKind};
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
 use junta_core::Model;
 use std::path::Path;
@@ -18,8 +29,10 @@ fn table(pairs: &[(&str, f64)]) -> toml::Table {
         .collect()
 }
 
-/// Read a deck and build the model; returns the reader's notes too.
-pub fn build_model(path: &Path) -> Result<(Model, Vec<String>)> {
+/// Read a deck and build the model (with the boundary conditions and loads
+/// of its first step); returns the reader's notes and every step's load
+/// case too.
+pub fn build_model(path: &Path) -> Result<(Model, Vec<String>, Vec<DeckStep>)> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| anyhow!("cannot read deck {}: {e}", path.display()))?;
     let file = path.display().to_string();
@@ -72,14 +85,9 @@ pub fn build_model(path: &Path) -> Result<(Model, Vec<String>)> {
         elements
             .push((entry.build)(&build).map_err(|e| anyhow!("{file}: block `{}`: {e}", b.name))?);
     }
-    let mut constraints = Vec::new();
+    let steps = deck_steps(&deck, &file)?;
     let mut reaction_sets: Vec<String> = Vec::new();
     for bc in &deck.boundaries {
-        for &n in &bc.nodes {
-            for dof in bc.first_dof..=bc.last_dof {
-                constraints.push((3 * n + dof - 1, bc.value));
-            }
-        }
         let name = match deck
             .mesh
             .node_sets
@@ -97,14 +105,100 @@ pub fn build_model(path: &Path) -> Result<(Model, Vec<String>)> {
             reaction_sets.push(name);
         }
     }
-    let mut f_ext = vec![0.0; 3 * deck.mesh.nodes.len()];
-    for c in &deck.cloads {
-        for &n in &c.nodes {
-            f_ext[3 * n + c.dof - 1] += c.value;
-        }
-    }
     let notes = deck.notes.clone();
-    let model = Model::new(deck.mesh, elements, &constraints, f_ext, reaction_sets)
-        .map_err(|e| anyhow!("{file}: {e}"))?;
-    Ok((model, notes))
+    let first = &steps[0];
+    let model = Model::new(
+        deck.mesh,
+        elements,
+        &first.constraints,
+        first.f_ext.clone(),
+        reaction_sets,
+    )
+    .map_err(|e| anyhow!("{file}: {e}"))?;
+    Ok((model, notes, steps))
+}
+
+/// The boundary conditions and loads in force in one step of a deck.
+#[derive(Debug, Clone)]
+pub struct DeckStep {
+    /// `*STEP, NAME=` or `step N` (1-based).
+    pub name: String,
+    /// Line of `*STEP` (0 for a deck without steps).
+    pub line: usize,
+    /// `(dof, value)`, sorted by dof.
+    pub constraints: Vec<(usize, f64)>,
+    /// Nodal forces (length = dofs).
+    pub f_ext: Vec<f64>,
+}
+
+/// The load cases of a deck: one per `*STEP` (one in all for a deck
+/// without steps), by the rules of the module docs.
+pub fn deck_steps(deck: &InpDeck, file: &str) -> Result<Vec<DeckStep>> {
+    use std::collections::BTreeMap;
+    let ndof = 3 * deck.mesh.nodes.len();
+    let nsteps = deck.steps.len().max(1);
+    let mut out = Vec::with_capacity(nsteps);
+    for k in 0..nsteps {
+        let upto = |s: Option<usize>| s.is_none_or(|s| s <= k);
+        // dof -> (value, step it was set in, line)
+        let mut bcs: BTreeMap<usize, (f64, Option<usize>, usize)> = BTreeMap::new();
+        let mut cleared_at = None;
+        for bc in deck.boundaries.iter().filter(|b| upto(b.step)) {
+            if bc.op_new && cleared_at != Some(bc.keyword_line) {
+                bcs.clear();
+                cleared_at = Some(bc.keyword_line);
+            }
+            for &n in &bc.nodes {
+                for dof in bc.first_dof..=bc.last_dof {
+                    let d = 3 * n + dof - 1;
+                    if let Some(&(v, s, line)) = bcs.get(&d) {
+                        if s == bc.step && v != bc.value {
+                            return Err(anyhow!(
+                                "{file}:{}: *BOUNDARY: node {} dof {dof} is given {} here and {v} at line {line} of the same {}",
+                                bc.line,
+                                deck.mesh.node_labels.get(n).copied().unwrap_or(n + 1),
+                                bc.value,
+                                if bc.step.is_some() { "step" } else { "model data" }
+                            ));
+                        }
+                    }
+                    bcs.insert(d, (bc.value, bc.step, bc.line));
+                }
+            }
+        }
+        // dof -> (value, step it was set in)
+        let mut loads: BTreeMap<usize, (f64, Option<usize>)> = BTreeMap::new();
+        let mut cleared_at = None;
+        for c in deck.cloads.iter().filter(|c| upto(c.step)) {
+            if c.op_new && cleared_at != Some(c.keyword_line) {
+                loads.clear();
+                cleared_at = Some(c.keyword_line);
+            }
+            for &n in &c.nodes {
+                let d = 3 * n + c.dof - 1;
+                match loads.get_mut(&d) {
+                    // within one step (or the model data) loads add up
+                    Some((v, s)) if *s == c.step => *v += c.value,
+                    // a later step replaces the value
+                    _ => {
+                        loads.insert(d, (c.value, c.step));
+                    }
+                }
+            }
+        }
+        let mut f_ext = vec![0.0; ndof];
+        for (d, (v, _)) in loads {
+            f_ext[d] = v;
+        }
+        let step = deck.steps.get(k);
+        out.push(DeckStep {
+            name: step
+                .and_then(|s| s.name.clone())
+                .unwrap_or_else(|| format!("step {}", k + 1)),
+            line: step.map_or(0, |s| s.line),
+            constraints: bcs.into_iter().map(|(d, (v, _, _))| (d, v)).collect(),
+            f_ext,
+        });
+    }
+    Ok(out)
 }

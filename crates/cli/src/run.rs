@@ -30,6 +30,11 @@ pub struct Prepared {
     pub notes: Vec<String>,
     /// The `--solver KEY=VALUE` overrides applied (kept for restarts).
     pub solver_overrides: Vec<String>,
+    /// Registry key and parameters of the solver (to build another one).
+    pub solver_key: String,
+    pub solver_table: toml::Table,
+    /// The load cases of a deck with several `*STEP`s (empty otherwise).
+    pub deck_steps: Vec<deck::DeckStep>,
 }
 
 fn build_solver(key: &str, table: &toml::Table, where_: &str) -> Result<Box<dyn LinearSolver>> {
@@ -94,6 +99,7 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
             let (mut key, mut table) = scene::solver_table(&sf);
             apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
             let solver = build_solver(&key, &table, &sf.path.display().to_string())?;
+            let (solver_key, solver_table) = (key, table);
             Ok(Prepared {
                 model,
                 solver,
@@ -118,10 +124,13 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
                     .collect(),
                 notes: Vec::new(),
                 solver_overrides: solver_overrides.to_vec(),
+                solver_key,
+                solver_table,
+                deck_steps: Vec::new(),
             })
         }
         Some("inp") => {
-            let (model, notes) = deck::build_model(input)?;
+            let (model, notes, steps) = deck::build_model(input)?;
             let (mut key, mut table) = ("cholesky".to_string(), toml::Table::new());
             apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
             let solver = build_solver(&key, &table, &input.display().to_string())?;
@@ -141,6 +150,9 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
                 thickness: Default::default(),
                 notes,
                 solver_overrides: solver_overrides.to_vec(),
+                solver_key: key,
+                solver_table: table,
+                deck_steps: if steps.len() > 1 { steps } else { Vec::new() },
             })
         }
         _ => bail!(
@@ -213,8 +225,14 @@ pub fn run(
         p.model.mesh.num_elements(),
         p.solver.key()
     ));
-    let res = solve_linear_static(&p.model, p.solver.as_mut())
-        .with_context(|| format!("solving {}", input.display()))?;
+    let (res, steps_summary) = if p.deck_steps.len() > 1 {
+        let (res, steps) = solve_deck_steps(&mut p, &dir, &pb, input)?;
+        (res, Some(steps))
+    } else {
+        let res = solve_linear_static(&p.model, p.solver.as_mut())
+            .with_context(|| format!("solving {}", input.display()))?;
+        (res, None)
+    };
     for w in &res.report.warnings {
         pb.suspend(|| eprintln!("warning: {w}"));
     }
@@ -300,6 +318,10 @@ pub fn run(
         },
         "notes": p.notes,
     });
+    let mut summary = summary;
+    if let Some(steps) = steps_summary {
+        summary["steps"] = json!(steps);
+    }
     output::write_json(&dir.join("summary.json"), &summary)?;
     pb.finish_and_clear();
     println!(
@@ -316,6 +338,123 @@ pub fn run(
         }
     }
     Ok(())
+}
+
+/// The steps of a deck as linear load cases: steps that constrain the same
+/// dofs share one factorisation; a step that changes the constrained dofs
+/// starts a new model. Writes `results_stepN.vtu` per step and
+/// `results.pvd`; returns the last step's result (with the timings of all
+/// steps) and one summary object per step. On return `p.model` is the model
+/// of the last step.
+fn solve_deck_steps(
+    p: &mut Prepared,
+    dir: &Path,
+    pb: &ProgressBar,
+    input: &Path,
+) -> Result<(
+    junta_solvers::linear_static::LinearStaticResult,
+    Vec<serde_json::Value>,
+)> {
+    use junta_solvers::linear_static::{solve_linear_static_cases, LoadCase, Timings};
+    let file = input.display().to_string();
+    let steps = std::mem::take(&mut p.deck_steps);
+    let dofs_of = |s: &deck::DeckStep| s.constraints.iter().map(|c| c.0).collect::<Vec<_>>();
+    let mut summaries = Vec::with_capacity(steps.len());
+    let mut frames = Vec::new();
+    let mut total = Timings::default();
+    let mut last = None;
+    let mut k = 0;
+    while k < steps.len() {
+        let mut end = k + 1;
+        while end < steps.len() && dofs_of(&steps[end]) == dofs_of(&steps[k]) {
+            end += 1;
+        }
+        if k > 0 {
+            // other constrained dofs: another dof map, pattern and factor
+            let m = &p.model;
+            p.model = Model::new(
+                m.mesh.clone(),
+                m.elements.clone(),
+                &steps[k].constraints,
+                steps[k].f_ext.clone(),
+                m.reaction_sets.clone(),
+            )
+            .map_err(|e| anyhow!("{file}: {} (line {}): {e}", steps[k].name, steps[k].line))?;
+            p.solver = build_solver(&p.solver_key, &p.solver_table, &file)?;
+        }
+        let ndof = p.model.dofs.num_dofs();
+        let prescribed: Vec<Vec<f64>> = steps[k..end]
+            .iter()
+            .map(|s| {
+                let mut v = vec![0.0; ndof];
+                for &(d, x) in &s.constraints {
+                    v[d] = x;
+                }
+                v
+            })
+            .collect();
+        let cases: Vec<LoadCase<'_>> = steps[k..end]
+            .iter()
+            .zip(&prescribed)
+            .map(|(s, pr)| LoadCase {
+                prescribed: pr,
+                f_ext: &s.f_ext,
+            })
+            .collect();
+        pb.set_message(format!(
+            "solving steps {}..{} of {} ({} equations, one factorisation)",
+            k + 1,
+            end,
+            steps.len(),
+            p.model.dofs.num_free
+        ));
+        let results =
+            solve_linear_static_cases(&p.model, p.solver.as_mut(), &cases).with_context(|| {
+                format!("solving {file}, {} (line {})", steps[k].name, steps[k].line)
+            })?;
+        for (i, mut res) in results.into_iter().enumerate() {
+            let s = &steps[k + i];
+            let t = res.timings;
+            total.pattern += t.pattern;
+            total.assemble += t.assemble;
+            total.analyze += t.analyze;
+            total.factor += t.factor;
+            total.solve += t.solve;
+            total.total += t.total;
+            // the step's own load vector, for its reactions
+            p.model.f_ext.clone_from(&s.f_ext);
+            if p.vtu {
+                let name = format!("results_step{}.vtu", k + i + 1);
+                let cells = output::cell_results(&p.model, &res.u, &res.state)?;
+                output::write_vtu(&dir.join(&name), &p.model, &res.u, &cells)?;
+                frames.push(((k + i + 1) as f64, name));
+            }
+            summaries.push(json!({
+                "name": s.name,
+                "line": s.line,
+                "reactions": output::reactions(&p.model, &res.residual)?,
+                "displacement_max": output::displacement_max(&res.u),
+                "equilibrium_residual": res.free_residual,
+                "shares_factorisation_with_previous": i > 0,
+                "timings": {
+                    "assemble": t.assemble, "analyze": t.analyze, "factor": t.factor,
+                    "solve": t.solve, "total": t.total,
+                },
+                "solver": {
+                    "residual": res.report.residual,
+                    "precision": res.report.precision,
+                    "refinement_steps": res.report.refinement_steps,
+                },
+            }));
+            res.timings = total;
+            last = Some(res);
+        }
+        k = end;
+    }
+    if p.vtu {
+        output::write_pvd(&dir.join("results.pvd"), &frames)?;
+    }
+    Ok((last.expect("at least one step"), summaries))
 }
 
 /// `junta run --restart DIR`: continue an incremental run from its last
@@ -362,6 +501,16 @@ pub fn check(input: &Path) -> Result<()> {
     );
     for (k, n) in output::element_counts(m) {
         println!("  elements {k}: {n}");
+    }
+    for (k, st) in p.deck_steps.iter().enumerate() {
+        println!(
+            "  step {} `{}` (line {}): {} constrained dofs, {} loaded dofs",
+            k + 1,
+            st.name,
+            st.line,
+            st.constraints.len(),
+            st.f_ext.iter().filter(|f| **f != 0.0).count()
+        );
     }
     for (b, el) in m.mesh.blocks.iter().zip(&m.elements) {
         println!(

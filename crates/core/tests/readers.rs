@@ -478,11 +478,23 @@ fn error_dofs_and_steps() {
     let base = std::fs::read_to_string(data("cube_h8_n2.inp")).unwrap();
     let e = err(&base.replace("BOTTOM, 1, 3", "BOTTOM, 1, 6"));
     assert!(e.to_string().contains("degree of freedom 6"), "{e}");
-    let e = err(&format!("{base}*STEP\n*STATIC\n*END STEP\n"));
-    assert!(
-        e.to_string().contains("multi-step decks not supported yet"),
-        "{e}"
+    // a second step, with OP=NEW loads and boundaries
+    let two = format!(
+        "{base}*STEP, NAME=second\n*STATIC\n*CLOAD, OP=NEW\n27, 3, -5.\n*BOUNDARY, OP=NEW\nBOTTOM, 1, 3\n*END STEP\n"
     );
+    let d = parse_inp(&two, "x").unwrap();
+    assert_eq!(d.steps.len(), 2);
+    assert_eq!(d.steps[1].name.as_deref(), Some("second"));
+    let last = d.cloads.last().unwrap();
+    assert_eq!((last.step, last.op_new, last.value), (Some(1), true, -5.0));
+    let bc = d.boundaries.last().unwrap();
+    assert_eq!((bc.step, bc.op_new), (Some(1), true));
+    assert_eq!(d.boundaries[0].step, None, "model data");
+    // OP=NEW is history data only; other OP values are errors
+    let e = err(&base.replace("*BOUNDARY\nBOTTOM", "*BOUNDARY, OP=NEW\nBOTTOM"));
+    assert!(e.to_string().contains("only valid inside *STEP"), "{e}");
+    let e = err(&two.replace("*CLOAD, OP=NEW", "*CLOAD, OP=REPLACE"));
+    assert!(e.to_string().contains("OP=MOD, OP=NEW"), "{e}");
     let e = err(&base.replace("*END STEP\n", ""));
     assert!(e.to_string().contains("missing *END STEP"), "{e}");
     let e = err(&base.replace(

@@ -73,7 +73,46 @@ pub fn solve_linear_static(
     model: &Model,
     solver: &mut dyn LinearSolver,
 ) -> Result<LinearStaticResult, AnalysisError> {
-    let t0 = Instant::now();
+    let case = LoadCase {
+        prescribed: &model.dofs.prescribed,
+        f_ext: &model.f_ext,
+    };
+    let mut results = solve_linear_static_cases(model, solver, &[case])?;
+    Ok(results.pop().expect("one result per case"))
+}
+
+/// One load case of [`solve_linear_static_cases`]: the prescribed values
+/// (full length, read on the model's constrained dofs) and the external
+/// forces (full length).
+#[derive(Debug, Clone, Copy)]
+pub struct LoadCase<'a> {
+    pub prescribed: &'a [f64],
+    pub f_ext: &'a [f64],
+}
+
+/// Solve several load cases that share the model's stiffness and its set
+/// of constrained dofs (the steps of a linear deck): the stiffness is
+/// assembled, analysed and factorised once, then each case costs one
+/// force assembly for its prescribed values, one solve and one force
+/// assembly for its reactions. The first result's timings hold the shared
+/// work; each later one only its own.
+pub fn solve_linear_static_cases(
+    model: &Model,
+    solver: &mut dyn LinearSolver,
+    cases: &[LoadCase<'_>],
+) -> Result<Vec<LinearStaticResult>, AnalysisError> {
+    let ndof = model.dofs.num_dofs();
+    for (i, c) in cases.iter().enumerate() {
+        if c.prescribed.len() != ndof || c.f_ext.len() != ndof {
+            return Err(CoreError::Invalid(format!(
+                "load case {i}: {} prescribed values and {} forces for {ndof} dofs",
+                c.prescribed.len(),
+                c.f_ext.len()
+            ))
+            .into());
+        }
+    }
+    let mut t0 = Instant::now();
     let mut timings = Timings::default();
     let t = Instant::now();
     let mut asm = model.assembler();
@@ -86,35 +125,37 @@ pub fn solve_linear_static(
     );
     // Assemble into the assembler's own pattern (taken, not cloned: one copy
     // of K is 130 MB at 100k 3D equations); `assemble` only reads the
-    // pattern of the matrix it is given.
+    // pattern of the matrix it is given. The stiffness is assembled once,
+    // at the first case's prescribed state (all cases share it: linear
+    // elements), together with that case's f_int(u0).
     let mut k = std::mem::take(&mut asm.pattern);
-    let ndof = model.dofs.num_dofs();
     let mut f_int = vec![0.0; ndof];
-    let mut state = model.initial_state();
     let step = StepInfo {
         increment: 0,
         load_factor: 1.0,
         delta_load_factor: 1.0,
     };
-    let u0 = model.dofs.expand(None, 1.0);
+    let initial = |case: &LoadCase<'_>| -> Vec<f64> {
+        (0..ndof)
+            .map(|d| match model.dofs.eq[d] {
+                CONSTRAINED => case.prescribed[d],
+                _ => 0.0,
+            })
+            .collect()
+    };
+    let u0_first = cases.first().map_or_else(|| vec![0.0; ndof], initial);
     let t = Instant::now();
     asm.assemble(
         &model.mesh,
         &model.elements,
         &model.dofs,
-        &u0,
-        &mut state,
+        &u0_first,
+        &mut model.initial_state(),
         step,
         Some(&mut k),
         &mut f_int,
     )?;
     timings.assemble += t.elapsed().as_secs_f64();
-    let mut rhs: Vec<f64> = vec![0.0; model.dofs.num_free];
-    for (d, &e) in model.dofs.eq.iter().enumerate() {
-        if e != CONSTRAINED {
-            rhs[e] = model.f_ext[d] - f_int[d];
-        }
-    }
     let coords = model.dofs.equation_coords(&model.mesh.nodes);
     let t = Instant::now();
     solver.analyze(&k, Some(&coords))?;
@@ -122,24 +163,6 @@ pub fn solve_linear_static(
     let t = Instant::now();
     solver.factorize(&k)?;
     timings.factor = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    solver.solve_in_place(&k, &mut rhs)?;
-    timings.solve = t.elapsed().as_secs_f64();
-    drop(k);
-    let u = model.dofs.expand(Some(&rhs), 1.0);
-    let t = Instant::now();
-    asm.assemble(
-        &model.mesh,
-        &model.elements,
-        &model.dofs,
-        &u,
-        &mut state,
-        step,
-        None,
-        &mut f_int,
-    )?;
-    timings.assemble += t.elapsed().as_secs_f64();
-    let residual: Vec<f64> = f_int.iter().zip(&model.f_ext).map(|(a, b)| a - b).collect();
     let free = |v: &[f64]| {
         norm(
             model
@@ -151,18 +174,76 @@ pub fn solve_linear_static(
                 .map(|(d, _)| v[d]),
         )
     };
-    let scale = free(&model.f_ext)
-        .max(norm(f_int.iter().copied()))
-        .max(f64::MIN_POSITIVE);
-    let free_residual = free(&residual) / scale;
-    state.commit();
-    timings.total = t0.elapsed().as_secs_f64();
-    Ok(LinearStaticResult {
-        u,
-        residual,
-        free_residual,
-        state,
-        report: solver.report(),
-        timings,
-    })
+    let mut results = Vec::with_capacity(cases.len());
+    for (i, case) in cases.iter().enumerate() {
+        let mut state = model.initial_state();
+        // u0: the case's prescribed values on the constrained dofs, and
+        // f_int(u0) (the first case's came with the stiffness)
+        let u0 = initial(case);
+        if i > 0 {
+            let t = Instant::now();
+            asm.assemble(
+                &model.mesh,
+                &model.elements,
+                &model.dofs,
+                &u0,
+                &mut state,
+                step,
+                None,
+                &mut f_int,
+            )?;
+            timings.assemble += t.elapsed().as_secs_f64();
+        }
+        let mut rhs: Vec<f64> = vec![0.0; model.dofs.num_free];
+        for (d, &e) in model.dofs.eq.iter().enumerate() {
+            if e != CONSTRAINED {
+                rhs[e] = case.f_ext[d] - f_int[d];
+            }
+        }
+        let factor_before = solver.report().factor_seconds;
+        let t = Instant::now();
+        solver.solve_in_place(&k, &mut rhs)?;
+        // a refactorisation inside the solve (mixed precision falling back
+        // to double) is factor time
+        let refactor = (solver.report().factor_seconds - factor_before).max(0.0);
+        timings.factor += refactor;
+        timings.solve = t.elapsed().as_secs_f64() - refactor;
+        let mut u = u0;
+        for (d, &e) in model.dofs.eq.iter().enumerate() {
+            if e != CONSTRAINED {
+                u[d] = rhs[e];
+            }
+        }
+        let t = Instant::now();
+        asm.assemble(
+            &model.mesh,
+            &model.elements,
+            &model.dofs,
+            &u,
+            &mut state,
+            step,
+            None,
+            &mut f_int,
+        )?;
+        timings.assemble += t.elapsed().as_secs_f64();
+        let residual: Vec<f64> = f_int.iter().zip(case.f_ext).map(|(a, b)| a - b).collect();
+        let scale = free(case.f_ext)
+            .max(norm(f_int.iter().copied()))
+            .max(f64::MIN_POSITIVE);
+        let free_residual = free(&residual) / scale;
+        state.commit();
+        timings.total = t0.elapsed().as_secs_f64();
+        results.push(LinearStaticResult {
+            u,
+            residual,
+            free_residual,
+            state,
+            report: solver.report(),
+            timings,
+        });
+        timings = Timings::default();
+        t0 = Instant::now();
+    }
+    drop(k);
+    Ok(results)
 }

@@ -16,7 +16,8 @@
 //! `*MATERIAL, NAME=`, `*ELASTIC [, TYPE=ISOTROPIC | ENGINEERING CONSTANTS |
 //! TRACTION]`, `*DENSITY` (kept, noted as unused), `*SOLID SECTION, ELSET=,
 //! MATERIAL=`, `*COHESIVE SECTION, ELSET=, MATERIAL=, RESPONSE=TRACTION
-//! SEPARATION`, `*BOUNDARY`, `*CLOAD`, `*STEP [, NLGEOM, INC, NAME]`,
+//! SEPARATION`, `*BOUNDARY [, OP=MOD|NEW]`, `*CLOAD [, OP=MOD|NEW]`, `*STEP
+//! [, NLGEOM, INC, NAME]` (any number of steps),
 //! `*STATIC`, `*END STEP`; the output requests `*NODE PRINT`, `*NODE FILE`,
 //! `*EL PRINT`, `*EL FILE`, `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*OUTPUT` are
 //! skipped with a note (Junta's outputs are chosen in the scene). Anything
@@ -233,6 +234,13 @@ pub struct InpBoundary {
     pub value: f64,
     /// Given inside `*STEP` (history data) rather than as model data.
     pub in_step: bool,
+    /// Index of that step in [`InpDeck::steps`].
+    pub step: Option<usize>,
+    /// The keyword had `OP=NEW`: every boundary condition given before it
+    /// is removed (from its step on).
+    pub op_new: bool,
+    /// Line of the `*BOUNDARY` keyword.
+    pub keyword_line: usize,
     /// Line of the data line.
     pub line: usize,
 }
@@ -250,6 +258,13 @@ pub struct InpCload {
     pub value: f64,
     /// Given inside `*STEP`.
     pub in_step: bool,
+    /// Index of that step in [`InpDeck::steps`].
+    pub step: Option<usize>,
+    /// The keyword had `OP=NEW`: every concentrated load given before it is
+    /// removed (from its step on).
+    pub op_new: bool,
+    /// Line of the `*CLOAD` keyword.
+    pub keyword_line: usize,
     /// Line of the data line.
     pub line: usize,
 }
@@ -289,7 +304,8 @@ pub struct InpStep {
 /// - `materials`, `solid_sections`, `cohesive_sections`: as written; block
 ///   materials already carry the section materials.
 /// - `boundaries`, `cloads`: targets resolved to node ids.
-/// - `steps`: at most one (more is an error for now).
+/// - `steps`: in order; boundaries and loads say which step they belong to
+///   (`None`: model data) and whether their keyword had `OP=NEW`.
 /// - `notes`: what was accepted but ignored, with line numbers.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct InpDeck {
@@ -831,16 +847,6 @@ impl<'a> Parser<'a> {
                             format!("*STEP inside the *STEP of line {s}; close it with *END STEP"),
                         ));
                     }
-                    if let Some(s) = self.deck.steps.first() {
-                        return Err(self.invalid(
-                            line,
-                            kw,
-                            format!(
-                                "multi-step decks not supported yet (first *STEP at line {})",
-                                s.line
-                            ),
-                        ));
-                    }
                     let nlgeom = match Self::param(params, "NLGEOM") {
                         None => false,
                         Some((_, None)) => true,
@@ -1313,17 +1319,7 @@ impl<'a> Parser<'a> {
     ) -> Result<(), InpError> {
         let kw = "BOUNDARY";
         self.check_params(line, kw, params, &["OP"])?;
-        if let Some((_, Some(op))) = Self::param(params, "OP") {
-            if !op.eq_ignore_ascii_case("MOD") {
-                return Err(InpError::Parameter {
-                    file: self.file.into(),
-                    line,
-                    keyword: kw.into(),
-                    parameter: format!("OP={op}"),
-                    valid: "OP=MOD".into(),
-                });
-            }
-        }
+        let op_new = self.op_new(line, kw, params)?;
         for &(dl, f, _) in data {
             let f: Vec<&str> = f.to_vec();
             let target = f.first().copied().unwrap_or("");
@@ -1371,10 +1367,41 @@ impl<'a> Parser<'a> {
                 last_dof: last,
                 value,
                 in_step: self.step_open.is_some(),
+                step: self.step_open.map(|_| self.deck.steps.len() - 1),
+                op_new,
+                keyword_line: line,
                 line: dl,
             });
         }
         Ok(())
+    }
+
+    /// The `OP` parameter of `*BOUNDARY` / `*CLOAD`: `MOD` (default) or
+    /// `NEW` (only inside a step).
+    fn op_new(&self, line: usize, kw: &str, params: &Params) -> Result<bool, InpError> {
+        let bad = |op: &str| InpError::Parameter {
+            file: self.file.into(),
+            line,
+            keyword: kw.into(),
+            parameter: format!("OP={op}"),
+            valid: "OP=MOD, OP=NEW (inside *STEP)".into(),
+        };
+        match Self::param(params, "OP") {
+            None => Ok(false),
+            Some((_, None)) => Err(bad("")),
+            Some((_, Some(op))) if op.eq_ignore_ascii_case("MOD") => Ok(false),
+            Some((_, Some(op))) if op.eq_ignore_ascii_case("NEW") => {
+                if self.step_open.is_none() {
+                    return Err(self.invalid(
+                        line,
+                        kw,
+                        "OP=NEW removes what earlier steps applied; it is only valid inside *STEP",
+                    ));
+                }
+                Ok(true)
+            }
+            Some((_, Some(op))) => Err(bad(op)),
+        }
     }
 
     fn cload(
@@ -1385,6 +1412,7 @@ impl<'a> Parser<'a> {
     ) -> Result<(), InpError> {
         let kw = "CLOAD";
         self.check_params(line, kw, params, &["OP"])?;
+        let op_new = self.op_new(line, kw, params)?;
         for &(dl, f, _) in data {
             if f.len() != 3 || f[0].is_empty() {
                 return Err(self.invalid(dl, kw, "expected `node or node set, dof, value`"));
@@ -1402,6 +1430,9 @@ impl<'a> Parser<'a> {
                 dof,
                 value,
                 in_step: self.step_open.is_some(),
+                step: self.step_open.map(|_| self.deck.steps.len() - 1),
+                op_new,
+                keyword_line: line,
                 line: dl,
             });
         }
