@@ -45,7 +45,7 @@ enum Command {
         /// Scene or deck file (not with --restart).
         #[arg(required_unless_present = "restart")]
         input: Option<PathBuf>,
-        /// Output directory (default: the scene's [output] directory, else out/<name>).
+        /// Output directory (default: the scene's [output] directory, else out/NAME (the input file stem)).
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// Continue the incremental run whose output directory is DIR from its
@@ -91,7 +91,7 @@ enum SweepKind {
         /// Values per decade.
         #[arg(long, default_value_t = 1)]
         per_decade: usize,
-        /// Output directory (default out/<name>-sweep).
+        /// Output directory (default out/NAME-sweep).
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
@@ -106,7 +106,7 @@ enum SweepKind {
         /// Axis along which to plot: x, y or z.
         #[arg(long, default_value = "y")]
         axis: String,
-        /// Output directory (default out/<name>-integration).
+        /// Output directory (default out/NAME-integration).
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
