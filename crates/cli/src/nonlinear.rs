@@ -252,13 +252,14 @@ pub fn run_static(
                 curve_file.flush()?;
                 rows.push(row);
                 if r.increment_index.is_multiple_of(every) || separated {
-                    let tag = format!("_{:04}", r.increment_index);
-                    let cells = output::cell_results_at(model, v.u, v.state, step)?;
-                    let name = format!("frames/results{tag}.vtu");
-                    output::write_vtu(&dir.join(&name), model, v.u, &cells)?;
-                    output::write_interface_vtu_named(&frames_dir, &tag, model, v.u, &ifs)?;
-                    frames.push((r.lambda, name));
-                    output::write_pvd(&dir.join("results.pvd"), &frames)?;
+                    let ctx = FrameContext {
+                        model,
+                        dir,
+                        frames_dir: &frames_dir,
+                        step,
+                        start_increment,
+                    };
+                    write_frame(&ctx, &mut frames, v.u, v.state, &ifs)?;
                 }
                 let restart = RestartFile {
                     input: std::fs::canonicalize(input).unwrap_or_else(|_| input.to_path_buf()),
@@ -436,7 +437,30 @@ pub fn run_static(
     }
 }
 
-/// What [`write_final_frame`] needs besides the state.
+/// `frames/results_NNNN.vtu` of increment `increment`.
+fn frame_name(increment: usize) -> String {
+    format!("frames/results_{increment:04}.vtu")
+}
+
+/// Write the frame of increment `ctx.step.increment` (solid and interface
+/// VTU files) and list it in `results.pvd`.
+fn write_frame(
+    ctx: &FrameContext<'_>,
+    frames: &mut Vec<(f64, String)>,
+    u: &[f64],
+    state: &junta_core::state::StateStore,
+    ifs: &[output::InterfaceResults],
+) -> Result<()> {
+    let name = frame_name(ctx.step.increment);
+    let cells = output::cell_results_at(ctx.model, u, state, ctx.step)?;
+    output::write_vtu(&ctx.dir.join(&name), ctx.model, u, &cells)?;
+    let tag = format!("_{:04}", ctx.step.increment);
+    output::write_interface_vtu_named(ctx.frames_dir, &tag, ctx.model, u, ifs)?;
+    frames.push((ctx.step.load_factor, name));
+    output::write_pvd(&ctx.dir.join("results.pvd"), frames)
+}
+
+/// What [`write_frame`] and [`write_final_frame`] need besides the state.
 struct FrameContext<'a> {
     model: &'a junta_core::Model,
     dir: &'a Path,
@@ -456,16 +480,10 @@ fn write_final_frame(
     ifs: &[output::InterfaceResults],
 ) -> Result<()> {
     let last = ctx.step.increment;
-    let tag = format!("_{last:04}");
-    let name = format!("frames/results{tag}.vtu");
-    if last <= ctx.start_increment || frames.last().map(|f| &f.1) == Some(&name) {
+    if last <= ctx.start_increment || frames.last().map(|f| &f.1) == Some(&frame_name(last)) {
         return Ok(());
     }
-    let cells = output::cell_results_at(ctx.model, u, state, ctx.step)?;
-    output::write_vtu(&ctx.dir.join(&name), ctx.model, u, &cells)?;
-    output::write_interface_vtu_named(ctx.frames_dir, &tag, ctx.model, u, ifs)?;
-    frames.push((ctx.step.load_factor, name));
-    output::write_pvd(&ctx.dir.join("results.pvd"), frames)?;
+    write_frame(ctx, frames, u, state, ifs)?;
     let mut restart = read_restart(ctx.dir)?;
     restart.frames = frames.clone();
     write_atomic(

@@ -54,7 +54,7 @@
 //!   no correct digit (a floating-point factorisation of a singular matrix
 //!   rarely meets an exactly non-positive pivot).
 
-use crate::common::{norm2, residual, validate, Pattern};
+use crate::common::{inf_norm, norm2, residual, validate, Pattern};
 use crate::ordering::{self, OrderingKind};
 use crate::supernodal::{FactorScalar, PanelFactor};
 use faer::sparse::linalg::cholesky::{
@@ -849,11 +849,6 @@ impl LinearSolver for CholeskySolver {
     fn report(&self) -> SolveReport {
         self.report.clone()
     }
-}
-
-/// `max_i |x_i|`.
-fn inf_norm(x: &[f64]) -> f64 {
-    x.iter().fold(0.0f64, |m, v| m.max(v.abs()))
 }
 
 /// `||A||_inf` (largest absolute row sum) of a symmetric matrix stored as

@@ -122,6 +122,11 @@ impl Pattern {
     }
 }
 
+/// `max_i |x_i|`.
+pub(crate) fn inf_norm(x: &[f64]) -> f64 {
+    x.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
 /// Euclidean norm.
 pub(crate) fn norm2(x: &[f64]) -> f64 {
     if x.len() > 50_000 {
