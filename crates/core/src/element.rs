@@ -119,4 +119,9 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     fn wants_small_increments(&self, _state_committed: &[f64]) -> bool {
         false
     }
+    /// Kind of the tangent this element can produce (its law's or
+    /// material's); see [`crate::solver::MatrixKind`].
+    fn tangent_kind(&self) -> crate::solver::MatrixKind {
+        crate::solver::MatrixKind::SymmetricPositiveDefinite
+    }
 }

@@ -64,4 +64,11 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     fn failure_index(&self, _state: &[f64]) -> Option<f64> {
         None
     }
+    /// Kind of the tangent this law can produce: SPD for laws that never
+    /// soften, symmetric indefinite for softening laws, general for
+    /// nonsymmetric tangents. The model's matrix kind is the largest over
+    /// its elements; the driver picks the linear back end from it.
+    fn tangent_kind(&self) -> crate::solver::MatrixKind {
+        crate::solver::MatrixKind::SymmetricPositiveDefinite
+    }
 }

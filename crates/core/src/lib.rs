@@ -33,5 +33,5 @@ pub use error::CoreError;
 pub use law::{InterfaceLaw, LawContext, LawError, LawResponse};
 pub use material::{Material, Voigt6};
 pub use model::Model;
-pub use solver::{LinearSolver, SolveReport, SolverError};
+pub use solver::{LinearSolver, MatrixKind, SolveReport, SolverError};
 pub use sparse::SymmetricCsc;

@@ -73,6 +73,16 @@ impl Model {
         })
     }
 
+    /// Kind of the tangent matrix: the largest kind over the elements
+    /// (SPD < symmetric indefinite < general).
+    pub fn matrix_kind(&self) -> crate::solver::MatrixKind {
+        self.elements
+            .iter()
+            .map(|e| e.tangent_kind())
+            .max()
+            .unwrap_or_default()
+    }
+
     /// Sparsity pattern and colouring for this model.
     pub fn assembler(&self) -> Assembler {
         Assembler::new(&self.mesh, &self.dofs)

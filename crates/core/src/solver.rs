@@ -44,6 +44,9 @@ pub struct SolveReport {
     pub solve_seconds: f64,
     /// Non-zeros of the factor (direct back ends).
     pub factor_nonzeros: usize,
+    /// Fill-reducing ordering the direct back end used (e.g.
+    /// `"nested_dissection"`, `"amd"`); empty for iterative back ends.
+    pub ordering: String,
     /// Working precision of the factor (direct back ends): `"double"`, or
     /// `"mixed"` for a single-precision factor whose solutions are refined
     /// to double-precision residuals. Empty for iterative back ends.
@@ -55,6 +58,38 @@ pub struct SolveReport {
     /// Information on what the back end decided on its own (e.g. that it
     /// gave up single precision and refactorised in double).
     pub notes: Vec<String>,
+    /// Inertia of the last factorised matrix: the number of negative
+    /// eigenvalues (negative pivots of an LDL^T factor, counting one per
+    /// 2x2 block with a negative determinant and the negative 1x1 pivots).
+    /// `None` when the back end does not know it (iterative back ends);
+    /// `Some(0)` from a successful Cholesky factor.
+    pub negative_pivots: Option<usize>,
+}
+
+/// Kind of a tangent matrix, from the laws and materials of a model.
+/// Ordered: a model's kind is the largest of its elements' kinds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub enum MatrixKind {
+    /// Symmetric positive definite once constrained (elastic solids,
+    /// penalty interfaces that do not soften).
+    #[default]
+    SymmetricPositiveDefinite,
+    /// Symmetric, possibly indefinite (softening laws: negative stiffness
+    /// on the descending branch).
+    SymmetricIndefinite,
+    /// Nonsymmetric (non-associated plasticity, friction).
+    General,
+}
+
+impl MatrixKind {
+    /// Short name for messages and summaries.
+    pub fn name(self) -> &'static str {
+        match self {
+            MatrixKind::SymmetricPositiveDefinite => "symmetric positive definite",
+            MatrixKind::SymmetricIndefinite => "symmetric indefinite",
+            MatrixKind::General => "general (nonsymmetric)",
+        }
+    }
 }
 
 /// A linear solver for symmetric positive-definite systems stored as the
@@ -77,4 +112,8 @@ pub trait LinearSolver: Send + std::fmt::Debug {
     fn solve_in_place(&mut self, matrix: &SymmetricCsc, b: &mut [f64]) -> Result<(), SolverError>;
     /// Cumulative report of what the solver did.
     fn report(&self) -> SolveReport;
+    /// The matrix kinds this back end can solve (default: SPD only).
+    fn accepts(&self, kind: MatrixKind) -> bool {
+        kind == MatrixKind::SymmetricPositiveDefinite
+    }
 }

@@ -355,6 +355,10 @@ impl Element for InterfaceElement {
         Some(self.law.initial_stiffness())
     }
 
+    fn tangent_kind(&self) -> junta_core::MatrixKind {
+        self.law.tangent_kind()
+    }
+
     fn wants_small_increments(&self, state_committed: &[f64]) -> bool {
         let sl = self.law.state_len();
         sl > 0
