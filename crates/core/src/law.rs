@@ -33,6 +33,39 @@ pub struct LawResponse {
     pub tangent: [[f64; 3]; 3],
 }
 
+/// Names of the per-point outputs shared by laws (the VTU writers, the
+/// summary and the curve read values by these names).
+pub mod output {
+    /// Damage variable in `[0, 1]` (the fraction of the undamaged
+    /// stiffness lost; the released fraction for `paper_debond`).
+    pub const DAMAGE: &str = "damage";
+    /// Fracture energy dissipated per unit area.
+    pub const DISSIPATED_ENERGY: &str = "dissipated_energy";
+    /// Energy dissipated per unit area by viscous regularisation (on top
+    /// of the fracture energy).
+    pub const VISCOUS_ENERGY: &str = "viscous_energy";
+    /// Mode ratio `B = G_II / (G_I + G_II)` of the last opening evaluation.
+    pub const MODE_RATIO: &str = "mode_ratio";
+    /// Damage from which a point counts as fully damaged (damaged area).
+    pub const DAMAGED_THRESHOLD: f64 = 0.99;
+}
+
+/// Fracture properties of a softening law, for diagnostics (mesh advice,
+/// consistency warnings).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FractureProperties {
+    /// Normal strength N.
+    pub strength_normal: f64,
+    /// Shear strength S.
+    pub strength_shear: f64,
+    /// Mode I toughness G_Ic (energy per unit area).
+    pub toughness_mode_i: f64,
+    /// Mode II toughness G_IIc.
+    pub toughness_mode_ii: f64,
+    /// Undamaged penalties `[K_1, K_2, K_n]`.
+    pub penalty: [f64; 3],
+}
+
 /// A traction-separation law.
 pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     /// Registry key (`"linear_penalty"`, ...).
@@ -70,5 +103,22 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     /// its elements; the driver picks the linear back end from it.
     fn tangent_kind(&self) -> crate::solver::MatrixKind {
         crate::solver::MatrixKind::SymmetricPositiveDefinite
+    }
+    /// Names of the scalar per-point outputs this law reports (see
+    /// [`output`] for the shared names). Default: none.
+    fn output_names(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// Values of [`InterfaceLaw::output_names`] from a point's state
+    /// (`out.len() == output_names().len()`).
+    fn outputs(&self, _state: &[f64], _out: &mut [f64]) {}
+    /// Fracture properties, for softening laws.
+    fn fracture_properties(&self) -> Option<FractureProperties> {
+        None
+    }
+    /// Warnings about the parameters (shown by `junta check` and in run
+    /// summaries), e.g. strengths inconsistent with the penalties.
+    fn warnings(&self) -> Vec<String> {
+        Vec::new()
     }
 }

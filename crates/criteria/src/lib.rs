@@ -4,7 +4,13 @@
 //! one file each, registered with `inventory`:
 //!
 //! - [`quadratic`]: the paper's quadratic (Hill-type) stress criterion (eq. 40);
-//! - [`max_stress`]: the maximum-stress criterion.
+//! - [`max_stress`]: the maximum-stress criterion;
+//! - [`bk`]: Turon's energy-consistent BK onset criterion (needs the law's
+//!   penalties, so it is meant for softening laws).
+//!
+//! Softening laws evaluate a criterion on the undamaged traction of the
+//! jump through [`junta_core::FailureCriterion::onset_index`] (a dual number:
+//! index and gradient), which all three implement.
 //!
 //! Both act on the local traction `[tau_13, tau_23, sigma_33]` and share the
 //! [`CompressionRule`] option: `positive_part` (default) uses
@@ -23,9 +29,11 @@
 use junta_core::{CoreError, FailureMode};
 use serde::Deserialize;
 
+pub mod bk;
 pub mod max_stress;
 pub mod quadratic;
 
+pub use bk::Bk;
 pub use max_stress::MaxStress;
 pub use quadratic::Quadratic;
 

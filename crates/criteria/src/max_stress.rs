@@ -14,7 +14,7 @@
 
 use crate::{check_limit, mode_of, read_stress_params, CompressionRule, STRESS_PARAMS};
 use junta_core::registry::CriterionEntry;
-use junta_core::{CoreError, FailureCriterion, FailureResult};
+use junta_core::{CoreError, Dual3, FailureCriterion, FailureResult, OnsetInput};
 use std::sync::Arc;
 
 /// Maximum-stress criterion.
@@ -61,6 +61,20 @@ impl FailureCriterion for MaxStress {
             index: s.max(tau),
             mode: mode_of(t[2]),
         }
+    }
+
+    fn onset_index(&self, p: &OnsetInput) -> Option<Dual3> {
+        let t = p.traction;
+        let s = match self.compression {
+            CompressionRule::PositivePart => t[2].pos(),
+            CompressionRule::AsWritten => t[2].abs(),
+        } / self.sigma_lim;
+        let tau = (t[0] * t[0] + t[1] * t[1]).sqrt() / self.tau_lim;
+        Some(s.max(tau))
+    }
+
+    fn degree(&self) -> f64 {
+        1.0
     }
 }
 

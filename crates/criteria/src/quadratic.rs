@@ -6,13 +6,20 @@
 //! s     = sigma_33                        (compression = "as_written", the paper's form)
 //! ```
 //!
+//! As a damage-onset criterion of a softening law ([`FailureCriterion::onset_index`])
+//! the same index of the undamaged traction, degree 2 in the jump: with one
+//! penalty K the onset jump along a direction of mixity
+//! `beta = delta_shear / delta_n` is Camanho & Davila's (2002)
+//! `delta_0m = delta_0n delta_0s sqrt(1 + beta^2) / sqrt(delta_0s^2 + (beta delta_0n)^2)`
+//! (Abaqus QUADS).
+//!
 //! Mode: `Tension` if `sigma_33 > 0`, `Compression` if `sigma_33 < 0`,
 //! `Shear` if `sigma_33 == 0`. `sigma_lim`, `tau_lim` must be positive and
 //! finite.
 
 use crate::{check_limit, mode_of, read_stress_params, CompressionRule, STRESS_PARAMS};
 use junta_core::registry::CriterionEntry;
-use junta_core::{CoreError, FailureCriterion, FailureResult};
+use junta_core::{CoreError, Dual3, FailureCriterion, FailureResult, OnsetInput};
 use std::sync::Arc;
 
 /// Quadratic stress criterion (paper eq. 40).
@@ -60,6 +67,21 @@ impl FailureCriterion for Quadratic {
             index: s * s + (a * a + b * b),
             mode: mode_of(t[2]),
         }
+    }
+
+    fn onset_index(&self, p: &OnsetInput) -> Option<Dual3> {
+        let t = p.traction;
+        let s = match self.compression {
+            CompressionRule::PositivePart => t[2].pos(),
+            CompressionRule::AsWritten => t[2],
+        } / self.sigma_lim;
+        let a = t[0] / self.tau_lim;
+        let b = t[1] / self.tau_lim;
+        Some(s * s + a * a + b * b)
+    }
+
+    fn degree(&self) -> f64 {
+        2.0
     }
 }
 

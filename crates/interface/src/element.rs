@@ -28,6 +28,15 @@
 //! oscillations of Schellekens & de Borst 1993).
 //!
 //! Small displacements: the frame is built on the reference geometry.
+//!
+//! Tangent storage: unless the law declares a general (nonsymmetric)
+//! tangent, the element assembles the symmetric part `(D + D^T) / 2` of the
+//! law's tangent (mixed-mode softening laws have a slightly nonsymmetric
+//! exact tangent where the mode ratio changes with the jump).
+//!
+//! Point outputs: `jump`, `traction`, `frame`, `area`, `state`, `failed`,
+//! `failure_index`, then every scalar the law names in
+//! [`InterfaceLaw::output_names`] (e.g. `damage`, `dissipated_energy`).
 
 use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
 use junta_core::law::{InterfaceLaw, LawContext};
@@ -226,6 +235,7 @@ impl Element for InterfaceElement {
             k[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
         }
         let sl = self.law.state_len();
+        let symmetric = self.law.tangent_kind() != junta_core::MatrixKind::General;
         let mut n = [0.0; 9];
         for q in 0..self.points.len() {
             let fr = self.frame(ctx.coords, q, &mut n)?;
@@ -262,6 +272,18 @@ impl Element for InterfaceElement {
                 }
             }
             if let Some(k) = k.as_deref_mut() {
+                // symmetric storage: assemble the symmetric part of the
+                // law's tangent (the tangent itself for symmetric laws)
+                let mut dt = r.tangent;
+                if symmetric {
+                    for i in 0..3 {
+                        for j in i + 1..3 {
+                            let a = 0.5 * (dt[i][j] + dt[j][i]);
+                            dt[i][j] = a;
+                            dt[j][i] = a;
+                        }
+                    }
+                }
                 // G = theta D theta^T (global 3x3)
                 let mut g = [[0.0; 3]; 3];
                 for c in 0..3 {
@@ -269,7 +291,7 @@ impl Element for InterfaceElement {
                         let mut s = 0.0;
                         for i in 0..3 {
                             for j in 0..3 {
-                                s += e[i][c] * r.tangent[i][j] * e[j][d];
+                                s += e[i][c] * dt[i][j] * e[j][d];
                             }
                         }
                         g[c][d] = s * da;
@@ -325,27 +347,38 @@ impl Element for InterfaceElement {
                     point: q,
                     message: e.to_string(),
                 })?;
+            let names = self.law.output_names();
+            let mut law_out = [0.0; 16];
+            let nl = names.len().min(law_out.len());
+            self.law.outputs(committed, &mut law_out[..nl]);
+            let mut values = vec![
+                ("jump", jump.to_vec()),
+                ("traction", r.traction.to_vec()),
+                ("frame", fr.e.iter().flatten().copied().collect()),
+                ("area", vec![fr.jac * self.weights[q]]),
+                ("state", committed.to_vec()),
+                (
+                    "failed",
+                    vec![if self.law.is_failed(committed) {
+                        1.0
+                    } else {
+                        0.0
+                    }],
+                ),
+                (
+                    "failure_index",
+                    vec![self.law.failure_index(committed).unwrap_or(0.0)],
+                ),
+            ];
+            values.extend(
+                names[..nl]
+                    .iter()
+                    .zip(&law_out)
+                    .map(|(n, v)| (*n, vec![*v])),
+            );
             out.push(PointOutput {
                 position: fr.x,
-                values: vec![
-                    ("jump", jump.to_vec()),
-                    ("traction", r.traction.to_vec()),
-                    ("frame", fr.e.iter().flatten().copied().collect()),
-                    ("area", vec![fr.jac * self.weights[q]]),
-                    ("state", committed.to_vec()),
-                    (
-                        "failed",
-                        vec![if self.law.is_failed(committed) {
-                            1.0
-                        } else {
-                            0.0
-                        }],
-                    ),
-                    (
-                        "failure_index",
-                        vec![self.law.failure_index(committed).unwrap_or(0.0)],
-                    ),
-                ],
+                values,
             });
         }
         Ok(out)

@@ -4,6 +4,9 @@
 //! sigma_33]` and the consistent tangent. Adding a law is one file here plus
 //! its `inventory::submit!`.
 
+pub mod bilinear;
+pub mod cohesive;
+pub mod exponential;
 pub mod linear_penalty;
 pub mod paper_debond;
 

@@ -417,6 +417,21 @@ impl InterfaceLaw for PaperDebond {
     fn failure_index(&self, state: &[f64]) -> Option<f64> {
         state.get(slot::INDEX).copied()
     }
+
+    fn output_names(&self) -> &'static [&'static str] {
+        &[junta_core::law::output::DAMAGE]
+    }
+
+    /// `damage` = the released fraction `k / N` (0 intact, 1 fully
+    /// released); this law has no fracture energy to report.
+    fn outputs(&self, state: &[f64], out: &mut [f64]) {
+        let st = debond_status(state);
+        out[0] = match st.phase {
+            DebondPhase::Intact => 0.0,
+            DebondPhase::Releasing => st.release_step as f64 / self.release_increments as f64,
+            DebondPhase::Failed => 1.0,
+        };
+    }
 }
 
 inventory::submit! {

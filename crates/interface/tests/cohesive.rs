@@ -1,0 +1,446 @@
+//! One-point tests of the fracture-energy laws `bilinear` and
+//! `exponential` (crates/interface/src/law/cohesive.rs).
+//!
+//! References: the closed forms of BENCHMARKS.md section 4 (Camanho &
+//! Davila 2002 mixed-mode bilinear law: onsets, delta_0m, BK toughness) and
+//! section 3 (one cohesive point: onset at tau_0/K, dissipated energy G_c).
+//! Material data: AS4/PEEK (BENCHMARKS.md section 4).
+
+use junta_core::element::StepInfo;
+use junta_core::law::{InterfaceLaw, LawContext, LawResponse};
+use junta_core::registry::{find, LawEntry};
+use junta_interface as _;
+use junta_interface::law::cohesive::slot;
+use std::sync::Arc;
+
+const K: f64 = 1e6;
+const N: f64 = 80.0;
+const S: f64 = 100.0;
+const GIC: f64 = 0.969;
+const GIIC: f64 = 1.719;
+const ETA: f64 = 2.284;
+
+fn build(key: &str, extra: &str) -> Arc<dyn InterfaceLaw> {
+    let text =
+        format!("K = {K:e}\nN = {N}\nS = {S}\nG_Ic = {GIC}\nG_IIc = {GIIC}\neta = {ETA}\n{extra}");
+    let t: toml::Table = toml::from_str(&text).unwrap();
+    (find::<LawEntry>(key).unwrap().build)(&t).unwrap()
+}
+
+fn build_err(key: &str, text: &str) -> String {
+    let t: toml::Table = toml::from_str(text).unwrap();
+    (find::<LawEntry>(key).unwrap().build)(&t)
+        .unwrap_err()
+        .to_string()
+}
+
+/// A point driven through a jump history, committing after each step.
+struct Point {
+    law: Arc<dyn InterfaceLaw>,
+    state: Vec<f64>,
+    inc: usize,
+}
+
+impl Point {
+    fn new(law: Arc<dyn InterfaceLaw>) -> Self {
+        let mut state = vec![0.0; law.state_len()];
+        law.init_state(&mut state);
+        Point { law, state, inc: 0 }
+    }
+    fn trial(&self, jump: [f64; 3], dt: f64) -> (LawResponse, Vec<f64>) {
+        let mut trial = vec![f64::NAN; self.state.len()];
+        let r = self
+            .law
+            .evaluate(
+                &LawContext {
+                    jump,
+                    state_committed: &self.state,
+                    step: StepInfo {
+                        increment: self.inc + 1,
+                        load_factor: 0.0,
+                        delta_load_factor: dt,
+                    },
+                },
+                &mut trial,
+            )
+            .unwrap();
+        (r, trial)
+    }
+    fn step(&mut self, jump: [f64; 3]) -> LawResponse {
+        self.step_dt(jump, 1.0)
+    }
+    fn step_dt(&mut self, jump: [f64; 3], dt: f64) -> LawResponse {
+        let (r, t) = self.trial(jump, dt);
+        self.state = t;
+        self.inc += 1;
+        r
+    }
+    fn damage(&self) -> f64 {
+        self.state[slot::DAMAGE]
+    }
+    fn energy(&self) -> f64 {
+        self.state[slot::ENERGY]
+    }
+    /// Central-difference tangent against the law's, relative to the
+    /// largest entry of the law's tangent (the trial state is discarded).
+    fn check_tangent(&self, jump: [f64; 3], what: &str) {
+        let (r, _) = self.trial(jump, 1.0);
+        let scale = r
+            .tangent
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+            .max(1.0);
+        let h = 1e-7 * jump.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-9);
+        for j in 0..3 {
+            let (mut a, mut b) = (jump, jump);
+            a[j] += h;
+            b[j] -= h;
+            let ta = self.trial(a, 1.0).0.traction;
+            let tb = self.trial(b, 1.0).0.traction;
+            for i in 0..3 {
+                let fd = (ta[i] - tb[i]) / (2.0 * h);
+                let err = (fd - r.tangent[i][j]).abs() / scale;
+                assert!(
+                    err < 1e-5,
+                    "{what}: dt{i}/ddelta{j}: law {:.6e}, finite difference {fd:.6e} (jump {jump:?})",
+                    r.tangent[i][j]
+                );
+            }
+        }
+    }
+}
+
+fn bk_toughness(b: f64) -> f64 {
+    GIC + (GIIC - GIC) * b.powf(ETA)
+}
+
+/// Proportional path at mode ratio B (one penalty: B = sin^2 of the angle
+/// between the jump and the normal) to full separation in `steps` steps.
+fn drive_to_failure(p: &mut Point, b: f64, lam_end: f64, steps: usize) {
+    let (s, c) = (b.sqrt(), (1.0 - b).sqrt());
+    for i in 1..=steps {
+        let lam = lam_end * i as f64 / steps as f64;
+        p.step([lam * s, 0.0, lam * c]);
+    }
+}
+
+#[test]
+fn dissipated_energy_is_the_toughness_in_modes_i_ii_and_bk_mixed() {
+    for key in ["bilinear", "exponential"] {
+        let law = build(key, "");
+        for (b, expected, what) in [
+            (0.0, GIC, "mode I (G_Ic)"),
+            (1.0, GIIC, "mode II (G_IIc)"),
+            (0.2, bk_toughness(0.2), "BK B = 0.2"),
+            (0.5, bk_toughness(0.5), "BK B = 0.5"),
+            (0.8, bk_toughness(0.8), "BK B = 0.8"),
+        ] {
+            // exponential needs a long tail: 40 decay lengths
+            let lam_end = if key == "bilinear" { 0.05 } else { 0.6 };
+            for steps in [7, 400] {
+                let mut p = Point::new(law.clone());
+                drive_to_failure(&mut p, b, lam_end, steps);
+                assert!(
+                    p.damage() >= 1.0 - 1e-12,
+                    "{key} {what}: d = {}",
+                    p.damage()
+                );
+                let rel = (p.energy() - expected).abs() / expected;
+                assert!(
+                    rel < 1e-6,
+                    "{key} {what} in {steps} steps: dissipated {} against {expected} (rel {rel:.2e})",
+                    p.energy()
+                );
+                // the curve's own area, integrated numerically on a fine
+                // path, is the same energy (trapezoid, the traction is
+                // continuous)
+            }
+        }
+    }
+}
+
+#[test]
+fn work_of_the_traction_equals_the_dissipated_energy() {
+    // independent check of F(d): trapezoidal work along a fine monotone
+    // path to full separation (nothing stored at the end)
+    for key in ["bilinear", "exponential"] {
+        let law = build(key, "");
+        let b: f64 = 0.5;
+        let (s, c) = (b.sqrt(), (1.0 - b).sqrt());
+        let mut p = Point::new(law.clone());
+        let lam_end = if key == "bilinear" { 0.05 } else { 0.6 };
+        let steps = 200_000;
+        let mut work = 0.0;
+        let mut prev = [0.0; 3];
+        let mut t_prev = [0.0; 3];
+        for i in 1..=steps {
+            let lam = lam_end * i as f64 / steps as f64;
+            let jump = [lam * s, 0.0, lam * c];
+            let t = p.step(jump).traction;
+            for k in 0..3 {
+                work += 0.5 * (t[k] + t_prev[k]) * (jump[k] - prev[k]);
+            }
+            prev = jump;
+            t_prev = t;
+        }
+        let rel = (work - p.energy()).abs() / p.energy();
+        assert!(
+            rel < 1e-4,
+            "{key}: work {work} vs dissipated {}",
+            p.energy()
+        );
+    }
+}
+
+#[test]
+fn onset_at_the_closed_form_jump() {
+    let law = build("bilinear", "");
+    // mode I: delta_0n = N / K
+    let d0n = N / K;
+    let p = Point::new(law.clone());
+    assert_eq!(
+        p.trial([0.0, 0.0, d0n * (1.0 - 1e-9)], 1.0).1[slot::DAMAGE],
+        0.0
+    );
+    assert!(p.trial([0.0, 0.0, d0n * (1.0 + 1e-6)], 1.0).1[slot::DAMAGE] > 0.0);
+    // traction at onset = N
+    let t = p.trial([0.0, 0.0, d0n], 1.0).0.traction[2];
+    assert!((t - N).abs() < 1e-9 * N);
+    // mixed, quadratic criterion: Camanho-Davila delta_0m (BENCHMARKS 4)
+    let d0s = S / K;
+    for beta in [0.5f64, 1.0, 3.0] {
+        let d0m =
+            d0n * d0s * (1.0 + beta * beta).sqrt() / (d0s * d0s + (beta * d0n).powi(2)).sqrt();
+        let dir = [
+            beta / (1.0 + beta * beta).sqrt(),
+            1.0 / (1.0 + beta * beta).sqrt(),
+        ];
+        let below = d0m * (1.0 - 1e-7);
+        let above = d0m * (1.0 + 1e-7);
+        let d_below = p.trial([below * dir[0], 0.0, below * dir[1]], 1.0).1[slot::DAMAGE];
+        let d_above = p.trial([above * dir[0], 0.0, above * dir[1]], 1.0).1[slot::DAMAGE];
+        assert_eq!(d_below, 0.0, "beta {beta}");
+        assert!(d_above > 0.0, "beta {beta}");
+        // full separation at Camanho-Davila's delta_fm (BK)
+        let b = beta * beta / (1.0 + beta * beta);
+        let dfm = 2.0 / (K * d0m) * bk_toughness(b);
+        let at = dfm * (1.0 - 1e-6);
+        let past = dfm * (1.0 + 1e-9);
+        assert!(p.trial([at * dir[0], 0.0, at * dir[1]], 1.0).1[slot::DAMAGE] < 1.0);
+        assert_eq!(
+            p.trial([past * dir[0], 0.0, past * dir[1]], 1.0).1[slot::DAMAGE],
+            1.0
+        );
+    }
+}
+
+#[test]
+fn bk_onset_criterion_gives_turons_onset() {
+    let law = build("bilinear", "onset = \"bk\"");
+    let p = Point::new(law);
+    let (d0n, d0s) = (N / K, S / K);
+    for b in [0.3f64, 0.7] {
+        let d0 = (d0n * d0n + (d0s * d0s - d0n * d0n) * b.powf(ETA)).sqrt();
+        let dir = [b.sqrt(), (1.0 - b).sqrt()];
+        let below = d0 * (1.0 - 1e-7);
+        let above = d0 * (1.0 + 1e-7);
+        assert_eq!(
+            p.trial([below * dir[0], 0.0, below * dir[1]], 1.0).1[slot::DAMAGE],
+            0.0
+        );
+        assert!(p.trial([above * dir[0], 0.0, above * dir[1]], 1.0).1[slot::DAMAGE] > 0.0);
+    }
+}
+
+#[test]
+fn tangent_matches_finite_differences_in_every_regime() {
+    for (key, extra) in [
+        ("bilinear", ""),
+        ("exponential", ""),
+        ("bilinear", "onset = \"bk\"\nshear_penalty = \"turon2018\""),
+        (
+            "bilinear",
+            "propagation = \"power_law\"\nalpha = 1.5\nonset = \"max_stress\"",
+        ),
+        ("exponential", "viscosity = 0.5"),
+    ] {
+        let law = build(key, extra);
+        let what = |r: &str| format!("{key} [{}] {r}", extra.replace('\n', ", "));
+        let p = Point::new(law.clone());
+        // elastic: opening, slip, mixed
+        p.check_tangent([1e-5, -2e-5, 3e-5], &what("elastic"));
+        // compression (closed): no damage, penalty contact
+        p.check_tangent([2e-5, 1e-5, -3e-5], &what("compression"));
+        // softening: mode I, mode II, mixed
+        p.check_tangent([0.0, 0.0, 2e-4], &what("softening mode I"));
+        p.check_tangent([2.2e-4, 0.0, -1e-5], &what("softening mode II, closed"));
+        p.check_tangent(
+            [1.5e-4, 1.7e-4, 1e-6],
+            &what("softening mode II, barely open"),
+        );
+        p.check_tangent([1.5e-4, 0.7e-4, 1.2e-4], &what("softening mixed"));
+        // damage a point, then unload, reload below the curve, load on
+        let mut q = Point::new(law.clone());
+        q.step([0.8e-4, 0.0, 1.2e-4]);
+        q.step([1.2e-4, 0.0, 1.8e-4]);
+        assert!(
+            q.damage() > 0.0 && q.damage() < 1.0,
+            "{}",
+            what("partly damaged")
+        );
+        q.check_tangent([0.6e-4, 0.0, 0.9e-4], &what("unloading"));
+        q.check_tangent([1.1e-4, 0.0, 1.7e-4], &what("reloading"));
+        q.check_tangent([1.4e-4, 0.0, 2.0e-4], &what("softening again"));
+        q.check_tangent([1.0e-4, 0.3e-4, -0.5e-4], &what("damaged, closed"));
+        q.check_tangent([1.8e-4, 0.5e-4, 0.5e-4], &what("damaged, mode turned"));
+        // fully failed: open carries nothing, closed is contact
+        let mut f = Point::new(law.clone());
+        drive_to_failure(&mut f, 0.3, 0.8, 50);
+        assert!(f.damage() >= 1.0 - 1e-9);
+        f.check_tangent([1e-3, 2e-3, 3e-3], &what("failed, open"));
+        f.check_tangent([1e-3, 2e-3, -3e-5], &what("failed, closed"));
+        let r = f.trial([1e-3, 2e-3, 3e-3], 1.0).0;
+        assert!(r.traction.iter().all(|t| t.abs() < 1e-9), "{r:?}");
+        let r = f.trial([1e-3, 2e-3, -3e-5], 1.0).0;
+        assert!((r.traction[2] + K * 3e-5).abs() < 1e-9 && r.traction[0].abs() < 1e-9);
+    }
+}
+
+#[test]
+fn rotating_mode_never_heals_and_never_dissipates_less() {
+    for key in ["bilinear", "exponential"] {
+        let law = build(key, "");
+        let mut p = Point::new(law);
+        let mut d_prev = 0.0;
+        let mut e_prev = 0.0;
+        let (mut b_min, mut b_max) = (1.0f64, 0.0f64);
+        // load-unload-reload cycles whose mixity turns from mode I to II
+        let mut amp: f64 = 1.0e-4;
+        for cycle in 0..60 {
+            let angle = (cycle as f64 / 59.0) * std::f64::consts::FRAC_PI_2;
+            let dir = [angle.sin(), 0.0, angle.cos()];
+            for frac in [1.0, 0.3, -0.2, 1.0] {
+                let j = [amp * frac * dir[0], 0.0, amp * frac * dir[2]];
+                let j = if frac < 0.0 {
+                    [j[0].abs(), 0.0, j[2]]
+                } else {
+                    j
+                };
+                p.step(j);
+                assert!(
+                    p.damage() >= d_prev,
+                    "{key}: damage healed {d_prev} -> {}",
+                    p.damage()
+                );
+                assert!(
+                    p.energy() >= e_prev,
+                    "{key}: energy fell {e_prev} -> {}",
+                    p.energy()
+                );
+                d_prev = p.damage();
+                e_prev = p.energy();
+            }
+            if p.damage() > 0.0 && p.damage() < 1.0 {
+                let b = p.state[slot::MODE_RATIO];
+                b_min = b_min.min(b);
+                b_max = b_max.max(b);
+            }
+            amp *= if key == "bilinear" { 1.12 } else { 1.16 };
+        }
+        assert!(
+            p.damage() >= 1.0 - 1e-12,
+            "{key}: not failed, d = {}",
+            p.damage()
+        );
+        let (lo, hi) = (bk_toughness(0.0), bk_toughness(1.0));
+        assert!(
+            p.energy() >= lo * (1.0 - 1e-9) && p.energy() <= hi * (1.0 + 1e-9),
+            "{key}: dissipated {} outside [{lo}, {hi}]",
+            p.energy()
+        );
+        assert!(
+            b_max > b_min + 0.3,
+            "{key}: the mode did not turn ({b_min}..{b_max})"
+        );
+    }
+}
+
+#[test]
+fn viscous_regularisation_lags_and_books_its_energy_apart() {
+    let law = build("bilinear", "viscosity = 0.01");
+    let inviscid = build("bilinear", "");
+    let mut p = Point::new(law);
+    let mut q = Point::new(inviscid);
+    for i in 1..=300 {
+        let j = [0.0, 0.0, 1e-4 * i as f64];
+        p.step_dt(j, 0.001);
+        q.step_dt(j, 0.001);
+        assert!(p.damage() <= q.damage() + 1e-15);
+    }
+    // then hold the jump: the viscous damage catches up
+    for _ in 0..200 {
+        p.step_dt([0.0, 0.0, 0.03], 0.01);
+    }
+    assert!((p.damage() - 1.0).abs() < 1e-9, "{}", p.damage());
+    assert!(
+        (p.energy() - GIC).abs() < 1e-6 * GIC,
+        "fracture {}",
+        p.energy()
+    );
+    let viscous = p.state[slot::VISCOUS];
+    assert!(viscous > 0.0, "viscous energy {viscous}");
+}
+
+#[test]
+fn turon_consistency_warning() {
+    // AS4/PEEK: S = 100 against N sqrt(G_IIc/G_Ic) = 106.6 (BENCHMARKS 4)
+    let w = build("bilinear", "").warnings();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        w[0].contains("1.0655e2") && w[0].contains("turon2018"),
+        "{}",
+        w[0]
+    );
+    assert!(build("bilinear", "shear_penalty = \"turon2018\"")
+        .warnings()
+        .is_empty());
+    // the mode-dependent penalty of Turon 2018
+    let law = build("bilinear", "shear_penalty = \"turon2018\"");
+    let k = law.initial_stiffness();
+    let expected = K * (GIC / GIIC) * (S / N) * (S / N);
+    assert!((k[0] - expected).abs() < 1e-9 * expected && k[2] == K);
+}
+
+#[test]
+fn bad_parameters_name_the_key() {
+    let base = "K = 1e6\nN = 80.0\nS = 100.0\nG_Ic = 0.969\nG_IIc = 1.719\neta = 2.284\n";
+    let cases = [
+        (base.replace("G_Ic = 0.969", "G_Ic = 0.0"), "`G_Ic` = 0"),
+        (
+            base.replace("G_IIc = 1.719", "G_IIc = -1.0"),
+            "`G_IIc` = -1",
+        ),
+        (base.replace("N = 80.0", "N = -5.0"), "`N` = -5"),
+        (base.replace("S = 100.0", "S = 0.0"), "`S` = 0"),
+        (base.replace("eta = 2.284", "eta = -1.0"), "`eta` = -1"),
+        (base.replace("eta = 2.284\n", ""), "missing `eta`"),
+        (
+            format!("{base}propagation = \"linear\"\n"),
+            "`propagation` = \"linear\"",
+        ),
+        (format!("{base}onset = \"nope\"\n"), "`onset`"),
+        (format!("{base}viscosity = -1.0\n"), "`viscosity`"),
+        (format!("{base}Gc = 1.0\n"), "Gc"),
+        // toughness too small to soften: G_Ic <= N^2 / (2 K) = 3.2e-3
+        (
+            base.replace("G_Ic = 0.969", "G_Ic = 0.003"),
+            "G_Ic > N^2 / (2 K)",
+        ),
+    ];
+    for (text, needle) in cases {
+        let e = build_err("bilinear", &text);
+        assert!(e.contains(needle), "expected `{needle}` in: {e}");
+        assert!(e.contains("bilinear"), "{e}");
+    }
+}
