@@ -63,10 +63,17 @@ struct Row {
     cutbacks: usize,
     seconds: f64,
     small: bool,
+    /// Fracture energy dissipated in all interfaces so far.
+    dissipated: f64,
+    /// Damaged area (damage >= 0.99) of all interfaces.
+    damaged_area: f64,
+    /// Negative pivots of the last factorised tangent (inertia), when the
+    /// back end knows it.
+    negative_pivots: Option<usize>,
 }
 
 const CURVE_HEADER: &str =
-    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment\n";
+    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots\n";
 
 fn opt(v: Option<f64>) -> String {
     v.map(|x| format!("{x:e}")).unwrap_or_default()
@@ -75,7 +82,7 @@ fn opt(v: Option<f64>) -> String {
 impl Row {
     fn csv(&self) -> String {
         format!(
-            "{},{},{:e},{},{},{},{},{},{},{:e},{}\n",
+            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{}\n",
             self.increment,
             self.step,
             self.lambda,
@@ -86,12 +93,17 @@ impl Row {
             self.iterations,
             self.cutbacks,
             self.seconds,
-            self.small as u8
+            self.small as u8,
+            self.dissipated,
+            self.damaged_area,
+            self.negative_pivots
+                .map(|n| n.to_string())
+                .unwrap_or_default()
         )
     }
     fn parse(line: &str) -> Option<Row> {
         let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 11 {
+        if f.len() != 14 {
             return None;
         }
         Some(Row {
@@ -106,6 +118,9 @@ impl Row {
             cutbacks: f[8].parse().ok()?,
             seconds: f[9].parse().ok()?,
             small: f[10].trim() == "1",
+            dissipated: f[11].parse().ok()?,
+            damaged_area: f[12].parse().ok()?,
+            negative_pivots: f[13].trim().parse().ok(),
         })
     }
 }
@@ -154,7 +169,15 @@ pub fn run_static(
                 .node_set(&c.point_set)
                 .map_err(|e| anyhow!("{file}: key `output.curve.point_set`: {e}"))?
                 .to_vec();
-            Some((c.reaction_set.clone(), rc, pts, pc))
+            let rel = match &c.relative_to {
+                Some(set) => model
+                    .mesh
+                    .node_set(set)
+                    .map_err(|e| anyhow!("{file}: key `output.curve.relative_to`: {e}"))?
+                    .to_vec(),
+                None => Vec::new(),
+            };
+            Some((c.reaction_set.clone(), rc, pts, pc, rel))
         }
         None => None,
     };
@@ -208,13 +231,17 @@ pub fn run_static(
                     .filter(|pt| pt.get("failed").is_some_and(|f| f[0] > 0.5))
                     .count();
                 let (reaction, displacement) = match &curve {
-                    Some((set, rc, pts, pc)) => (
-                        Some(model.set_total(set, v.residual)?[*rc]),
-                        Some(
-                            pts.iter().map(|&n| v.u[3 * n + pc]).sum::<f64>()
-                                / pts.len().max(1) as f64,
-                        ),
-                    ),
+                    Some((set, rc, pts, pc, rel)) => {
+                        let mean = |nodes: &[usize]| {
+                            nodes.iter().map(|&n| v.u[3 * n + pc]).sum::<f64>()
+                                / nodes.len().max(1) as f64
+                        };
+                        let base = if rel.is_empty() { 0.0 } else { mean(rel) };
+                        (
+                            Some(model.set_total(set, v.residual)?[*rc]),
+                            Some(mean(pts) - base),
+                        )
+                    }
                     None => (None, None),
                 };
                 if failed > 0 && first_failure.is_none() {
@@ -235,6 +262,16 @@ pub fn run_static(
                                     .wants_small_increments(&v.state.committed[v.state.range(b, e)])
                             })
                     });
+                let energy = ifs.iter().map(output::interface_energy).fold(
+                    output::InterfaceEnergy::default(),
+                    |a, e| output::InterfaceEnergy {
+                        dissipated_energy: a.dissipated_energy + e.dissipated_energy,
+                        viscous_energy: a.viscous_energy + e.viscous_energy,
+                        damaged_area: a.damaged_area + e.damaged_area,
+                        process_zone_area: a.process_zone_area + e.process_zone_area,
+                        has_damage: a.has_damage || e.has_damage,
+                    },
+                );
                 let row = Row {
                     increment: r.increment_index,
                     step: r.step,
@@ -247,6 +284,9 @@ pub fn run_static(
                     cutbacks: r.cutbacks,
                     seconds: r.seconds.total,
                     small: r.small_increment_mode,
+                    dissipated: energy.dissipated_energy,
+                    damaged_area: energy.damaged_area,
+                    negative_pivots: r.negative_pivots,
                 };
                 curve_file.write_all(row.csv().as_bytes())?;
                 curve_file.flush()?;

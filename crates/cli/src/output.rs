@@ -296,6 +296,72 @@ fn component_range(points: &[junta_core::PointOutput], name: &str) -> ([f64; 3],
     (lo, hi)
 }
 
+/// Values every interface point carries whatever its law; the other
+/// scalar values of a point are its law's outputs
+/// ([`junta_core::InterfaceLaw::output_names`]).
+const FIXED_POINT_VALUES: &[&str] = &[
+    "jump",
+    "traction",
+    "frame",
+    "area",
+    "state",
+    "failed",
+    "failure_index",
+];
+
+/// Names of the law outputs present in the interface points, in the order
+/// first met.
+pub fn law_output_names(res: &[InterfaceResults]) -> Vec<&'static str> {
+    let mut names: Vec<&'static str> = Vec::new();
+    for r in res {
+        if let Some(p) = r.points.first() {
+            for (n, v) in &p.values {
+                if v.len() == 1 && !FIXED_POINT_VALUES.contains(n) && !names.contains(n) {
+                    names.push(n);
+                }
+            }
+        }
+    }
+    names
+}
+
+/// Energies and areas of one interface block, from its law outputs:
+/// fracture and viscous energy (integrals of the per-area densities),
+/// damaged area (damage >= 0.99) and process-zone area (0 < damage < 0.99).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct InterfaceEnergy {
+    pub dissipated_energy: f64,
+    pub viscous_energy: f64,
+    pub damaged_area: f64,
+    pub process_zone_area: f64,
+    /// Whether the law reports damage (else the numbers are zero).
+    pub has_damage: bool,
+}
+
+/// [`InterfaceEnergy`] of one block's points.
+pub fn interface_energy(r: &InterfaceResults) -> InterfaceEnergy {
+    use junta_core::law::output;
+    let mut e = InterfaceEnergy::default();
+    for p in &r.points {
+        let area = p.get("area").map_or(0.0, |a| a[0]);
+        if let Some(d) = p.get(output::DISSIPATED_ENERGY) {
+            e.dissipated_energy += d[0] * area;
+        }
+        if let Some(d) = p.get(output::VISCOUS_ENERGY) {
+            e.viscous_energy += d[0] * area;
+        }
+        if let Some(d) = p.get(output::DAMAGE) {
+            e.has_damage = true;
+            if d[0] >= output::DAMAGED_THRESHOLD {
+                e.damaged_area += area;
+            } else if d[0] > 0.0 {
+                e.process_zone_area += area;
+            }
+        }
+    }
+    e
+}
+
 /// `summary.json` entry `interfaces`: per block, ranges of the local
 /// tractions `[t1, t2, tn]` and jumps over all integration points.
 pub fn interface_summary(model: &Model, res: &[InterfaceResults]) -> Value {
@@ -315,9 +381,8 @@ pub fn interface_summary(model: &Model, res: &[InterfaceResults]) -> Value {
             .filter(|p| p.get("failed").is_some_and(|f| f[0] > 0.5))
             .count();
         let b = &model.mesh.blocks[r.block];
-        m.insert(
-            b.name.clone(),
-            json!({
+        let energy = interface_energy(r);
+        let mut entry = json!({
                 "element": b.element_type,
                 "elements": b.len(),
                 "points": r.points.len(),
@@ -328,8 +393,15 @@ pub fn interface_summary(model: &Model, res: &[InterfaceResults]) -> Value {
                 "jump_max": jmax,
                 "failed_points": failed,
                 "failed_fraction": failed as f64 / r.points.len().max(1) as f64,
-            }),
-        );
+        });
+        if energy.has_damage {
+            let o = entry.as_object_mut().expect("json object");
+            o.insert("dissipated_energy".into(), json!(energy.dissipated_energy));
+            o.insert("viscous_energy".into(), json!(energy.viscous_energy));
+            o.insert("damaged_area".into(), json!(energy.damaged_area));
+            o.insert("process_zone_area".into(), json!(energy.process_zone_area));
+        }
+        m.insert(b.name.clone(), entry);
     }
     Value::Object(m)
 }
@@ -370,6 +442,8 @@ pub fn write_interface_vtu_named(
     let mut cell_t = Vec::new();
     let mut cell_j = Vec::new();
     let mut cell_block = Vec::new();
+    let law_names = law_output_names(res);
+    let mut cell_law: Vec<Vec<f64>> = vec![Vec::new(); law_names.len()];
     let mut index = std::collections::HashMap::new();
     for r in res {
         let b = &mesh.blocks[r.block];
@@ -405,6 +479,14 @@ pub fn write_interface_vtu_named(
                 }
                 s
             };
+            for (k, name) in law_names.iter().enumerate() {
+                let v: f64 = pts
+                    .iter()
+                    .map(|p| p.get(name).map_or(0.0, |v| v[0]))
+                    .sum::<f64>()
+                    / pts.len().max(1) as f64;
+                cell_law[k].push(v);
+            }
             cell_t.push(mean("traction"));
             cell_j.push(mean("jump"));
             cell_block.push(r.block as f64);
@@ -460,6 +542,9 @@ pub fn write_interface_vtu_named(
             cell_j.iter().flat_map(|p| p.iter().copied()),
         )?;
         write_array(&mut w, "block", 1, cell_block.iter().copied())?;
+        for (name, values) in law_names.iter().zip(&cell_law) {
+            write_array(&mut w, name, 1, values.iter().copied())?;
+        }
         writeln!(w, "      </CellData>")?;
         vtu_tail(&mut w)
     })()
@@ -515,6 +600,9 @@ pub fn write_interface_vtu_named(
             1,
             all.iter().map(|p| scalar(p, "failure_index")),
         )?;
+        for name in &law_names {
+            write_array(&mut w, name, 1, all.iter().map(|p| scalar(p, name)))?;
+        }
         if state_len > 0 {
             write_array(
                 &mut w,

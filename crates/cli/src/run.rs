@@ -6,7 +6,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use junta_core::registry::{
     self, CriterionEntry, ElementEntry, Entry, LawEntry, MaterialEntry, SolverEntry,
 };
-use junta_core::{LinearSolver, Model};
+use junta_core::{LinearSolver, MatrixKind, Model};
 use junta_solvers::linear_static::solve_linear_static;
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -41,6 +41,41 @@ fn build_solver(key: &str, table: &toml::Table, where_: &str) -> Result<Box<dyn 
     let entry = registry::find::<SolverEntry>(key)
         .map_err(|e| anyhow!("{where_}: key `solver.type`: {e}"))?;
     (entry.build)(table).map_err(|e| anyhow!("{where_}: key `solver`: {e}"))
+}
+
+/// Resolve the solver `type = "auto"` (the default) from the model's
+/// matrix kind: `cholesky` for symmetric positive-definite tangents, `ldlt`
+/// when a law can soften (symmetric indefinite). The choice, or a back end
+/// the user forced that does not accept the model's kind, is a note.
+fn resolve_solver(
+    key: &mut String,
+    table: &toml::Table,
+    model: &Model,
+    where_: &str,
+    notes: &mut Vec<String>,
+) -> Result<Box<dyn LinearSolver>> {
+    let kind = model.matrix_kind();
+    if key == "auto" {
+        *key = match kind {
+            MatrixKind::SymmetricPositiveDefinite => "cholesky",
+            MatrixKind::SymmetricIndefinite | MatrixKind::General => "ldlt",
+        }
+        .to_string();
+        if kind != MatrixKind::SymmetricPositiveDefinite {
+            notes.push(format!(
+                "solver auto: the tangent can be {} (a softening interface law), so the direct back end is `{key}` (LDL^T with Bunch-Kaufman pivots, reports the negative pivots)",
+                kind.name()
+            ));
+        }
+    }
+    let solver = build_solver(key, table, where_)?;
+    if !solver.accepts(kind) {
+        notes.push(format!(
+            "solver `{key}` accepts symmetric positive-definite matrices only, but the tangent can be {}: it will stop where the tangent stops being positive definite; use [solver] type = \"auto\" or \"ldlt\"",
+            kind.name()
+        ));
+    }
+    Ok(solver)
 }
 
 /// Apply `--solver KEY=VALUE` overrides to the solver key and table. A
@@ -98,7 +133,14 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
             let model = scene::build_model(&sf)?;
             let (mut key, mut table) = scene::solver_table(&sf);
             apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
-            let solver = build_solver(&key, &table, &sf.path.display().to_string())?;
+            let mut notes = Vec::new();
+            let solver = resolve_solver(
+                &mut key,
+                &table,
+                &model,
+                &sf.path.display().to_string(),
+                &mut notes,
+            )?;
             let (solver_key, solver_table) = (key, table);
             Ok(Prepared {
                 model,
@@ -122,7 +164,7 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
                     .iter()
                     .filter_map(|f| f.thickness.map(|t| (f.name.clone(), t)))
                     .collect(),
-                notes: Vec::new(),
+                notes,
                 solver_overrides: solver_overrides.to_vec(),
                 solver_key,
                 solver_table,
@@ -130,10 +172,16 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
             })
         }
         Some("inp") => {
-            let (model, notes, steps) = deck::build_model(input)?;
-            let (mut key, mut table) = ("cholesky".to_string(), toml::Table::new());
+            let (model, mut notes, steps) = deck::build_model(input)?;
+            let (mut key, mut table) = ("auto".to_string(), toml::Table::new());
             apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
-            let solver = build_solver(&key, &table, &input.display().to_string())?;
+            let solver = resolve_solver(
+                &mut key,
+                &table,
+                &model,
+                &input.display().to_string(),
+                &mut notes,
+            )?;
             Ok(Prepared {
                 model,
                 solver,

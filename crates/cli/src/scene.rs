@@ -113,6 +113,11 @@ pub struct CurveSpec {
     pub point_set: String,
     /// Its component: x, y or z.
     pub point_component: String,
+    /// Optional node set whose mean displacement (same component) is
+    /// subtracted: the recorded displacement is then a relative one, e.g.
+    /// the total opening of a DCB's arms.
+    #[serde(default)]
+    pub relative_to: Option<String>,
 }
 
 /// A reference reaction: the total reaction component on a node set that
@@ -193,6 +198,10 @@ pub struct BoxPart {
     pub origin: [f64; 3],
     #[serde(default = "unit_grading")]
     pub grading: [f64; 3],
+    /// Further element set the box's elements join (several boxes with the
+    /// same `group` form one body, e.g. a beam arm meshed finer near a
+    /// crack tip; an interface can then go between two groups).
+    pub group: Option<String>,
 }
 
 fn unit_grading() -> [f64; 3] {
@@ -562,8 +571,21 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
                 )?;
                 parts.push((b.name.clone(), part));
             }
-            junta_core::mesh::merge::merge(parts, 1e-9)
-                .map_err(|e| anyhow!("{at}: key `mesh.boxes`: {e}"))?
+            let mut mesh = junta_core::mesh::merge::merge(parts, 1e-9)
+                .map_err(|e| anyhow!("{at}: key `mesh.boxes`: {e}"))?;
+            for (i, b) in m.boxes.iter().enumerate() {
+                if let Some(g) = &b.group {
+                    if m.boxes.iter().any(|o| &o.name == g) {
+                        bail!("{at}: key `mesh.boxes[{i}].group`: `{g}` is also the name of a box; give the group its own name");
+                    }
+                    let members = mesh.element_sets.get(&b.name).cloned().unwrap_or_default();
+                    let set = mesh.element_sets.entry(g.clone()).or_default();
+                    set.extend(members);
+                    set.sort_unstable();
+                    set.dedup();
+                }
+            }
+            mesh
         }
         "gmsh" => {
             let p = sf.relative(m.file.as_ref().ok_or_else(|| missing("file"))?);
@@ -894,10 +916,10 @@ pub fn solver_table(sf: &SceneFile) -> (String, toml::Table) {
             let mut t = t.clone();
             let key = match t.remove("type") {
                 Some(toml::Value::String(s)) => s,
-                _ => "cholesky".to_string(),
+                _ => "auto".to_string(),
             };
             (key, t)
         }
-        None => ("cholesky".to_string(), toml::Table::new()),
+        None => ("auto".to_string(), toml::Table::new()),
     }
 }

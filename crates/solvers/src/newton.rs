@@ -326,6 +326,12 @@ pub struct IncrementReport {
     pub seconds: Timings,
     /// True when this increment was sized by the small-increment rule.
     pub small_increment_mode: bool,
+    /// Negative pivots (inertia) of the last tangent factorised in this
+    /// increment, when the linear back end reports it (`ldlt`, and 0 from a
+    /// successful `cholesky`): a positive count means the tangent is
+    /// indefinite (softening past a limit point of the structure or of a
+    /// material point).
+    pub negative_pivots: Option<usize>,
 }
 
 /// The driver's position in the program: everything its future depends on.
@@ -993,6 +999,11 @@ where
             cutbacks,
             seconds,
             small_increment_mode: was_small,
+            negative_pivots: if iterations > 0 {
+                solver.report().negative_pivots
+            } else {
+                None
+            },
         };
         tracing::info!(
             increment = report.increment_index,
