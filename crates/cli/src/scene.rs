@@ -169,7 +169,7 @@ pub struct MeshSpec {
     pub size: Option<[f64; 3]>,
     /// Box: elements along x, y, z.
     pub divisions: Option<[usize; 3]>,
-    /// Box: element type key (h8, h20, h27, h20r, h27r).
+    /// Box: element type key (h8, h8i, h20, h27, h20r, h27r).
     pub element: Option<Spanned<String>>,
     /// Box: material name (a key of `[materials]`).
     pub material: Option<Spanned<String>>,
@@ -477,7 +477,7 @@ fn generate_box(
         .map_err(|e| anyhow!("{}: key `{key}.element`: {e}", sf.at(element.span())))?;
     if !entry.shape.is_solid() {
         bail!(
-            "{}: key `{key}.element`: `{}` is not a solid element; the box generator makes h8, h20, h27, h20r, h27r",
+            "{}: key `{key}.element`: `{}` is not a solid element; the box generator makes h8, h8i, h20, h27, h20r, h27r",
             sf.at(element.span()),
             entry.key
         );

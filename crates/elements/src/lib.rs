@@ -13,6 +13,9 @@
 //!   [`Orthotropic`] (`orthotropic`, with an Abaqus-style orientation).
 //! * [`solid`]: the small-strain hexahedral [`SolidElement`], registered as
 //!   `h8`, `h20`, `h27`, `h20r`, `h27r`.
+//! * [`h8i`]: the 8-node hexahedron with incompatible modes
+//!   [`IncompatibleHex8`] (as C3D8I), registered as `h8i`: bends without
+//!   shear locking.
 //! * [`face_load`]: consistent nodal forces of pressures and tractions on
 //!   solid faces.
 //!
@@ -33,11 +36,13 @@
 //! ```
 
 pub mod face_load;
+pub mod h8i;
 pub mod material;
 pub mod quadrature;
 pub mod shape;
 pub mod solid;
 
+pub use h8i::IncompatibleHex8;
 pub use material::{EngineeringConstants, Isotropic, Orientation, Orthotropic};
 pub use quadrature::{gauss_legendre, gauss_lobatto, tensor_2d, tensor_3d, Rule, Rule1D};
 pub use shape::{hex_shape, quad_shape};

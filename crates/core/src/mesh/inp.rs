@@ -34,6 +34,7 @@
 //! | TYPE   | shape  | `element_type` | conversion |
 //! |--------|--------|----------------|------------|
 //! | C3D8   | Hex8   | `h8`           | none (Abaqus = VTK = ours) |
+//! | C3D8I  | Hex8   | `h8i`          | none (incompatible modes) |
 //! | C3D20  | Hex20  | `h20`          | none |
 //! | C3D20R | Hex20  | `h20r`         | none |
 //! | C3D27  | Hex27  | `h27`          | face / body centres, see [`C3D27_TO_OURS`] |
@@ -72,7 +73,7 @@ pub const SUPPORTED_KEYWORDS: &str =
 *NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT";
 
 /// Element types the reader understands (for messages).
-pub const SUPPORTED_ELEMENT_TYPES: &str = "C3D8, C3D20, C3D20R, C3D27, COH3D8";
+pub const SUPPORTED_ELEMENT_TYPES: &str = "C3D8, C3D8I, C3D20, C3D20R, C3D27, COH3D8";
 
 const OUTPUT_KEYWORDS: [&str; 7] = [
     "NODE PRINT",
@@ -478,6 +479,7 @@ type Params = [(String, Option<String>)];
 fn element_kind(t: &str) -> Option<(CellShape, &'static str)> {
     match t {
         "C3D8" => Some((CellShape::Hex8, "h8")),
+        "C3D8I" => Some((CellShape::Hex8, "h8i")),
         "C3D20" => Some((CellShape::Hex20, "h20")),
         "C3D20R" => Some((CellShape::Hex20, "h20r")),
         "C3D27" => Some((CellShape::Hex27, "h27")),
