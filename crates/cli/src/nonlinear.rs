@@ -125,6 +125,36 @@ impl Row {
     }
 }
 
+/// Points `(x, y)` of a reference curve file: CSV, two numeric columns,
+/// `#` comments and a header line allowed; the path is relative to the
+/// scene's folder.
+fn read_reference_curve(input: &Path, file: &str) -> Result<Vec<(f64, f64)>> {
+    let path = input.parent().unwrap_or(Path::new(".")).join(file);
+    let text = std::fs::read_to_string(&path).with_context(|| {
+        format!(
+            "{}: key `output.curve.reference.file`: cannot read {}",
+            input.display(),
+            path.display()
+        )
+    })?;
+    let mut pts = Vec::new();
+    for line in text.lines().map(str::trim) {
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let f: Vec<&str> = line.split(',').map(str::trim).collect();
+        match (
+            f.first().and_then(|v| v.parse().ok()),
+            f.get(1).and_then(|v| v.parse().ok()),
+        ) {
+            (Some(x), Some(y)) => pts.push((x, y)),
+            _ if pts.is_empty() => {} // header
+            _ => bail!("{}: `{line}` is not two numbers x, y", path.display()),
+        }
+    }
+    Ok(pts)
+}
+
 /// Write `path` atomically (temporary file, then rename).
 fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let tmp = path.with_extension("tmp");
@@ -177,7 +207,8 @@ pub fn run_static(
                     .to_vec(),
                 None => Vec::new(),
             };
-            Some((c.reaction_set.clone(), rc, pts, pc, rel))
+            let sign = if c.negate { -1.0 } else { 1.0 };
+            Some((c.reaction_set.clone(), rc, pts, pc, rel, sign))
         }
         None => None,
     };
@@ -231,15 +262,15 @@ pub fn run_static(
                     .filter(|pt| pt.get("failed").is_some_and(|f| f[0] > 0.5))
                     .count();
                 let (reaction, displacement) = match &curve {
-                    Some((set, rc, pts, pc, rel)) => {
+                    Some((set, rc, pts, pc, rel, sign)) => {
                         let mean = |nodes: &[usize]| {
                             nodes.iter().map(|&n| v.u[3 * n + pc]).sum::<f64>()
                                 / nodes.len().max(1) as f64
                         };
                         let base = if rel.is_empty() { 0.0 } else { mean(rel) };
                         (
-                            Some(model.set_total(set, v.residual)?[*rc]),
-                            Some(mean(pts) - base),
+                            Some(sign * model.set_total(set, v.residual)?[*rc]),
+                            Some(sign * (mean(pts) - base)),
                         )
                     }
                     None => (None, None),
@@ -421,14 +452,27 @@ pub fn run_static(
             state.restore();
             let ifs = output::interface_results_at(model, &r.checkpoint.u, &state, step)?;
             write_final_frame(&frame_ctx, &mut frames, &r.checkpoint.u, &state, &ifs)?;
+            summary["interfaces"] = output::interface_summary(model, &ifs);
         }
     }
+    let (zone, zone_lines, law_warnings) = output::cohesive_zone_advice(model)?;
+    if !zone_lines.is_empty() {
+        summary["mesh_advice"] = zone;
+    }
+    if !law_warnings.is_empty() {
+        summary["warnings"] = json!(law_warnings);
+    }
     let report = p.solver.report();
+    let mut notes = p.notes.clone();
+    notes.extend(report.notes.iter().cloned());
     summary["solver"] = json!({
         "name": report.solver,
         "precision": report.precision,
+        "ordering": report.ordering,
+        "factor_nonzeros": report.factor_nonzeros,
+        "negative_pivots_max": rows.iter().filter_map(|r| r.negative_pivots).max(),
         "warnings": report.warnings,
-        "notes": report.notes,
+        "notes": notes,
     });
     output::write_json(&dir.join("summary.json"), &summary)?;
     if curve.is_some() && rows.len() >= 2 {
@@ -437,6 +481,20 @@ pub fn run_static(
             .filter_map(|r| Some((r.displacement?, r.reaction?)))
             .collect();
         let c = p.curve.as_ref().unwrap();
+        let mut series = vec![plot::Series {
+            name: "Junta: converged increments".into(),
+            points: pts,
+            color: 0,
+            markers_only: false,
+        }];
+        if let Some(r) = &c.reference {
+            series.push(plot::Series {
+                name: r.label.clone(),
+                points: read_reference_curve(input, &r.file)?,
+                color: 1,
+                markers_only: false,
+            });
+        }
         plot::write_svg(
             &dir.join("curve.svg"),
             &[plot::Panel {
@@ -445,12 +503,7 @@ pub fn run_static(
                 y_label: format!("reaction on {} ({})", c.reaction_set, c.reaction_component),
                 log_x: false,
                 log_y: false,
-                series: vec![plot::Series {
-                    name: "converged increments".into(),
-                    points: pts,
-                    color: 0,
-                    markers_only: false,
-                }],
+                series,
                 vlines: vec![],
             }],
         )?;

@@ -752,3 +752,49 @@ pub fn write_pvd(path: &Path, frames: &[(f64, String)]) -> Result<()> {
     s += "  </Collection>\n</VTKFile>\n";
     std::fs::write(path, s).with_context(|| format!("cannot write {}", path.display()))
 }
+
+/// Mesh advice of every softening interface (cohesive-zone length,
+/// elements spanning it, verdict, Turon's strengths) as JSON and text
+/// lines, and the laws' parameter warnings as text lines.
+pub fn cohesive_zone_advice(model: &Model) -> Result<(Value, Vec<String>, Vec<String>)> {
+    let mut m = serde_json::Map::new();
+    let mut lines = Vec::new();
+    let mut warnings = Vec::new();
+    for (bi, b) in model.mesh.blocks.iter().enumerate() {
+        if !b.shape.is_interface() {
+            continue;
+        }
+        for w in model.elements[bi].warnings() {
+            warnings.push(format!("interface `{}`: {w}", b.name));
+        }
+        let Some(a) = junta_interface::cohesive_zone_advice(model, bi)? else {
+            continue;
+        };
+        lines.push(a.message());
+        let mode = |z: &junta_interface::cohesive_zone::ZoneLengths| {
+            json!({
+                "strength": z.strength, "toughness": z.toughness,
+                "hillerborg": z.hillerborg, "rice": z.rice, "hui": z.hui,
+                "slender": z.slender, "length": z.length,
+                "turon_reduced_strength": z.reduced_strength,
+            })
+        };
+        m.insert(
+            a.block.clone(),
+            json!({
+                "modulus_normal": a.modulus_normal,
+                "modulus_along": a.modulus_along,
+                "arm_thickness": a.arm_thickness,
+                "element_length_min": a.element_length_min,
+                "element_length_max": a.element_length_max,
+                "mode_i": mode(&a.mode_i),
+                "mode_ii": mode(&a.mode_ii),
+                "cohesive_zone_length": a.length,
+                "elements_in_zone": a.elements_in_zone,
+                "verdict": a.verdict.name(),
+                "law_warnings": model.elements[bi].warnings(),
+            }),
+        );
+    }
+    Ok((Value::Object(m), lines, warnings))
+}

@@ -610,6 +610,13 @@ pub fn check(input: &Path) -> Result<()> {
     for l in advice {
         println!("  penalty advisor: {l}");
     }
+    let (_, zone, warnings) = output::cohesive_zone_advice(m)?;
+    for l in zone {
+        println!("  mesh advice: {l}");
+    }
+    for w in warnings {
+        println!("  warning: {w}");
+    }
     for n in &p.notes {
         println!("  note: {n}");
     }

@@ -118,6 +118,24 @@ pub struct CurveSpec {
     /// the total opening of a DCB's arms.
     #[serde(default)]
     pub relative_to: Option<String>,
+    /// Record `-reaction` and `-displacement` (a load pushing along the
+    /// negative axis, e.g. a bending test loaded downwards, then reads
+    /// positive).
+    #[serde(default)]
+    pub negate: bool,
+    /// A reference curve drawn with Junta's in `curve.svg`.
+    #[serde(default)]
+    pub reference: Option<ReferenceCurve>,
+}
+
+/// A reference load-displacement curve (closed form, peer code, test).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceCurve {
+    /// CSV file with two columns (displacement, reaction), relative to the scene.
+    pub file: String,
+    /// Legend, e.g. "corrected beam theory".
+    pub label: String,
 }
 
 /// A reference reaction: the total reaction component on a node set that
@@ -230,6 +248,20 @@ pub struct InterfaceSpec {
     /// `[[xmin, ymin, zmin], [xmax, ymax, zmax]]`; the rest of the shared
     /// surface is cut (traction free), e.g. a notch ahead of a ligament.
     pub within: Option<Spanned<[[f64; 3]; 2]>>,
+    /// A precracked part of the surface with its own law (e.g. `contact`):
+    /// the interface elements whose centre lies in `within` form the block
+    /// `NAME.precrack` with law `law`.
+    pub precrack: Option<PrecrackSpec>,
+}
+
+/// The precracked part of an interface.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PrecrackSpec {
+    /// `[[xmin, ymin, zmin], [xmax, ymax, zmax]]`.
+    pub within: Spanned<[[f64; 3]; 2]>,
+    /// Law name (a key of `[laws]`), e.g. a `contact` law.
+    pub law: Spanned<String>,
 }
 
 /// A node set of all nodes inside an axis-aligned box (bounds inclusive,
@@ -649,12 +681,100 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
                 sf.at(f.between.span())
             )
         })?;
+        if let Some(pc) = &f.precrack {
+            split_precrack(
+                &mut mesh,
+                ins.block,
+                &f.name,
+                *pc.within.get_ref(),
+                pc.law.get_ref(),
+            )
+            .map_err(|e| {
+                anyhow!(
+                    "{}: key `interface[{i}].precrack.within`: {e}",
+                    sf.at(pc.within.span())
+                )
+            })?;
+        }
         if let Some(w) = &f.within {
             keep_within(&mut mesh, ins.block, &f.name, *w.get_ref())
                 .map_err(|e| anyhow!("{}: key `interface[{i}].within`: {e}", sf.at(w.span())))?;
         }
     }
     Ok(mesh)
+}
+
+/// Centre of each element of a block, in order.
+fn element_centres(mesh: &Mesh, block: usize) -> Vec<[f64; 3]> {
+    let b = &mesh.blocks[block];
+    let npe = b.nodes_per_element();
+    b.connectivity
+        .chunks(npe)
+        .map(|c| {
+            let mut centre = [0.0; 3];
+            for &n in c {
+                for k in 0..3 {
+                    centre[k] += mesh.nodes[n][k] / npe as f64;
+                }
+            }
+            centre
+        })
+        .collect()
+}
+
+/// Move the elements of interface block `block` whose centre lies in
+/// `[lo, hi]` to a new block `NAME.precrack` with law `law` (and element
+/// set of the same name).
+fn split_precrack(
+    mesh: &mut Mesh,
+    block: usize,
+    name: &str,
+    [lo, hi]: [[f64; 3]; 2],
+    law: &str,
+) -> Result<()> {
+    let tol = 1e-9 * mesh_diagonal(mesh);
+    let inside: Vec<bool> = element_centres(mesh, block)
+        .iter()
+        .map(|c| (0..3).all(|k| c[k] >= lo[k] - tol && c[k] <= hi[k] + tol))
+        .collect();
+    if !inside.iter().any(|&x| x) {
+        bail!("no interface element lies in {lo:?} .. {hi:?}");
+    }
+    if inside.iter().all(|&x| x) {
+        bail!("every interface element lies in {lo:?} .. {hi:?}: nothing is left bonded");
+    }
+    let b = &mesh.blocks[block];
+    let npe = b.nodes_per_element();
+    let (mut keep, mut cut) = (Vec::new(), Vec::new());
+    for (e, c) in b.connectivity.chunks(npe).enumerate() {
+        if inside[e] {
+            cut.extend_from_slice(c);
+        } else {
+            keep.extend_from_slice(c);
+        }
+    }
+    let mut pre = b.clone();
+    pre.name = format!("{name}.precrack");
+    pre.material = law.to_string();
+    pre.connectivity = cut;
+    mesh.blocks[block].connectivity = keep;
+    let nb = mesh.blocks.len();
+    let n_pre = pre.len();
+    mesh.blocks.push(pre);
+    let n_keep = mesh.blocks[block].len();
+    mesh.element_sets.insert(
+        name.to_string(),
+        (0..n_keep)
+            .map(|element| junta_core::mesh::ElementRef { block, element })
+            .collect(),
+    );
+    mesh.element_sets.insert(
+        format!("{name}.precrack"),
+        (0..n_pre)
+            .map(|element| junta_core::mesh::ElementRef { block: nb, element })
+            .collect(),
+    );
+    Ok(())
 }
 
 /// Keep only the elements of interface block `block` whose centre lies in

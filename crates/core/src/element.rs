@@ -119,6 +119,19 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     fn wants_small_increments(&self, _state_committed: &[f64]) -> bool {
         false
     }
+    /// Young's modulus of the element's material along the unit direction
+    /// `n` (solids), for diagnostics such as the cohesive-zone advice.
+    fn directional_modulus(&self, _n: [f64; 3]) -> Option<f64> {
+        None
+    }
+    /// Fracture properties of the element's law (softening interfaces).
+    fn fracture_properties(&self) -> Option<crate::law::FractureProperties> {
+        None
+    }
+    /// Warnings about the element's law or material parameters.
+    fn warnings(&self) -> Vec<String> {
+        Vec::new()
+    }
     /// Kind of the tangent this element can produce (its law's or
     /// material's); see [`crate::solver::MatrixKind`].
     fn tangent_kind(&self) -> crate::solver::MatrixKind {

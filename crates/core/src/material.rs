@@ -17,4 +17,22 @@ pub trait Material: Send + Sync + std::fmt::Debug {
     fn elasticity(&self) -> Voigt6;
     /// A representative Young's modulus (for diagnostics such as the penalty advisor).
     fn reference_modulus(&self) -> f64;
+    /// Young's modulus along the unit direction `n`: the ratio of stress
+    /// to strain in a uniaxial stress state along `n`,
+    /// `1 / E(n) = v^T S v` with `S = C^-1` and `v` the Voigt form of
+    /// `n (x) n` (`[n1^2, n2^2, n3^2, n1 n2, n2 n3, n3 n1]`, engineering
+    /// shear strains). `None` if `C` is singular.
+    fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
+        let s = self.elasticity().try_inverse()?;
+        let v = nalgebra::SVector::<f64, 6>::from([
+            n[0] * n[0],
+            n[1] * n[1],
+            n[2] * n[2],
+            n[0] * n[1],
+            n[1] * n[2],
+            n[2] * n[0],
+        ]);
+        let c = (v.transpose() * s * v)[(0, 0)];
+        (c > 0.0).then(|| 1.0 / c)
+    }
 }

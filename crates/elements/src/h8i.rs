@@ -330,6 +330,9 @@ impl Element for IncompatibleHex8 {
     fn reference_modulus(&self) -> Option<f64> {
         Some(self.material.reference_modulus())
     }
+    fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
+        self.material.directional_modulus(n)
+    }
 
     fn compute(
         &self,

@@ -392,6 +392,14 @@ impl Element for InterfaceElement {
         self.law.tangent_kind()
     }
 
+    fn fracture_properties(&self) -> Option<junta_core::FractureProperties> {
+        self.law.fracture_properties()
+    }
+
+    fn warnings(&self) -> Vec<String> {
+        self.law.warnings()
+    }
+
     fn wants_small_increments(&self, state_committed: &[f64]) -> bool {
         let sl = self.law.state_len();
         sl > 0

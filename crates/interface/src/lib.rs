@@ -8,13 +8,17 @@
 //!   Gauss or Lobatto (nodal) integration. The paper's element is INTER18.
 //! - [`law`]: traction-separation laws behind [`junta_core::InterfaceLaw`],
 //!   one file each (`linear_penalty`, ...), registered with `inventory`.
+//! - [`cohesive_zone`]: mesh advice for softening interfaces (cohesive-zone
+//!   length, elements spanning it, Turon's strength reduction).
 //! - [`advisor`]: the paper's penalty choice from its error analysis
 //!   (eqs. 41-55) on an assembled model.
 
 pub mod advisor;
+pub mod cohesive_zone;
 pub mod element;
 pub mod law;
 
 pub use advisor::{penalty_advice, PenaltyAdvice, PenaltyVerdict};
+pub use cohesive_zone::{cohesive_zone_advice, CohesiveZoneAdvice, MeshVerdict};
 pub use element::{InterfaceElement, InterfaceRule};
 pub use law::linear_penalty::LinearPenalty;

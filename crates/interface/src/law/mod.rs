@@ -6,6 +6,7 @@
 
 pub mod bilinear;
 pub mod cohesive;
+pub mod contact;
 pub mod exponential;
 pub mod linear_penalty;
 pub mod paper_debond;

@@ -1,0 +1,347 @@
+//! Mesh advice for softening interfaces: how long the cohesive (process)
+//! zone is, how many interface elements span it, and what strength would
+//! make a coarse mesh adequate.
+//!
+//! # Lengths
+//!
+//! For a law with strength `tau_0` and toughness `G_c` (mode I: `N`,
+//! `G_Ic`; mode II: `S`, `G_IIc`), between solids of Young's modulus `E_n`
+//! across the interface (the transverse modulus `E_22` of a laminate):
+//!
+//! ```text
+//! bulk         l_cz = M E_n G_c / tau_0^2        M = 1 (Hillerborg), 0.88 (Rice / Falk), 0.21 (Hui)
+//! slender arm  l_cz = (E_x G_c / tau_0^2)^(1/4) h^(3/4)               (Yang & Cox 2005; Harper & Hallett 2008)
+//! ```
+//!
+//! where `E_x` is the modulus along the crack direction (the fibres of a
+//! laminate arm) and `h` the thickness of the thinner body on either side.
+//! The bulk form is the limit of a thick body, the slender form that of a
+//! thin arm; the zone is about the shorter of the two, with Rice's constant
+//! (BENCHMARKS.md section 4). The advice takes the shorter over modes I
+//! and II.
+//!
+//! # Elements in the zone
+//!
+//! `N_e = l_cz / l_e` with `l_e` the length of the interface elements. The
+//! crack direction is not known beforehand: `l_e` is each element's shorter
+//! in-plane side (for the long thin elements of a beam model meshed with
+//! one element across its width, the side along the beam), and the verdict
+//! uses the coarsest element of the interface. Fewer than 3 elements: too
+//! coarse (peak loads overshoot and the load-displacement curve saw-tooths);
+//! 3 to 5: adequate; 5 or more: fine.
+//!
+//! # Turon's strength reduction
+//!
+//! For a mesh that is too coarse, Turon, Davila, Camanho & Costa (2007)
+//! lower the strength until the zone spans `N_e` elements of length `l_e`:
+//!
+//! ```text
+//! tau_0' = sqrt( 9 pi E_n G_c / (32 N_e l_e) )       (here with N_e = 3)
+//! ```
+//!
+//! which keeps the toughness (so the propagation load) and widens the zone.
+//!
+//! # Geometry read from the model
+//!
+//! `E_n`: the directional modulus of the solid touching the interface
+//! along the element normal; `E_x`: along the shorter in-plane side; `h`:
+//! the extent along the normal of the solid elements reachable from each
+//! side without crossing the interface (for a body that is connected to the
+//! other side elsewhere this is the whole model's thickness, and the
+//! slender length is then an overestimate).
+
+use junta_core::{CoreError, FractureProperties, Model};
+use std::collections::VecDeque;
+
+/// Verdict on the mesh of a softening interface.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshVerdict {
+    /// Fewer than 3 elements in the cohesive zone.
+    TooCoarse,
+    /// 3 to 5 elements.
+    Adequate,
+    /// 5 or more.
+    Fine,
+}
+
+impl MeshVerdict {
+    /// Name for summaries.
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshVerdict::TooCoarse => "too coarse",
+            MeshVerdict::Adequate => "adequate",
+            MeshVerdict::Fine => "fine",
+        }
+    }
+}
+
+/// Cohesive-zone lengths of one mode.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZoneLengths {
+    /// Strength of the mode.
+    pub strength: f64,
+    /// Toughness of the mode.
+    pub toughness: f64,
+    /// Bulk length with Hillerborg's M = 1.
+    pub hillerborg: f64,
+    /// Bulk length with Rice's M = 0.88.
+    pub rice: f64,
+    /// Bulk length with Hui's M = 0.21.
+    pub hui: f64,
+    /// Slender-arm length.
+    pub slender: f64,
+    /// The estimate used: min(Rice, slender).
+    pub length: f64,
+    /// Turon's strength that puts 3 coarsest elements in the zone.
+    pub reduced_strength: f64,
+}
+
+/// The advice for one interface block.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CohesiveZoneAdvice {
+    /// Block name.
+    pub block: String,
+    /// Modulus across the interface.
+    pub modulus_normal: f64,
+    /// Modulus along the (assumed) crack direction.
+    pub modulus_along: f64,
+    /// Thickness of the thinner body on either side.
+    pub arm_thickness: f64,
+    /// Shorter in-plane side of the finest and of the coarsest element.
+    pub element_length_min: f64,
+    pub element_length_max: f64,
+    /// Mode I and mode II lengths.
+    pub mode_i: ZoneLengths,
+    pub mode_ii: ZoneLengths,
+    /// The shorter zone of the two modes.
+    pub length: f64,
+    /// Coarsest elements spanning it.
+    pub elements_in_zone: f64,
+    /// Verdict.
+    pub verdict: MeshVerdict,
+}
+
+impl CohesiveZoneAdvice {
+    /// One-paragraph text for `junta check`.
+    pub fn message(&self) -> String {
+        let mut s = format!(
+            "interface `{}`: cohesive zone about {:.3e} long (mode I {:.3e}, mode II {:.3e}; Rice bulk {:.3e} / slender arm {:.3e} for mode I, E_n = {:.4e}, E_along = {:.4e}, arm thickness {:.4e}); interface elements {:.3e} .. {:.3e} long: {:.1} of the coarsest span it: {}",
+            self.block,
+            self.length,
+            self.mode_i.length,
+            self.mode_ii.length,
+            self.mode_i.rice,
+            self.mode_i.slender,
+            self.modulus_normal,
+            self.modulus_along,
+            self.arm_thickness,
+            self.element_length_min,
+            self.element_length_max,
+            self.elements_in_zone,
+            self.verdict.name()
+        );
+        if self.verdict == MeshVerdict::TooCoarse {
+            s += &format!(
+                " (at least 3 needed: refine to elements of {:.3e} or shorter, or lower the strengths to Turon's N' = {:.4e}, S' = {:.4e})",
+                self.length / 3.0,
+                self.mode_i.reduced_strength,
+                self.mode_ii.reduced_strength
+            );
+        }
+        s
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+fn unit(a: [f64; 3]) -> [f64; 3] {
+    let n = norm(a);
+    [a[0] / n, a[1] / n, a[2] / n]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Lengths of one mode (see the module documentation).
+pub fn zone_lengths(
+    strength: f64,
+    toughness: f64,
+    e_n: f64,
+    e_x: f64,
+    h: f64,
+    l_e: f64,
+) -> ZoneLengths {
+    let bulk = e_n * toughness / (strength * strength);
+    let slender = (e_x * toughness / (strength * strength)).powf(0.25) * h.powf(0.75);
+    let rice = 0.88 * bulk;
+    ZoneLengths {
+        strength,
+        toughness,
+        hillerborg: bulk,
+        rice,
+        hui: 0.21 * bulk,
+        slender,
+        length: rice.min(slender),
+        reduced_strength: (9.0 * std::f64::consts::PI * e_n * toughness / (32.0 * 3.0 * l_e))
+            .sqrt(),
+    }
+}
+
+/// Advice for interface block `block` of `model`, or `None` if its law
+/// does not soften (no fracture properties).
+pub fn cohesive_zone_advice(
+    model: &Model,
+    block: usize,
+) -> Result<Option<CohesiveZoneAdvice>, CoreError> {
+    let mesh = &model.mesh;
+    let b = mesh
+        .blocks
+        .get(block)
+        .ok_or_else(|| CoreError::Invalid(format!("no block {block}")))?;
+    let Some(FractureProperties {
+        strength_normal,
+        strength_shear,
+        toughness_mode_i,
+        toughness_mode_ii,
+        ..
+    }) = model.elements[block].fracture_properties()
+    else {
+        return Ok(None);
+    };
+    if b.is_empty() {
+        return Ok(None);
+    }
+    // element sizes and the normal / along directions of the coarsest one
+    let (mut l_min, mut l_max) = (f64::INFINITY, 0.0f64);
+    let mut normal = [0.0, 0.0, 1.0];
+    let mut along = [1.0, 0.0, 0.0];
+    for e in 0..b.len() {
+        let nodes = b.element(e);
+        let x = |a: usize| mesh.nodes[nodes[a]];
+        // corners 0..3 of the bottom face
+        let e01 = sub(x(1), x(0));
+        let e32 = sub(x(2), x(3));
+        let e03 = sub(x(3), x(0));
+        let e12 = sub(x(2), x(1));
+        let l_xi = 0.5 * (norm(e01) + norm(e32));
+        let l_eta = 0.5 * (norm(e03) + norm(e12));
+        let short = l_xi.min(l_eta);
+        l_min = l_min.min(short);
+        if short > l_max {
+            l_max = short;
+            normal = unit(cross(e01, e03));
+            along = unit(if l_xi <= l_eta { e01 } else { e03 });
+        }
+    }
+    // solid elements on each side: flood from the interface nodes
+    let nn = mesh.nodes.len();
+    let mut node_elems: Vec<Vec<(usize, usize)>> = vec![Vec::new(); nn];
+    for (bi, sb) in mesh.blocks.iter().enumerate() {
+        if sb.shape.is_interface() {
+            continue;
+        }
+        for e in 0..sb.len() {
+            for &n in sb.element(e) {
+                node_elems[n].push((bi, e));
+            }
+        }
+    }
+    let side_extent = |start: &mut dyn Iterator<Item = usize>| -> (f64, Option<f64>) {
+        let mut seen_el = std::collections::HashSet::new();
+        let mut seen_node = vec![false; nn];
+        let mut queue: VecDeque<usize> = VecDeque::new();
+        for n in start {
+            if !seen_node[n] {
+                seen_node[n] = true;
+                queue.push_back(n);
+            }
+        }
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut modulus = None;
+        while let Some(n) = queue.pop_front() {
+            let z = dot(mesh.nodes[n], normal);
+            lo = lo.min(z);
+            hi = hi.max(z);
+            for &(bi, e) in &node_elems[n] {
+                if seen_el.insert((bi, e)) {
+                    if modulus.is_none() {
+                        modulus = Some((bi, e));
+                    }
+                    for &k in mesh.blocks[bi].element(e) {
+                        if !seen_node[k] {
+                            seen_node[k] = true;
+                            queue.push_back(k);
+                        }
+                    }
+                }
+            }
+        }
+        let e_n = modulus.and_then(|(bi, _)| model.elements[bi].directional_modulus(normal));
+        ((hi - lo).max(0.0), e_n)
+    };
+    let m = b.nodes_per_element() / 2;
+    let (h_bot, e_bot) =
+        side_extent(&mut (0..b.len()).flat_map(|e| b.element(e)[..m].to_vec().into_iter()));
+    let (h_top, e_top) =
+        side_extent(&mut (0..b.len()).flat_map(|e| b.element(e)[m..].to_vec().into_iter()));
+    let h = match (h_bot > 0.0, h_top > 0.0) {
+        (true, true) => h_bot.min(h_top),
+        (true, false) => h_bot,
+        (false, true) => h_top,
+        _ => f64::INFINITY,
+    };
+    let e_n = match (e_bot, e_top) {
+        (Some(a), Some(b)) => a.min(b),
+        (Some(a), None) | (None, Some(a)) => a,
+        (None, None) => {
+            return Err(CoreError::Invalid(format!(
+                "interface `{}`: no solid element touches it, so the cohesive-zone advice has no modulus",
+                b.name
+            )))
+        }
+    };
+    // modulus along the crack direction: from the same solids
+    let e_x = mesh
+        .blocks
+        .iter()
+        .enumerate()
+        .filter(|(_, sb)| !sb.shape.is_interface())
+        .filter_map(|(bi, _)| model.elements[bi].directional_modulus(along))
+        .fold(0.0f64, f64::max);
+    let e_x = if e_x > 0.0 { e_x } else { e_n };
+    let mode_i = zone_lengths(strength_normal, toughness_mode_i, e_n, e_x, h, l_max);
+    let mode_ii = zone_lengths(strength_shear, toughness_mode_ii, e_n, e_x, h, l_max);
+    let length = mode_i.length.min(mode_ii.length);
+    let elements_in_zone = length / l_max;
+    let verdict = if elements_in_zone < 3.0 {
+        MeshVerdict::TooCoarse
+    } else if elements_in_zone < 5.0 {
+        MeshVerdict::Adequate
+    } else {
+        MeshVerdict::Fine
+    };
+    Ok(Some(CohesiveZoneAdvice {
+        block: b.name.clone(),
+        modulus_normal: e_n,
+        modulus_along: e_x,
+        arm_thickness: h,
+        element_length_min: l_min,
+        element_length_max: l_max,
+        mode_i,
+        mode_ii,
+        length,
+        elements_in_zone,
+        verdict,
+    }))
+}
