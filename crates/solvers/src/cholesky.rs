@@ -3,7 +3,8 @@
 //!
 //! # Phases
 //!
-//! * [`LinearSolver::analyze`]: the fill-reducing ordering `P`
+//! * [`LinearSolver::analyze`] (`crate::supernodal::analyze`, shared with
+//!   the `ldlt` back end [`crate::LdltSolver`]): the fill-reducing ordering `P`
 //!   ([`crate::ordering`]), then faer's symbolic factorisation with
 //!   `SymmetricOrdering::Custom(P)`: elimination tree, column counts,
 //!   supernodes, and the row structure of `L`. Supernodes wider than
@@ -22,8 +23,11 @@
 //!   symbolic structure) and reused for every later matrix with the same
 //!   pattern. A pivot
 //!   `d_k = a_kk - sum_j l_kj^2 <= 0` stops the factorisation: the matrix is
-//!   not positive definite ([`SolverError::NotPositiveDefinite`], with the
-//!   pivot's position in the original numbering).
+//!   not positive definite, indefinite or singular
+//!   ([`SolverError::NotPositiveDefinite`], with the pivot's position in the
+//!   original numbering and a pointer to the `ldlt` back end, which factors
+//!   the indefinite tangents of softening laws). A successful factor reports
+//!   `negative_pivots = Some(0)`.
 //!   The factor is in double precision, or in single precision for the
 //!   mixed mode ([`Precision`]: `auto` picks it for large, well-scaled
 //!   matrices; it halves the factor's time and memory).

@@ -649,20 +649,40 @@ fn scale_by_d(piv: PivotPtrs, col0: usize, rhs: MatRef<'_, f64>, mut out: MatMut
             std::slice::from_raw_parts(piv.kind.get().add(col0) as *const u8, wd),
         )
     };
+    let col = |c: usize| rhs.col(c).try_as_col_major().unwrap().as_slice();
     let mut c = 0;
     while c < wd {
         if kind[c] == FIRST {
             let (a, b, d) = (diag[c], sub[c], diag[c + 1]);
-            for i in 0..rhs.nrows() {
-                let (u, v) = (rhs[(i, c)], rhs[(i, c + 1)]);
-                out[(i, c)] = u * a + v * b;
-                out[(i, c + 1)] = u * b + v * d;
+            let (u, v) = (col(c), col(c + 1));
+            let (mut o0, mut o1) = out.rb_mut().split_at_col_mut(c + 1);
+            let o0 = o0
+                .rb_mut()
+                .col_mut(c)
+                .try_as_col_major_mut()
+                .unwrap()
+                .as_slice_mut();
+            let o1 = o1
+                .rb_mut()
+                .col_mut(0)
+                .try_as_col_major_mut()
+                .unwrap()
+                .as_slice_mut();
+            for i in 0..u.len() {
+                o0[i] = u[i] * a + v[i] * b;
+                o1[i] = u[i] * b + v[i] * d;
             }
             c += 2;
         } else {
             let a = diag[c];
-            for i in 0..rhs.nrows() {
-                out[(i, c)] = rhs[(i, c)] * a;
+            let o = out
+                .rb_mut()
+                .col_mut(c)
+                .try_as_col_major_mut()
+                .unwrap()
+                .as_slice_mut();
+            for (o, u) in o.iter_mut().zip(col(c)) {
+                *o = u * a;
             }
             c += 1;
         }
