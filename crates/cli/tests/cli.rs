@@ -399,6 +399,7 @@ fn check_prints_summary_and_list_shows_registry() {
         "isotropic",
         "orthotropic",
         "cholesky",
+        "ldlt",
         "cg",
     ] {
         assert!(s.contains(key), "`junta list` lacks {key}:\n{s}");

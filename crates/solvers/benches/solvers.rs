@@ -3,13 +3,15 @@
 //! Cholesky factor + solve with nested dissection vs AMD (analysis done
 //! once outside the timed loop), double against mixed precision (nested
 //! dissection; the 27-point grid with 24,576 equations), and block-Jacobi /
-//! Jacobi CG.
+//! Jacobi CG; Cholesky against the symmetric-indefinite LDL^T on the same
+//! SPD grids.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use junta_core::{LinearSolver, SymmetricCsc};
 use junta_solvers::gallery::{grid_3d, Stencil};
 use junta_solvers::{
-    CgSettings, CgSolver, CholeskySettings, CholeskySolver, OrderingKind, Precision, Preconditioner,
+    CgSettings, CgSolver, CholeskySettings, CholeskySolver, LdltSettings, LdltSolver, OrderingKind,
+    Precision, Preconditioner,
 };
 use std::hint::black_box;
 
@@ -40,6 +42,42 @@ fn cholesky(c: &mut Criterion) {
                 })
             });
         }
+    }
+    group.finish();
+}
+
+/// The symmetric-indefinite back end on the same SPD grids: the price of
+/// Bunch-Kaufman pivoting (the dense kernels of the panels' diagonal blocks
+/// are unblocked) and of the `L D` products in the updates.
+fn ldlt_vs_cholesky(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ldlt_vs_cholesky");
+    group.sample_size(10);
+    for (name, a, coords) in problems() {
+        let rhs = vec![1.0; a.n];
+        let mut chol = CholeskySolver::new(CholeskySettings {
+            precision: Precision::Double,
+            ..Default::default()
+        });
+        chol.analyze(&a, Some(&coords)).unwrap();
+        group.bench_function(BenchmarkId::new("cholesky", name), |bench| {
+            bench.iter(|| {
+                chol.factorize(&a).unwrap();
+                let mut x = rhs.clone();
+                chol.solve_in_place(&a, &mut x).unwrap();
+                black_box(x)
+            })
+        });
+        let mut ldlt = LdltSolver::new(LdltSettings::default());
+        ldlt.analyze(&a, Some(&coords)).unwrap();
+        group.bench_function(BenchmarkId::new("ldlt", name), |bench| {
+            bench.iter(|| {
+                ldlt.factorize(&a).unwrap();
+                let mut x = rhs.clone();
+                ldlt.solve_in_place(&a, &mut x).unwrap();
+                assert_eq!(ldlt.report().negative_pivots, Some(0));
+                black_box(x)
+            })
+        });
     }
     group.finish();
 }
@@ -97,5 +135,5 @@ fn cg(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, cholesky, precision, cg);
+criterion_group!(benches, cholesky, ldlt_vs_cholesky, precision, cg);
 criterion_main!(benches);

@@ -3,7 +3,8 @@
 //!
 //! # Phases
 //!
-//! * [`LinearSolver::analyze`]: the fill-reducing ordering `P`
+//! * [`LinearSolver::analyze`] (`crate::supernodal::analyze`, shared with
+//!   the `ldlt` back end [`crate::LdltSolver`]): the fill-reducing ordering `P`
 //!   ([`crate::ordering`]), then faer's symbolic factorisation with
 //!   `SymmetricOrdering::Custom(P)`: elimination tree, column counts,
 //!   supernodes, and the row structure of `L`. Supernodes wider than
@@ -22,8 +23,11 @@
 //!   symbolic structure) and reused for every later matrix with the same
 //!   pattern. A pivot
 //!   `d_k = a_kk - sum_j l_kj^2 <= 0` stops the factorisation: the matrix is
-//!   not positive definite ([`SolverError::NotPositiveDefinite`], with the
-//!   pivot's position in the original numbering).
+//!   not positive definite, indefinite or singular
+//!   ([`SolverError::NotPositiveDefinite`], with the pivot's position in the
+//!   original numbering and a pointer to the `ldlt` back end, which factors
+//!   the indefinite tangents of softening laws). A successful factor reports
+//!   `negative_pivots = Some(0)`.
 //!   The factor is in double precision, or in single precision for the
 //!   mixed mode ([`Precision`]: `auto` picks it for large, well-scaled
 //!   matrices; it halves the factor's time and memory).
@@ -54,15 +58,10 @@
 //!   no correct digit (a floating-point factorisation of a singular matrix
 //!   rarely meets an exactly non-positive pivot).
 
-use crate::common::{inf_norm, norm2, residual, validate, Pattern};
-use crate::ordering::{self, OrderingKind};
+use crate::common::{inf_norm, norm2, residual, symmetric_norm_inf, validate, Pattern};
+use crate::ordering::OrderingKind;
 use crate::supernodal::{FactorScalar, PanelFactor};
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering,
-};
-use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::SymbolicSparseColMatRef;
-use faer::{Par, Side};
+use faer::Par;
 use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
 use junta_core::{LinearSolver, SolveReport, SolverError, SymmetricCsc};
 use serde::Deserialize;
@@ -150,6 +149,9 @@ impl Precision {
         }
     }
 }
+
+/// How to solve the systems Cholesky refuses (in its error messages).
+pub const LDLT_HINT: &str = "if the tangent is meant to be indefinite (softening cohesive laws), use [solver] type = \"ldlt\" for softening/indefinite tangents";
 
 /// Pivot ratio below which a single-precision factor is not trusted (it
 /// would have lost four of its seven digits).
@@ -464,7 +466,7 @@ impl CholeskySolver {
             let eq = self.perm[k];
             return Err(SolverError::NotPositiveDefinite {
                 detail: format!(
-                    ": non-positive pivot at elimination step {k} of {n} (about equation {eq}, diagonal {:.3e}); matrix diagonal in [{dmin:.3e}, {dmax:.3e}]",
+                    ": non-positive pivot at elimination step {k} of {n}: the matrix is not positive definite (indefinite or singular) at about equation {eq} (diagonal {:.3e}; matrix diagonal in [{dmin:.3e}, {dmax:.3e}]); {LDLT_HINT}",
                     diag[eq]
                 ),
             });
@@ -498,6 +500,7 @@ impl CholeskySolver {
         for w in self.factor_warnings.clone() {
             self.push_warning(w);
         }
+        self.report.negative_pivots = Some(0);
         self.factored = true;
         Ok(())
     }
@@ -663,29 +666,12 @@ impl LinearSolver for CholeskySolver {
         validate(matrix)?;
         let n = matrix.n;
         self.factored = false;
-        let perm = ordering::compute(self.settings.ordering, matrix, coords);
-        debug_assert!(ordering::is_permutation(&perm, n));
-        let ordering_seconds = t0.elapsed().as_secs_f64();
-        let perm_inv = ordering::inverse(&perm);
-        let a = SymbolicSparseColMatRef::new_checked(n, n, &matrix.col_ptr, None, &matrix.row_idx);
-        let perm_ref = faer::perm::PermRef::new_checked(&perm, &perm_inv, n);
-        let symbolic = factorize_symbolic_cholesky(
-            a,
-            Side::Upper,
-            SymmetricOrdering::Custom(perm_ref),
-            CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                ..Default::default()
-            },
-        )
-        .map_err(|e| SolverError::Usage(format!("symbolic Cholesky failed: {e:?}")))?;
-        let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
-            return Err(SolverError::Usage(
-                "symbolic Cholesky: supernodal structure expected".into(),
-            ));
-        };
-        let factor = PanelFactor::new(sn);
-        drop(symbolic);
+        let crate::supernodal::Analysis {
+            perm,
+            perm_inv,
+            factor,
+            ordering_seconds,
+        } = crate::supernodal::analyze(self.settings.ordering, matrix, coords)?;
         self.stats.supernodal = true;
         self.stats.factor_nonzeros = factor.nonzeros();
         self.factor = Some(factor);
@@ -704,6 +690,7 @@ impl LinearSolver for CholeskySolver {
         let secs = t0.elapsed().as_secs_f64();
         self.report.analyze_seconds += secs;
         self.report.factor_nonzeros = self.stats.factor_nonzeros;
+        self.report.ordering = self.stats.ordering.into();
         tracing::info!(
             n,
             nnz = matrix.nnz(),
@@ -725,6 +712,7 @@ impl LinearSolver for CholeskySolver {
         };
         pattern.check(matrix, "cholesky factorize")?;
         self.factored = false;
+        self.report.negative_pivots = None;
         // Warnings describe the current factor: start afresh.
         self.report.warnings.clear();
         self.factor_warnings.clear();
@@ -744,7 +732,7 @@ impl LinearSolver for CholeskySolver {
             if d <= 0.0 {
                 return Err(SolverError::NotPositiveDefinite {
                     detail: format!(
-                        ": diagonal entry of equation {i} is {d:e} (an equation with no stiffness, or a missing constraint)"
+                        ": diagonal entry of equation {i} is {d:e}: the matrix is not positive definite (indefinite or singular) at equation {i} (an equation with no stiffness, a missing constraint, or a softening tangent); {LDLT_HINT}"
                     ),
                 });
             }
@@ -768,6 +756,7 @@ impl LinearSolver for CholeskySolver {
             match self.factor_single(matrix, &diag) {
                 Ok(()) => {
                     self.report.factor_seconds += t0.elapsed().as_secs_f64();
+                    self.report.negative_pivots = Some(0);
                     self.factored = true;
                     return Ok(());
                 }
@@ -851,22 +840,6 @@ impl LinearSolver for CholeskySolver {
     }
 }
 
-/// `||A||_inf` (largest absolute row sum) of a symmetric matrix stored as
-/// its upper triangle.
-fn symmetric_norm_inf(a: &SymmetricCsc) -> f64 {
-    let mut rows = vec![0.0f64; a.n];
-    for j in 0..a.n {
-        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
-            let (i, v) = (a.row_idx[p], a.values[p].abs());
-            rows[i] += v;
-            if i != j {
-                rows[j] += v;
-            }
-        }
-    }
-    inf_norm(&rows)
-}
-
 inventory::submit! {
     SolverEntry {
         key: "cholesky",
@@ -929,7 +902,9 @@ mod tests {
         s.analyze(&a, None).unwrap();
         match s.factorize(&a) {
             Err(SolverError::NotPositiveDefinite { detail }) => {
-                assert!(detail.contains("equation 1"), "{detail}")
+                assert!(detail.contains("equation 1"), "{detail}");
+                assert!(detail.contains("indefinite or singular"), "{detail}");
+                assert!(detail.contains("type = \"ldlt\""), "{detail}");
             }
             other => panic!("expected NotPositiveDefinite, got {other:?}"),
         }
@@ -961,7 +936,8 @@ mod tests {
             // stored entries: exact fill plus the explicit zeros of merged
             // (relaxed) supernodes
             assert!(
-                s.stats().factor_nonzeros >= ordering::factor_nonzeros(&a, Some(s.permutation()))
+                s.stats().factor_nonzeros
+                    >= crate::ordering::factor_nonzeros(&a, Some(s.permutation()))
             );
             s.factorize(&a).unwrap();
             let mut x = b.clone();

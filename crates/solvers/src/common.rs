@@ -241,6 +241,22 @@ impl FullCsr {
     }
 }
 
+/// `||A||_inf` (largest absolute row sum) of a symmetric matrix stored as
+/// its upper triangle.
+pub(crate) fn symmetric_norm_inf(a: &SymmetricCsc) -> f64 {
+    let mut rows = vec![0.0f64; a.n];
+    for j in 0..a.n {
+        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+            let (i, v) = (a.row_idx[p], a.values[p].abs());
+            rows[i] += v;
+            if i != j {
+                rows[j] += v;
+            }
+        }
+    }
+    inf_norm(&rows)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

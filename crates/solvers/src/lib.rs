@@ -7,6 +7,7 @@
 //! | key | type | what |
 //! |---|---|---|
 //! | `cholesky` | [`CholeskySolver`] | supernodal Cholesky on faer's symbolic analysis and dense kernels, nested-dissection ([`ordering`]) or AMD ordering, double or mixed precision ([`Precision`]), iterative refinement, conditioning warnings |
+//! | `ldlt` | [`LdltSolver`] | supernodal `L D L^T` for symmetric indefinite (softening) tangents: Bunch-Kaufman 1x1/2x2 pivoting within each panel on the same ordering and symbolic analysis as `cholesky`, inertia (`negative_pivots`) in the report, static perturbation of tiny pivots with iterative refinement |
 //! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi or 3×3 nodal block-Jacobi |
 //!
 //! Embedders can skip the registry:
@@ -34,6 +35,7 @@ pub mod cg;
 pub mod cholesky;
 mod common;
 pub mod gallery;
+pub mod ldlt;
 pub mod linear_static;
 pub mod newton;
 pub mod ordering;
@@ -41,4 +43,5 @@ mod supernodal;
 
 pub use cg::{CgSettings, CgSolver, Preconditioner};
 pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats, Precision};
+pub use ldlt::{LdltSettings, LdltSolver, LdltStats};
 pub use ordering::OrderingKind;

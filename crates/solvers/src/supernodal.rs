@@ -16,11 +16,17 @@
 //! * solve `L y = b` (forward, panels in order) and `L^T x = y` (backward,
 //!   panels in reverse order).
 
+use crate::ordering::{self, OrderingKind};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError as DenseLltError, LltRegularization};
 use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::{Accum, MatMut, MatRef, Par};
-use junta_core::SymmetricCsc;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering,
+};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::SymbolicSparseColMatRef;
+use faer::{Accum, MatMut, MatRef, Par, Side};
+use junta_core::{SolverError, SymmetricCsc};
 use rayon::prelude::*;
 
 /// Working precision of a factor: `f64` or `f32`.
@@ -81,27 +87,27 @@ const MAX_TASK_DEPTH: usize = 12;
 /// is unused).
 #[derive(Debug, Default)]
 pub(crate) struct PanelFactor {
-    n: usize,
-    begin: Vec<usize>,
-    pat_ptr: Vec<usize>,
-    pat: Vec<u32>,
-    val_ptr: Vec<usize>,
+    pub(crate) n: usize,
+    pub(crate) begin: Vec<usize>,
+    pub(crate) pat_ptr: Vec<usize>,
+    pub(crate) pat: Vec<u32>,
+    pub(crate) val_ptr: Vec<usize>,
     /// Panel of each permuted column.
-    panel_of: Vec<u32>,
+    pub(crate) panel_of: Vec<u32>,
     /// Children in the panel elimination tree (CSR) and the roots.
-    child_ptr: Vec<usize>,
-    child: Vec<u32>,
-    roots: Vec<u32>,
+    pub(crate) child_ptr: Vec<usize>,
+    pub(crate) child: Vec<u32>,
+    pub(crate) roots: Vec<u32>,
     /// Descendants updating each panel (CSR).
-    desc_ptr: Vec<usize>,
-    desc: Vec<u32>,
+    pub(crate) desc_ptr: Vec<usize>,
+    pub(crate) desc: Vec<u32>,
 }
 
 /// `dst (+)= alpha lhs rhs^T` where the top `mid x mid` block of the
 /// product (`mid` = rows of `rhs`) is symmetric: only its lower triangle is
 /// computed (the rest of `dst`'s top block is left alone), then the
 /// rectangle below it with a plain product.
-fn sym_update<T: FactorScalar>(
+pub(crate) fn sym_update<T: FactorScalar>(
     dst: MatMut<'_, T>,
     lhs: MatRef<'_, T>,
     rhs: MatRef<'_, T>,
@@ -130,7 +136,7 @@ fn sym_update<T: FactorScalar>(
 }
 
 /// Pointer wrapper for writes to disjoint parts of the factor from rayon tasks.
-struct SharedPtr<T>(*mut T);
+pub(crate) struct SharedPtr<T>(pub(crate) *mut T);
 impl<T> Clone for SharedPtr<T> {
     fn clone(&self) -> Self {
         *self
@@ -142,9 +148,71 @@ unsafe impl<T> Sync for SharedPtr<T> {}
 impl<T> SharedPtr<T> {
     /// The pointer (a method, so closures capture the `Sync` wrapper).
     #[inline]
-    fn get(self) -> *mut T {
+    pub(crate) fn get(self) -> *mut T {
         self.0
     }
+}
+
+/// Threads of a `Par`.
+pub(crate) fn threads_of(par: Par) -> usize {
+    match par {
+        Par::Seq => 1,
+        Par::Rayon(t) => t.get(),
+    }
+}
+
+/// The symbolic analysis shared by the direct back ends (Cholesky and
+/// LDL^T): the fill-reducing ordering, faer's supernodal symbolic Cholesky
+/// on it, and the panel structure.
+pub(crate) struct Analysis {
+    /// `perm[new] = old`, and its inverse.
+    pub(crate) perm: Vec<usize>,
+    pub(crate) perm_inv: Vec<usize>,
+    pub(crate) factor: PanelFactor,
+    /// Seconds of the ordering computation.
+    pub(crate) ordering_seconds: f64,
+}
+
+/// Ordering `kind` of `matrix` ([`ordering::compute`], with `coords` for
+/// the geometric orderings), then faer's supernodal symbolic Cholesky with
+/// that ordering (elimination tree, column counts, supernodes, row
+/// structure of `L`) and the panels. The structure of an `L D L^T` factor
+/// without delayed pivots is the same.
+pub(crate) fn analyze(
+    kind: OrderingKind,
+    matrix: &SymmetricCsc,
+    coords: Option<&[[f64; 3]]>,
+) -> Result<Analysis, SolverError> {
+    let t0 = std::time::Instant::now();
+    let n = matrix.n;
+    let perm = ordering::compute(kind, matrix, coords);
+    debug_assert!(ordering::is_permutation(&perm, n));
+    let ordering_seconds = t0.elapsed().as_secs_f64();
+    let perm_inv = ordering::inverse(&perm);
+    let a = SymbolicSparseColMatRef::new_checked(n, n, &matrix.col_ptr, None, &matrix.row_idx);
+    let perm_ref = faer::perm::PermRef::new_checked(&perm, &perm_inv, n);
+    let symbolic = factorize_symbolic_cholesky(
+        a,
+        Side::Upper,
+        SymmetricOrdering::Custom(perm_ref),
+        CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| SolverError::Usage(format!("symbolic Cholesky failed: {e:?}")))?;
+    let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
+        return Err(SolverError::Usage(
+            "symbolic Cholesky: supernodal structure expected".into(),
+        ));
+    };
+    let factor = PanelFactor::new(sn);
+    Ok(Analysis {
+        perm,
+        perm_inv,
+        factor,
+        ordering_seconds,
+    })
 }
 
 impl PanelFactor {
@@ -162,7 +230,7 @@ impl PanelFactor {
             .unwrap_or(0)
     }
 
-    fn pattern(&self, s: usize) -> &[u32] {
+    pub(crate) fn pattern(&self, s: usize) -> &[u32] {
         &self.pat[self.pat_ptr[s]..self.pat_ptr[s + 1]]
     }
 
@@ -299,6 +367,23 @@ impl PanelFactor {
         perm_inv: &[usize],
         par: Par,
     ) -> Result<(), usize> {
+        self.scatter(values, a, perm_inv);
+        let ptr = SharedPtr(values.as_mut_ptr());
+        let threads = threads_of(par);
+        self.traverse(threads, |s, tmp: &mut Vec<T>| {
+            self.factor_panel(s, ptr, threads, tmp)
+        })
+    }
+
+    /// Resize `values` to [`Self::len_val`] (reusing the allocation when it
+    /// already has that length), zero it and scatter `P A P^T` into it:
+    /// entry `(i, j)` with `i >= j` goes to the panel of column `j`.
+    pub(crate) fn scatter<T: FactorScalar>(
+        &self,
+        values: &mut Vec<T>,
+        a: &SymmetricCsc,
+        perm_inv: &[usize],
+    ) {
         if values.len() != self.len_val() {
             *values = Vec::new();
             *values = vec![T::default(); self.len_val()];
@@ -307,7 +392,6 @@ impl PanelFactor {
         }
         let ptr = SharedPtr(values.as_mut_ptr());
         let this = self;
-        // scatter A: entry (i, j) of P A P^T with i >= j goes to the panel of j
         (0..a.n).into_par_iter().with_min_len(256).for_each(|c| {
             let jc = perm_inv[c];
             for p in a.col_ptr[c]..a.col_ptr[c + 1] {
@@ -329,19 +413,27 @@ impl PanelFactor {
                 };
             }
         });
-        let threads = match par {
-            Par::Seq => 1,
-            Par::Rayon(t) => t.get(),
-        };
+    }
+
+    /// Run `panel(s, scratch)` on every panel, descendants before their
+    /// ancestors: in panel order on one thread, otherwise independent
+    /// subtrees of the panel elimination tree as rayon tasks. `panel` may
+    /// write panel `s` only and read its (complete) descendants.
+    pub(crate) fn traverse<S, E, F>(&self, threads: usize, panel: F) -> Result<(), E>
+    where
+        S: Default,
+        E: Send,
+        F: Fn(usize, &mut S) -> Result<(), E> + Sync,
+    {
         if threads > 1 {
-            this.roots
+            self.roots
                 .par_iter()
-                .try_for_each(|&s| this.run_subtree(s as usize, ptr, threads, 0))
+                .try_for_each(|&s| self.run_subtree(s as usize, &panel, 0))
         } else {
             // panels are numbered in elimination order: descendants first
-            let mut tmp = Vec::new();
-            for s in 0..this.n_panels() {
-                this.factor_panel(s, ptr, 1, &mut tmp)?;
+            let mut tmp = S::default();
+            for s in 0..self.n_panels() {
+                panel(s, &mut tmp)?;
             }
             Ok(())
         }
@@ -351,15 +443,14 @@ impl PanelFactor {
     /// the chain of single-child ancestors up to `s` in order. Below
     /// [`MAX_TASK_DEPTH`] branchings (where there are far more subtrees than
     /// threads) a subtree is factorised sequentially, without recursion.
-    fn run_subtree<T: FactorScalar>(
-        &self,
-        s: usize,
-        ptr: SharedPtr<T>,
-        threads: usize,
-        depth: usize,
-    ) -> Result<(), usize> {
+    fn run_subtree<S, E, F>(&self, s: usize, panel: &F, depth: usize) -> Result<(), E>
+    where
+        S: Default,
+        E: Send,
+        F: Fn(usize, &mut S) -> Result<(), E> + Sync,
+    {
         let children = |x: usize| &self.child[self.child_ptr[x]..self.child_ptr[x + 1]];
-        let mut tmp = Vec::new();
+        let mut tmp = S::default();
         if depth >= MAX_TASK_DEPTH {
             let mut nodes = Vec::new();
             let mut stack = vec![s as u32];
@@ -370,7 +461,7 @@ impl PanelFactor {
             // descendants have smaller numbers than their ancestors
             nodes.sort_unstable();
             for &x in &nodes {
-                self.factor_panel(x as usize, ptr, threads, &mut tmp)?;
+                panel(x as usize, &mut tmp)?;
             }
             return Ok(());
         }
@@ -382,21 +473,29 @@ impl PanelFactor {
         }
         children(cur)
             .par_iter()
-            .try_for_each(|&c| self.run_subtree(c as usize, ptr, threads, depth + 1))?;
+            .try_for_each(|&c| self.run_subtree(c as usize, panel, depth + 1))?;
         for &x in chain.iter().rev() {
-            self.factor_panel(x, ptr, threads, &mut tmp)?;
+            panel(x, &mut tmp)?;
         }
         Ok(())
     }
 
-    /// Left-looking update and dense factorisation of panel `s`.
-    fn factor_panel<T: FactorScalar>(
+    /// Left-looking update of panel `s`: `A'[J', J] = A[J', J] - sum_d
+    /// L[J', K_d] R_d^T` over the descendants `d` whose rows meet `J`, with
+    /// `R_d = L[J, K_d]` (Cholesky), or `R_d = L[J, K_d] D_d` written by
+    /// `scale(d, L[J, K_d], R_d)` (`L D L^T`, `D_d` the block-diagonal pivots
+    /// of panel `d`; `wbuf` holds `R_d`). Only the lower trapezoid of the
+    /// panel is updated.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn update_panel<T: FactorScalar>(
         &self,
         s: usize,
         ptr: SharedPtr<T>,
         threads: usize,
         tmp: &mut Vec<T>,
-    ) -> Result<(), usize> {
+        wbuf: &mut Vec<T>,
+        scale: Option<&(dyn Fn(usize, MatRef<'_, T>, MatMut<'_, T>) + Sync)>,
+    ) {
         let (b, e) = (self.begin[s], self.begin[s + 1]);
         let w = e - b;
         let pat_s = self.pattern(s);
@@ -406,8 +505,6 @@ impl PanelFactor {
         let ls_slice =
             unsafe { std::slice::from_raw_parts_mut(ptr.get().add(self.val_ptr[s]), m * w) };
         let mut ls = MatMut::from_column_major_slice_mut(ls_slice, m, w);
-        let big = threads > 1 && m * w >= 128 * 128;
-        let par = if big { Par::rayon(threads) } else { Par::Seq };
         let mut loc: Vec<u32> = Vec::new();
         for &d in &self.desc[self.desc_ptr[s]..self.desc_ptr[s + 1]] {
             let d = d as usize;
@@ -422,7 +519,15 @@ impl PanelFactor {
             };
             let ld = MatRef::from_column_major_slice(ld, md, wd);
             let lhs = ld.subrows(wd + k0, len);
-            let rhs = ld.subrows(wd + k0, mid);
+            let mut rhs = ld.subrows(wd + k0, mid);
+            if let Some(scale) = scale {
+                // rhs <- L[J, K_d] D_d (LDL^T factors)
+                wbuf.clear();
+                wbuf.resize(mid * wd, T::default());
+                let mut wm = MatMut::from_column_major_slice_mut(&mut wbuf[..], mid, wd);
+                scale(d, rhs, wm.rb_mut());
+                rhs = MatRef::from_column_major_slice(&wbuf[..], mid, wd);
+            }
             let p = if threads > 1 && len * mid * wd >= 1 << 21 {
                 Par::rayon(threads)
             } else {
@@ -468,6 +573,27 @@ impl PanelFactor {
                 }
             }
         }
+    }
+
+    /// Left-looking update and dense factorisation of panel `s`.
+    fn factor_panel<T: FactorScalar>(
+        &self,
+        s: usize,
+        ptr: SharedPtr<T>,
+        threads: usize,
+        tmp: &mut Vec<T>,
+    ) -> Result<(), usize> {
+        let (b, e) = (self.begin[s], self.begin[s + 1]);
+        let w = e - b;
+        let m = w + self.pattern(s).len();
+        self.update_panel(s, ptr, threads, tmp, &mut Vec::new(), None);
+        // SAFETY: panel s is written only here; its descendants are complete
+        // and only read.
+        let ls_slice =
+            unsafe { std::slice::from_raw_parts_mut(ptr.get().add(self.val_ptr[s]), m * w) };
+        let mut ls = MatMut::from_column_major_slice_mut(ls_slice, m, w);
+        let big = threads > 1 && m * w >= 128 * 128;
+        let par = if big { Par::rayon(threads) } else { Par::Seq };
         let (mut top, bot) = ls.rb_mut().split_at_row_mut(w);
         let mut mem = MemBuffer::new(
             faer::linalg::cholesky::llt::factor::cholesky_in_place_scratch::<T>(

@@ -1,0 +1,389 @@
+//! Tests of the symmetric-indefinite `ldlt` back end: exact inertia of a
+//! shifted Laplacian (closed-form eigenvalues), saddle-point systems that
+//! need 2x2 pivots, agreement with Cholesky on SPD matrices, singular
+//! matrices, Cholesky's refusal naming `ldlt`, and the registry entry.
+
+use junta_core::registry::{entries, find, SolverEntry};
+use junta_core::{LinearSolver, MatrixKind, SolverError, SymmetricCsc};
+use junta_solvers::gallery::{grid_3d, grid_3d_neumann, Stencil};
+use junta_solvers::{
+    CholeskySettings, CholeskySolver, LdltSettings, LdltSolver, OrderingKind, Precision,
+};
+
+/// A known, non-trivial solution.
+fn exact(n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| ((i * 37 % 101) as f64 - 50.0) / 25.0 + (i as f64 * 0.01).sin())
+        .collect()
+}
+
+fn rhs(a: &SymmetricCsc, x: &[f64]) -> Vec<f64> {
+    let mut b = vec![0.0; a.n];
+    a.mul_vec(x, &mut b);
+    b
+}
+
+fn max_rel_error(x: &[f64], xs: &[f64]) -> f64 {
+    let scale = xs.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    x.iter()
+        .zip(xs)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        / scale
+}
+
+/// 7-point Dirichlet Laplacian on an `n^3` grid of interior points (unit
+/// spacing) shifted by `-sigma I`, upper CSC, with one point per equation.
+fn shifted_laplacian(n: usize, sigma: f64) -> (SymmetricCsc, Vec<[f64; 3]>) {
+    let mut cols = Vec::with_capacity(n * n * n);
+    let mut vals = Vec::new();
+    let mut coords = Vec::new();
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                let idx = i + n * (j + n * k);
+                let mut rows = Vec::new();
+                if k > 0 {
+                    rows.push(idx - n * n);
+                }
+                if j > 0 {
+                    rows.push(idx - n);
+                }
+                if i > 0 {
+                    rows.push(idx - 1);
+                }
+                vals.extend(std::iter::repeat_n(-1.0, rows.len()));
+                rows.push(idx);
+                vals.push(6.0 - sigma);
+                cols.push(rows);
+                coords.push([i as f64, j as f64, k as f64]);
+            }
+        }
+    }
+    let mut a = SymmetricCsc::from_columns(cols);
+    a.values = vals;
+    (a, coords)
+}
+
+/// Eigenvalues of the Laplacian above below `sigma`, and the distance of
+/// the nearest one to `sigma`. Closed form: `lambda_{pqr} = mu_p + mu_q +
+/// mu_r`, `mu_p = 2 - 2 cos(p pi / (n + 1))`, `p, q, r = 1..n` (the 1D
+/// Dirichlet second-difference matrix's eigenvalues, summed over the axes
+/// of the Kronecker sum).
+fn eigen_count(n: usize, sigma: f64) -> (usize, f64) {
+    let mu: Vec<f64> = (1..=n)
+        .map(|p| 2.0 - 2.0 * (p as f64 * std::f64::consts::PI / (n as f64 + 1.0)).cos())
+        .collect();
+    let (mut count, mut gap) = (0, f64::INFINITY);
+    for a in &mu {
+        for b in &mu {
+            for c in &mu {
+                let l = a + b + c;
+                if l < sigma {
+                    count += 1;
+                }
+                gap = gap.min((l - sigma).abs());
+            }
+        }
+    }
+    (count, gap)
+}
+
+fn ldlt(ordering: OrderingKind, threads: usize) -> LdltSolver {
+    LdltSolver::new(LdltSettings {
+        ordering,
+        threads,
+        ..Default::default()
+    })
+}
+
+/// Solve `A x = A x*` and return `x`.
+fn solve(s: &mut dyn LinearSolver, a: &SymmetricCsc, coords: Option<&[[f64; 3]]>) -> Vec<f64> {
+    let xs = exact(a.n);
+    let mut x = rhs(a, &xs);
+    s.analyze(a, coords).unwrap();
+    s.factorize(a).unwrap();
+    s.solve_in_place(a, &mut x).unwrap();
+    x
+}
+
+#[test]
+fn shifted_laplacian_inertia_is_exact() {
+    // n = 18: the top separator (18^2 = 324 columns) is split into panels.
+    for (n, sigmas) in [(10, &[0.5, 3.3, 6.1][..]), (18, &[1.7, 4.9][..])] {
+        for &sigma in sigmas {
+            let (count, gap) = eigen_count(n, sigma);
+            // the shift stays clear of the spectrum, so the count is robust
+            assert!(gap > 1e-3, "n {n} sigma {sigma}: gap {gap}");
+            assert!(count > 0 && count < n * n * n);
+            let (a, coords) = shifted_laplacian(n, sigma);
+            let xs = exact(a.n);
+            for (ordering, threads) in [
+                (OrderingKind::NestedDissection, 1),
+                (OrderingKind::NestedDissection, 2),
+                (OrderingKind::Amd, 2),
+            ] {
+                let mut s = ldlt(ordering, threads);
+                let x = solve(&mut s, &a, Some(&coords));
+                let r = s.report();
+                let st = s.stats();
+                assert_eq!(
+                    r.negative_pivots,
+                    Some(count),
+                    "n {n} sigma {sigma} {ordering:?} threads {threads}: {st:?}"
+                );
+                assert_eq!(st.perturbed_pivots, 0);
+                assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+                assert!(r.residual < 1e-12, "residual {}", r.residual);
+                // cond <= 12 / gap: about 1e4 at most here
+                let err = max_rel_error(&x, &xs);
+                assert!(err < 1e-9, "n {n} sigma {sigma}: error {err}");
+                assert_eq!(r.ordering, ordering.name());
+                assert_eq!(r.precision, "double");
+                assert!(r.factor_nonzeros > a.nnz());
+            }
+        }
+    }
+}
+
+/// Saddle-point matrix `[[0, B], [B^T, A]]` (multipliers first), dense:
+/// `A` (`na x na`) SPD, `B` (`m x na`) of full row rank (a cosine matrix
+/// plus the identity). Inertia: `na`
+/// positive and `m` negative eigenvalues (Sylvester's law on the block
+/// factorisation `diag(A, -B A^-1 B^T)`).
+fn dense_kkt(na: usize, m: usize) -> SymmetricCsc {
+    let n = na + m;
+    let entry = |i: usize, j: usize| -> f64 {
+        let (i, j) = (i.min(j), i.max(j));
+        if j < m {
+            0.0
+        } else if i < m {
+            (0.3 * ((i + 1) * (j - m + 1)) as f64).cos() + if i == j - m { 1.0 } else { 0.0 }
+        } else {
+            // diagonally dominant (0.06 against off-diagonal row sums below
+            // 0.01 * 2 * (H_24 - 1) < 0.057), small next to B
+            let d = (i as f64 - j as f64).abs();
+            0.01 / (1.0 + d) + if i == j { 0.05 } else { 0.0 }
+        }
+    };
+    let mut a = SymmetricCsc::from_columns((0..n).map(|j| (0..=j).collect()).collect());
+    let mut p = 0;
+    for j in 0..n {
+        for i in 0..=j {
+            a.values[p] = entry(i, j);
+            p += 1;
+        }
+    }
+    a
+}
+
+#[test]
+fn saddle_point_needs_2x2_pivots() {
+    let (na, m) = (24, 9);
+    let a = dense_kkt(na, m);
+    let xs = exact(a.n);
+    let mut s = ldlt(OrderingKind::Natural, 1);
+    let x = solve(&mut s, &a, None);
+    let st = s.stats().clone();
+    let r = s.report();
+    // the leading zero block leaves Bunch-Kaufman no acceptable 1x1 pivot
+    assert!(st.pivots_2x2 >= 1, "{st:?}");
+    assert_eq!(st.perturbed_pivots, 0, "{st:?}");
+    assert_eq!(r.negative_pivots, Some(m), "{st:?}");
+    assert!(r.residual < 1e-13, "residual {}", r.residual);
+    let err = max_rel_error(&x, &xs);
+    assert!(err < 1e-11, "error {err}");
+    // Cholesky refuses it from the zero diagonal on
+    let mut c = CholeskySolver::new(CholeskySettings {
+        ordering: OrderingKind::Natural,
+        ..Default::default()
+    });
+    c.analyze(&a, None).unwrap();
+    assert!(matches!(
+        c.factorize(&a),
+        Err(SolverError::NotPositiveDefinite { .. })
+    ));
+}
+
+/// Sparse saddle point: a Laplacian `A` (SPD) tied by `m` constraints
+/// `u_p - u_q = 0`, each multiplier with an explicit zero diagonal.
+fn sparse_kkt(n: usize, m: usize) -> (SymmetricCsc, Vec<[f64; 3]>) {
+    let (lap, mut coords) = shifted_laplacian(n, 0.0);
+    let na = lap.n;
+    let mut cols: Vec<Vec<usize>> = (0..na)
+        .map(|j| lap.row_idx[lap.col_ptr[j]..lap.col_ptr[j + 1]].to_vec())
+        .collect();
+    let mut vals = lap.values.clone();
+    let stride = na / m;
+    for c in 0..m {
+        let p = c * stride + stride / 3;
+        let q = p + n; // neighbour in y
+        cols.push(vec![p, q, na + c]);
+        vals.extend([1.0, -1.0, 0.0]);
+        let (cp, cq) = (coords[p], coords[q]);
+        coords.push([
+            0.5 * (cp[0] + cq[0]),
+            0.5 * (cp[1] + cq[1]),
+            0.5 * (cp[2] + cq[2]),
+        ]);
+    }
+    let mut a = SymmetricCsc::from_columns(cols);
+    a.values = vals;
+    (a, coords)
+}
+
+#[test]
+fn sparse_saddle_point_solves_with_exact_inertia() {
+    let m = 20;
+    let (a, coords) = sparse_kkt(8, m);
+    let xs = exact(a.n);
+    for ordering in [
+        OrderingKind::NestedDissection,
+        OrderingKind::Amd,
+        OrderingKind::Natural,
+    ] {
+        let mut s = ldlt(ordering, 2);
+        let x = solve(&mut s, &a, Some(&coords));
+        let st = s.stats().clone();
+        let r = s.report();
+        assert!(r.residual < 1e-12, "{ordering:?}: residual {}", r.residual);
+        let err = max_rel_error(&x, &xs);
+        assert!(err < 1e-9, "{ordering:?}: error {err}");
+        if ordering == OrderingKind::Natural {
+            // multipliers last: every pivot is acceptable within its panel
+            assert_eq!(st.perturbed_pivots, 0, "{st:?}");
+            assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+        } else {
+            // the fill-reducing orderings eliminate some multipliers before
+            // their dofs, in panels of their own: zero pivots, perturbed,
+            // then recovered by refinement, with a warning
+            assert!(st.perturbed_pivots > 0, "{ordering:?}: {st:?}");
+            assert!(r.refinement_steps >= 1);
+            assert!(r.warnings.iter().any(|w| w.contains("inertia")));
+        }
+        // perturbing by delta << min |eigenvalue| keeps the inertia: the
+        // multiplier's +delta turns its dofs' pivot negative instead
+        assert_eq!(r.negative_pivots, Some(m), "{ordering:?}: {st:?}");
+    }
+}
+
+#[test]
+fn spd_matrix_matches_cholesky() {
+    let (a, coords) = grid_3d(8, 8, 8, 3, Stencil::Point27);
+    let mut c = CholeskySolver::new(CholeskySettings {
+        precision: Precision::Double,
+        ..Default::default()
+    });
+    let xc = solve(&mut c, &a, Some(&coords));
+    let mut l = ldlt(OrderingKind::NestedDissection, 0);
+    let xl = solve(&mut l, &a, Some(&coords));
+    let (rc, rl) = (c.report(), l.report());
+    assert_eq!(rc.negative_pivots, Some(0));
+    assert_eq!(rl.negative_pivots, Some(0));
+    assert_eq!(l.stats().pivots_2x2, 0);
+    // one shared analysis: same ordering, same factor structure
+    assert_eq!(c.permutation(), l.permutation());
+    assert_eq!(rc.factor_nonzeros, rl.factor_nonzeros);
+    assert_eq!(rc.ordering, rl.ordering);
+    assert!(rl.residual < 1e-13, "{}", rl.residual);
+    let err = max_rel_error(&xl, &xc);
+    assert!(err < 1e-11, "ldlt vs cholesky: {err}");
+    assert!(l.accepts(MatrixKind::SymmetricIndefinite));
+    assert!(l.accepts(MatrixKind::SymmetricPositiveDefinite));
+    assert!(!l.accepts(MatrixKind::General));
+    assert!(!c.accepts(MatrixKind::SymmetricIndefinite));
+}
+
+#[test]
+fn cholesky_refuses_indefinite_and_names_ldlt() {
+    let (a, coords) = shifted_laplacian(8, 2.5);
+    let mut c = CholeskySolver::default();
+    c.analyze(&a, Some(&coords)).unwrap();
+    let err = c.factorize(&a).unwrap_err();
+    assert!(
+        matches!(err, SolverError::NotPositiveDefinite { .. }),
+        "{err:?}"
+    );
+    let msg = err.to_string();
+    assert!(msg.contains("indefinite or singular"), "{msg}");
+    assert!(msg.contains("equation"), "{msg}");
+    assert!(msg.contains("type = \"ldlt\""), "{msg}");
+    assert_eq!(c.report().negative_pivots, None);
+}
+
+#[test]
+fn singular_matrix_is_an_error_not_nan() {
+    // Neumann Laplacian: constants span the kernel; e_0 is not in the range
+    let (a, coords) = grid_3d_neumann(6, 6, 6, 1, Stencil::Point7);
+    let mut s = ldlt(OrderingKind::NestedDissection, 1);
+    s.analyze(&a, Some(&coords)).unwrap();
+    s.factorize(&a).unwrap();
+    let mut b = vec![0.0; a.n];
+    b[0] = 1.0;
+    let err = s.solve_in_place(&a, &mut b).unwrap_err();
+    let msg = err.to_string();
+    assert!(msg.contains("singular"), "{msg}");
+    assert!(b.iter().all(|v| v.is_finite()));
+    // an all-zero matrix too
+    let mut z = a.clone();
+    z.values.fill(0.0);
+    assert!(matches!(
+        s.factorize(&z),
+        Err(SolverError::NotPositiveDefinite { .. })
+    ));
+}
+
+#[test]
+fn zero_leading_diagonal_takes_a_2x2_pivot() {
+    // [[0, 1, 0], [1, 0, 1], [0, 1, 1]] in natural order (one supernode):
+    // a zero leading diagonal and column max 1 -> 2x2 pivot. Inertia by
+    // hand: the block D1 = [[0, 1], [1, 0]] (eigenvalues +-1) and its Schur
+    // complement 1 - [0, 1] D1^-1 [0, 1]^T = 1: one negative eigenvalue
+    // (det = -1 < 0, trace 1).
+    let mut a = SymmetricCsc::from_columns(vec![vec![0], vec![0, 1], vec![1, 2]]);
+    a.values = vec![0.0, 1.0, 0.0, 1.0, 1.0];
+    let xs = [1.0, -2.0, 3.0];
+    let mut b = rhs(&a, &xs);
+    let mut s = ldlt(OrderingKind::Natural, 1);
+    s.analyze(&a, None).unwrap();
+    s.factorize(&a).unwrap();
+    s.solve_in_place(&a, &mut b).unwrap();
+    for (x, e) in b.iter().zip(xs) {
+        assert!((x - e).abs() < 1e-12, "{b:?}");
+    }
+    assert_eq!(s.report().negative_pivots, Some(1));
+    assert_eq!(s.stats().pivots_2x2, 1);
+    assert_eq!(s.stats().perturbed_pivots, 0);
+}
+
+#[test]
+fn parameters_and_registry() {
+    let t: toml::Table =
+        toml::from_str("ordering = \"amd\"\npivot_threshold = 0.5\nthreads = 1").unwrap();
+    let s = LdltSolver::from_table(&t).unwrap();
+    assert_eq!(s.settings().ordering, OrderingKind::Amd);
+    assert_eq!(s.settings().pivot_threshold, 0.5);
+    // the default alpha is (1 + sqrt(17)) / 8
+    let alpha = LdltSettings::default().pivot_threshold;
+    assert!((alpha - (1.0 + 17f64.sqrt()) / 8.0).abs() < 1e-16);
+    let bad: toml::Table = toml::from_str("pivot_treshold = 0.5").unwrap();
+    let err = LdltSolver::from_table(&bad).unwrap_err();
+    assert!(err.to_string().contains("pivot_treshold"), "{err}");
+    let bad: toml::Table = toml::from_str("pivot_threshold = 1.5").unwrap();
+    assert!(LdltSolver::from_table(&bad).is_err());
+    let keys: Vec<&str> = entries::<SolverEntry>().iter().map(|e| e.key).collect();
+    assert!(keys.contains(&"ldlt"), "{keys:?}");
+    let entry = find::<SolverEntry>("ldlt").unwrap();
+    for p in ["ordering", "pivot_threshold"] {
+        assert!(entry.params.iter().any(|d| d.name == p), "{p}");
+    }
+    let mut l = (entry.build)(&toml::Table::new()).unwrap();
+    assert_eq!(l.key(), "ldlt");
+    // sigma = 3.1 lies 0.1 from the nearest eigenvalue (3 = 1 + 1 + 1)
+    let (count, gap) = eigen_count(5, 3.1);
+    assert!(gap > 0.05);
+    let (a, coords) = shifted_laplacian(5, 3.1);
+    let xs = exact(a.n);
+    let x = solve(l.as_mut(), &a, Some(&coords));
+    assert!(max_rel_error(&x, &xs) < 1e-10);
+    assert_eq!(l.report().negative_pivots, Some(count));
+}
