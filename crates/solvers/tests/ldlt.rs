@@ -387,3 +387,47 @@ fn parameters_and_registry() {
     assert!(max_rel_error(&x, &xs) < 1e-10);
     assert_eq!(l.report().negative_pivots, Some(count));
 }
+
+/// A softening-like tangent: an SPD 27-point grid (3 dofs per node) with
+/// negative springs `-k (u_p - u_q)^2` between neighbouring dofs, as a
+/// cohesive law on its descending branch adds. Reference inertia: the
+/// eigenvalues of the dense matrix (nalgebra's symmetric eigensolver).
+#[test]
+fn softening_springs_inertia_matches_dense_eigenvalues() {
+    let (mut a, coords) = grid_3d(5, 5, 5, 3, Stencil::Point27);
+    let n = a.n;
+    // springs between dof c of node i and dof c of node i + 1 (x neighbour)
+    for (t, node) in (0..125).step_by(7).enumerate() {
+        if node % 5 == 4 {
+            continue;
+        }
+        let c = t % 3;
+        let (p, q) = (3 * node + c, 3 * (node + 1) + c);
+        let k = 30.0 + (t % 4) as f64 * 9.0;
+        for (i, j, v) in [(p, p, -k), (q, q, -k), (p, q, k)] {
+            let pos = a.position(i, j).expect("in the pattern");
+            a.values[pos] += v;
+        }
+    }
+    let mut dense = nalgebra::DMatrix::<f64>::zeros(n, n);
+    for j in 0..n {
+        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+            let i = a.row_idx[p];
+            dense[(i, j)] = a.values[p];
+            dense[(j, i)] = a.values[p];
+        }
+    }
+    let eig = nalgebra::SymmetricEigen::new(dense).eigenvalues;
+    let negative = eig.iter().filter(|&&l| l < 0.0).count();
+    let gap = eig.iter().fold(f64::INFINITY, |m, l| m.min(l.abs()));
+    assert!(negative > 0 && gap > 1e-6, "{negative} negative, gap {gap}");
+    eprintln!("{negative} negative eigenvalues of {n}, smallest |eigenvalue| {gap:.3e}");
+    let xs = exact(n);
+    for ordering in [OrderingKind::NestedDissection, OrderingKind::Amd] {
+        let mut s = ldlt(ordering, 2);
+        let x = solve(&mut s, &a, Some(&coords));
+        assert_eq!(s.report().negative_pivots, Some(negative), "{ordering:?}");
+        assert_eq!(s.stats().perturbed_pivots, 0);
+        assert!(max_rel_error(&x, &xs) < 1e-9);
+    }
+}
