@@ -253,6 +253,7 @@ pub fn run_static(
                     increment: r.increment_index,
                     load_factor: r.lambda,
                     delta_load_factor: r.delta_lambda,
+                    secant: false,
                 };
                 let ifs = output::interface_results_at(model, v.u, v.state, step)?;
                 let points: usize = ifs.iter().map(|i| i.points.len()).sum();
@@ -415,6 +416,7 @@ pub fn run_static(
         increment: last_increment,
         load_factor: rows.last().map_or(0.0, |r| r.lambda),
         delta_load_factor: 0.0,
+        secant: false,
     };
     // the last converged increment is always a frame, whatever stopped the
     // run (end of the program, Ctrl-C, --max-increments, an increment

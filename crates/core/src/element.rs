@@ -31,6 +31,12 @@ pub struct StepInfo {
     pub load_factor: f64,
     /// Size of the current load-factor increment.
     pub delta_load_factor: f64,
+    /// Ask for a secant tangent instead of the consistent one. The Newton
+    /// driver sets it for the rest of an attempt when an iteration with the
+    /// consistent tangent fails to reduce the residual (Newton cycling
+    /// between the loading and unloading branches of a softening point).
+    /// Laws without a secant form ignore it.
+    pub secant: bool,
 }
 
 /// Everything an element kernel reads. Buffers are owned by the caller.

@@ -59,6 +59,7 @@ impl Point {
                         increment: self.inc + 1,
                         load_factor: 0.0,
                         delta_load_factor: dt,
+                        secant: false,
                     },
                 },
                 &mut trial,

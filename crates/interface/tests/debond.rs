@@ -43,6 +43,7 @@ fn ctx(jump: [f64; 3], committed: &[f64], increment: usize) -> LawContext<'_> {
             increment,
             load_factor: 0.0,
             delta_load_factor: 0.0,
+            secant: false,
         },
     }
 }
@@ -560,6 +561,7 @@ fn inter8_top_face_pulled_uniformly() {
                     increment: inc,
                     load_factor: 0.0,
                     delta_load_factor: 0.0,
+                    secant: false,
                 },
             },
             &mut trial,

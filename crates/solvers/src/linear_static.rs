@@ -134,6 +134,7 @@ pub fn solve_linear_static_cases(
         increment: 0,
         load_factor: 1.0,
         delta_load_factor: 1.0,
+        secant: false,
     };
     let initial = |case: &LoadCase<'_>| -> Vec<f64> {
         (0..ndof)

@@ -139,6 +139,10 @@ pub struct NewtonSettings {
     pub tol_energy: f64,
     /// Backtracking line search on the residual norm. Default true.
     pub line_search: bool,
+    /// When an iteration with the consistent tangent does not reduce the
+    /// residual, use the laws' secant tangent for the rest of the attempt
+    /// (see [`junta_core::element::StepInfo::secant`]). Default true.
+    pub secant_fallback: bool,
     /// Maximum halvings of the step length in the line search. Default 5.
     pub max_line_search: usize,
     /// Growth factor of the increment after a fast increment. Default 1.5.
@@ -170,6 +174,7 @@ impl Default for NewtonSettings {
             tol_force: 1e-6,
             tol_energy: 1e-12,
             line_search: true,
+            secant_fallback: true,
             max_line_search: 5,
             growth: 1.5,
             growth_iterations: 4,
@@ -443,6 +448,9 @@ pub struct NonlinearSummary {
     pub final_lambda: f64,
     /// True when the observer stopped the run.
     pub stopped_by_observer: bool,
+    /// Attempts that switched to the laws' secant tangent because the
+    /// consistent one stopped reducing the residual.
+    pub secant_attempts: usize,
 }
 
 /// Result of [`solve_nonlinear`] that ran to the end of its program or was
@@ -511,6 +519,7 @@ struct Work<'m> {
     timings: Timings,
     analyzed: bool,
     iterations: usize,
+    secant_attempts: usize,
     settings: NewtonSettings,
 }
 
@@ -584,6 +593,7 @@ impl Work<'_> {
         force_peak: f64,
     ) -> Result<Attempt, NonlinearError> {
         let st = self.settings.clone();
+        let mut step = step;
         let lambda = step.load_factor;
         let m = self.model;
         for (d, u) in self.u.iter_mut().enumerate() {
@@ -664,6 +674,7 @@ impl Work<'_> {
             let mut best: Option<(f64, Eval)> = None;
             let mut last_s = f64::NAN;
             let mut last_err: Option<CoreError> = None;
+            let mut decreased = false;
             for _ in 0..tries {
                 self.set_trial(s);
                 last_s = s;
@@ -673,6 +684,7 @@ impl Work<'_> {
                             best = Some((s, e));
                         }
                         if e.abs <= (1.0 - 1e-4 * s) * rho_prev {
+                            decreased = true;
                             break;
                         }
                     }
@@ -689,7 +701,17 @@ impl Work<'_> {
                 };
                 return Ok(fail(it, ev.rel, reason));
             };
-            if s != last_s {
+            // The consistent tangent did not reduce the residual: Newton is
+            // cycling between the branches of a softening point. Ask the
+            // laws for their secant tangent for the rest of this attempt
+            // (linear but monotone convergence) and reassemble it.
+            let switch_to_secant = !decreased && !step.secant && st.secant_fallback;
+            if switch_to_secant {
+                step.secant = true;
+                self.secant_attempts += 1;
+                tracing::debug!(iteration = it, "no decrease with the consistent tangent: secant tangent from here");
+            }
+            if s != last_s || switch_to_secant {
                 self.set_trial(s);
                 match self.evaluate(state, step, lambda, force_peak) {
                     Ok(e2) => ev = e2,
@@ -867,6 +889,7 @@ where
         timings: Timings::default(),
         analyzed: false,
         iterations: 0,
+        secant_attempts: 0,
         settings: settings.clone(),
     };
     let mut summary = NonlinearSummary {
@@ -880,6 +903,7 @@ where
             increment: cur.increment_index,
             load_factor: cur.lambda,
             delta_load_factor: 0.0,
+            secant: false,
         };
         w.evaluate(&mut state, step, cur.lambda, cur.force_peak)?;
         state.restore();
@@ -920,6 +944,7 @@ where
                 increment: cur.increment_index + 1,
                 load_factor: lambda_new,
                 delta_load_factor: lambda_new - cur.lambda,
+                secant: false,
             };
             match w.attempt(solver, &mut state, step, cur.force_peak)? {
                 Attempt::Converged {
@@ -1031,6 +1056,7 @@ where
     }
     summary.newton_iterations_total = w.iterations;
     summary.analyze_count = usize::from(w.analyzed);
+    summary.secant_attempts = w.secant_attempts;
     timings.assemble = w.timings.assemble;
     timings.analyze = w.timings.analyze;
     timings.factor = w.timings.factor;

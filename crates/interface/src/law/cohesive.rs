@@ -81,7 +81,13 @@
 //! the interface element assembles its symmetric part (the tangent of a
 //! symmetric storage), which keeps Newton's convergence quadratic in pure
 //! modes and fixed-mode loading, and slows it slightly where the mixity
-//! turns.
+//! turns. When the driver asks for it ([`StepInfo::secant`], after Newton
+//! with the consistent tangent stopped reducing the residual), the law
+//! returns its secant stiffness `diag((1-d) K_s, (1-d) K_s, (1-d) K_n or K_n)`
+//! instead: positive definite, linear convergence, no cycling between the
+//! loading and unloading branches.
+//!
+//! [`StepInfo::secant`]: junta_core::element::StepInfo::secant
 
 use junta_core::law::{
     output, FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse,
@@ -585,9 +591,16 @@ impl InterfaceLaw for CohesiveLaw {
                 dj[2] * kn
             },
         ];
+        let mut tangent = t.map(|x| x.d);
+        if ctx.step.secant {
+            // secant stiffness of the damaged point (positive definite)
+            let s = 1.0 - d.v;
+            tangent = [[s * ks, 0.0, 0.0], [0.0, s * ks, 0.0], [0.0, 0.0, 0.0]];
+            tangent[2][2] = if dj[2].v > 0.0 { s * kn } else { kn };
+        }
         Ok(LawResponse {
             traction: t.map(|x| x.v),
-            tangent: t.map(|x| x.d),
+            tangent,
         })
     }
 
