@@ -386,6 +386,8 @@ pub fn run_static(
     let report = p.solver.report();
     summary["solver"] = json!({
         "name": report.solver,
+        "ordering": report.ordering,
+        "predicted_factor_nonzeros": output::ordering_candidates(&report),
         "precision": report.precision,
         "warnings": report.warnings,
         "notes": report.notes,

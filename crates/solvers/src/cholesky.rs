@@ -72,8 +72,9 @@ use std::time::Instant;
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CholeskySettings {
-    /// Fill-reducing ordering: `"nested_dissection"` (default), `"amd"` or
-    /// `"natural"`.
+    /// Fill-reducing ordering: `"auto"` (default: nested dissection or
+    /// AMD, whichever predicts fewer factor flops), `"nested_dissection"`,
+    /// `"amd"` or `"natural"`.
     pub ordering: OrderingKind,
     /// Relative residual above which iterative refinement runs (1e-8).
     pub refine_tol: f64,
@@ -158,7 +159,7 @@ const SINGLE_PIVOT_MIN: f64 = 1e-4;
 impl Default for CholeskySettings {
     fn default() -> Self {
         CholeskySettings {
-            ordering: OrderingKind::NestedDissection,
+            ordering: OrderingKind::Auto,
             refine_tol: 1e-8,
             max_refinements: 3,
             warn_tol: 1e-6,
@@ -178,7 +179,7 @@ impl Default for CholeskySettings {
 pub const CHOLESKY_PARAMS: &[ParamDoc] = &[
     ParamDoc {
         name: "ordering",
-        doc: "fill-reducing ordering: \"nested_dissection\" (default; geometric with node coordinates), \"amd\", \"natural\"",
+        doc: "fill-reducing ordering: \"auto\" (default: computes nested dissection and AMD, predicts the fill of each from the symbolic column counts and keeps the one with fewer factor flops; the summary notes both predictions), \"nested_dissection\" (geometric with node coordinates: median cuts across the axis with the smallest separator), \"amd\", \"natural\"",
     },
     ParamDoc {
         name: "refine_tol",
@@ -229,8 +230,13 @@ pub const CHOLESKY_PARAMS: &[ParamDoc] = &[
 /// Numbers describing the last analysis and factorisation.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct CholeskyStats {
-    /// Ordering used.
+    /// Ordering used (never `"auto"`: the kind `auto` kept).
     pub ordering: &'static str,
+    /// Every ordering computed by the last analysis (two for `auto`) with
+    /// its predicted factor non-zeros and flops.
+    pub ordering_candidates: Vec<(&'static str, ordering::FillEstimate)>,
+    /// Bytes of the numeric factor's values (last factorisation).
+    pub factor_bytes: usize,
     /// Number of symbolic analyses so far.
     pub analyze_count: usize,
     /// Number of numeric factorisations so far.
@@ -393,6 +399,8 @@ impl CholeskySolver {
         self.values64 = Vec::new();
         let factor = self.factor.as_ref().expect("analysed");
         let mut values = std::mem::take(&mut self.values32);
+        // allocated by the caller (`allocate_values`)
+        debug_assert_eq!(values.len(), factor.len_val());
         let res = factor.factorize(&mut values, matrix, &self.perm_inv, par);
         self.stats.factor_count += 1;
         if let Err(k) = res {
@@ -453,6 +461,7 @@ impl CholeskySolver {
         self.stats.precision = "double";
         self.report.precision = "double".into();
         let factor = self.factor.as_ref().expect("analysed");
+        self.stats.factor_bytes = allocate_values(&mut self.values64, factor.len_val(), "double")?;
         let mut values = std::mem::take(&mut self.values64);
         let res = factor.factorize(&mut values, matrix, &self.perm_inv, par);
         self.stats.factor_count += 1;
@@ -663,7 +672,14 @@ impl LinearSolver for CholeskySolver {
         validate(matrix)?;
         let n = matrix.n;
         self.factored = false;
-        let perm = ordering::compute(self.settings.ordering, matrix, coords);
+        let choice = ordering::choose(self.settings.ordering, matrix, coords);
+        let ordering_note = choice.note();
+        let ordering::OrderingChoice {
+            perm,
+            kind,
+            candidates,
+            ..
+        } = choice;
         debug_assert!(ordering::is_permutation(&perm, n));
         let ordering_seconds = t0.elapsed().as_secs_f64();
         let perm_inv = ordering::inverse(&perm);
@@ -689,12 +705,19 @@ impl LinearSolver for CholeskySolver {
         self.stats.supernodal = true;
         self.stats.factor_nonzeros = factor.nonzeros();
         self.factor = Some(factor);
-        self.stats.ordering = self.settings.ordering.name();
+        self.stats.ordering = kind.name();
+        self.stats.ordering_candidates = candidates.iter().map(|(k, e)| (k.name(), *e)).collect();
         self.stats.ordering_seconds = ordering_seconds;
         self.stats.analyze_count += 1;
         // a new pattern is a new problem: the mixed mode may be tried again
         self.single_failed = false;
         self.report.notes.clear();
+        self.report.notes.push(ordering_note);
+        self.report.ordering = kind.name().into();
+        self.report.ordering_candidates = candidates
+            .iter()
+            .map(|(k, e)| (k.name().to_string(), e.nonzeros))
+            .collect();
         self.single = false;
         self.values32 = Vec::new();
         self.values64 = Vec::new();
@@ -765,6 +788,11 @@ impl LinearSolver for CholeskySolver {
                 }
             };
         if try_single {
+            // the single factor needs half the memory of the double one: when
+            // it does not fit, neither does the fallback
+            let len = self.factor.as_ref().expect("analysed").len_val();
+            self.values64 = Vec::new();
+            self.stats.factor_bytes = allocate_values(&mut self.values32, len, "single")?;
             match self.factor_single(matrix, &diag) {
                 Ok(()) => {
                     self.report.factor_seconds += t0.elapsed().as_secs_f64();
@@ -849,6 +877,58 @@ impl LinearSolver for CholeskySolver {
     fn report(&self) -> SolveReport {
         self.report.clone()
     }
+}
+
+/// Bytes of memory the system can still give (`MemAvailable` of
+/// `/proc/meminfo`, Linux); `None` where unknown.
+fn available_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+/// Make `values` a zero-filled buffer of `len` entries (kept as is when it
+/// already has that length) and return its bytes; or, before anything is
+/// allocated, a [`SolverError::OutOfMemory`] with the numbers when the
+/// buffer is larger than the memory available (`/proc/meminfo` on Linux;
+/// elsewhere only a failed reservation is caught). Aborting on a failed
+/// allocation, or being killed by the kernel once the pages are touched,
+/// is what this avoids.
+fn allocate_values<T: Default + Clone>(
+    values: &mut Vec<T>,
+    len: usize,
+    precision: &str,
+) -> Result<usize, SolverError> {
+    let bytes = len.saturating_mul(std::mem::size_of::<T>());
+    if values.len() == len {
+        return Ok(bytes);
+    }
+    *values = Vec::new();
+    let gb = |b: u64| b as f64 / 1e9;
+    let refuse = |available: String| {
+        SolverError::OutOfMemory {
+        detail: format!(
+            "the {precision}-precision Cholesky factor needs {:.2} GB ({len} non-zeros stored), {available}; use a coarser mesh{}",
+            gb(bytes as u64),
+            if precision == "double" {
+                ", or precision = \"mixed\" (half the memory)"
+            } else {
+                ""
+            }
+        ),
+    }
+    };
+    if let Some(avail) = available_memory() {
+        if bytes as u64 > avail {
+            return Err(refuse(format!("{:.2} GB available", gb(avail))));
+        }
+    }
+    values
+        .try_reserve_exact(len)
+        .map_err(|_| refuse("and the allocation failed".into()))?;
+    values.resize(len, T::default());
+    Ok(bytes)
 }
 
 /// `||A||_inf` (largest absolute row sum) of a symmetric matrix stored as
