@@ -1076,6 +1076,67 @@ mod tests {
     }
 
     #[test]
+    fn a_factor_larger_than_memory_is_an_error_not_an_abort() {
+        // 2^60 entries (8 EiB): more than /proc/meminfo's MemAvailable on
+        // Linux, a failed reservation elsewhere; nothing is allocated
+        let mut v: Vec<f64> = vec![1.0; 4];
+        match allocate_values(&mut v, 1 << 60, "double") {
+            Err(SolverError::OutOfMemory { detail }) => {
+                assert!(detail.contains("needs 9223372036.85 GB"), "{detail}");
+                assert!(detail.contains("mixed"), "{detail}");
+            }
+            other => panic!("expected OutOfMemory, got {other:?}"),
+        }
+        assert!(v.is_empty());
+        // a buffer that fits is zero-filled, and kept when its length is right
+        assert_eq!(allocate_values(&mut v, 3, "single"), Ok(24));
+        assert_eq!(v, vec![0.0; 3]);
+        v[0] = 5.0;
+        assert_eq!(allocate_values(&mut v, 3, "single"), Ok(24));
+        assert_eq!(v[0], 5.0);
+    }
+
+    #[test]
+    fn report_names_the_ordering_and_its_prediction() {
+        let (a, coords) = crate::gallery::grid_3d(6, 6, 6, 3, crate::gallery::Stencil::Point27);
+        for kind in [OrderingKind::Auto, OrderingKind::Amd] {
+            let mut s = CholeskySolver::new(CholeskySettings {
+                ordering: kind,
+                ..Default::default()
+            });
+            s.analyze(&a, Some(&coords)).unwrap();
+            let r = s.report();
+            let stats = s.stats();
+            assert_eq!(r.ordering, stats.ordering);
+            assert_ne!(r.ordering, "auto");
+            let expected = if kind == OrderingKind::Auto { 2 } else { 1 };
+            assert_eq!(r.ordering_candidates.len(), expected);
+            assert_eq!(stats.ordering_candidates.len(), expected);
+            // the prediction of the kept ordering is the exact fill; faer's
+            // stored factor adds the explicit zeros of relaxed supernodes
+            let exact = ordering::factor_nonzeros(&a, Some(s.permutation()));
+            let kept = r
+                .ordering_candidates
+                .iter()
+                .find(|c| c.0 == r.ordering)
+                .unwrap()
+                .1;
+            assert_eq!(kept, exact);
+            assert!(r.factor_nonzeros >= exact);
+            assert!(
+                r.notes[0].starts_with(&format!("ordering {}", kind.name())),
+                "{:?}",
+                r.notes
+            );
+            s.factorize(&a).unwrap();
+            assert_eq!(
+                s.stats().factor_bytes,
+                s.factor.as_ref().unwrap().len_val() * 8
+            );
+        }
+    }
+
+    #[test]
     fn params_reject_unknown_keys() {
         let t: toml::Table = toml::from_str("ordering = \"amd\"\nrefine_tol = 1e-9").unwrap();
         let s = CholeskySolver::from_table(&t).unwrap();
