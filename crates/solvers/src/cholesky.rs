@@ -1,10 +1,12 @@
 //! Sparse direct solver: supernodal Cholesky `P A P^T = L L^T` with a
-//! nested-dissection (default) or AMD ordering `P`.
+//! nested-dissection or AMD ordering `P` (by default the one predicted to
+//! cost fewer flops, [`OrderingKind::Auto`]).
 //!
 //! # Phases
 //!
 //! * [`LinearSolver::analyze`]: the fill-reducing ordering `P`
-//!   ([`crate::ordering`]), then faer's symbolic factorisation with
+//!   ([`crate::ordering::choose`]; the report's notes give the predicted
+//!   factor non-zeros of every candidate and the one kept), then faer's symbolic factorisation with
 //!   `SymmetricOrdering::Custom(P)`: elimination tree, column counts,
 //!   supernodes, and the row structure of `L`. Supernodes wider than
 //!   `PANEL` (256) columns are split into panels (`crate::supernodal`,
@@ -20,7 +22,10 @@
 //!   diagonal block and copies `P A P^T`: 25% more memory on 3D meshes).
 //!   The value buffer is allocated once (its length is fixed by the
 //!   symbolic structure) and reused for every later matrix with the same
-//!   pattern. A pivot
+//!   pattern. Before it is allocated its size is checked against the
+//!   memory available (`MemAvailable` of `/proc/meminfo` on Linux), and
+//!   the allocation is a fallible reservation: a factor that does not fit
+//!   is a [`SolverError::OutOfMemory`] naming both sizes, never an abort. A pivot
 //!   `d_k = a_kk - sum_j l_kj^2 <= 0` stops the factorisation: the matrix is
 //!   not positive definite ([`SolverError::NotPositiveDefinite`], with the
 //!   pivot's position in the original numbering).
@@ -950,7 +955,7 @@ fn symmetric_norm_inf(a: &SymmetricCsc) -> f64 {
 inventory::submit! {
     SolverEntry {
         key: "cholesky",
-        description: "sparse supernodal Cholesky (faer symbolic analysis and dense kernels) with nested-dissection or AMD ordering, double or mixed (single-precision factor refined in double) precision, iterative refinement and conditioning warnings",
+        description: "sparse supernodal Cholesky (faer symbolic analysis and dense kernels) with nested-dissection or AMD ordering (auto: the one with fewer predicted flops), double or mixed (single-precision factor refined in double) precision, iterative refinement and conditioning warnings",
         params: CHOLESKY_PARAMS,
         build: |table| Ok(Box::new(CholeskySolver::from_table(table)?)),
     }

@@ -6,7 +6,7 @@
 //!
 //! | key | type | what |
 //! |---|---|---|
-//! | `cholesky` | [`CholeskySolver`] | supernodal Cholesky on faer's symbolic analysis and dense kernels, nested-dissection ([`ordering`]) or AMD ordering, double or mixed precision ([`Precision`]), iterative refinement, conditioning warnings |
+//! | `cholesky` | [`CholeskySolver`] | supernodal Cholesky on faer's symbolic analysis and dense kernels, nested-dissection or AMD ordering ([`ordering`]; by default the one with fewer predicted flops), double or mixed precision ([`Precision`]), iterative refinement, conditioning warnings |
 //! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi or 3×3 nodal block-Jacobi |
 //!
 //! Embedders can skip the registry:

@@ -1,6 +1,7 @@
 //! Fill-reducing orderings for sparse Cholesky: nested dissection
-//! (geometric when coordinates are known, graph-based otherwise) and faer's
-//! approximate minimum degree (AMD).
+//! (geometric when coordinates are known, graph-based otherwise), faer's
+//! approximate minimum degree (AMD), and `auto`, which predicts the fill of
+//! both and keeps the better.
 //!
 //! # Permutation convention
 //!
@@ -32,17 +33,17 @@
 //!    nodes coincide; with coordinates they share one vertex, which is
 //!    harmless for the ordering.
 //! 2. **Bisection.** For a vertex set `V` (a subgraph):
-//!    * *geometric* (coordinates known): take the bounding box of `V`, its
-//!      longest extent `x_a`, the median `m` of `x_a` over `V`; `P1 = {x_a <
-//!      m}`, `P2 = {x_a >= m}` (ties fall wholly on one side, so on a
-//!      structured grid the cut is a grid plane);
-//!    * *graph* (no coordinates, or all points of `V` coincide): a breadth
-//!      first level structure `L_0, L_1, ...` rooted at a pseudo-peripheral
-//!      vertex (George-Liu: repeat BFS from the farthest vertex of least
-//!      degree while the eccentricity grows); `P1` = levels below the level
-//!      `L_m` where the cumulative count passes `|V|/2`, `P2` = the rest. If
-//!      the BFS does not reach all of `V`, `P1` is the component reached and
-//!      `P2` the rest (no separator needed).
+//!    * *geometric* (coordinates known): for every axis `a` along which the
+//!      points of `V` are not all equal, the median `m` of `x_a` over `V`
+//!      gives `P1 = {x_a < m}`, `P2 = {x_a >= m}` (ties fall wholly on one
+//!      side, so on a structured grid the cut is a grid plane). Of these
+//!      (at most three) cuts, the one whose separator (step 3) is smallest
+//!      relative to the smaller part is kept. Cutting across the longest
+//!      extent of the bounding box, the usual rule, fails on meshes that
+//!      are finer along a shorter side: a cantilever 1 x 0.1 x 0.1 with 10
+//!      x 1 x 1000 H20 elements was cut into `x` planes of ~5000 nodes
+//!      (predicted factor 4.67G non-zeros instead of 40M; 1000 x 1 x 10:
+//!      515M instead of 44M; 100 x 1 x 100: 684M instead of 76M);
 //! 3. **Separator.** The edge cut between `P1` and `P2` is turned into a
 //!    vertex separator by taking its endpoints on one side: the vertices of
 //!    `P2` with a neighbour in `P1`, or those of `P1` with a neighbour in
@@ -51,9 +52,19 @@
 //!    [`ND_LEAF_NODES`] vertices the subgraph is ordered by faer's AMD.
 //!
 //! Each level of the recursion costs `O(|V| + |E|)` (median by
-//! quick-select, one pass over the edges), and there are `O(log N)` levels,
-//! so the ordering costs `O((N + E) log N)`: tens of milliseconds at 200k
-//! dofs.
+//! quick-select, one pass over the edges per axis tried), and there are
+//! `O(log N)` levels, so the ordering costs `O((N + E) log N)`: a few
+//! tenths of a second at 200k dofs.
+//!
+//! # Automatic choice
+//!
+//! [`OrderingKind::Auto`] (the default of the direct solvers, through
+//! [`choose`]) computes nested dissection and AMD, predicts the non-zeros
+//! and flops of the factor of each with [`FillCounter`] (exact column
+//! counts in `O(nnz(A))`, no factorisation), and keeps the one with fewer
+//! flops. Nested dissection wins on 3D solids (unit cube H20 n=20: 125.1M
+//! non-zeros against AMD's 238.9M), AMD on long or flat meshes (the
+//! cantilever above, 10 x 1 x 1000: 33.2M against 40.4M).
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
