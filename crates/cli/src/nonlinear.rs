@@ -469,6 +469,8 @@ pub fn run_static(
     notes.extend(report.notes.iter().cloned());
     summary["solver"] = json!({
         "name": report.solver,
+        "ordering": report.ordering,
+        "predicted_factor_nonzeros": output::ordering_candidates(&report),
         "precision": report.precision,
         "ordering": report.ordering,
         "factor_nonzeros": report.factor_nonzeros,

@@ -200,6 +200,18 @@ pub fn element_counts(model: &Model) -> BTreeMap<String, usize> {
     m
 }
 
+/// The orderings a direct solver computed, name -> predicted factor
+/// non-zeros (`{}` for iterative solvers), for `summary.json`.
+pub fn ordering_candidates(report: &junta_core::SolveReport) -> serde_json::Value {
+    serde_json::Value::Object(
+        report
+            .ordering_candidates
+            .iter()
+            .map(|(k, n)| (k.clone(), serde_json::json!(n)))
+            .collect(),
+    )
+}
+
 /// Largest nodal displacement magnitude.
 pub fn displacement_max(u: &[f64]) -> f64 {
     u.chunks(3)

@@ -359,6 +359,8 @@ pub fn run(
             "iterations": res.report.iterations,
             "residual": res.report.residual,
             "factor_nonzeros": res.report.factor_nonzeros,
+            "ordering": res.report.ordering,
+            "predicted_factor_nonzeros": output::ordering_candidates(&res.report),
             "precision": res.report.precision,
             "refinement_steps": res.report.refinement_steps,
             "warnings": res.report.warnings,

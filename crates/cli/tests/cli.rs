@@ -158,6 +158,18 @@ fn cube_h20_n12_in_mixed_precision_matches_calculix_and_double() {
     std::fs::write(&deck, cube_deck("C3D20", 12)).unwrap();
     let mixed = run_ok(&deck, &dir.path().join("mixed"));
     assert_eq!(mixed["solver"]["precision"], "mixed");
+    // the default ordering (auto) predicts both candidates and keeps nested
+    // dissection on a cube; its prediction is the exact fill, below the
+    // stored count (relaxed supernodes add explicit zeros)
+    assert_eq!(mixed["solver"]["ordering"], "nested_dissection");
+    let predicted = &mixed["solver"]["predicted_factor_nonzeros"];
+    let nd = predicted["nested_dissection"].as_u64().unwrap();
+    assert!(nd < predicted["amd"].as_u64().unwrap(), "{predicted}");
+    assert!(nd <= mixed["solver"]["factor_nonzeros"].as_u64().unwrap());
+    assert!(mixed["solver"]["notes"][0]
+        .as_str()
+        .unwrap()
+        .starts_with("ordering auto: nested_dissection"));
     assert!(mixed["solver"]["refinement_steps"].as_u64().unwrap() >= 1);
     assert!(mixed["solver"]["residual"].as_f64().unwrap() < 1e-12);
     let fz_mixed = mixed["reactions"]["TOP"][2].as_f64().unwrap();

@@ -22,6 +22,10 @@ pub enum SolverError {
     /// The solution contains NaN or infinity.
     #[error("solution is not finite (NaN or infinity) after {method}")]
     NonFinite { method: String },
+    /// The factor (or another large buffer) does not fit in the memory
+    /// available; the detail gives the bytes needed and available.
+    #[error("not enough memory: {detail}")]
+    OutOfMemory { detail: String },
     /// `factorize`/`solve` called before `analyze`, or with a different pattern.
     #[error("solver misuse: {0}")]
     Usage(String),
@@ -47,6 +51,10 @@ pub struct SolveReport {
     /// Fill-reducing ordering the direct back end used (e.g.
     /// `"nested_dissection"`, `"amd"`); empty for iterative back ends.
     pub ordering: String,
+    /// Every ordering the direct back end computed in its last analysis
+    /// (several when it chose among candidates) with the factor non-zeros
+    /// it predicted for it; `ordering` is the one used.
+    pub ordering_candidates: Vec<(String, usize)>,
     /// Working precision of the factor (direct back ends): `"double"`, or
     /// `"mixed"` for a single-precision factor whose solutions are refined
     /// to double-precision residuals. Empty for iterative back ends.

@@ -1,11 +1,13 @@
 //! Sparse direct solver: supernodal Cholesky `P A P^T = L L^T` with a
-//! nested-dissection (default) or AMD ordering `P`.
+//! nested-dissection or AMD ordering `P` (by default the one predicted to
+//! cost fewer flops, [`OrderingKind::Auto`]).
 //!
 //! # Phases
 //!
 //! * [`LinearSolver::analyze`] (`crate::supernodal::analyze`, shared with
 //!   the `ldlt` back end [`crate::LdltSolver`]): the fill-reducing ordering `P`
-//!   ([`crate::ordering`]), then faer's symbolic factorisation with
+//!   ([`crate::ordering::choose`]; the report's notes give the predicted
+//!   factor non-zeros of every candidate and the one kept), then faer's symbolic factorisation with
 //!   `SymmetricOrdering::Custom(P)`: elimination tree, column counts,
 //!   supernodes, and the row structure of `L`. Supernodes wider than
 //!   `PANEL` (256) columns are split into panels (`crate::supernodal`,
@@ -21,7 +23,10 @@
 //!   diagonal block and copies `P A P^T`: 25% more memory on 3D meshes).
 //!   The value buffer is allocated once (its length is fixed by the
 //!   symbolic structure) and reused for every later matrix with the same
-//!   pattern. A pivot
+//!   pattern. Before it is allocated its size is checked against the
+//!   memory available (`MemAvailable` of `/proc/meminfo` on Linux), and
+//!   the allocation is a fallible reservation: a factor that does not fit
+//!   is a [`SolverError::OutOfMemory`] naming both sizes, never an abort. A pivot
 //!   `d_k = a_kk - sum_j l_kj^2 <= 0` stops the factorisation: the matrix is
 //!   not positive definite, indefinite or singular
 //!   ([`SolverError::NotPositiveDefinite`], with the pivot's position in the
@@ -71,8 +76,9 @@ use std::time::Instant;
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CholeskySettings {
-    /// Fill-reducing ordering: `"nested_dissection"` (default), `"amd"` or
-    /// `"natural"`.
+    /// Fill-reducing ordering: `"auto"` (default: nested dissection or
+    /// AMD, whichever predicts fewer factor flops), `"nested_dissection"`,
+    /// `"amd"` or `"natural"`.
     pub ordering: OrderingKind,
     /// Relative residual above which iterative refinement runs (1e-8).
     pub refine_tol: f64,
@@ -160,7 +166,7 @@ const SINGLE_PIVOT_MIN: f64 = 1e-4;
 impl Default for CholeskySettings {
     fn default() -> Self {
         CholeskySettings {
-            ordering: OrderingKind::NestedDissection,
+            ordering: OrderingKind::Auto,
             refine_tol: 1e-8,
             max_refinements: 3,
             warn_tol: 1e-6,
@@ -180,7 +186,7 @@ impl Default for CholeskySettings {
 pub const CHOLESKY_PARAMS: &[ParamDoc] = &[
     ParamDoc {
         name: "ordering",
-        doc: "fill-reducing ordering: \"nested_dissection\" (default; geometric with node coordinates), \"amd\", \"natural\"",
+        doc: "fill-reducing ordering: \"auto\" (default: computes nested dissection and AMD, predicts the fill of each from the symbolic column counts and keeps the one with fewer factor flops; the summary notes both predictions), \"nested_dissection\" (geometric with node coordinates: median cuts across the axis with the smallest separator), \"amd\", \"natural\"",
     },
     ParamDoc {
         name: "refine_tol",
@@ -231,8 +237,13 @@ pub const CHOLESKY_PARAMS: &[ParamDoc] = &[
 /// Numbers describing the last analysis and factorisation.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct CholeskyStats {
-    /// Ordering used.
+    /// Ordering used (never `"auto"`: the kind `auto` kept).
     pub ordering: &'static str,
+    /// Every ordering computed by the last analysis (two for `auto`) with
+    /// its predicted factor non-zeros and flops.
+    pub ordering_candidates: Vec<(&'static str, crate::ordering::FillEstimate)>,
+    /// Bytes of the numeric factor's values (last factorisation).
+    pub factor_bytes: usize,
     /// Number of symbolic analyses so far.
     pub analyze_count: usize,
     /// Number of numeric factorisations so far.
@@ -395,6 +406,8 @@ impl CholeskySolver {
         self.values64 = Vec::new();
         let factor = self.factor.as_ref().expect("analysed");
         let mut values = std::mem::take(&mut self.values32);
+        // allocated by the caller (`allocate_values`)
+        debug_assert_eq!(values.len(), factor.len_val());
         let res = factor.factorize(&mut values, matrix, &self.perm_inv, par);
         self.stats.factor_count += 1;
         if let Err(k) = res {
@@ -455,6 +468,7 @@ impl CholeskySolver {
         self.stats.precision = "double";
         self.report.precision = "double".into();
         let factor = self.factor.as_ref().expect("analysed");
+        self.stats.factor_bytes = allocate_values(&mut self.values64, factor.len_val(), "double")?;
         let mut values = std::mem::take(&mut self.values64);
         let res = factor.factorize(&mut values, matrix, &self.perm_inv, par);
         self.stats.factor_count += 1;
@@ -671,16 +685,26 @@ impl LinearSolver for CholeskySolver {
             perm_inv,
             factor,
             ordering_seconds,
+            kind,
+            candidates,
+            ordering_note,
         } = crate::supernodal::analyze(self.settings.ordering, matrix, coords)?;
         self.stats.supernodal = true;
         self.stats.factor_nonzeros = factor.nonzeros();
         self.factor = Some(factor);
-        self.stats.ordering = self.settings.ordering.name();
+        self.stats.ordering = kind.name();
+        self.stats.ordering_candidates = candidates.iter().map(|(k, e)| (k.name(), *e)).collect();
         self.stats.ordering_seconds = ordering_seconds;
         self.stats.analyze_count += 1;
         // a new pattern is a new problem: the mixed mode may be tried again
         self.single_failed = false;
         self.report.notes.clear();
+        self.report.notes.push(ordering_note);
+        self.report.ordering = kind.name().into();
+        self.report.ordering_candidates = candidates
+            .iter()
+            .map(|(k, e)| (k.name().to_string(), e.nonzeros))
+            .collect();
         self.single = false;
         self.values32 = Vec::new();
         self.values64 = Vec::new();
@@ -753,6 +777,11 @@ impl LinearSolver for CholeskySolver {
                 }
             };
         if try_single {
+            // the single factor needs half the memory of the double one: when
+            // it does not fit, neither does the fallback
+            let len = self.factor.as_ref().expect("analysed").len_val();
+            self.values64 = Vec::new();
+            self.stats.factor_bytes = allocate_values(&mut self.values32, len, "single")?;
             match self.factor_single(matrix, &diag) {
                 Ok(()) => {
                     self.report.factor_seconds += t0.elapsed().as_secs_f64();
@@ -840,10 +869,62 @@ impl LinearSolver for CholeskySolver {
     }
 }
 
+/// Bytes of memory the system can still give (`MemAvailable` of
+/// `/proc/meminfo`, Linux); `None` where unknown.
+fn available_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+/// Make `values` a zero-filled buffer of `len` entries (kept as is when it
+/// already has that length) and return its bytes; or, before anything is
+/// allocated, a [`SolverError::OutOfMemory`] with the numbers when the
+/// buffer is larger than the memory available (`/proc/meminfo` on Linux;
+/// elsewhere only a failed reservation is caught). Aborting on a failed
+/// allocation, or being killed by the kernel once the pages are touched,
+/// is what this avoids.
+fn allocate_values<T: Default + Clone>(
+    values: &mut Vec<T>,
+    len: usize,
+    precision: &str,
+) -> Result<usize, SolverError> {
+    let bytes = len.saturating_mul(std::mem::size_of::<T>());
+    if values.len() == len {
+        return Ok(bytes);
+    }
+    *values = Vec::new();
+    let gb = |b: u64| b as f64 / 1e9;
+    let refuse = |available: String| {
+        SolverError::OutOfMemory {
+        detail: format!(
+            "the {precision}-precision Cholesky factor needs {:.2} GB ({len} non-zeros stored), {available}; use a coarser mesh{}",
+            gb(bytes as u64),
+            if precision == "double" {
+                ", or precision = \"mixed\" (half the memory)"
+            } else {
+                ""
+            }
+        ),
+    }
+    };
+    if let Some(avail) = available_memory() {
+        if bytes as u64 > avail {
+            return Err(refuse(format!("{:.2} GB available", gb(avail))));
+        }
+    }
+    values
+        .try_reserve_exact(len)
+        .map_err(|_| refuse("and the allocation failed".into()))?;
+    values.resize(len, T::default());
+    Ok(bytes)
+}
+
 inventory::submit! {
     SolverEntry {
         key: "cholesky",
-        description: "sparse supernodal Cholesky (faer symbolic analysis and dense kernels) with nested-dissection or AMD ordering, double or mixed (single-precision factor refined in double) precision, iterative refinement and conditioning warnings",
+        description: "sparse supernodal Cholesky (faer symbolic analysis and dense kernels) with nested-dissection or AMD ordering (auto: the one with fewer predicted flops), double or mixed (single-precision factor refined in double) precision, iterative refinement and conditioning warnings",
         params: CHOLESKY_PARAMS,
         build: |table| Ok(Box::new(CholeskySolver::from_table(table)?)),
     }
@@ -969,6 +1050,67 @@ mod tests {
             s.factorize(&bad),
             Err(SolverError::NotPositiveDefinite { .. })
         ));
+    }
+
+    #[test]
+    fn a_factor_larger_than_memory_is_an_error_not_an_abort() {
+        // 2^60 entries (8 EiB): more than /proc/meminfo's MemAvailable on
+        // Linux, a failed reservation elsewhere; nothing is allocated
+        let mut v: Vec<f64> = vec![1.0; 4];
+        match allocate_values(&mut v, 1 << 60, "double") {
+            Err(SolverError::OutOfMemory { detail }) => {
+                assert!(detail.contains("needs 9223372036.85 GB"), "{detail}");
+                assert!(detail.contains("mixed"), "{detail}");
+            }
+            other => panic!("expected OutOfMemory, got {other:?}"),
+        }
+        assert!(v.is_empty());
+        // a buffer that fits is zero-filled, and kept when its length is right
+        assert_eq!(allocate_values(&mut v, 3, "single"), Ok(24));
+        assert_eq!(v, vec![0.0; 3]);
+        v[0] = 5.0;
+        assert_eq!(allocate_values(&mut v, 3, "single"), Ok(24));
+        assert_eq!(v[0], 5.0);
+    }
+
+    #[test]
+    fn report_names_the_ordering_and_its_prediction() {
+        let (a, coords) = crate::gallery::grid_3d(6, 6, 6, 3, crate::gallery::Stencil::Point27);
+        for kind in [OrderingKind::Auto, OrderingKind::Amd] {
+            let mut s = CholeskySolver::new(CholeskySettings {
+                ordering: kind,
+                ..Default::default()
+            });
+            s.analyze(&a, Some(&coords)).unwrap();
+            let r = s.report();
+            let stats = s.stats();
+            assert_eq!(r.ordering, stats.ordering);
+            assert_ne!(r.ordering, "auto");
+            let expected = if kind == OrderingKind::Auto { 2 } else { 1 };
+            assert_eq!(r.ordering_candidates.len(), expected);
+            assert_eq!(stats.ordering_candidates.len(), expected);
+            // the prediction of the kept ordering is the exact fill; faer's
+            // stored factor adds the explicit zeros of relaxed supernodes
+            let exact = crate::ordering::factor_nonzeros(&a, Some(s.permutation()));
+            let kept = r
+                .ordering_candidates
+                .iter()
+                .find(|c| c.0 == r.ordering)
+                .unwrap()
+                .1;
+            assert_eq!(kept, exact);
+            assert!(r.factor_nonzeros >= exact);
+            assert!(
+                r.notes[0].starts_with(&format!("ordering {}", kind.name())),
+                "{:?}",
+                r.notes
+            );
+            s.factorize(&a).unwrap();
+            assert_eq!(
+                s.stats().factor_bytes,
+                s.factor.as_ref().unwrap().len_val() * 8
+            );
+        }
     }
 
     #[test]

@@ -96,7 +96,7 @@ use std::time::Instant;
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct LdltSettings {
-    /// Fill-reducing ordering: `"nested_dissection"` (default), `"amd"` or
+    /// Fill-reducing ordering: `"auto"` (default), `"nested_dissection"`, `"amd"` or
     /// `"natural"` (the same analysis as `cholesky`).
     pub ordering: OrderingKind,
     /// Bunch-Kaufman `alpha` in `(0, 1)`: default `(1 + sqrt(17)) / 8`.
@@ -128,7 +128,7 @@ pub const BUNCH_KAUFMAN_ALPHA: f64 = 0.640_388_203_202_207_6;
 impl Default for LdltSettings {
     fn default() -> Self {
         LdltSettings {
-            ordering: OrderingKind::NestedDissection,
+            ordering: OrderingKind::default(),
             pivot_threshold: BUNCH_KAUFMAN_ALPHA,
             tiny_pivot: f64::EPSILON,
             perturbation: f64::EPSILON.sqrt(),
@@ -145,7 +145,7 @@ impl Default for LdltSettings {
 pub const LDLT_PARAMS: &[ParamDoc] = &[
     ParamDoc {
         name: "ordering",
-        doc: "fill-reducing ordering: \"nested_dissection\" (default; geometric with node coordinates), \"amd\", \"natural\" (same analysis as cholesky)",
+        doc: "fill-reducing ordering: \"auto\" (default: nested dissection or AMD, whichever is predicted to cost fewer flops), \"nested_dissection\", \"amd\", \"natural\" (same analysis as cholesky)",
     },
     ParamDoc {
         name: "pivot_threshold",
@@ -795,8 +795,15 @@ impl LinearSolver for LdltSolver {
         self.factored = false;
         let a = crate::supernodal::analyze(self.settings.ordering, matrix, coords)?;
         self.stats.factor_nonzeros = a.factor.nonzeros();
-        self.stats.ordering = self.settings.ordering.name();
+        self.stats.ordering = a.kind.name();
         self.stats.analyze_count += 1;
+        self.report.notes.retain(|n| !n.starts_with("ordering "));
+        self.report.notes.push(a.ordering_note.clone());
+        self.report.ordering_candidates = a
+            .candidates
+            .iter()
+            .map(|(k, e)| (k.name().to_string(), e.nonzeros))
+            .collect();
         self.factor = Some(a.factor);
         self.perm = a.perm;
         self.perm_inv = a.perm_inv;

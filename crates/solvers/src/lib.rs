@@ -6,7 +6,7 @@
 //!
 //! | key | type | what |
 //! |---|---|---|
-//! | `cholesky` | [`CholeskySolver`] | supernodal Cholesky on faer's symbolic analysis and dense kernels, nested-dissection ([`ordering`]) or AMD ordering, double or mixed precision ([`Precision`]), iterative refinement, conditioning warnings |
+//! | `cholesky` | [`CholeskySolver`] | supernodal Cholesky on faer's symbolic analysis and dense kernels, nested-dissection or AMD ordering ([`ordering`]; by default the one with fewer predicted flops), double or mixed precision ([`Precision`]), iterative refinement, conditioning warnings |
 //! | `ldlt` | [`LdltSolver`] | supernodal `L D L^T` for symmetric indefinite (softening) tangents: Bunch-Kaufman 1x1/2x2 pivoting within each panel on the same ordering and symbolic analysis as `cholesky`, inertia (`negative_pivots`) in the report, static perturbation of tiny pivots with iterative refinement |
 //! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi or 3×3 nodal block-Jacobi |
 //!

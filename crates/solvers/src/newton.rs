@@ -709,7 +709,10 @@ impl Work<'_> {
             if switch_to_secant {
                 step.secant = true;
                 self.secant_attempts += 1;
-                tracing::debug!(iteration = it, "no decrease with the consistent tangent: secant tangent from here");
+                tracing::debug!(
+                    iteration = it,
+                    "no decrease with the consistent tangent: secant tangent from here"
+                );
             }
             if s != last_s || switch_to_secant {
                 self.set_trial(s);

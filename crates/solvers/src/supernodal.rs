@@ -171,6 +171,12 @@ pub(crate) struct Analysis {
     pub(crate) factor: PanelFactor,
     /// Seconds of the ordering computation.
     pub(crate) ordering_seconds: f64,
+    /// The ordering kept (for `auto`, the candidate with fewer predicted
+    /// flops), the predicted factor non-zeros of every candidate, and a
+    /// note saying so.
+    pub(crate) kind: OrderingKind,
+    pub(crate) candidates: Vec<(OrderingKind, ordering::FillEstimate)>,
+    pub(crate) ordering_note: String,
 }
 
 /// Ordering `kind` of `matrix` ([`ordering::compute`], with `coords` for
@@ -185,7 +191,14 @@ pub(crate) fn analyze(
 ) -> Result<Analysis, SolverError> {
     let t0 = std::time::Instant::now();
     let n = matrix.n;
-    let perm = ordering::compute(kind, matrix, coords);
+    let choice = ordering::choose(kind, matrix, coords);
+    let ordering_note = choice.note();
+    let ordering::OrderingChoice {
+        perm,
+        kind,
+        candidates,
+        ..
+    } = choice;
     debug_assert!(ordering::is_permutation(&perm, n));
     let ordering_seconds = t0.elapsed().as_secs_f64();
     let perm_inv = ordering::inverse(&perm);
@@ -212,6 +225,9 @@ pub(crate) fn analyze(
         perm_inv,
         factor,
         ordering_seconds,
+        kind,
+        candidates,
+        ordering_note,
     })
 }
 

@@ -163,11 +163,23 @@ fn nested_dissection_is_a_permutation_with_less_fill() {
     assert!(f_graph < natural);
     // faer's own symbolic factor agrees with the ordering module's count
     // (within supernode relaxation, which only adds explicit zeros).
-    let mut s = CholeskySolver::new(Default::default());
+    let mut s = CholeskySolver::new(CholeskySettings {
+        ordering: OrderingKind::NestedDissection,
+        ..Default::default()
+    });
     s.analyze(&a, Some(&coords)).unwrap();
     assert!(s.stats().factor_nonzeros >= f_nd);
     assert!(s.stats().factor_nonzeros < 2 * f_nd);
     assert_eq!(s.permutation(), nd.as_slice());
+    // the default (auto) keeps whichever of the two predicts fewer flops
+    let mut auto = CholeskySolver::new(Default::default());
+    auto.analyze(&a, Some(&coords)).unwrap();
+    let kept = match auto.stats().ordering {
+        "nested_dissection" => &nd,
+        "amd" => &amd,
+        other => panic!("auto kept {other}"),
+    };
+    assert_eq!(auto.permutation(), kept.as_slice());
 }
 
 #[test]
