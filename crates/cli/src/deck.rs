@@ -602,3 +602,208 @@ pub fn deck_steps(deck: &InpDeck, file: &str) -> Result<Vec<DeckStep>> {
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use junta_core::mesh::inp::parse_inp;
+
+    /// Two bricks glued by one COH3D8 with cohesive material `material`
+    /// (the lines after `*MATERIAL, NAME=CZ`) and section data `section`.
+    fn glued(material: &str, section: &str) -> String {
+        format!(
+            "*NODE
+1, 0, 0, 0
+2, 1, 0, 0
+3, 1, 1, 0
+4, 0, 1, 0
+5, 0, 0, 1
+6, 1, 0, 1
+7, 1, 1, 1
+8, 0, 1, 1
+11, 0, 0, 1
+12, 1, 0, 1
+13, 1, 1, 1
+14, 0, 1, 1
+15, 0, 0, 2
+16, 1, 0, 2
+17, 1, 1, 2
+18, 0, 1, 2
+*ELEMENT, TYPE=C3D8, ELSET=ARMS
+1, 1, 2, 3, 4, 5, 6, 7, 8
+2, 11, 12, 13, 14, 15, 16, 17, 18
+*ELEMENT, TYPE=COH3D8, ELSET=GLUE
+3, 5, 6, 7, 8, 11, 12, 13, 14
+*MATERIAL, NAME=STEEL
+*ELASTIC
+210000., 0.3
+*MATERIAL, NAME=CZ
+{material}*SOLID SECTION, ELSET=ARMS, MATERIAL=STEEL
+*COHESIVE SECTION, ELSET=GLUE, MATERIAL=CZ, RESPONSE=TRACTION SEPARATION
+{section}"
+        )
+    }
+
+    fn law_of(text: &str) -> Result<(&'static str, toml::Table, Vec<String>)> {
+        let deck = parse_inp(text, "t.inp").map_err(|e| anyhow!("{e}"))?;
+        let mat = deck.material("CZ").unwrap();
+        let mut notes = Vec::new();
+        let t = section_thickness(&deck, mat, "t.inp")?;
+        let (k, table) = cohesive_law_table(mat, t, period(&deck, 0), "t.inp", &mut notes)?;
+        Ok((k, table, notes))
+    }
+
+    /// The cohesive material of the Abaqus DCB deck maps to exactly the law
+    /// of its twin scene (both written by make_dcb_deck.py from the same
+    /// numbers).
+    #[test]
+    fn dcb_deck_law_equals_scene_law() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/delamination");
+        let text = std::fs::read_to_string(root.join("dcb_abaqus.inp")).unwrap();
+        let (key, table, _) = law_of(&text).unwrap();
+        let scene: toml::Table =
+            toml::from_str(&std::fs::read_to_string(root.join("dcb_h8.toml")).unwrap()).unwrap();
+        let mut expected = scene["laws"]["cz"].as_table().unwrap().clone();
+        assert_eq!(expected.remove("type").unwrap().as_str(), Some(key));
+        // propagation = "bk" is the scene's default
+        let mut table = table;
+        assert_eq!(table.remove("propagation").unwrap().as_str(), Some("bk"));
+        assert_eq!(table, expected);
+    }
+
+    const ELASTIC: &str = "*ELASTIC, TYPE=TRACTION\n1e6, 1e6, 1e6\n";
+
+    #[test]
+    fn damage_options_map_to_law_parameters() {
+        // MAXS, POWER LAW, EXPONENTIAL, stabilization over a period of 2,
+        // constitutive thickness 0.5
+        let text = glued(
+            &format!(
+                "{ELASTIC}*damage initiation, criterion = maxs\n80, 100, 100\n\
+*Damage Evolution, type=ENERGY, softening=EXPONENTIAL, mixed mode behavior=POWER LAW, power=2\n0.969, 1.719, 1.719\n\
+*DAMAGE STABILIZATION\n1e-3\n"
+            ),
+            "0.5\n*STEP\n*STATIC\n0.1, 2.0\n*END STEP\n",
+        );
+        let (key, t, notes) = law_of(&text).unwrap();
+        assert_eq!(key, "exponential");
+        assert_eq!(t["K"].as_float(), Some(2e6));
+        assert_eq!(t["N"].as_float(), Some(80.0));
+        assert_eq!(t["S"].as_float(), Some(100.0));
+        assert_eq!(t["onset"].as_str(), Some("max_stress"));
+        assert_eq!(t["propagation"].as_str(), Some("power_law"));
+        assert_eq!(t["alpha"].as_float(), Some(2.0));
+        assert_eq!(t["viscosity"].as_float(), Some(5e-4));
+        assert!(notes.iter().any(|n| n.contains("EXPONENTIAL")), "{notes:?}");
+        // mode independent: one toughness for all modes
+        let text = glued(
+            &format!("{ELASTIC}*DAMAGE INITIATION, CRITERION=QUADS\n80, 100, 100\n*DAMAGE EVOLUTION, TYPE=ENERGY\n1.5\n"),
+            "\n",
+        );
+        let (key, t, _) = law_of(&text).unwrap();
+        assert_eq!(key, "bilinear");
+        assert_eq!(t["G_Ic"].as_float(), Some(1.5));
+        assert_eq!(t["G_IIc"].as_float(), Some(1.5));
+        assert_eq!(t["K"].as_float(), Some(1e6));
+        // Turon's shear penalty K_s = K (G_Ic/G_IIc)(S/N)^2
+        let ks = 1e6 * (0.969 / 1.719) * (100.0f64 / 80.0).powi(2);
+        let text = glued(
+            &format!("*ELASTIC, TYPE=TRACTION\n1e6, {ks:e}, {ks:e}\n*DAMAGE INITIATION, CRITERION=QUADS\n80, 100, 100\n*DAMAGE EVOLUTION, TYPE=ENERGY, MIXED MODE BEHAVIOR=BK, POWER=2.284\n0.969, 1.719, 1.719\n"),
+            "\n",
+        );
+        let (_, t, notes) = law_of(&text).unwrap();
+        assert_eq!(t["shear_penalty"].as_str(), Some("turon2018"));
+        assert!(notes.iter().any(|n| n.contains("turon2018")), "{notes:?}");
+        // no damage: linear penalty, divided by the thickness
+        let (key, t, _) = law_of(&glued(ELASTIC, "2.0\n")).unwrap();
+        assert_eq!(key, "linear_penalty");
+        assert_eq!(t["d3"].as_float(), Some(5e5));
+    }
+
+    #[test]
+    fn unequal_shear_data_is_an_error_naming_the_line() {
+        let damage = "*DAMAGE INITIATION, CRITERION=QUADS\n80, 100, 100\n*DAMAGE EVOLUTION, TYPE=ENERGY, MIXED MODE BEHAVIOR=BK, POWER=2\n0.969, 1.719, 1.719\n";
+        let base = glued(&format!("{ELASTIC}{damage}"), "\n");
+        let line_of = |text: &str, pat: &str| text.lines().position(|l| l == pat).unwrap() + 1;
+        for (from, to, what) in [
+            ("1e6, 1e6, 1e6", "1e6, 1e6, 2e6", "K_tt"),
+            ("1e6, 1e6, 1e6", "1e6, 3e6, 3e6", "K_ss"),
+            ("80, 100, 100", "80, 100, 90", "t_t^0"),
+            ("0.969, 1.719, 1.719", "0.969, 1.719, 2.0", "G_IIIc"),
+        ] {
+            let text = base.replace(from, to);
+            let e = law_of(&text).unwrap_err().to_string();
+            let line = line_of(&text, to);
+            assert!(
+                e.contains(&format!("t.inp:{line}:")) && e.contains(what),
+                "{e}"
+            );
+        }
+    }
+
+    #[test]
+    fn program_of_steps() {
+        let deck_text = |steps: &str| {
+            glued(
+                &format!("{ELASTIC}*DAMAGE INITIATION, CRITERION=QUADS\n80, 100, 100\n*DAMAGE EVOLUTION, TYPE=ENERGY\n1.5\n"),
+                &format!("\n*NSET, NSET=TOP\n15, 16, 17, 18\n*BOUNDARY\n1, 1, 3\n2, 1, 3\n3, 1, 3\n4, 1, 3\n{steps}"),
+            )
+        };
+        let program = |steps: &str| -> Result<DeckIncremental> {
+            let deck = parse_inp(&deck_text(steps), "t.inp").map_err(|e| anyhow!("{e}"))?;
+            let s = deck_steps(&deck, "t.inp")?;
+            incremental_program(&deck, &s, "t.inp", &mut Vec::new())
+        };
+        let one =
+            "*STEP, INC=7\n*STATIC\n0.1, 2.0, 0.001, 0.5\n*BOUNDARY\nTOP, 3, 3, 0.2\n*END STEP\n";
+        let p = program(one).unwrap();
+        assert_eq!(p.analysis.kind, "static");
+        assert_eq!(p.analysis.steps, vec![1.0]);
+        let n = &p.analysis.newton;
+        assert_eq!(
+            (n.initial_increment, n.min_increment, n.max_increment),
+            (0.05, 0.0005, 0.25)
+        );
+        assert_eq!(
+            p.increment_limits,
+            vec![Some((
+                7,
+                deck_text(one)
+                    .lines()
+                    .position(|l| l.starts_with("*STEP"))
+                    .unwrap()
+                    + 1
+            ))]
+        );
+        // a second step that unloads to 40 %: program [1, 0.4]
+        let two = format!(
+            "{one}*STEP\n*STATIC\n0.1, 2.0, 0.001, 0.5\n*BOUNDARY\nTOP, 3, 3, 0.08\n*END STEP\n"
+        );
+        let p = program(&two).unwrap();
+        assert_eq!(p.analysis.steps.len(), 2);
+        assert!((p.analysis.steps[1] - 0.4).abs() < 1e-12);
+        // a second step that loads another dof: not a proportional program
+        let other =
+            format!("{one}*STEP\n*STATIC\n0.1, 2.0\n*BOUNDARY\nTOP, 1, 1, 0.1\n*END STEP\n");
+        let e = program(&other).unwrap_err().to_string();
+        assert!(e.contains("not a multiple of the first step"), "{e}");
+        // other increment fractions
+        let frac = format!(
+            "{one}*STEP\n*STATIC\n0.2, 2.0, 0.001, 0.5\n*BOUNDARY\nTOP, 3, 3, 0.4\n*END STEP\n"
+        );
+        let e = program(&frac).unwrap_err().to_string();
+        assert!(e.contains("same fractions"), "{e}");
+        // DIRECT: fixed increments
+        let p = program(&one.replace("*STATIC", "*STATIC, DIRECT")).unwrap();
+        let n = &p.analysis.newton;
+        assert_eq!(
+            (
+                n.initial_increment,
+                n.min_increment,
+                n.max_increment,
+                n.growth
+            ),
+            (0.05, 0.05, 0.05, 1.0)
+        );
+    }
+}
