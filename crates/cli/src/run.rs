@@ -570,6 +570,13 @@ pub fn check(input: &Path) -> Result<()> {
     for (k, n) in output::element_counts(m) {
         println!("  elements {k}: {n}");
     }
+    if p.analysis.kind == "static" {
+        let n = &p.analysis.newton;
+        println!(
+            "  analysis: incremental static, load program {:?}, increments (fractions of a step) initial {}, min {}, max {}",
+            p.analysis.steps, n.initial_increment, n.min_increment, n.max_increment
+        );
+    }
     for (k, st) in p.deck_steps.iter().enumerate() {
         println!(
             "  step {} `{}` (line {}): {} constrained dofs, {} loaded dofs",

@@ -56,6 +56,7 @@ fn abaqus_dcb_deck_equals_toml_scene() {
     let deck = run_incremental(&ex.join("dcb_abaqus.inp"), &dir.path().join("deck"), 30);
     let scene = run_incremental(&ex.join("dcb_h8.toml"), &dir.path().join("scene"), 30);
     assert_eq!(deck["analysis"], "static");
+    assert_eq!(deck["status"], scene["status"]);
     assert!(
         deck["status"]
             .as_str()

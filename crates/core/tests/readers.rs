@@ -661,7 +661,7 @@ fn cohesive_damage_errors_name_file_and_line() {
         &["no *COHESIVE SECTION uses it"],
     );
     // damage on an isotropic material
-    let text = TWO_BLOCKS_WITH_COHESIVE.replace("*DENSITY\n7.85e-9\n", &format!("{DAMAGE}"));
+    let text = TWO_BLOCKS_WITH_COHESIVE.replace("*DENSITY\n7.85e-9\n", DAMAGE);
     check(
         &text,
         line_of(&text, "*MATERIAL, NAME=Steel"),
