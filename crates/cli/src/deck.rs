@@ -1,9 +1,65 @@
 //! Abaqus/CalculiX decks (`.inp`) to a [`Model`]: the reader lives in
 //! `junta_core::mesh::inp`; here its materials become registry materials
 //! (`*ELASTIC` isotropic -> `isotropic`, ENGINEERING CONSTANTS ->
-//! `orthotropic`, TRACTION -> `linear_penalty` law for COH3D8), its
+//! `orthotropic`), its cohesive materials interface laws (below), its
 //! `*BOUNDARY` lines constraints and its `*CLOAD` lines nodal forces.
 //! Reactions are reported for every `*BOUNDARY` target.
+//!
+//! # Cohesive materials
+//!
+//! A `COH3D8` block takes the material of its `*COHESIVE SECTION,
+//! RESPONSE=TRACTION SEPARATION`. Abaqus divides the separation by the
+//! section's constitutive thickness `T0` (data line; 1 when not given, the
+//! usual choice for zero-thickness elements) to get the nominal strain, so
+//! the traction is `(K / T0) delta`: Junta's penalties are `K_nn / T0` etc.
+//! (with `T0 = 1`, traction = K * separation). Strengths (nominal
+//! stresses) and fracture energies are used as given.
+//!
+//! - `*ELASTIC, TYPE=TRACTION` alone -> `linear_penalty` with `d3 = K_nn /
+//!   T0`, `d1 = K_ss / T0`, `d2 = K_tt / T0`.
+//! - With `*DAMAGE INITIATION` + `*DAMAGE EVOLUTION, TYPE=ENERGY` ->
+//!   `bilinear` (`SOFTENING=LINEAR`, the default) or `exponential`
+//!   (`SOFTENING=EXPONENTIAL`; Junta's exponential shape has the same onset
+//!   and fracture energy, its curve is not Abaqus' energy-defined one, so
+//!   only the linear case matches Abaqus increment for increment), with
+//!   `K = K_nn / T0`, `N = t_n^0`, `S = t_s^0`, `G_Ic`, `G_IIc`;
+//!   `CRITERION=QUADS` -> `onset = "quadratic"`, `MAXS` -> `"max_stress"`;
+//!   `MIXED MODE BEHAVIOR=BK, POWER=eta` -> `propagation = "bk"`, `eta`;
+//!   `POWER LAW, POWER=alpha` -> `"power_law"`, `alpha`; `MODE INDEPENDENT`
+//!   -> `bk` with `G_IIc = G_Ic` (then `G_c` does not depend on the mode).
+//!   Junta's laws have one shear penalty, strength and toughness: `K_ss =
+//!   K_tt`, `t_s^0 = t_t^0` and `G_IIc = G_IIIc` are required (an error
+//!   names the line otherwise); `K_ss = K_nn` gives `shear_penalty =
+//!   "equal"`, `K_ss = K_nn (G_Ic/G_IIc)(S/N)^2` (to 1e-6) gives
+//!   `"turon2018"` (with a note: Abaqus' effective separation with unequal
+//!   penalties is not Turon's energy-based one, so mixed-mode curves differ),
+//!   any other `K_ss` is an error.
+//! - `*DAMAGE STABILIZATION` `mu` -> `viscosity = mu / T` (Abaqus' viscosity
+//!   is in step-time units; Junta's in load-factor units, and the load
+//!   factor runs 0 -> 1 over the step period `T`).
+//!
+//! # Incremental runs
+//!
+//! A deck whose model has a softening law (a material with damage) runs as
+//! an incremental static analysis (`junta_solvers::newton`), whatever
+//! NLGEOM says (Junta is small-strain: NLGEOM is noted and ignored). Each
+//! `*STEP` is one step of the proportional load program: Abaqus ramps the
+//! loads and prescribed displacements linearly over the step, and the load
+//! factor runs over the step as `t / T`, so the first step goes 0 -> 1 with
+//! the first step's loads as the pattern; a later step must prescribe the
+//! same dofs with values that are a multiple `c` of the first step's (the
+//! program is then `[1, c, ...]`), anything else is an error (the driver
+//! scales one load pattern). `*STATIC` data `dt0, T, dtmin, dtmax` give the
+//! Newton settings as fractions of the period: `initial_increment = dt0 /
+//! T` (default 1, Abaqus' default dt0 = T), `max_increment = dtmax / T`
+//! (default 1), `min_increment = dtmin / T` (default `min(dt0 / T, 1e-5)`,
+//! Abaqus' default); `DIRECT` fixes the increment at `dt0` (no growth, no
+//! cut-back). The settings are global in Junta: steps with other fractions
+//! are an error. `*STEP, INC=n` stops the run after `n` increments of that
+//! step (status in summary.json; Abaqus' default of 100 when INC is not
+//! given is not applied, a note says so).
+//!
+//! # Linear decks
 //!
 //! Several `*STEP`s are several linear load cases, with CalculiX's rules
 //! (checked against `ccx` 2.20 on a 4-step deck):
@@ -15,11 +71,17 @@
 //!   `*BOUNDARY` values on one dof within a step are an error;
 //! - each step is solved from the unloaded state (linear analysis: the
 //!   result of a step is the response to its loads, not an increment).
+//!
+//! (The same rules give each step's loads in an incremental run.)
 
-use anyhow::{anyhow, Result};
-use junta_core::mesh::inp::{parse_inp, InpDeck, InpMaterialKind};
+use crate::scene::{AnalysisSpec, CurveSpec};
+use anyhow::{anyhow, bail, Result};
+use junta_core::mesh::inp::{
+    parse_inp, InpDeck, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening,
+};
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
 use junta_core::Model;
+use junta_solvers::newton::NewtonSettings;
 use std::path::Path;
 
 fn table(pairs: &[(&str, f64)]) -> toml::Table {
@@ -29,15 +91,172 @@ fn table(pairs: &[(&str, f64)]) -> toml::Table {
         .collect()
 }
 
+/// A deck turned into a model, with what `junta run` needs besides.
+pub struct DeckModel {
+    /// The model, with the loads of the first step.
+    pub model: Model,
+    /// The reader's notes and the builder's.
+    pub notes: Vec<String>,
+    /// Every step's load case.
+    pub steps: Vec<DeckStep>,
+    /// First line of `*HEADING`.
+    pub title: String,
+    /// The incremental program of a deck with a softening law.
+    pub incremental: Option<DeckIncremental>,
+    /// `** junta: curve` directive.
+    pub curve: Option<CurveSpec>,
+    /// `** junta: output every=N` directive.
+    pub every: Option<usize>,
+}
+
+/// The incremental analysis of a deck (see the module docs).
+#[derive(Debug, Clone)]
+pub struct DeckIncremental {
+    /// `type = "static"`, the load program and the Newton settings.
+    pub analysis: AnalysisSpec,
+    /// Per program step: `*STEP, INC=n` and the line of that `*STEP`.
+    pub increment_limits: Vec<Option<(usize, usize)>>,
+}
+
+/// The interface law of a cohesive material: registry key and parameters
+/// (see the module docs); `thickness` is the constitutive thickness `T0`,
+/// `period` the step period `T` (for the viscosity).
+pub fn cohesive_law_table(
+    mat: &InpMaterial,
+    thickness: f64,
+    period: f64,
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Result<(&'static str, toml::Table)> {
+    let InpMaterialKind::Traction([enn, ess, ett]) = mat.kind else {
+        bail!(
+            "{file}:{}: *MATERIAL, NAME={}: cohesive elements need *ELASTIC, TYPE=TRACTION",
+            mat.line,
+            mat.name
+        );
+    };
+    let (kn, ks, kt) = (enn / thickness, ess / thickness, ett / thickness);
+    let (Some(init), Some(evo)) = (&mat.damage_initiation, &mat.damage_evolution) else {
+        return Ok((
+            "linear_penalty",
+            table(&[("d1", ks), ("d2", kt), ("d3", kn)]),
+        ));
+    };
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * a.abs().max(b.abs());
+    let el = mat.elastic_line;
+    if !close(ess, ett) {
+        bail!(
+            "{file}:{el}: *ELASTIC, TYPE=TRACTION: K_ss = {ess} and K_tt = {ett} differ; Junta's damage laws have one shear penalty: give K_ss = K_tt"
+        );
+    }
+    let [tn, ts, tt] = init.strengths;
+    if !close(ts, tt) {
+        bail!(
+            "{file}:{}: *DAMAGE INITIATION: t_s^0 = {ts} and t_t^0 = {tt} differ; Junta's damage laws have one shear strength: give t_s^0 = t_t^0",
+            init.data_line
+        );
+    }
+    let [g1, g2, g3] = evo.toughness;
+    if !close(g2, g3) {
+        bail!(
+            "{file}:{}: *DAMAGE EVOLUTION: G_IIc = {g2} and G_IIIc = {g3} differ; Junta's damage laws have one shear toughness: give G_IIc = G_IIIc",
+            evo.data_line
+        );
+    }
+    let mut t = table(&[("K", kn), ("N", tn), ("S", ts), ("G_Ic", g1), ("G_IIc", g2)]);
+    let turon = kn * (g1 / g2) * (ts / tn).powi(2);
+    if close(ks, kn) {
+        // shear_penalty = "equal" is the default
+    } else if close(ks, turon) {
+        t.insert("shear_penalty".into(), "turon2018".into());
+        notes.push(format!(
+            "{file}:{el}: K_ss = K_nn (G_Ic/G_IIc)(t_s^0/t_n^0)^2: shear_penalty = \"turon2018\"; Junta's equivalent jump with two penalties is Turon's energy-based one, Abaqus' effective separation is geometric, so mixed-mode curves can differ from Abaqus'"
+        ));
+    } else {
+        bail!(
+            "{file}:{el}: *ELASTIC, TYPE=TRACTION: K_ss = {ess} is neither K_nn = {enn} nor Turon's K_nn (G_Ic/G_IIc)(t_s^0/t_n^0)^2 = {:.6e}; Junta's damage laws take K_s = K_n or Turon's rule",
+            turon * thickness
+        );
+    }
+    match evo.mixed_mode {
+        InpMixedMode::Bk { power } => {
+            t.insert("propagation".into(), "bk".into());
+            t.insert("eta".into(), power.into());
+        }
+        InpMixedMode::PowerLaw { power } => {
+            t.insert("propagation".into(), "power_law".into());
+            t.insert("alpha".into(), power.into());
+        }
+        InpMixedMode::ModeIndependent => {
+            t.insert("propagation".into(), "bk".into());
+            t.insert("eta".into(), 1.0.into());
+        }
+    }
+    let onset = match init.criterion {
+        InpOnset::Quads => "quadratic",
+        InpOnset::Maxs => "max_stress",
+    };
+    t.insert("onset".into(), onset.into());
+    if let Some(st) = &mat.damage_stabilization {
+        if st.viscosity > 0.0 {
+            t.insert("viscosity".into(), (st.viscosity / period).into());
+        }
+    }
+    let key = match evo.softening {
+        InpSoftening::Linear => "bilinear",
+        InpSoftening::Exponential => {
+            notes.push(format!(
+                "{file}:{}: SOFTENING=EXPONENTIAL -> law `exponential`: same onset and fracture energy as Abaqus, but Junta's exponential curve (traction decaying exponentially after onset) is not Abaqus' energy-defined one",
+                evo.line
+            ));
+            "exponential"
+        }
+    };
+    Ok((key, t))
+}
+
+/// The constitutive thickness of the cohesive sections that use `mat`
+/// (1 when not given); sections with different thicknesses are an error.
+fn section_thickness(deck: &InpDeck, mat: &InpMaterial, file: &str) -> Result<f64> {
+    let mut out: Option<(f64, usize)> = None;
+    for c in deck
+        .cohesive_sections
+        .iter()
+        .filter(|c| c.material.eq_ignore_ascii_case(&mat.name))
+    {
+        let t = c.thickness.unwrap_or(1.0);
+        match out {
+            Some((t0, l0)) if t0 != t => bail!(
+                "{file}:{}: *COHESIVE SECTION: material `{}` is used with constitutive thickness {t} here and {t0} at line {l0}; give each thickness its own material",
+                c.line,
+                mat.name
+            ),
+            _ => out = Some((t, c.line)),
+        }
+    }
+    Ok(out.map_or(1.0, |o| o.0))
+}
+
+/// Step period `T` of step `k` (1 when not given).
+fn period(deck: &InpDeck, k: usize) -> f64 {
+    deck.steps
+        .get(k)
+        .and_then(|s| s.static_procedure.as_ref())
+        .and_then(|p| p.period)
+        .unwrap_or(1.0)
+}
+
 /// Read a deck and build the model (with the boundary conditions and loads
-/// of its first step); returns the reader's notes and every step's load
-/// case too.
-pub fn build_model(path: &Path) -> Result<(Model, Vec<String>, Vec<DeckStep>)> {
+/// of its first step), every step's load case, and for a deck with a
+/// softening law its incremental program.
+pub fn build_model(path: &Path) -> Result<DeckModel> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| anyhow!("cannot read deck {}: {e}", path.display()))?;
     let file = path.display().to_string();
     let mut deck = parse_inp(&text, &file).map_err(|e| anyhow!("{e}"))?;
+    let mut notes = deck.notes.clone();
     let mut elements = Vec::new();
+    let mut softening = false;
     for b in &deck.mesh.blocks {
         let mat = deck.material(&b.material).ok_or_else(|| {
             anyhow!(
@@ -64,10 +283,14 @@ pub fn build_model(path: &Path) -> Result<(Model, Vec<String>, Vec<DeckStep>)> {
                 let m = registry::find::<MaterialEntry>("orthotropic")?;
                 build.material = Some((m.build)(&table(&pairs)).map_err(|e| anyhow!("{at}: {e}"))?);
             }
-            (InpMaterialKind::Traction([enn, ess, ett]), true) => {
-                let l = registry::find::<LawEntry>("linear_penalty")?;
-                let t = table(&[("d1", *ess), ("d2", *ett), ("d3", *enn)]);
-                build.law = Some((l.build)(&t).map_err(|e| anyhow!("{at}: {e}"))?);
+            (InpMaterialKind::Traction(_), true) => {
+                let thickness = section_thickness(&deck, mat, &file)?;
+                let (key, t) = cohesive_law_table(mat, thickness, period(&deck, 0), &file, &mut notes)?;
+                softening |= key != "linear_penalty";
+                let l = registry::find::<LawEntry>(key)?;
+                let law = (l.build)(&t).map_err(|e| anyhow!("{at}: law `{key}`: {e}"))?;
+                notes.extend(law.warnings().into_iter().map(|w| format!("{at}: {w}")));
+                build.law = Some(law);
             }
             (_, true) => {
                 return Err(anyhow!(
@@ -86,6 +309,11 @@ pub fn build_model(path: &Path) -> Result<(Model, Vec<String>, Vec<DeckStep>)> {
             .push((entry.build)(&build).map_err(|e| anyhow!("{file}: block `{}`: {e}", b.name))?);
     }
     let steps = deck_steps(&deck, &file)?;
+    let incremental = if softening {
+        Some(incremental_program(&deck, &steps, &file, &mut notes)?)
+    } else {
+        None
+    };
     let mut reaction_sets: Vec<String> = Vec::new();
     for bc in &deck.boundaries {
         let name = match deck
@@ -105,8 +333,22 @@ pub fn build_model(path: &Path) -> Result<(Model, Vec<String>, Vec<DeckStep>)> {
             reaction_sets.push(name);
         }
     }
-    let notes = deck.notes.clone();
     let first = &steps[0];
+    let curve = deck.curve.as_ref().map(|c| CurveSpec {
+        reaction_set: c.reaction_set.clone(),
+        reaction_component: c.reaction_component.clone(),
+        point_set: c.point_set.clone(),
+        point_component: c.point_component.clone(),
+        relative_to: c.relative_to.clone(),
+    });
+    if let (Some(c), None) = (&deck.curve, &incremental) {
+        notes.push(format!(
+            "{file}:{}: the curve directive is used by incremental runs only (a deck with a softening cohesive law); this deck runs linear",
+            c.line
+        ));
+    }
+    let title = deck.heading.lines().next().unwrap_or("").trim().to_string();
+    let every = deck.every;
     let model = Model::new(
         deck.mesh,
         elements,
@@ -115,7 +357,165 @@ pub fn build_model(path: &Path) -> Result<(Model, Vec<String>, Vec<DeckStep>)> {
         reaction_sets,
     )
     .map_err(|e| anyhow!("{file}: {e}"))?;
-    Ok((model, notes, steps))
+    Ok(DeckModel {
+        model,
+        notes,
+        steps,
+        title,
+        incremental,
+        curve,
+        every,
+    })
+}
+
+/// `c` with `s = c * pattern` (same constrained dofs, values and forces in
+/// proportion, to 1e-12 of the largest), if any.
+fn proportional(pattern: &DeckStep, s: &DeckStep) -> Option<f64> {
+    if pattern.constraints.len() != s.constraints.len()
+        || pattern
+            .constraints
+            .iter()
+            .zip(&s.constraints)
+            .any(|(a, b)| a.0 != b.0)
+    {
+        return None;
+    }
+    let p: Vec<f64> = pattern
+        .constraints
+        .iter()
+        .map(|c| c.1)
+        .chain(pattern.f_ext.iter().copied())
+        .collect();
+    let v: Vec<f64> = s
+        .constraints
+        .iter()
+        .map(|c| c.1)
+        .chain(s.f_ext.iter().copied())
+        .collect();
+    let (imax, pmax) = p
+        .iter()
+        .enumerate()
+        .map(|(i, x)| (i, x.abs()))
+        .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+    if pmax == 0.0 {
+        return None;
+    }
+    let c = v[imax] / p[imax];
+    let scale = pmax.max(v.iter().fold(0.0f64, |m, x| m.max(x.abs())));
+    p.iter()
+        .zip(&v)
+        .all(|(a, b)| (b - c * a).abs() <= 1e-12 * scale)
+        .then_some(c)
+}
+
+/// The load program and Newton settings of a deck with a softening law
+/// (module docs).
+fn incremental_program(
+    deck: &InpDeck,
+    steps: &[DeckStep],
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Result<DeckIncremental> {
+    let mut program = Vec::with_capacity(steps.len());
+    let mut limits = Vec::with_capacity(steps.len());
+    let mut settings: Option<(NewtonSettings, usize)> = None;
+    for (k, s) in steps.iter().enumerate() {
+        let c = if k == 0 {
+            if steps[0].constraints.iter().all(|c| c.1 == 0.0)
+                && steps[0].f_ext.iter().all(|f| *f == 0.0)
+            {
+                bail!(
+                    "{file}:{}: {}: nothing loads the model (no *CLOAD, no non-zero *BOUNDARY): the incremental run of a softening deck scales the first step's loads",
+                    s.line,
+                    s.name
+                );
+            }
+            1.0
+        } else {
+            proportional(&steps[0], s).ok_or_else(|| {
+                anyhow!(
+                    "{file}:{}: {}: its loads and prescribed displacements are not a multiple of the first step's; Junta's incremental runs scale one load pattern over the steps (a proportional program), so multi-step softening decks must keep the same loaded dofs with proportional values (or be split into several decks)",
+                    s.line,
+                    s.name
+                )
+            })?
+        };
+        program.push(c);
+        let step = deck.steps.get(k);
+        if step.is_some_and(|st| st.nlgeom) {
+            notes.push(format!(
+                "{file}:{}: NLGEOM ignored: Junta's elements are small-strain",
+                s.line
+            ));
+        }
+        limits.push(step.and_then(|st| st.max_increments.map(|n| (n, st.line))));
+        if step.is_some_and(|st| st.max_increments.is_none()) {
+            notes.push(format!(
+                "{file}:{}: no INC= on *STEP: Abaqus would stop this step after 100 increments; Junta does not limit it",
+                s.line
+            ));
+        }
+        let proc = step.and_then(|st| st.static_procedure.as_ref());
+        let t = proc.and_then(|p| p.period).unwrap_or(1.0);
+        let pline = proc.map_or(s.line, |p| p.line);
+        if t <= 0.0 {
+            bail!("{file}:{pline}: *STATIC: the time period {t} must be positive");
+        }
+        let dt0 = (proc.and_then(|p| p.initial_increment).unwrap_or(t) / t).min(1.0);
+        let mut n = NewtonSettings {
+            initial_increment: dt0,
+            max_increment: (proc.and_then(|p| p.max_increment).unwrap_or(t) / t).min(1.0),
+            min_increment: proc
+                .and_then(|p| p.min_increment)
+                .map_or(dt0.min(1e-5), |m| m / t),
+            ..NewtonSettings::default()
+        };
+        if proc.is_some_and(|p| p.direct) {
+            n.max_increment = dt0;
+            n.min_increment = dt0;
+            n.growth = 1.0;
+        }
+        if !(n.initial_increment > 0.0 && n.max_increment > 0.0 && n.min_increment > 0.0) {
+            bail!("{file}:{pline}: *STATIC: increments must be positive (data line `initial increment, time period, minimum increment, maximum increment`)");
+        }
+        if n.min_increment > n.initial_increment.min(n.max_increment) {
+            bail!("{file}:{pline}: *STATIC: the minimum increment exceeds the initial or the maximum increment");
+        }
+        match &settings {
+            None => settings = Some((n, pline)),
+            Some((first, l)) => {
+                if first.initial_increment != n.initial_increment
+                    || first.max_increment != n.max_increment
+                    || first.min_increment != n.min_increment
+                    || first.growth != n.growth
+                {
+                    bail!(
+                        "{file}:{pline}: *STATIC: the increments of this step, as fractions of its period, differ from those of the *STATIC at line {l}; Junta's Newton settings are the same for every step: give every step the same fractions"
+                    );
+                }
+            }
+        }
+    }
+    let viscous = deck.materials.iter().any(|m| {
+        m.damage_stabilization
+            .as_ref()
+            .is_some_and(|s| s.viscosity > 0.0)
+    });
+    if viscous && (1..steps.len()).any(|k| period(deck, k) != period(deck, 0)) {
+        bail!(
+            "{file}: *DAMAGE STABILIZATION with steps of different periods: Junta's viscosity is in load-factor units, one value per law; give the steps the same period"
+        );
+    }
+    let (newton, _) = settings.expect("at least one step");
+    Ok(DeckIncremental {
+        analysis: AnalysisSpec {
+            kind: "static".into(),
+            steps: program,
+            stop_when_separated: false,
+            newton,
+        },
+        increment_limits: limits,
+    })
 }
 
 /// The boundary conditions and loads in force in one step of a deck.
@@ -201,4 +601,209 @@ pub fn deck_steps(deck: &InpDeck, file: &str) -> Result<Vec<DeckStep>> {
         });
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use junta_core::mesh::inp::parse_inp;
+
+    /// Two bricks glued by one COH3D8 with cohesive material `material`
+    /// (the lines after `*MATERIAL, NAME=CZ`) and section data `section`.
+    fn glued(material: &str, section: &str) -> String {
+        format!(
+            "*NODE
+1, 0, 0, 0
+2, 1, 0, 0
+3, 1, 1, 0
+4, 0, 1, 0
+5, 0, 0, 1
+6, 1, 0, 1
+7, 1, 1, 1
+8, 0, 1, 1
+11, 0, 0, 1
+12, 1, 0, 1
+13, 1, 1, 1
+14, 0, 1, 1
+15, 0, 0, 2
+16, 1, 0, 2
+17, 1, 1, 2
+18, 0, 1, 2
+*ELEMENT, TYPE=C3D8, ELSET=ARMS
+1, 1, 2, 3, 4, 5, 6, 7, 8
+2, 11, 12, 13, 14, 15, 16, 17, 18
+*ELEMENT, TYPE=COH3D8, ELSET=GLUE
+3, 5, 6, 7, 8, 11, 12, 13, 14
+*MATERIAL, NAME=STEEL
+*ELASTIC
+210000., 0.3
+*MATERIAL, NAME=CZ
+{material}*SOLID SECTION, ELSET=ARMS, MATERIAL=STEEL
+*COHESIVE SECTION, ELSET=GLUE, MATERIAL=CZ, RESPONSE=TRACTION SEPARATION
+{section}"
+        )
+    }
+
+    fn law_of(text: &str) -> Result<(&'static str, toml::Table, Vec<String>)> {
+        let deck = parse_inp(text, "t.inp").map_err(|e| anyhow!("{e}"))?;
+        let mat = deck.material("CZ").unwrap();
+        let mut notes = Vec::new();
+        let t = section_thickness(&deck, mat, "t.inp")?;
+        let (k, table) = cohesive_law_table(mat, t, period(&deck, 0), "t.inp", &mut notes)?;
+        Ok((k, table, notes))
+    }
+
+    /// The cohesive material of the Abaqus DCB deck maps to exactly the law
+    /// of its twin scene (both written by make_dcb_deck.py from the same
+    /// numbers).
+    #[test]
+    fn dcb_deck_law_equals_scene_law() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/delamination");
+        let text = std::fs::read_to_string(root.join("dcb_abaqus.inp")).unwrap();
+        let (key, table, _) = law_of(&text).unwrap();
+        let scene: toml::Table =
+            toml::from_str(&std::fs::read_to_string(root.join("dcb_h8.toml")).unwrap()).unwrap();
+        let mut expected = scene["laws"]["cz"].as_table().unwrap().clone();
+        assert_eq!(expected.remove("type").unwrap().as_str(), Some(key));
+        // propagation = "bk" is the scene's default
+        let mut table = table;
+        assert_eq!(table.remove("propagation").unwrap().as_str(), Some("bk"));
+        assert_eq!(table, expected);
+    }
+
+    const ELASTIC: &str = "*ELASTIC, TYPE=TRACTION\n1e6, 1e6, 1e6\n";
+
+    #[test]
+    fn damage_options_map_to_law_parameters() {
+        // MAXS, POWER LAW, EXPONENTIAL, stabilization over a period of 2,
+        // constitutive thickness 0.5
+        let text = glued(
+            &format!(
+                "{ELASTIC}*damage initiation, criterion = maxs\n80, 100, 100\n\
+*Damage Evolution, type=ENERGY, softening=EXPONENTIAL, mixed mode behavior=POWER LAW, power=2\n0.969, 1.719, 1.719\n\
+*DAMAGE STABILIZATION\n1e-3\n"
+            ),
+            "0.5\n*STEP\n*STATIC\n0.1, 2.0\n*END STEP\n",
+        );
+        let (key, t, notes) = law_of(&text).unwrap();
+        assert_eq!(key, "exponential");
+        assert_eq!(t["K"].as_float(), Some(2e6));
+        assert_eq!(t["N"].as_float(), Some(80.0));
+        assert_eq!(t["S"].as_float(), Some(100.0));
+        assert_eq!(t["onset"].as_str(), Some("max_stress"));
+        assert_eq!(t["propagation"].as_str(), Some("power_law"));
+        assert_eq!(t["alpha"].as_float(), Some(2.0));
+        assert_eq!(t["viscosity"].as_float(), Some(5e-4));
+        assert!(notes.iter().any(|n| n.contains("EXPONENTIAL")), "{notes:?}");
+        // mode independent: one toughness for all modes
+        let text = glued(
+            &format!("{ELASTIC}*DAMAGE INITIATION, CRITERION=QUADS\n80, 100, 100\n*DAMAGE EVOLUTION, TYPE=ENERGY\n1.5\n"),
+            "\n",
+        );
+        let (key, t, _) = law_of(&text).unwrap();
+        assert_eq!(key, "bilinear");
+        assert_eq!(t["G_Ic"].as_float(), Some(1.5));
+        assert_eq!(t["G_IIc"].as_float(), Some(1.5));
+        assert_eq!(t["K"].as_float(), Some(1e6));
+        // Turon's shear penalty K_s = K (G_Ic/G_IIc)(S/N)^2
+        let ks = 1e6 * (0.969 / 1.719) * (100.0f64 / 80.0).powi(2);
+        let text = glued(
+            &format!("*ELASTIC, TYPE=TRACTION\n1e6, {ks:e}, {ks:e}\n*DAMAGE INITIATION, CRITERION=QUADS\n80, 100, 100\n*DAMAGE EVOLUTION, TYPE=ENERGY, MIXED MODE BEHAVIOR=BK, POWER=2.284\n0.969, 1.719, 1.719\n"),
+            "\n",
+        );
+        let (_, t, notes) = law_of(&text).unwrap();
+        assert_eq!(t["shear_penalty"].as_str(), Some("turon2018"));
+        assert!(notes.iter().any(|n| n.contains("turon2018")), "{notes:?}");
+        // no damage: linear penalty, divided by the thickness
+        let (key, t, _) = law_of(&glued(ELASTIC, "2.0\n")).unwrap();
+        assert_eq!(key, "linear_penalty");
+        assert_eq!(t["d3"].as_float(), Some(5e5));
+    }
+
+    #[test]
+    fn unequal_shear_data_is_an_error_naming_the_line() {
+        let damage = "*DAMAGE INITIATION, CRITERION=QUADS\n80, 100, 100\n*DAMAGE EVOLUTION, TYPE=ENERGY, MIXED MODE BEHAVIOR=BK, POWER=2\n0.969, 1.719, 1.719\n";
+        let base = glued(&format!("{ELASTIC}{damage}"), "\n");
+        let line_of = |text: &str, pat: &str| text.lines().position(|l| l == pat).unwrap() + 1;
+        for (from, to, what) in [
+            ("1e6, 1e6, 1e6", "1e6, 1e6, 2e6", "K_tt"),
+            ("1e6, 1e6, 1e6", "1e6, 3e6, 3e6", "K_ss"),
+            ("80, 100, 100", "80, 100, 90", "t_t^0"),
+            ("0.969, 1.719, 1.719", "0.969, 1.719, 2.0", "G_IIIc"),
+        ] {
+            let text = base.replace(from, to);
+            let e = law_of(&text).unwrap_err().to_string();
+            let line = line_of(&text, to);
+            assert!(
+                e.contains(&format!("t.inp:{line}:")) && e.contains(what),
+                "{e}"
+            );
+        }
+    }
+
+    #[test]
+    fn program_of_steps() {
+        let deck_text = |steps: &str| {
+            glued(
+                &format!("{ELASTIC}*DAMAGE INITIATION, CRITERION=QUADS\n80, 100, 100\n*DAMAGE EVOLUTION, TYPE=ENERGY\n1.5\n"),
+                &format!("\n*NSET, NSET=TOP\n15, 16, 17, 18\n*BOUNDARY\n1, 1, 3\n2, 1, 3\n3, 1, 3\n4, 1, 3\n{steps}"),
+            )
+        };
+        let program = |steps: &str| -> Result<DeckIncremental> {
+            let deck = parse_inp(&deck_text(steps), "t.inp").map_err(|e| anyhow!("{e}"))?;
+            let s = deck_steps(&deck, "t.inp")?;
+            incremental_program(&deck, &s, "t.inp", &mut Vec::new())
+        };
+        let one =
+            "*STEP, INC=7\n*STATIC\n0.1, 2.0, 0.001, 0.5\n*BOUNDARY\nTOP, 3, 3, 0.2\n*END STEP\n";
+        let p = program(one).unwrap();
+        assert_eq!(p.analysis.kind, "static");
+        assert_eq!(p.analysis.steps, vec![1.0]);
+        let n = &p.analysis.newton;
+        assert_eq!(
+            (n.initial_increment, n.min_increment, n.max_increment),
+            (0.05, 0.0005, 0.25)
+        );
+        assert_eq!(
+            p.increment_limits,
+            vec![Some((
+                7,
+                deck_text(one)
+                    .lines()
+                    .position(|l| l.starts_with("*STEP"))
+                    .unwrap()
+                    + 1
+            ))]
+        );
+        // a second step that unloads to 40 %: program [1, 0.4]
+        let two = format!(
+            "{one}*STEP\n*STATIC\n0.1, 2.0, 0.001, 0.5\n*BOUNDARY\nTOP, 3, 3, 0.08\n*END STEP\n"
+        );
+        let p = program(&two).unwrap();
+        assert_eq!(p.analysis.steps.len(), 2);
+        assert!((p.analysis.steps[1] - 0.4).abs() < 1e-12);
+        // a second step that loads another dof: not a proportional program
+        let other =
+            format!("{one}*STEP\n*STATIC\n0.1, 2.0\n*BOUNDARY\nTOP, 1, 1, 0.1\n*END STEP\n");
+        let e = program(&other).unwrap_err().to_string();
+        assert!(e.contains("not a multiple of the first step"), "{e}");
+        // other increment fractions
+        let frac = format!(
+            "{one}*STEP\n*STATIC\n0.2, 2.0, 0.001, 0.5\n*BOUNDARY\nTOP, 3, 3, 0.4\n*END STEP\n"
+        );
+        let e = program(&frac).unwrap_err().to_string();
+        assert!(e.contains("same fractions"), "{e}");
+        // DIRECT: fixed increments
+        let p = program(&one.replace("*STATIC", "*STATIC, DIRECT")).unwrap();
+        let n = &p.analysis.newton;
+        assert_eq!(
+            (
+                n.initial_increment,
+                n.min_increment,
+                n.max_increment,
+                n.growth
+            ),
+            (0.05, 0.05, 0.05, 1.0)
+        );
+    }
 }

@@ -245,6 +245,9 @@ pub fn run_static(
     let mut separated = false;
     let every = p.every.max(1);
     let solver_overrides = p.solver_overrides.clone();
+    let increment_limits = p.increment_limits.clone();
+    // (step, INC, line of its *STEP) when a deck's INC stopped the run
+    let mut inc_reached: Option<(usize, usize, usize)> = None;
     let result = {
         let mut observer = |v: &junta_solvers::newton::IncrementView<'_>| -> Control {
             let r = v.report;
@@ -355,6 +358,14 @@ pub fn run_static(
                 io_error = Some(e);
                 return Control::Stop;
             }
+            // a deck's `*STEP, INC=n`: at most n increments in that step
+            if let Some(&Some((n, line))) = increment_limits.get(r.step) {
+                let in_step = rows.iter().filter(|row| row.step == r.step).count();
+                if in_step >= n && r.step_fraction < 1.0 - 1e-12 {
+                    inc_reached = Some((r.step, n, line));
+                    return Control::Stop;
+                }
+            }
             if INTERRUPTED.load(Ordering::SeqCst)
                 || (analysis.stop_when_separated && separated)
                 || max_increments.is_some_and(|m| r.increment_index - start_increment >= m)
@@ -379,6 +390,11 @@ pub fn run_static(
         Ok(run) => {
             let status = if INTERRUPTED.load(Ordering::SeqCst) {
                 "interrupted (Ctrl-C)".to_string()
+            } else if let Some((step, n, line)) = inc_reached {
+                format!(
+                    "stopped: step {} reached its maximum number of increments INC={n} (*STEP at line {line}) before its end; raise INC",
+                    step + 1
+                )
             } else if run.summary.stopped_by_observer && separated {
                 "stopped: every interface point has failed".to_string()
             } else if run.summary.stopped_by_observer {

@@ -33,8 +33,12 @@ pub struct Prepared {
     /// Registry key and parameters of the solver (to build another one).
     pub solver_key: String,
     pub solver_table: toml::Table,
-    /// The load cases of a deck with several `*STEP`s (empty otherwise).
+    /// The load cases of a linear deck with several `*STEP`s (empty
+    /// otherwise).
     pub deck_steps: Vec<deck::DeckStep>,
+    /// Per step of the load program: the deck's `*STEP, INC=n` and the
+    /// line of that `*STEP` (empty for scenes).
+    pub increment_limits: Vec<Option<(usize, usize)>>,
 }
 
 fn build_solver(key: &str, table: &toml::Table, where_: &str) -> Result<Box<dyn LinearSolver>> {
@@ -169,38 +173,54 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
                 solver_key,
                 solver_table,
                 deck_steps: Vec::new(),
+                increment_limits: Vec::new(),
             })
         }
         Some("inp") => {
-            let (model, mut notes, steps) = deck::build_model(input)?;
+            let d = deck::build_model(input)?;
+            let mut notes = d.notes;
             let (mut key, mut table) = ("auto".to_string(), toml::Table::new());
             apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
             let solver = resolve_solver(
                 &mut key,
                 &table,
-                &model,
+                &d.model,
                 &input.display().to_string(),
                 &mut notes,
             )?;
+            let (analysis, increment_limits, deck_steps) = match d.incremental {
+                // the load program holds the steps
+                Some(inc) => (inc.analysis, inc.increment_limits, Vec::new()),
+                None => (
+                    Default::default(),
+                    Vec::new(),
+                    if d.steps.len() > 1 {
+                        d.steps
+                    } else {
+                        Vec::new()
+                    },
+                ),
+            };
             Ok(Prepared {
-                model,
+                model: d.model,
                 solver,
-                title: String::new(),
+                title: d.title,
                 units: None,
                 output_dir: None,
                 vtu: true,
                 probes: Vec::new(),
                 fractions: Vec::new(),
-                analysis: Default::default(),
-                curve: None,
-                every: 1,
+                analysis,
+                curve: d.curve,
+                every: d.every.unwrap_or(1),
                 reference: None,
                 thickness: Default::default(),
                 notes,
                 solver_overrides: solver_overrides.to_vec(),
                 solver_key: key,
                 solver_table: table,
-                deck_steps: if steps.len() > 1 { steps } else { Vec::new() },
+                deck_steps,
+                increment_limits,
             })
         }
         _ => bail!(
@@ -551,6 +571,13 @@ pub fn check(input: &Path) -> Result<()> {
     );
     for (k, n) in output::element_counts(m) {
         println!("  elements {k}: {n}");
+    }
+    if p.analysis.kind == "static" {
+        let n = &p.analysis.newton;
+        println!(
+            "  analysis: incremental static, load program {:?}, increments (fractions of a step) initial {}, min {}, max {}",
+            p.analysis.steps, n.initial_increment, n.min_increment, n.max_increment
+        );
     }
     for (k, st) in p.deck_steps.iter().enumerate() {
         println!(

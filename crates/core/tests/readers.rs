@@ -1,7 +1,9 @@
 //! Integration tests of the mesh / deck readers (`mesh::inp`, `mesh::gmsh`).
 
 use junta_core::mesh::gmsh::{parse_msh, read_msh, GmshError};
-use junta_core::mesh::inp::{parse_inp, read_inp, InpDeck, InpError, InpMaterialKind};
+use junta_core::mesh::inp::{
+    parse_inp, read_inp, InpDeck, InpError, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening,
+};
 use junta_core::mesh::Mesh;
 use junta_core::topology::{CellShape, HEX27_NODES, HEX_FACES};
 use std::path::PathBuf;
@@ -520,6 +522,196 @@ fn error_missing_material_and_wrong_section() {
     let e = err(&TWO_BLOCKS_WITH_COHESIVE
         .replace("*SOLID SECTION, ELSET=solids", "*SOLID SECTION, ELSET=GLUE"));
     assert!(e.to_string().contains("*COHESIVE SECTION"), "{e}");
+}
+
+/// TWO_BLOCKS_WITH_COHESIVE with damage options on the glue.
+fn with_damage(damage: &str) -> String {
+    TWO_BLOCKS_WITH_COHESIVE.replace("1e6, 5e5, 5e5\n", &format!("1e6, 1e6, 1e6\n{damage}"))
+}
+
+const DAMAGE: &str = "*Damage Initiation, criterion=QUADS
+80., 100., 100.
+*damage evolution , type = energy, mixed mode behavior = bk, power=2.284
+0.969, 1.719, 1.719
+*DAMAGE STABILIZATION
+1e-4
+";
+
+/// 1-based line of the first line of `text` that starts with `pat`.
+fn line_of(text: &str, pat: &str) -> usize {
+    text.lines().position(|l| l.starts_with(pat)).unwrap() + 1
+}
+
+#[test]
+fn cohesive_damage_keywords_are_read() {
+    let text = with_damage(DAMAGE);
+    let deck = parse_inp(&text, "coh.inp").unwrap();
+    let m = deck.material("glue").unwrap();
+    assert!(m.has_damage());
+    let i = m.damage_initiation.as_ref().unwrap();
+    assert_eq!(i.criterion, InpOnset::Quads);
+    assert_eq!(i.strengths, [80.0, 100.0, 100.0]);
+    assert_eq!(i.line, line_of(&text, "*Damage Initiation"));
+    let e = m.damage_evolution.as_ref().unwrap();
+    assert_eq!(e.softening, InpSoftening::Linear);
+    assert_eq!(e.mixed_mode, InpMixedMode::Bk { power: 2.284 });
+    assert_eq!(e.toughness, [0.969, 1.719, 1.719]);
+    assert_eq!(m.damage_stabilization.as_ref().unwrap().viscosity, 1e-4);
+    assert_eq!(m.elastic_line, line_of(&text, "1e6, 1e6, 1e6"));
+    assert!(!deck.material("steel").unwrap().has_damage());
+    // MAXS, exponential, power law
+    let text = with_damage(
+        "*DAMAGE INITIATION, CRITERION=MAXS\n80, 100, 100\n*DAMAGE EVOLUTION, TYPE=ENERGY, SOFTENING=EXPONENTIAL, MIXED MODE BEHAVIOR=POWER LAW, POWER=1\n1, 2, 2\n",
+    );
+    let deck = parse_inp(&text, "coh.inp").unwrap();
+    let m = deck.material("GLUE").unwrap();
+    assert_eq!(
+        m.damage_initiation.as_ref().unwrap().criterion,
+        InpOnset::Maxs
+    );
+    let e = m.damage_evolution.as_ref().unwrap();
+    assert_eq!(e.softening, InpSoftening::Exponential);
+    assert_eq!(e.mixed_mode, InpMixedMode::PowerLaw { power: 1.0 });
+}
+
+#[test]
+fn cohesive_damage_errors_name_file_and_line() {
+    let check = |text: &str, line: usize, needles: &[&str]| {
+        let e = err(text).to_string();
+        assert!(
+            e.starts_with(&format!("test.inp:{line}:")),
+            "line {line}: {e}"
+        );
+        for n in needles {
+            assert!(e.contains(n), "`{n}` missing in: {e}");
+        }
+    };
+    // a damage keyword outside a material (after a section)
+    let text = format!("{TWO_BLOCKS_WITH_COHESIVE}*DAMAGE STABILIZATION\n1e-4\n");
+    check(
+        &text,
+        line_of(&text, "*DAMAGE STABILIZATION"),
+        &["must follow the *MATERIAL"],
+    );
+    // initiation without evolution: Abaqus would never soften
+    let text = with_damage("*DAMAGE INITIATION, CRITERION=QUADS\n80, 100, 100\n");
+    check(
+        &text,
+        line_of(&text, "*DAMAGE INITIATION"),
+        &["no *DAMAGE EVOLUTION", "never soften"],
+    );
+    // evolution before initiation
+    let text = with_damage("*DAMAGE EVOLUTION, TYPE=ENERGY\n1\n");
+    check(
+        &text,
+        line_of(&text, "*DAMAGE EVOLUTION"),
+        &["must follow its *DAMAGE INITIATION"],
+    );
+    // unsupported options
+    for (from, to, needle) in [
+        ("criterion=QUADS", "criterion=MAXE", "CRITERION=MAXE"),
+        ("type = energy", "type=DISPLACEMENT", "TYPE=DISPLACEMENT"),
+        (
+            "type = energy",
+            "type=energy, softening=TABULAR",
+            "SOFTENING=TABULAR",
+        ),
+        (
+            "mixed mode behavior = bk",
+            "mixed mode behavior=TABULAR",
+            "MIXED MODE BEHAVIOR=TABULAR",
+        ),
+        (", power=2.284", "", "needs POWER="),
+        (
+            "0.969, 1.719, 1.719",
+            "0.969, 1.719, 1.719, 20.0",
+            "temperature",
+        ),
+    ] {
+        let text = with_damage(&DAMAGE.replace(from, to));
+        let pat = if needle == "temperature" {
+            "0.969"
+        } else if from.starts_with("criterion") {
+            "*Damage Initiation"
+        } else {
+            "*damage evolution"
+        };
+        check(&text, line_of(&text, pat), &[needle]);
+    }
+    // a damage material used by a *SOLID SECTION
+    let text = with_damage(DAMAGE).replace(
+        "*SOLID SECTION, ELSET=solids, MATERIAL=steel",
+        "*SOLID SECTION, ELSET=solids, MATERIAL=glue",
+    );
+    check(
+        &text,
+        line_of(&text, "*SOLID SECTION"),
+        &["damage options", "*COHESIVE SECTION"],
+    );
+    // a damage material no *COHESIVE SECTION uses
+    let text = with_damage(DAMAGE)
+        .replace("MATERIAL=GLUE, RESPONSE", "MATERIAL=GLUE2, RESPONSE")
+        .replace(
+            "*SOLID SECTION",
+            "*MATERIAL, NAME=GLUE2\n*ELASTIC, TYPE=TRACTION\n1e6, 1e6, 1e6\n*SOLID SECTION",
+        );
+    check(
+        &text,
+        line_of(&text, "*MATERIAL, NAME=Glue"),
+        &["no *COHESIVE SECTION uses it"],
+    );
+    // damage on an isotropic material
+    let text = TWO_BLOCKS_WITH_COHESIVE.replace("*DENSITY\n7.85e-9\n", DAMAGE);
+    check(
+        &text,
+        line_of(&text, "*MATERIAL, NAME=Steel"),
+        &["not TYPE=TRACTION"],
+    );
+    // THICKNESS=GEOMETRY
+    let text = TWO_BLOCKS_WITH_COHESIVE.replace(
+        "RESPONSE=TRACTION SEPARATION",
+        "RESPONSE=TRACTION SEPARATION, THICKNESS=GEOMETRY",
+    );
+    check(
+        &text,
+        line_of(&text, "*COHESIVE SECTION"),
+        &["THICKNESS=GEOMETRY", "SPECIFIED"],
+    );
+}
+
+#[test]
+fn junta_directives() {
+    let text = format!(
+        "** junta: curve reaction_set=lower reaction_component=Z point_set=LOWER point_component=z\n** junta: output every=5\n{}*NSET, NSET=Lower\n1, 2\n",
+        TWO_BLOCKS_WITH_COHESIVE
+    );
+    let deck = parse_inp(&text, "coh.inp").unwrap();
+    let c = deck.curve.unwrap();
+    assert_eq!(
+        (c.reaction_set.as_str(), c.reaction_component.as_str()),
+        ("Lower", "z")
+    );
+    assert_eq!(c.point_set, "Lower");
+    assert_eq!(c.relative_to, None);
+    assert_eq!(deck.every, Some(5));
+    let bad = text.replace("point_set=LOWER", "point_set=NOPE");
+    let e = err(&bad).to_string();
+    assert!(e.starts_with("test.inp:1:") && e.contains("NOPE"), "{e}");
+    let bad = text.replace("every=5", "every=5 often=1");
+    let e = err(&bad).to_string();
+    assert!(e.starts_with("test.inp:2:") && e.contains("often"), "{e}");
+    let bad = text.replace("** junta: output", "** junta: plot");
+    let e = err(&bad).to_string();
+    assert!(
+        e.starts_with("test.inp:2:") && e.contains("unknown directive"),
+        "{e}"
+    );
+    let bad = text.replace(" point_component=z", "");
+    let e = err(&bad).to_string();
+    assert!(
+        e.starts_with("test.inp:1:") && e.contains("point_component"),
+        "{e}"
+    );
 }
 
 // ------------------------------------------------------------------ Gmsh

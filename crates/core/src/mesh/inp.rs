@@ -14,14 +14,57 @@
 //! Keywords: `*HEADING`, `*NODE [, NSET=]`, `*ELEMENT, TYPE= [, ELSET=]`,
 //! `*NSET, NSET= [, GENERATE]`, `*ELSET, ELSET= [, GENERATE]`,
 //! `*MATERIAL, NAME=`, `*ELASTIC [, TYPE=ISOTROPIC | ENGINEERING CONSTANTS |
-//! TRACTION]`, `*DENSITY` (kept, noted as unused), `*SOLID SECTION, ELSET=,
-//! MATERIAL=`, `*COHESIVE SECTION, ELSET=, MATERIAL=, RESPONSE=TRACTION
-//! SEPARATION`, `*BOUNDARY [, OP=MOD|NEW]`, `*CLOAD [, OP=MOD|NEW]`, `*STEP
-//! [, NLGEOM, INC, NAME]` (any number of steps),
-//! `*STATIC`, `*END STEP`; the output requests `*NODE PRINT`, `*NODE FILE`,
+//! TRACTION]`, `*DENSITY` (kept, noted as unused), `*DAMAGE INITIATION`,
+//! `*DAMAGE EVOLUTION`, `*DAMAGE STABILIZATION` (cohesive damage, below),
+//! `*SOLID SECTION, ELSET=, MATERIAL=`, `*COHESIVE SECTION, ELSET=,
+//! MATERIAL=, RESPONSE=TRACTION SEPARATION [, THICKNESS=SPECIFIED]` (data
+//! line: the constitutive thickness, default 1), `*BOUNDARY [,
+//! OP=MOD|NEW]`, `*CLOAD [, OP=MOD|NEW]`, `*STEP [, NLGEOM, INC, NAME]` (any
+//! number of steps), `*STATIC [, DIRECT]` (data line `dt0, T, dtmin,
+//! dtmax`), `*END STEP`; the output requests `*NODE PRINT`, `*NODE FILE`,
 //! `*EL PRINT`, `*EL FILE`, `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*OUTPUT` are
 //! skipped with a note (Junta's outputs are chosen in the scene). Anything
 //! else is an error that lists these keywords.
+//!
+//! # Cohesive damage
+//!
+//! Inside a `*MATERIAL` whose `*ELASTIC, TYPE=TRACTION` gives `K_nn, K_ss,
+//! K_tt`, and only for a material used by a `*COHESIVE SECTION`:
+//!
+//! - `*DAMAGE INITIATION, CRITERION=QUADS | MAXS`, data line `t_n^0, t_s^0,
+//!   t_t^0` (nominal strengths) -> [`InpDamageInitiation`];
+//! - `*DAMAGE EVOLUTION, TYPE=ENERGY [, SOFTENING=LINEAR | EXPONENTIAL] [,
+//!   MIXED MODE BEHAVIOR=MODE INDEPENDENT | BK | POWER LAW, POWER=p]`, data
+//!   line `G_c` (mode independent) or `G_Ic, G_IIc, G_IIIc` (as in Abaqus,
+//!   the BK exponent eta and the power-law exponent alpha are the `POWER`
+//!   parameter, not a data field) -> [`InpDamageEvolution`]; it must follow
+//!   the `*DAMAGE INITIATION`; `DEGRADATION=MAXIMUM` (the default) is
+//!   accepted;
+//! - `*DAMAGE STABILIZATION`, data line: the viscosity coefficient ->
+//!   [`InpDamageStabilization`].
+//!
+//! Errors, each naming file:line: a damage keyword outside a material; a
+//! `*DAMAGE INITIATION` without `*DAMAGE EVOLUTION` (Abaqus would evaluate
+//! the criterion but never soften); an unsupported option (`TYPE=
+//! DISPLACEMENT`, `SOFTENING=TABULAR`, `MIXED MODE BEHAVIOR=TABULAR`, other
+//! criteria, temperature-dependent data); damage on a material that is not
+//! TRACTION, that a `*SOLID SECTION` uses, or that no `*COHESIVE SECTION`
+//! uses. What the values become (the `bilinear` / `exponential` laws) is
+//! decided by the CLI's deck builder.
+//!
+//! # Junta directives
+//!
+//! Comment lines `** junta: ...` (comments for Abaqus, so the deck still
+//! runs there) carry what a deck has no keyword for:
+//!
+//! - `** junta: curve reaction_set=NSET reaction_component=x|y|z
+//!   point_set=NSET point_component=x|y|z [relative_to=NSET]`: the
+//!   load-displacement curve of an incremental run (as `[output.curve]` of a
+//!   scene) -> [`InpDeck::curve`];
+//! - `** junta: output every=N`: a frame every N increments ->
+//!   [`InpDeck::every`].
+//!
+//! Unknown directives or keys are errors naming the line.
 //!
 //! # Names
 //!
@@ -69,6 +112,7 @@ pub const C3D27_TO_OURS: [usize; 27] = [
 /// Keywords the reader understands (for messages).
 pub const SUPPORTED_KEYWORDS: &str =
     "*HEADING, *NODE, *ELEMENT, *NSET, *ELSET, *MATERIAL, *ELASTIC, *DENSITY, \
+*DAMAGE INITIATION, *DAMAGE EVOLUTION, *DAMAGE STABILIZATION, \
 *SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *STEP, *STATIC, *END STEP, \
 *NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT";
 
@@ -180,7 +224,8 @@ pub enum InpMaterialKind {
     Traction([f64; 3]),
 }
 
-/// A `*MATERIAL` with its `*ELASTIC` data.
+/// A `*MATERIAL` with its `*ELASTIC` data and, for cohesive elements, its
+/// damage options.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InpMaterial {
     /// Name as written.
@@ -190,6 +235,105 @@ pub struct InpMaterial {
     /// `*DENSITY`, if given (not used by static analyses).
     pub density: Option<f64>,
     /// Line of `*MATERIAL`.
+    pub line: usize,
+    /// Line of the `*ELASTIC` data line.
+    pub elastic_line: usize,
+    /// `*DAMAGE INITIATION`, if given.
+    pub damage_initiation: Option<InpDamageInitiation>,
+    /// `*DAMAGE EVOLUTION`, if given.
+    pub damage_evolution: Option<InpDamageEvolution>,
+    /// `*DAMAGE STABILIZATION`, if given.
+    pub damage_stabilization: Option<InpDamageStabilization>,
+}
+
+impl InpMaterial {
+    /// The material has damage options (a softening cohesive material).
+    pub fn has_damage(&self) -> bool {
+        self.damage_initiation.is_some()
+            || self.damage_evolution.is_some()
+            || self.damage_stabilization.is_some()
+    }
+}
+
+/// Damage-initiation criterion of a cohesive material.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InpOnset {
+    /// `CRITERION=QUADS`: quadratic nominal-stress criterion.
+    Quads,
+    /// `CRITERION=MAXS`: maximum nominal-stress criterion.
+    Maxs,
+}
+
+/// `*DAMAGE INITIATION, CRITERION=QUADS | MAXS`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpDamageInitiation {
+    /// The criterion.
+    pub criterion: InpOnset,
+    /// Nominal strengths `[t_n^0, t_s^0, t_t^0]`.
+    pub strengths: [f64; 3],
+    /// Line of the keyword.
+    pub line: usize,
+    /// Line of the data line.
+    pub data_line: usize,
+}
+
+/// `SOFTENING=` of `*DAMAGE EVOLUTION`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InpSoftening {
+    /// `LINEAR` (the default).
+    Linear,
+    /// `EXPONENTIAL`.
+    Exponential,
+}
+
+/// `MIXED MODE BEHAVIOR=` of `*DAMAGE EVOLUTION, TYPE=ENERGY`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum InpMixedMode {
+    /// `MODE INDEPENDENT` (the default): one fracture energy.
+    ModeIndependent,
+    /// `BK` with `POWER=eta`.
+    Bk { power: f64 },
+    /// `POWER LAW` with `POWER=alpha`.
+    PowerLaw { power: f64 },
+}
+
+/// `*DAMAGE EVOLUTION, TYPE=ENERGY`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpDamageEvolution {
+    /// Softening shape.
+    pub softening: InpSoftening,
+    /// Mixed-mode rule.
+    pub mixed_mode: InpMixedMode,
+    /// Fracture energies `[G_Ic, G_IIc, G_IIIc]` (all three equal for
+    /// `MODE INDEPENDENT`).
+    pub toughness: [f64; 3],
+    /// Line of the keyword.
+    pub line: usize,
+    /// Line of the data line.
+    pub data_line: usize,
+}
+
+/// `*DAMAGE STABILIZATION`: viscous regularisation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpDamageStabilization {
+    /// Viscosity coefficient (step-time units).
+    pub viscosity: f64,
+    /// Line of the keyword.
+    pub line: usize,
+}
+
+/// The deck-side curve definition, from the comment directive
+/// `** junta: curve reaction_set=.. reaction_component=.. point_set=..
+/// point_component=.. [relative_to=..]` (a comment for Abaqus). Set names
+/// are resolved to the names stored in [`Mesh::node_sets`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpCurve {
+    pub reaction_set: String,
+    pub reaction_component: String,
+    pub point_set: String,
+    pub point_component: String,
+    pub relative_to: Option<String>,
+    /// Line of the directive.
     pub line: usize,
 }
 
@@ -320,6 +464,10 @@ pub struct InpDeck {
     pub cloads: Vec<InpCload>,
     pub steps: Vec<InpStep>,
     pub notes: Vec<String>,
+    /// `** junta: curve ...` directive, if any.
+    pub curve: Option<InpCurve>,
+    /// `** junta: output every=N` directive, if any.
+    pub every: Option<usize>,
 }
 
 impl InpDeck {
@@ -446,6 +594,16 @@ struct NamedSet {
     members: Vec<usize>,
 }
 
+struct PendingMaterial {
+    name: String,
+    line: usize,
+    elastic: Option<(InpMaterialKind, usize)>,
+    density: Option<f64>,
+    initiation: Option<InpDamageInitiation>,
+    evolution: Option<InpDamageEvolution>,
+    stabilization: Option<InpDamageStabilization>,
+}
+
 struct PendingTarget {
     target: String,
     line: usize,
@@ -467,11 +625,13 @@ struct Parser<'a> {
     elset_index: HashMap<String, usize>,
     deck: InpDeck,
     material_index: HashMap<String, usize>,
-    /// material being defined: (name, line, elastic, density)
-    current_material: Option<(String, usize, Option<InpMaterialKind>, Option<f64>)>,
+    /// material being defined
+    current_material: Option<PendingMaterial>,
     step_open: Option<usize>,
     boundary_targets: Vec<PendingTarget>,
     cload_targets: Vec<PendingTarget>,
+    /// `** junta: curve` directive: line and `key=value` pairs.
+    curve_directive: Option<(usize, Vec<(String, String)>)>,
 }
 
 type Params = [(String, Option<String>)];
@@ -666,22 +826,119 @@ impl<'a> Parser<'a> {
     }
 
     fn finish_material(&mut self) -> Result<(), InpError> {
-        if let Some((name, line, kind, density)) = self.current_material.take() {
-            let kind = kind.ok_or_else(|| {
+        if let Some(m) = self.current_material.take() {
+            let (name, line) = (m.name, m.line);
+            let (kind, elastic_line) = m.elastic.ok_or_else(|| {
                 self.invalid(
                     line,
                     "MATERIAL",
                     format!("material `{name}` has no *ELASTIC"),
                 )
             })?;
+            let damage =
+                m.initiation.is_some() || m.evolution.is_some() || m.stabilization.is_some();
+            if damage && !matches!(kind, InpMaterialKind::Traction(_)) {
+                return Err(self.invalid(
+                    line,
+                    "MATERIAL",
+                    format!("material `{name}` has damage options but its *ELASTIC is not TYPE=TRACTION: damage is read for cohesive materials (*ELASTIC, TYPE=TRACTION with *COHESIVE SECTION) only"),
+                ));
+            }
+            if let (Some(i), None) = (&m.initiation, &m.evolution) {
+                return Err(self.invalid(
+                    i.line,
+                    "DAMAGE INITIATION",
+                    format!("material `{name}` has *DAMAGE INITIATION but no *DAMAGE EVOLUTION: Abaqus would then only report the initiation criterion and never soften (the stiffness stays K); add *DAMAGE EVOLUTION, TYPE=ENERGY with the fracture energies, or drop the damage keywords for a linear penalty"),
+                ));
+            }
+            if let (Some(st), None) = (&m.stabilization, &m.initiation) {
+                return Err(self.invalid(
+                    st.line,
+                    "DAMAGE STABILIZATION",
+                    format!("material `{name}` has *DAMAGE STABILIZATION but no *DAMAGE INITIATION / *DAMAGE EVOLUTION: there is no damage to stabilise"),
+                ));
+            }
             self.material_index
                 .insert(name.to_uppercase(), self.deck.materials.len());
             self.deck.materials.push(InpMaterial {
                 name,
                 kind,
-                density,
+                density: m.density,
                 line,
+                elastic_line,
+                damage_initiation: m.initiation,
+                damage_evolution: m.evolution,
+                damage_stabilization: m.stabilization,
             });
+        }
+        Ok(())
+    }
+
+    /// Read the `** junta: ...` comment directives (comments for Abaqus):
+    /// `curve key=value ...` and `output every=N`.
+    fn directives(&mut self, text: &str) -> Result<(), InpError> {
+        for (i, raw) in text.lines().enumerate() {
+            let line = i + 1;
+            let Some(rest) = raw.trim().strip_prefix("**") else {
+                continue;
+            };
+            let rest = rest.trim();
+            let Some(body) = rest
+                .get(..6)
+                .filter(|h| h.eq_ignore_ascii_case("junta:"))
+                .and_then(|_| rest.get(6..))
+            else {
+                continue;
+            };
+            let mut words = body.split_whitespace();
+            let what = words.next().unwrap_or("").to_ascii_lowercase();
+            let kw = format!("** junta: {what}");
+            let mut pairs = Vec::new();
+            for w in words {
+                let Some((k, v)) = w.split_once('=') else {
+                    return Err(self.invalid(line, &kw, format!("`{w}` is not `key=value`")));
+                };
+                pairs.push((k.to_ascii_lowercase(), v.to_string()));
+            }
+            let valid: &[&str] = match what.as_str() {
+                "curve" => &[
+                    "reaction_set",
+                    "reaction_component",
+                    "point_set",
+                    "point_component",
+                    "relative_to",
+                ],
+                "output" => &["every"],
+                _ => {
+                    return Err(self.invalid(
+                        line,
+                        "** junta:",
+                        format!("unknown directive `{what}`; valid: `** junta: curve reaction_set=.. reaction_component=.. point_set=.. point_component=.. [relative_to=..]`, `** junta: output every=N`"),
+                    ))
+                }
+            };
+            if let Some((k, _)) = pairs.iter().find(|(k, _)| !valid.contains(&k.as_str())) {
+                return Err(self.invalid(
+                    line,
+                    &kw,
+                    format!("unknown key `{k}`; valid: {}", valid.join(", ")),
+                ));
+            }
+            if what == "curve" {
+                if let Some((l, _)) = &self.curve_directive {
+                    return Err(self.invalid(
+                        line,
+                        &kw,
+                        format!("a second curve directive (the first is at line {l})"),
+                    ));
+                }
+                self.curve_directive = Some((line, pairs));
+            } else {
+                for (_, v) in pairs {
+                    let n = self.label(line, &kw, "every", &v)?;
+                    self.deck.every = Some(n);
+                }
+            }
         }
         Ok(())
     }
@@ -714,7 +971,14 @@ impl<'a> Parser<'a> {
                     Item::Keyword { .. } => unreachable!(),
                 })
                 .collect();
-            if !matches!(kw, "ELASTIC" | "DENSITY") {
+            if !matches!(
+                kw,
+                "ELASTIC"
+                    | "DENSITY"
+                    | "DAMAGE INITIATION"
+                    | "DAMAGE EVOLUTION"
+                    | "DAMAGE STABILIZATION"
+            ) {
                 self.finish_material()?;
             }
             match kw {
@@ -749,9 +1013,20 @@ impl<'a> Parser<'a> {
                     if let Some(&(d, _, _)) = data.first() {
                         return Err(self.invalid(d, kw, "*MATERIAL takes no data lines"));
                     }
-                    self.current_material = Some((name, line, None, None));
+                    self.current_material = Some(PendingMaterial {
+                        name,
+                        line,
+                        elastic: None,
+                        density: None,
+                        initiation: None,
+                        evolution: None,
+                        stabilization: None,
+                    });
                 }
                 "ELASTIC" => self.elastic(line, params, &data)?,
+                "DAMAGE INITIATION" => self.damage_initiation(line, params, &data)?,
+                "DAMAGE EVOLUTION" => self.damage_evolution(line, params, &data)?,
+                "DAMAGE STABILIZATION" => self.damage_stabilization(line, params, &data)?,
                 "DENSITY" => {
                     self.check_params(line, kw, params, &[])?;
                     if self.current_material.is_none() {
@@ -764,10 +1039,10 @@ impl<'a> Parser<'a> {
                     let name = self
                         .current_material
                         .as_ref()
-                        .map(|m| m.0.clone())
+                        .map(|m| m.name.clone())
                         .unwrap_or_default();
                     if let Some(m) = self.current_material.as_mut() {
-                        m.3 = Some(rho);
+                        m.density = Some(rho);
                     }
                     self.deck
                         .notes
@@ -814,12 +1089,32 @@ impl<'a> Parser<'a> {
                             valid: "RESPONSE=TRACTION SEPARATION".into(),
                         });
                     }
+                    match Self::param(params, "THICKNESS").map(|(_, v)| v.as_deref().map(norm_key)) {
+                        None => {}
+                        Some(Some(v)) if v == "SPECIFIED" => {}
+                        Some(v) => {
+                            return Err(self.bad_param(
+                                line,
+                                kw,
+                                format!("THICKNESS={}", v.unwrap_or_default()),
+                                "THICKNESS=SPECIFIED (the default: the constitutive thickness is the data line's, 1 when not given); GEOMETRY would take the element's geometric thickness, which is zero for Junta's interface elements",
+                            ))
+                        }
+                    }
                     if data.len() > 1 {
                         return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
                     }
                     let thickness = match data.first() {
                         Some((dl, f, _)) if !f.is_empty() && !f[0].is_empty() => {
-                            Some(self.float(*dl, kw, "initial thickness", f[0])?)
+                            let t = self.float(*dl, kw, "initial thickness", f[0])?;
+                            if t <= 0.0 {
+                                return Err(self.invalid(
+                                    *dl,
+                                    kw,
+                                    format!("constitutive thickness {t} must be positive (leave the field empty for the default 1)"),
+                                ));
+                            }
+                            Some(t)
                         }
                         _ => None,
                     };
@@ -1304,11 +1599,354 @@ impl<'a> Parser<'a> {
                 InpMaterialKind::EngineeringConstants(a)
             }
         };
-        if let Some((name, _, Some(_), _)) = &self.current_material {
-            return Err(self.invalid(line, kw, format!("material `{name}` has two *ELASTIC")));
+        if let Some(m) = &self.current_material {
+            if m.elastic.is_some() {
+                return Err(self.invalid(
+                    line,
+                    kw,
+                    format!("material `{}` has two *ELASTIC", m.name),
+                ));
+            }
+        }
+        let data_line = data[0].0;
+        if let Some(m) = self.current_material.as_mut() {
+            m.elastic = Some((kind, data_line));
+        }
+        Ok(())
+    }
+
+    /// The material a damage keyword belongs to, or an error naming the
+    /// line.
+    fn damage_material(&self, line: usize, kw: &str) -> Result<&PendingMaterial, InpError> {
+        self.current_material.as_ref().ok_or_else(|| {
+            self.invalid(
+                line,
+                kw,
+                format!("*{kw} must follow the *MATERIAL (and its *ELASTIC, TYPE=TRACTION) of a cohesive material"),
+            )
+        })
+    }
+
+    /// The values of the single data line of a damage keyword: exactly
+    /// `names.len()` numbers (temperature / field dependence is not read).
+    fn damage_values(
+        &self,
+        line: usize,
+        kw: &str,
+        what: &str,
+        names: &[&str],
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(Vec<f64>, usize), InpError> {
+        let expected = || {
+            format!(
+                "{what} expects one data line with {} value(s): {}",
+                names.len(),
+                names.join(", ")
+            )
+        };
+        let Some(&(dl, f, _)) = data.first() else {
+            return Err(self.invalid(line, kw, expected()));
+        };
+        if data.len() > 1 {
+            return Err(self.invalid(
+                data[1].0,
+                kw,
+                format!(
+                    "{}; temperature- or field-dependent damage data is not supported",
+                    expected()
+                ),
+            ));
+        }
+        let f: Vec<&str> = f.iter().copied().filter(|t| !t.is_empty()).collect();
+        if f.len() > names.len() {
+            return Err(self.invalid(
+                dl,
+                kw,
+                format!(
+                    "{}, found {}; temperature- or field-dependent damage data is not supported",
+                    expected(),
+                    f.len()
+                ),
+            ));
+        }
+        if f.len() < names.len() {
+            return Err(self.invalid(dl, kw, format!("{}, found {}", expected(), f.len())));
+        }
+        let mut v = Vec::with_capacity(f.len());
+        for (t, name) in f.iter().zip(names) {
+            let x = self.float(dl, kw, name, t)?;
+            if x < 0.0 {
+                return Err(self.invalid(dl, kw, format!("{name} = {x} must not be negative")));
+            }
+            v.push(x);
+        }
+        Ok((v, dl))
+    }
+
+    fn bad_param(&self, line: usize, kw: &str, parameter: String, valid: &str) -> InpError {
+        InpError::Parameter {
+            file: self.file.into(),
+            line,
+            keyword: kw.into(),
+            parameter,
+            valid: valid.into(),
+        }
+    }
+
+    /// `*DAMAGE INITIATION, CRITERION=QUADS | MAXS`.
+    fn damage_initiation(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "DAMAGE INITIATION";
+        let m = self.damage_material(line, kw)?;
+        if let Some(i) = &m.initiation {
+            return Err(self.invalid(
+                line,
+                kw,
+                format!("material `{}` already has a *DAMAGE INITIATION at line {}; Junta reads one criterion per cohesive material", m.name, i.line),
+            ));
+        }
+        self.check_params(line, kw, params, &["CRITERION"])?;
+        let valid = "CRITERION=QUADS, CRITERION=MAXS (cohesive nominal-stress criteria)";
+        let criterion = match norm_key(&self.required(line, kw, params, "CRITERION")?).as_str() {
+            "QUADS" => InpOnset::Quads,
+            "MAXS" => InpOnset::Maxs,
+            other => return Err(self.bad_param(line, kw, format!("CRITERION={other}"), valid)),
+        };
+        let (v, data_line) = self.damage_values(
+            line,
+            kw,
+            "the criterion",
+            &[
+                "t_n^0 (normal strength)",
+                "t_s^0 (first shear strength)",
+                "t_t^0 (second shear strength)",
+            ],
+            data,
+        )?;
+        if let Some(k) = v.iter().position(|&x| x <= 0.0) {
+            return Err(self.invalid(
+                data_line,
+                kw,
+                format!(
+                    "strength {} must be positive",
+                    ["t_n^0", "t_s^0", "t_t^0"][k]
+                ),
+            ));
         }
         if let Some(m) = self.current_material.as_mut() {
-            m.2 = Some(kind);
+            m.initiation = Some(InpDamageInitiation {
+                criterion,
+                strengths: [v[0], v[1], v[2]],
+                line,
+                data_line,
+            });
+        }
+        Ok(())
+    }
+
+    /// `*DAMAGE EVOLUTION, TYPE=ENERGY [, SOFTENING=] [, MIXED MODE
+    /// BEHAVIOR=, POWER=]`.
+    fn damage_evolution(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "DAMAGE EVOLUTION";
+        let m = self.damage_material(line, kw)?;
+        if m.initiation.is_none() {
+            return Err(self.invalid(
+                line,
+                kw,
+                format!("*DAMAGE EVOLUTION of material `{}` must follow its *DAMAGE INITIATION (it is a sub-option of it)", m.name),
+            ));
+        }
+        if let Some(e) = &m.evolution {
+            return Err(self.invalid(
+                line,
+                kw,
+                format!(
+                    "material `{}` already has a *DAMAGE EVOLUTION at line {}",
+                    m.name, e.line
+                ),
+            ));
+        }
+        self.check_params(
+            line,
+            kw,
+            params,
+            &[
+                "TYPE",
+                "SOFTENING",
+                "MIXED MODE BEHAVIOR",
+                "POWER",
+                "DEGRADATION",
+            ],
+        )?;
+        match norm_key(&self.required(line, kw, params, "TYPE")?).as_str() {
+            "ENERGY" => {}
+            other => {
+                return Err(self.bad_param(
+                    line,
+                    kw,
+                    format!("TYPE={other}"),
+                    "TYPE=ENERGY (fracture energies; TYPE=DISPLACEMENT is not supported)",
+                ))
+            }
+        }
+        let softening =
+            match Self::param(params, "SOFTENING").map(|(_, v)| v.as_deref().map(norm_key)) {
+                None => InpSoftening::Linear,
+                Some(Some(v)) if v == "LINEAR" => InpSoftening::Linear,
+                Some(Some(v)) if v == "EXPONENTIAL" => InpSoftening::Exponential,
+                Some(v) => return Err(self.bad_param(
+                    line,
+                    kw,
+                    format!("SOFTENING={}", v.unwrap_or_default()),
+                    "SOFTENING=LINEAR (default), SOFTENING=EXPONENTIAL (TABULAR is not supported)",
+                )),
+            };
+        match Self::param(params, "DEGRADATION").map(|(_, v)| v.as_deref().map(norm_key)) {
+            None => {}
+            Some(Some(v)) if v == "MAXIMUM" => {}
+            Some(v) => {
+                return Err(self.bad_param(
+                    line,
+                    kw,
+                    format!("DEGRADATION={}", v.unwrap_or_default()),
+                    "DEGRADATION=MAXIMUM (the default; one damage mechanism per material)",
+                ))
+            }
+        }
+        let power = match Self::param(params, "POWER") {
+            None => None,
+            Some((_, Some(v))) => {
+                let p = self.float(line, kw, "POWER", v)?;
+                if p <= 0.0 {
+                    return Err(self.invalid(line, kw, format!("POWER={p} must be positive")));
+                }
+                Some(p)
+            }
+            Some((_, None)) => {
+                return Err(self.invalid(line, kw, "POWER needs a value, e.g. POWER=2.284"))
+            }
+        };
+        let mixed = Self::param(params, "MIXED MODE BEHAVIOR")
+            .map(|(_, v)| v.as_deref().map(norm_key).unwrap_or_default());
+        let need_power = |what: &str| {
+            self.invalid(
+                line,
+                kw,
+                format!("MIXED MODE BEHAVIOR={what} needs POWER= (the exponent of the rule)"),
+            )
+        };
+        let mixed_mode = match mixed.as_deref() {
+            None | Some("MODE INDEPENDENT") => {
+                if power.is_some() {
+                    return Err(self.invalid(
+                        line,
+                        kw,
+                        "POWER= is only used with MIXED MODE BEHAVIOR=BK or POWER LAW",
+                    ));
+                }
+                InpMixedMode::ModeIndependent
+            }
+            Some("BK") => InpMixedMode::Bk {
+                power: power.ok_or_else(|| need_power("BK"))?,
+            },
+            Some("POWER LAW") => InpMixedMode::PowerLaw {
+                power: power.ok_or_else(|| need_power("POWER LAW"))?,
+            },
+            Some(other) => {
+                return Err(self.bad_param(
+                    line,
+                    kw,
+                    format!("MIXED MODE BEHAVIOR={other}"),
+                    "MIXED MODE BEHAVIOR=MODE INDEPENDENT (default), BK, POWER LAW (TABULAR is not supported)",
+                ))
+            }
+        };
+        let (toughness, data_line) = if mixed_mode == InpMixedMode::ModeIndependent {
+            let (v, dl) = self.damage_values(
+                line,
+                kw,
+                "MODE INDEPENDENT",
+                &["G_c (fracture energy)"],
+                data,
+            )?;
+            ([v[0]; 3], dl)
+        } else {
+            let (v, dl) = self.damage_values(
+                line,
+                kw,
+                "a mixed-mode rule",
+                &[
+                    "G_Ic (normal mode fracture energy)",
+                    "G_IIc (first shear)",
+                    "G_IIIc (second shear)",
+                ],
+                data,
+            )?;
+            ([v[0], v[1], v[2]], dl)
+        };
+        if let Some(k) = toughness.iter().position(|&x| x <= 0.0) {
+            return Err(self.invalid(
+                data_line,
+                kw,
+                format!(
+                    "fracture energy {} must be positive",
+                    ["G_Ic", "G_IIc", "G_IIIc"][k]
+                ),
+            ));
+        }
+        if let Some(m) = self.current_material.as_mut() {
+            m.evolution = Some(InpDamageEvolution {
+                softening,
+                mixed_mode,
+                toughness,
+                line,
+                data_line,
+            });
+        }
+        Ok(())
+    }
+
+    /// `*DAMAGE STABILIZATION`: one viscosity coefficient.
+    fn damage_stabilization(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "DAMAGE STABILIZATION";
+        let m = self.damage_material(line, kw)?;
+        if let Some(st) = &m.stabilization {
+            return Err(self.invalid(
+                line,
+                kw,
+                format!(
+                    "material `{}` already has a *DAMAGE STABILIZATION at line {}",
+                    m.name, st.line
+                ),
+            ));
+        }
+        self.check_params(line, kw, params, &[])?;
+        let (v, _) = self.damage_values(
+            line,
+            kw,
+            "*DAMAGE STABILIZATION",
+            &["viscosity coefficient"],
+            data,
+        )?;
+        if let Some(m) = self.current_material.as_mut() {
+            m.stabilization = Some(InpDamageStabilization {
+                viscosity: v[0],
+                line,
+            });
         }
         Ok(())
     }
@@ -1496,6 +2134,13 @@ impl<'a> Parser<'a> {
                 }
             };
             let mname = self.deck.materials[m].name.clone();
+            if !cohesive && self.deck.materials[m].has_damage() {
+                return Err(self.invalid(
+                    line,
+                    kw,
+                    format!("material `{mname}` has damage options (a cohesive material): use it in a *COHESIVE SECTION for COH3D8 elements, not in a *SOLID SECTION"),
+                ));
+            }
             for &e in &self.elsets[set].members.clone() {
                 let el = &self.elems[e];
                 let shape = self.pre_blocks[el.pre_block].shape;
@@ -1529,6 +2174,67 @@ impl<'a> Parser<'a> {
                     _ => self.elems[e].material = Some((mname.clone(), line)),
                 }
             }
+        }
+        for m in self.deck.materials.iter().filter(|m| m.has_damage()) {
+            if !self
+                .deck
+                .cohesive_sections
+                .iter()
+                .any(|c| c.material.eq_ignore_ascii_case(&m.name))
+            {
+                return Err(self.invalid(
+                    m.line,
+                    "MATERIAL",
+                    format!("material `{}` has damage options but no *COHESIVE SECTION uses it: damage is read for cohesive elements (COH3D8) only", m.name),
+                ));
+            }
+        }
+        if let Some((line, raw)) = self.curve_directive.take() {
+            let kw = "** junta: curve";
+            let get = |key: &str, required: bool| -> Result<Option<String>, InpError> {
+                match raw.iter().find(|(k, _)| k == key) {
+                    Some((_, v)) => Ok(Some(v.clone())),
+                    None if required => Err(InpError::Invalid {
+                        file: self.file.into(),
+                        line,
+                        keyword: kw.into(),
+                        message: format!("missing `{key}=`; the directive is `** junta: curve reaction_set=NSET reaction_component=x|y|z point_set=NSET point_component=x|y|z [relative_to=NSET]`"),
+                    }),
+                    None => Ok(None),
+                }
+            };
+            let set_name = |name: String| -> Result<String, InpError> {
+                match self.nset_index.get(&name.to_uppercase()) {
+                    Some(&i) => Ok(self.nsets[i].name.clone()),
+                    None => Err(self.unknown_set(line, kw, "node set", &name)),
+                }
+            };
+            let component = |c: String| -> Result<String, InpError> {
+                let l = c.to_ascii_lowercase();
+                if matches!(l.as_str(), "x" | "y" | "z") {
+                    Ok(l)
+                } else {
+                    Err(InpError::Invalid {
+                        file: self.file.into(),
+                        line,
+                        keyword: kw.into(),
+                        message: format!("component `{c}`: use x, y or z"),
+                    })
+                }
+            };
+            let rs = get("reaction_set", true)?.unwrap_or_default();
+            let rc = get("reaction_component", true)?.unwrap_or_default();
+            let ps = get("point_set", true)?.unwrap_or_default();
+            let pc = get("point_component", true)?.unwrap_or_default();
+            let rel = get("relative_to", false)?;
+            self.deck.curve = Some(InpCurve {
+                reaction_set: set_name(rs)?,
+                reaction_component: component(rc)?,
+                point_set: set_name(ps)?,
+                point_component: component(pc)?,
+                relative_to: rel.map(set_name).transpose()?,
+                line,
+            });
         }
         // blocks: one per (pre-block, material), in input order
         let mut refs = vec![
@@ -1640,7 +2346,9 @@ pub fn parse_inp(text: &str, file_name: &str) -> Result<InpDeck, InpError> {
         step_open: None,
         boundary_targets: Vec::new(),
         cload_targets: Vec::new(),
+        curve_directive: None,
     };
+    p.directives(text)?;
     p.run(&items)?;
     p.finish()
 }
