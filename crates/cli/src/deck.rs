@@ -340,6 +340,8 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         point_set: c.point_set.clone(),
         point_component: c.point_component.clone(),
         relative_to: c.relative_to.clone(),
+        negate: false,
+        reference: None,
     });
     if let (Some(c), None) = (&deck.curve, &incremental) {
         notes.push(format!(

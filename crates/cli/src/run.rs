@@ -51,7 +51,7 @@ fn build_solver(key: &str, table: &toml::Table, where_: &str) -> Result<Box<dyn 
 /// matrix kind: `cholesky` for symmetric positive-definite tangents, `ldlt`
 /// when a law can soften (symmetric indefinite). The choice, or a back end
 /// the user forced that does not accept the model's kind, is a note.
-fn resolve_solver(
+pub fn resolve_solver(
     key: &mut String,
     table: &toml::Table,
     model: &Model,

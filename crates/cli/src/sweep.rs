@@ -460,8 +460,15 @@ pub fn sweep_integration(
         for rule in ["gauss", "lobatto"] {
             set_integration(&mut sf, rule);
             let model = scene::build_model(&sf)?;
-            let (key, table) = scene::solver_table(&sf);
-            let mut solver = (registry::find::<SolverEntry>(&key)?.build)(&table)?;
+            let (mut key, table) = scene::solver_table(&sf);
+            let mut notes = Vec::new();
+            let mut solver = crate::run::resolve_solver(
+                &mut key,
+                &table,
+                &model,
+                &input.display().to_string(),
+                &mut notes,
+            )?;
             let res = solve_linear_static(&model, solver.as_mut())
                 .with_context(|| format!("solving with {rule} integration"))?;
             let ifs = output::interface_results(&model, &res.u, &res.state)?;
