@@ -4,10 +4,9 @@
 //! by the box generator, the same `bilinear` law), both written by
 //! examples/delamination/make_dcb_deck.py.
 //!
-//! The runs stop at delta = 3 mm, before the peak (about 4.4 mm): past the
-//! peak the tangent is indefinite and needs the `ldlt` back end, which is
-//! not on every branch yet; the runs force `cholesky`, which is exact
-//! before the peak.
+//! The runs stop at delta = 3 mm, before the peak (about 4.4 mm), where the
+//! tangent is positive definite: they force `cholesky` (the `auto` choice
+//! for a softening law is `ldlt`, which gives the same answer there).
 
 mod common;
 use common::*;

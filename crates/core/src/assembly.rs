@@ -43,6 +43,28 @@ pub struct Assembler {
     pub pattern: SymmetricCsc,
     /// Elements grouped by colour.
     pub colors: Vec<Vec<ElementRef>>,
+    /// Stiffness of the linear elements, built by the first
+    /// [`Assembler::assemble_cached`].
+    linear: Option<LinearCache>,
+}
+
+/// The constant part of an incremental analysis: the elements whose
+/// internal force is `K_e u_e` with a constant `K_e`
+/// ([`Element::is_linear`], e.g. linear elastic solids). Their matrices are
+/// kept (element-major, `nd x nd` each) and their sum in the pattern, so
+/// that a Newton iteration recomputes only the nonlinear elements (the
+/// interfaces) and adds the kept part: a copy of the matrix values and one
+/// small matrix-vector product per linear element.
+#[derive(Debug, Clone)]
+struct LinearCache {
+    /// Sum of the linear elements' matrices, in the pattern.
+    values: Vec<f64>,
+    /// Linear elements by colour, with the offset of their matrix in `mats`.
+    linear_colors: Vec<Vec<(ElementRef, usize)>>,
+    /// Nonlinear elements by colour.
+    nonlinear_colors: Vec<Vec<ElementRef>>,
+    /// Element matrices.
+    mats: Vec<f64>,
 }
 
 /// Scratch buffers of one assembly task.
@@ -140,7 +162,145 @@ impl Assembler {
         Assembler {
             pattern,
             colors: color_elements(mesh),
+            linear: None,
         }
+    }
+
+    /// [`Assembler::assemble`] for repeated assemblies of one model (an
+    /// incremental analysis): the first call computes and keeps the
+    /// matrices of the linear elements ([`Element::is_linear`] with no
+    /// state; see `LinearCache`), later calls recompute only the other
+    /// elements. Same results as `assemble` to round-off; memory: one
+    /// `nd x nd` matrix per linear element (28.8 kB for an H20).
+    #[allow(clippy::too_many_arguments)]
+    pub fn assemble_cached(
+        &mut self,
+        mesh: &Mesh,
+        elements: &[Arc<dyn Element>],
+        dofs: &DofMap,
+        u: &[f64],
+        state: &mut StateStore,
+        step: StepInfo,
+        mut k: Option<&mut SymmetricCsc>,
+        f_int: &mut [f64],
+    ) -> Result<(), CoreError> {
+        if self.linear.is_none() {
+            self.linear = Some(self.build_linear_cache(mesh, elements, dofs)?);
+        }
+        let cache = self.linear.as_ref().expect("built above");
+        self.assemble_colors(
+            &cache.nonlinear_colors,
+            mesh,
+            elements,
+            dofs,
+            u,
+            state,
+            step,
+            k.as_deref_mut(),
+            f_int,
+        )?;
+        if let Some(k) = k {
+            k.values
+                .par_iter_mut()
+                .zip(cache.values.par_iter())
+                .for_each(|(a, b)| *a += b);
+        }
+        let fv = SharedMut(f_int.as_mut_ptr());
+        for color in &cache.linear_colors {
+            color.par_iter().for_each(|&(er, off)| {
+                let conn = mesh.blocks[er.block].element(er.element);
+                let nd = 3 * conn.len();
+                let ke = &cache.mats[off..off + nd * nd];
+                for a in 0..nd {
+                    let row = &ke[a * nd..(a + 1) * nd];
+                    let mut f = 0.0;
+                    for (b, kab) in row.iter().enumerate() {
+                        f += kab * u[3 * conn[b / 3] + b % 3];
+                    }
+                    // SAFETY: elements of one colour share no node.
+                    unsafe { fv.add(3 * conn[a / 3] + a % 3, f) };
+                }
+            });
+        }
+        Ok(())
+    }
+
+    fn build_linear_cache(
+        &self,
+        mesh: &Mesh,
+        elements: &[Arc<dyn Element>],
+        dofs: &DofMap,
+    ) -> Result<LinearCache, CoreError> {
+        let is_lin = |er: &ElementRef| {
+            let el = &elements[er.block];
+            el.is_linear() && el.state_len() == 0
+        };
+        let mut linear_colors = Vec::new();
+        let mut nonlinear_colors = Vec::new();
+        let mut mats_len = 0;
+        for color in &self.colors {
+            let mut lin = Vec::new();
+            let mut non = Vec::new();
+            for er in color {
+                if is_lin(er) {
+                    let nd = 3 * mesh.blocks[er.block].nodes_per_element();
+                    lin.push((*er, mats_len));
+                    mats_len += nd * nd;
+                } else {
+                    non.push(*er);
+                }
+            }
+            if !lin.is_empty() {
+                linear_colors.push(lin);
+            }
+            if !non.is_empty() {
+                nonlinear_colors.push(non);
+            }
+        }
+        let mut mats = vec![0.0; mats_len];
+        let mut values = vec![0.0; self.pattern.values.len()];
+        let max_nodes = mesh
+            .blocks
+            .iter()
+            .map(|b| b.nodes_per_element())
+            .max()
+            .unwrap_or(0);
+        let mut s = Scratch::new(max_nodes);
+        for &(er, off) in linear_colors.iter().flatten() {
+            let block = &mesh.blocks[er.block];
+            let conn = block.element(er.element);
+            let n = conn.len();
+            let nd = 3 * n;
+            for (a, &node) in conn.iter().enumerate() {
+                s.coords[a] = mesh.nodes[node];
+                for c in 0..3 {
+                    s.dofs[3 * a + c] = 3 * node + c;
+                }
+            }
+            s.disp[..nd].iter_mut().for_each(|v| *v = 0.0);
+            let ctx = ElementContext {
+                coords: &s.coords[..n],
+                disp: &s.disp[..nd],
+                state_committed: &[],
+                step: StepInfo::default(),
+            };
+            let ke = &mut mats[off..off + nd * nd];
+            elements[er.block]
+                .compute(&ctx, &mut [], &mut s.f[..nd], Some(ke))
+                .map_err(|source| CoreError::Element {
+                    block: block.name.clone(),
+                    element: er.element,
+                    source,
+                })?;
+            let (cp, ri) = (&self.pattern.col_ptr, &self.pattern.row_idx);
+            scatter_upper(cp, ri, dofs, &s.dofs[..nd], ke, |p, v| values[p] += v);
+        }
+        Ok(LinearCache {
+            values,
+            linear_colors,
+            nonlinear_colors,
+            mats,
+        })
     }
 
     /// Assemble the internal force `f_int` (full length, all dofs, so that
@@ -150,6 +310,23 @@ impl Assembler {
     #[allow(clippy::too_many_arguments)]
     pub fn assemble(
         &self,
+        mesh: &Mesh,
+        elements: &[Arc<dyn Element>],
+        dofs: &DofMap,
+        u: &[f64],
+        state: &mut StateStore,
+        step: StepInfo,
+        k: Option<&mut SymmetricCsc>,
+        f_int: &mut [f64],
+    ) -> Result<(), CoreError> {
+        self.assemble_colors(&self.colors, mesh, elements, dofs, u, state, step, k, f_int)
+    }
+
+    /// Zero `f_int` and `k`, then assemble the elements of `colors`.
+    #[allow(clippy::too_many_arguments)]
+    fn assemble_colors(
+        &self,
+        colors: &[Vec<ElementRef>],
         mesh: &Mesh,
         elements: &[Arc<dyn Element>],
         dofs: &DofMap,
@@ -192,7 +369,7 @@ impl Assembler {
         let ranges: Vec<Vec<std::ops::Range<usize>>> = (0..mesh.blocks.len())
             .map(|b| (0..mesh.blocks[b].len()).map(|e| st.range(b, e)).collect())
             .collect();
-        for color in &self.colors {
+        for color in colors {
             color.par_iter().try_for_each_init(
                 || Scratch::new(max_nodes),
                 |s, er| -> Result<(), CoreError> {
@@ -233,30 +410,52 @@ impl Assembler {
                         unsafe { fv.add(s.dofs[a], s.f[a]) };
                     }
                     if let Some((cp, ri)) = kp {
-                        for b in 0..nd {
-                            let j = dofs.eq[s.dofs[b]];
-                            if j == CONSTRAINED {
-                                continue;
-                            }
-                            let rows = &ri[cp[j]..cp[j + 1]];
-                            for a in 0..nd {
-                                let i = dofs.eq[s.dofs[a]];
-                                if i == CONSTRAINED || i > j {
-                                    continue;
-                                }
-                                let p =
-                                    cp[j] + rows.binary_search(&i).expect("pattern covers element");
-                                // SAFETY: entry (i, j) belongs to nodes of this element only
-                                // among the elements of this colour.
-                                unsafe { kv.add(p, s.k[a * nd + b]) };
-                            }
-                        }
+                        // SAFETY: entry (i, j) belongs to nodes of this element only
+                        // among the elements of this colour.
+                        scatter_upper(
+                            cp,
+                            ri,
+                            dofs,
+                            &s.dofs[..nd],
+                            &s.k[..nd * nd],
+                            |p, v| unsafe { kv.add(p, v) },
+                        );
                     }
                     Ok(())
                 },
             )?;
         }
         Ok(())
+    }
+}
+
+/// Add the upper-triangle entries of an element matrix `ke` (`nd x nd`,
+/// row-major, dofs `edofs`) of free dofs to the pattern `(cp, ri)`:
+/// `add(position, value)`.
+#[inline]
+fn scatter_upper(
+    cp: &[usize],
+    ri: &[usize],
+    dofs: &DofMap,
+    edofs: &[usize],
+    ke: &[f64],
+    mut add: impl FnMut(usize, f64),
+) {
+    let nd = edofs.len();
+    for b in 0..nd {
+        let j = dofs.eq[edofs[b]];
+        if j == CONSTRAINED {
+            continue;
+        }
+        let rows = &ri[cp[j]..cp[j + 1]];
+        for a in 0..nd {
+            let i = dofs.eq[edofs[a]];
+            if i == CONSTRAINED || i > j {
+                continue;
+            }
+            let p = cp[j] + rows.binary_search(&i).expect("pattern covers element");
+            add(p, ke[a * nd + b]);
+        }
     }
 }
 

@@ -125,6 +125,13 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     fn wants_small_increments(&self, _state_committed: &[f64]) -> bool {
         false
     }
+    /// True when the internal force is `K u` with a constant `K` (linear
+    /// elastic solids, no state): an incremental driver may then compute
+    /// the element's matrix once and reuse it
+    /// ([`crate::assembly::Assembler::assemble_cached`]).
+    fn is_linear(&self) -> bool {
+        false
+    }
     /// Young's modulus of the element's material along the unit direction
     /// `n` (solids), for diagnostics such as the cohesive-zone advice.
     fn directional_modulus(&self, _n: [f64; 3]) -> Option<f64> {

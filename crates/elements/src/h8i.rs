@@ -333,6 +333,10 @@ impl Element for IncompatibleHex8 {
     fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
         self.material.directional_modulus(n)
     }
+    /// Small strains and a linear elastic material: `f = K u`.
+    fn is_linear(&self) -> bool {
+        true
+    }
 
     fn compute(
         &self,

@@ -335,6 +335,10 @@ impl Element for SolidElement {
     fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
         self.material.directional_modulus(n)
     }
+    /// Small strains and a linear elastic material: `f = K u`.
+    fn is_linear(&self) -> bool {
+        true
+    }
 
     fn compute(
         &self,

@@ -345,3 +345,27 @@ pub fn cohesive_zone_advice(
         verdict,
     }))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// AS4/PEEK mode I (BENCHMARKS.md section 4): E22 = 10.1 GPa,
+    /// G_Ic = 0.969 N/mm, N = 80 MPa; arm h = 1.56 mm, E11 = 122.7 GPa.
+    #[test]
+    fn lengths_and_turon_strength_are_the_closed_forms() {
+        let z = zone_lengths(80.0, 0.969, 10100.0, 122700.0, 1.56, 1.0);
+        let bulk = 10100.0 * 0.969 / 6400.0;
+        assert!((z.hillerborg - bulk).abs() < 1e-12);
+        assert!((z.rice - 0.88 * bulk).abs() < 1e-12);
+        assert!((z.hui - 0.21 * bulk).abs() < 1e-12);
+        let slender = (122700.0 * 0.969 / 6400.0f64).powf(0.25) * 1.56f64.powf(0.75);
+        assert!((z.slender - slender).abs() < 1e-12);
+        assert_eq!(z.length, z.rice.min(z.slender));
+        // Turon: the reduced strength puts exactly 3 elements of length 1
+        // in Rice's zone (M = 9 pi / 32 ~ 0.88)
+        let l_reduced =
+            9.0 * std::f64::consts::PI / 32.0 * 10100.0 * 0.969 / z.reduced_strength.powi(2);
+        assert!((l_reduced - 3.0).abs() < 1e-9, "{l_reduced}");
+    }
+}

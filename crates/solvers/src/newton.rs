@@ -539,7 +539,7 @@ impl Work<'_> {
         let m = self.model;
         state.restore();
         let t = Instant::now();
-        let r = self.asm.assemble(
+        let r = self.asm.assemble_cached(
             &m.mesh,
             &m.elements,
             &m.dofs,
