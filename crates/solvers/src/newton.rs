@@ -705,7 +705,10 @@ impl Work<'_> {
             // cycling between the branches of a softening point. Ask the
             // laws for their secant tangent for the rest of this attempt
             // (linear but monotone convergence) and reassemble it.
-            let switch_to_secant = !decreased && !step.secant && st.secant_fallback;
+            // (Only while the force residual is above its tolerance: a
+            // residual already at round-off level need not decrease.)
+            let switch_to_secant =
+                !decreased && !step.secant && st.secant_fallback && ev.rel > st.tol_force;
             if switch_to_secant {
                 step.secant = true;
                 self.secant_attempts += 1;
