@@ -781,23 +781,15 @@ fn split_precrack(
 /// the box `[lo, hi]`; the rest of the surface stays cut (traction free).
 fn keep_within(mesh: &mut Mesh, block: usize, name: &str, [lo, hi]: [[f64; 3]; 2]) -> Result<()> {
     let tol = 1e-9 * mesh_diagonal(mesh);
-    let nodes = &mesh.nodes;
+    let centres = element_centres(mesh, block);
     let b = &mut mesh.blocks[block];
     let npe = b.nodes_per_element();
     let kept: Vec<usize> = b
         .connectivity
         .chunks(npe)
-        .filter(|c| {
-            let mut centre = [0.0; 3];
-            for &n in c.iter() {
-                for k in 0..3 {
-                    centre[k] += nodes[n][k] / npe as f64;
-                }
-            }
-            (0..3).all(|k| centre[k] >= lo[k] - tol && centre[k] <= hi[k] + tol)
-        })
-        .flatten()
-        .copied()
+        .zip(&centres)
+        .filter(|(_, c)| (0..3).all(|k| c[k] >= lo[k] - tol && c[k] <= hi[k] + tol))
+        .flat_map(|(conn, _)| conn.iter().copied())
         .collect();
     if kept.is_empty() {
         bail!("no interface element lies in {lo:?} .. {hi:?}");

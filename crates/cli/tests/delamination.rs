@@ -31,22 +31,11 @@ fn column(c: &(Vec<String>, Vec<Vec<String>>), name: &str) -> Vec<f64> {
 }
 
 fn run_incremental(input: &Path, dir: &Path, max_increments: usize) -> serde_json::Value {
-    let out = junta()
-        .arg("run")
-        .arg(input)
-        .arg("-o")
-        .arg(dir)
-        .arg("-q")
-        .args(["--max-increments", &max_increments.to_string()])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "junta run {} failed:\n{}",
-        input.display(),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+    run_ok_with(
+        input,
+        dir,
+        &["--max-increments", &max_increments.to_string()],
+    )
 }
 
 #[test]

@@ -296,6 +296,11 @@ impl InterfaceLaw for CubicLaw {
     fn key(&self) -> &'static str {
         "test_cubic"
     }
+    /// Nonsymmetric tangent: the element must assemble it in full (laws
+    /// that do not declare `General` get the symmetric part).
+    fn tangent_kind(&self) -> junta_core::MatrixKind {
+        junta_core::MatrixKind::General
+    }
     fn state_len(&self) -> usize {
         1
     }
@@ -861,8 +866,9 @@ fn tangent_matches_finite_differences() {
             let v = rng.vec(nd);
             check_tangent_fd(&el, &coords, &u, &v, 1e-5, 1e-6);
 
-            // the tangent of this law is not symmetric: the element must use
-            // the full law tangent (a symmetrised or diagonal one fails FD)
+            // the tangent of this law is not symmetric and the law says so
+            // (`MatrixKind::General`): the element must use the full law
+            // tangent (a symmetrised or diagonal one fails FD)
             let (_, k) = compute(&el, &coords, &u);
             let asym = (0..nd)
                 .flat_map(|i| (0..nd).map(move |j| (i, j)))

@@ -15,12 +15,18 @@ pub fn repo() -> PathBuf {
 
 /// Run `junta run input -o dir`, return summary.json.
 pub fn run_ok(input: &Path, dir: &Path) -> Value {
+    run_ok_with(input, dir, &[])
+}
+
+/// [`run_ok`] with extra arguments (e.g. `--max-increments 40`).
+pub fn run_ok_with(input: &Path, dir: &Path, args: &[&str]) -> Value {
     let out = junta()
         .arg("run")
         .arg(input)
         .arg("-o")
         .arg(dir)
         .arg("-q")
+        .args(args)
         .output()
         .unwrap();
     assert!(
