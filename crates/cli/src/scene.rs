@@ -713,8 +713,8 @@ fn element_centres(mesh: &Mesh, block: usize) -> Vec<[f64; 3]> {
         .map(|c| {
             let mut centre = [0.0; 3];
             for &n in c {
-                for k in 0..3 {
-                    centre[k] += mesh.nodes[n][k] / npe as f64;
+                for (x, p) in centre.iter_mut().zip(mesh.nodes[n]) {
+                    *x += p / npe as f64;
                 }
             }
             centre

@@ -292,9 +292,9 @@ pub fn cohesive_zone_advice(
     };
     let m = b.nodes_per_element() / 2;
     let (h_bot, e_bot) =
-        side_extent(&mut (0..b.len()).flat_map(|e| b.element(e)[..m].to_vec().into_iter()));
+        side_extent(&mut (0..b.len()).flat_map(|e| b.element(e)[..m].iter().copied()));
     let (h_top, e_top) =
-        side_extent(&mut (0..b.len()).flat_map(|e| b.element(e)[m..].to_vec().into_iter()));
+        side_extent(&mut (0..b.len()).flat_map(|e| b.element(e)[m..].iter().copied()));
     let h = match (h_bot > 0.0, h_top > 0.0) {
         (true, true) => h_bot.min(h_top),
         (true, false) => h_bot,

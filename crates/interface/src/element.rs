@@ -276,12 +276,10 @@ impl Element for InterfaceElement {
                 // law's tangent (the tangent itself for symmetric laws)
                 let mut dt = r.tangent;
                 if symmetric {
-                    for i in 0..3 {
-                        for j in i + 1..3 {
-                            let a = 0.5 * (dt[i][j] + dt[j][i]);
-                            dt[i][j] = a;
-                            dt[j][i] = a;
-                        }
+                    for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+                        let a = 0.5 * (dt[i][j] + dt[j][i]);
+                        dt[i][j] = a;
+                        dt[j][i] = a;
                     }
                 }
                 // G = theta D theta^T (global 3x3)
