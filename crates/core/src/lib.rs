@@ -5,7 +5,10 @@
 //! conditions by elimination ([`dof`]), the plugin traits ([`Element`],
 //! [`Material`], [`InterfaceLaw`], [`FailureCriterion`], [`LinearSolver`]),
 //! the plugin [`registry`] on `inventory`, integration-point [`state`]
-//! storage, and parallel [`assembly`] into a fixed sparsity pattern.
+//! storage, parallel [`assembly`] into a fixed sparsity pattern (with a
+//! cache of the linear elements for incremental runs), the tangent
+//! [`MatrixKind`] that laws declare, and forward-mode [`dual`] numbers for
+//! exact law tangents.
 //!
 //! Dependencies point one way: every other Junta crate depends on this one,
 //! and this one on none of them.

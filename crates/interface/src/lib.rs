@@ -7,7 +7,10 @@
 //!   H8 / H20 / H27 faces), one generic kernel over the face shape, with
 //!   Gauss or Lobatto (nodal) integration. The paper's element is INTER18.
 //! - [`law`]: traction-separation laws behind [`junta_core::InterfaceLaw`],
-//!   one file each (`linear_penalty`, ...), registered with `inventory`.
+//!   one file each, registered with `inventory`: `linear_penalty` and
+//!   `paper_debond` (the paper's), the fracture-energy laws `bilinear` and
+//!   `exponential` (mixed mode, shared maths in [`law::cohesive`]) and
+//!   `contact` (frictionless, for precracks).
 //! - [`cohesive_zone`]: mesh advice for softening interfaces (cohesive-zone
 //!   length, elements spanning it, Turon's strength reduction).
 //! - [`advisor`]: the paper's penalty choice from its error analysis

@@ -3,6 +3,14 @@
 //! its own committed state; it returns the traction `[tau_13, tau_23,
 //! sigma_33]` and the consistent tangent. Adding a law is one file here plus
 //! its `inventory::submit!`.
+//!
+//! A law also declares the kind of its tangent
+//! ([`junta_core::InterfaceLaw::tangent_kind`]: softening laws are
+//! symmetric indefinite, which makes the driver pick `ldlt`), names its
+//! per-point outputs (`damage`, `dissipated_energy`, ...) and may give
+//! fracture properties (for the mesh advice) and parameter warnings. The
+//! fracture-energy laws compute in dual numbers ([`junta_core::Dual3`]), so
+//! their tangents need no hand derivation.
 
 pub mod bilinear;
 pub mod cohesive;
