@@ -445,3 +445,72 @@ fn bad_parameters_name_the_key() {
         assert!(e.contains("bilinear"), "{e}");
     }
 }
+
+/// In an element, a softening law's tangent (unsymmetric where the mode
+/// ratio changes with the jump) is assembled as its symmetric part: the
+/// element matrix is symmetric, as the symmetric storage needs.
+#[test]
+fn element_assembles_the_symmetric_part_of_a_mixed_mode_tangent() {
+    use junta_core::element::{Element, ElementContext};
+    use junta_core::topology::CellShape;
+    use junta_interface::{InterfaceElement, InterfaceRule};
+    let law = build("bilinear", "");
+    let el = InterfaceElement::new(CellShape::Inter8, InterfaceRule::Gauss, law.clone()).unwrap();
+    let face = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ];
+    let coords: Vec<[f64; 3]> = face.iter().chain(face.iter()).copied().collect();
+    // top face slid and opened, more at one corner: mixed mode, softening
+    let mut disp = vec![0.0; 24];
+    for a in 0..4 {
+        let s = 1.0 + a as f64;
+        disp[3 * (4 + a)] = 0.6e-4 * s;
+        disp[3 * (4 + a) + 2] = 0.5e-4 * s;
+    }
+    let mut state = vec![0.0; el.state_len()];
+    el.init_state(&mut state);
+    let mut trial = vec![0.0; el.state_len()];
+    let mut f = vec![0.0; 24];
+    let mut k = vec![0.0; 24 * 24];
+    el.compute(
+        &ElementContext {
+            coords: &coords,
+            disp: &disp,
+            state_committed: &state,
+            step: StepInfo {
+                increment: 1,
+                load_factor: 1.0,
+                delta_load_factor: 1.0,
+                secant: false,
+            },
+        },
+        &mut trial,
+        &mut f,
+        Some(&mut k),
+    )
+    .unwrap();
+    // the points soften in mixed mode
+    let damaged = trial
+        .chunks(slot::STATE_LEN)
+        .filter(|s| s[slot::DAMAGE] > 0.0 && s[slot::MODE_RATIO] > 0.1)
+        .count();
+    assert!(damaged > 0, "no mixed-mode softening point");
+    // ... where the law's own tangent is not symmetric
+    let raw = Point::new(law).trial([1.5e-4, 0.0, 1.25e-4], 1.0).0.tangent;
+    let asym = (raw[0][2] - raw[2][0]).abs();
+    assert!(asym > 1e-3 * raw[2][2].abs(), "law tangent {raw:?}");
+    let kmax = k.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for i in 0..24 {
+        for j in 0..24 {
+            assert!(
+                (k[i * 24 + j] - k[j * 24 + i]).abs() <= 1e-12 * kmax,
+                "K[{i}][{j}] = {} against K[{j}][{i}] = {}",
+                k[i * 24 + j],
+                k[j * 24 + i]
+            );
+        }
+    }
+}
