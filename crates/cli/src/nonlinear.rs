@@ -125,6 +125,37 @@ impl Row {
     }
 }
 
+/// When a run of a softening model stops after the recorded reaction has
+/// passed a maximum, say so with the numbers: the likely cause is a
+/// snap-back (an unstable drop of the load, e.g. an element separating)
+/// that load or displacement control cannot follow at any increment size.
+fn past_peak_hint(rows: &[Row], kind: junta_core::MatrixKind) -> String {
+    if kind == junta_core::MatrixKind::SymmetricPositiveDefinite {
+        return String::new();
+    }
+    let Some((peak_row, peak)) = rows
+        .iter()
+        .filter_map(|r| Some((r, r.reaction?.abs())))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+    else {
+        return String::new();
+    };
+    let last = rows.last().and_then(|r| r.reaction).map_or(peak, f64::abs);
+    if last >= peak * (1.0 - 1e-4) {
+        // still on a rising branch: no peak passed (a stall before a
+        // maximum has another cause)
+        return String::new();
+    }
+    let unstable = rows
+        .iter()
+        .filter(|r| r.negative_pivots.unwrap_or(0) > 0)
+        .count();
+    format!(
+        ". The reaction peaked at {peak:.6e} (increment {}, load factor {:.6e}) and the run stopped after that maximum, at {:.6e} ({} increments with a negative pivot so far): most likely a snap-back, a drop of the load that load or displacement control cannot follow at any increment size. Add a small `viscosity` to the softening law (its energy is reported apart), refine the interface mesh, or use path following",
+        peak_row.increment, peak_row.lambda, last, unstable
+    )
+}
+
 /// Points `(x, y)` of a reference curve file: CSV, two numeric columns,
 /// `#` comments and a header line allowed; the path is relative to the
 /// scene's folder.
@@ -538,10 +569,11 @@ pub fn run_static(
     );
     match failure {
         Some(e) => Err(anyhow!(e).context(format!(
-            "{file}: the run stopped; the {} converged increments are in {} (restart with `junta run --restart {}` after changing [analysis.newton])",
+            "{file}: the run stopped; the {} converged increments are in {} (restart with `junta run --restart {}` after changing [analysis.newton]){}",
             last_increment,
             dir.display(),
-            dir.display()
+            dir.display(),
+            past_peak_hint(&rows, model.matrix_kind())
         ))),
         None if INTERRUPTED.load(Ordering::SeqCst) => {
             bail!("interrupted; the converged increments are in {}", dir.display())

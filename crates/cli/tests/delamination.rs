@@ -136,3 +136,49 @@ fn enf_compliance_against_beam_theory_and_precrack_contact() {
         "no contact pressure"
     );
 }
+
+/// Without regularisation, displacement control stops just past the DCB's
+/// peak (the first elements to separate snap back): the run says so, with
+/// the peak, instead of a bare non-convergence.
+#[test]
+fn dcb_without_regularisation_stops_past_the_peak_and_says_why() {
+    let dir = tempfile::tempdir().unwrap();
+    let ex = repo().join("examples/delamination");
+    let text = std::fs::read_to_string(ex.join("dcb.toml")).unwrap();
+    let text: String = text
+        .lines()
+        .filter(|l| !l.starts_with("viscosity"))
+        .map(|l| {
+            l.replace(
+                "dcb_beam_theory.csv",
+                &ex.join("dcb_beam_theory.csv").display().to_string(),
+            ) + "\n"
+        })
+        .collect();
+    let scene = dir.path().join("dcb_plain.toml");
+    std::fs::write(&scene, text).unwrap();
+    let out = junta()
+        .arg("run")
+        .arg(&scene)
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .arg("-q")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("snap-back") && err.contains("viscosity"),
+        "{err}"
+    );
+    // the peak it names is the corrected-beam-theory peak within 3 %
+    let peak: f64 = err
+        .split("peaked at ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no peak in: {err}"));
+    assert!((peak / 138.51 - 1.0).abs() < 0.03, "peak {peak}");
+    // the converged increments are on disk, the last one as a frame
+    assert!(dir.path().join("out/checkpoint.json").exists());
+}
