@@ -338,6 +338,33 @@ fn amd_scalar(matrix: &SymmetricCsc) -> Vec<usize> {
     }
 }
 
+/// Elimination tree of a symmetric pattern by Liu's algorithm with path
+/// compression: `parent[i]` (or `usize::MAX` for a root), from the
+/// neighbours of each vertex `k` in elimination order (those `< k` are
+/// used). `O(nnz log n)` at worst, near-linear in practice.
+fn elimination_tree<I: Iterator<Item = usize>>(
+    n: usize,
+    neighbours: impl Fn(usize) -> I,
+) -> Vec<usize> {
+    const NONE: usize = usize::MAX;
+    let mut parent = vec![NONE; n];
+    let mut ancestor = vec![NONE; n];
+    for k in 0..n {
+        for i0 in neighbours(k) {
+            let mut i = i0;
+            while i != NONE && i < k {
+                let next = ancestor[i];
+                ancestor[i] = k;
+                if next == NONE {
+                    parent[i] = k;
+                }
+                i = next;
+            }
+        }
+    }
+    parent
+}
+
 /// Exact number of non-zeros of the Cholesky factor `L` (diagonal
 /// included) of `P A P^T` for the ordering `perm` (`None`: natural order).
 ///
@@ -358,21 +385,9 @@ pub fn factor_nonzeros(matrix: &SymmetricCsc, perm: Option<&[usize]>) -> usize {
         }
     };
     const NONE: usize = usize::MAX;
-    let mut parent = vec![NONE; n];
-    let mut ancestor = vec![NONE; n];
-    for k in 0..n {
-        for &i0 in &a.row_idx[a.col_ptr[k]..a.col_ptr[k + 1]] {
-            let mut i = i0;
-            while i != NONE && i < k {
-                let next = ancestor[i];
-                ancestor[i] = k;
-                if next == NONE {
-                    parent[i] = k;
-                }
-                i = next;
-            }
-        }
-    }
+    let parent = elimination_tree(n, |k| {
+        a.row_idx[a.col_ptr[k]..a.col_ptr[k + 1]].iter().copied()
+    });
     let mut mark = vec![NONE; n];
     let mut count = n; // diagonal
     for k in 0..n {
@@ -518,21 +533,7 @@ fn weighted_counts(graph: &Graph, w: &[usize], order: &[u32]) -> FillEstimate {
             .map(|&u| inv[u as usize])
     };
     // elimination tree (new numbering)
-    let mut parent = vec![NONE; n];
-    let mut ancestor = vec![NONE; n];
-    for k in 0..n {
-        for i0 in neighbours(k) {
-            let mut i = i0;
-            while i != NONE && i < k {
-                let next = ancestor[i];
-                ancestor[i] = k;
-                if next == NONE {
-                    parent[i] = k;
-                }
-                i = next;
-            }
-        }
-    }
+    let parent = elimination_tree(n, neighbours);
     // postorder: children lists, then an explicit-stack depth-first search
     let mut head = vec![NONE; n];
     let mut next = vec![NONE; n];
