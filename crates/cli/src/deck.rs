@@ -515,6 +515,8 @@ fn incremental_program(
             steps: program,
             stop_when_separated: false,
             newton,
+            control: Default::default(),
+            arc_length: Default::default(),
         },
         increment_limits: limits,
     })

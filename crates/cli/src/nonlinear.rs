@@ -16,6 +16,7 @@ use crate::run::Prepared;
 use crate::{output, plot, scene};
 use anyhow::{anyhow, bail, Context, Result};
 use indicatif::ProgressBar;
+use junta_solvers::arc_length::{solve_arc_length, PathEnd};
 use junta_solvers::newton::{solve_nonlinear, Checkpoint, Control, NonlinearError};
 use serde::{Deserialize, Serialize};
 use serde_json::json;
@@ -70,10 +71,14 @@ struct Row {
     /// Negative pivots of the last factorised tangent (inertia), when the
     /// back end knows it.
     negative_pivots: Option<usize>,
+    /// Sign of the load-factor increment: 1, -1 or 0.
+    load_sign: i8,
+    /// What constrained the increment (`load`, `arc`, `dissipation`).
+    control: String,
 }
 
 const CURVE_HEADER: &str =
-    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots\n";
+    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control\n";
 
 fn opt(v: Option<f64>) -> String {
     v.map(|x| format!("{x:e}")).unwrap_or_default()
@@ -82,7 +87,7 @@ fn opt(v: Option<f64>) -> String {
 impl Row {
     fn csv(&self) -> String {
         format!(
-            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{}\n",
+            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{}\n",
             self.increment,
             self.step,
             self.lambda,
@@ -98,12 +103,15 @@ impl Row {
             self.damaged_area,
             self.negative_pivots
                 .map(|n| n.to_string())
-                .unwrap_or_default()
+                .unwrap_or_default(),
+            self.load_sign,
+            self.control
         )
     }
     fn parse(line: &str) -> Option<Row> {
         let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 14 {
+        // 14 columns: a run written before the path-following columns
+        if f.len() != 16 && f.len() != 14 {
             return None;
         }
         Some(Row {
@@ -121,18 +129,26 @@ impl Row {
             dissipated: f[11].parse().ok()?,
             damaged_area: f[12].parse().ok()?,
             negative_pivots: f[13].trim().parse().ok(),
+            load_sign: f.get(14).and_then(|v| v.trim().parse().ok()).unwrap_or(0),
+            control: f.get(15).map_or("load", |v| v.trim()).to_string(),
         })
     }
 }
 
-/// When a run of a softening model stops after the recorded reaction has
-/// passed a maximum, say so with the numbers: the likely cause is a
-/// snap-back (an unstable drop of the load, e.g. an element separating)
-/// that load or displacement control cannot follow at any increment size.
+/// When a run of a softening model stops at or after a limit point, say so
+/// with the numbers: the reaction passed a maximum (a snap-back, an unstable
+/// drop of the load, e.g. an element separating, that load or displacement
+/// control cannot follow at any increment size), or, under load control,
+/// the curve flattened to a horizontal tangent (a load maximum).
 fn past_peak_hint(rows: &[Row], kind: junta_core::MatrixKind) -> String {
     if kind == junta_core::MatrixKind::SymmetricPositiveDefinite {
         return String::new();
     }
+    const REMEDY: &str = "use path following (`[analysis] control = \"arc_length\"`, which follows snap-backs through the dissipated energy), or add a small `viscosity` to the softening law (its energy is reported apart)";
+    let unstable = rows
+        .iter()
+        .filter(|r| r.negative_pivots.unwrap_or(0) > 0)
+        .count();
     let Some((peak_row, peak)) = rows
         .iter()
         .filter_map(|r| Some((r, r.reaction?.abs())))
@@ -141,19 +157,110 @@ fn past_peak_hint(rows: &[Row], kind: junta_core::MatrixKind) -> String {
         return String::new();
     };
     let last = rows.last().and_then(|r| r.reaction).map_or(peak, f64::abs);
-    if last >= peak * (1.0 - 1e-4) {
-        // still on a rising branch: no peak passed (a stall before a
-        // maximum has another cause)
-        return String::new();
+    if last < peak * (1.0 - 1e-4) {
+        return format!(
+            ". Limit point: the reaction peaked at {peak:.6e} (increment {}, load factor {:.6e}) and the run stopped after that maximum, at {:.6e} ({} increments with a negative pivot so far): most likely a snap-back. To trace it, {REMEDY}",
+            peak_row.increment, peak_row.lambda, last, unstable
+        );
     }
-    let unstable = rows
-        .iter()
-        .filter(|r| r.negative_pivots.unwrap_or(0) > 0)
-        .count();
-    format!(
-        ". The reaction peaked at {peak:.6e} (increment {}, load factor {:.6e}) and the run stopped after that maximum, at {:.6e} ({} increments with a negative pivot so far): most likely a snap-back, a drop of the load that load or displacement control cannot follow at any increment size. Add a small `viscosity` to the softening law (its energy is reported apart), refine the interface mesh, or use path following",
-        peak_row.increment, peak_row.lambda, last, unstable
-    )
+    // stalled at the largest load so far: the increments shrank in each of
+    // the last increments (typically an element separating: a local
+    // snap-back that starts at this load)
+    let n = rows.len();
+    if n >= 3 && rows[n - 3..].iter().all(|r| r.cutbacks > 0) && last >= peak * (1.0 - 1e-3) {
+        return format!(
+            ". Limit point: the increments were cut back in each of the last three while the reaction peaked at {peak:.6e} (increment {}, load factor {:.6e}), its largest value so far: most likely a snap-back starting there (e.g. an element separating). To trace it, {REMEDY}",
+            peak_row.increment, peak_row.lambda
+        );
+    }
+    // load control: the slope of the curve at the end against the start
+    let slope = |a: &Row, b: &Row| -> Option<f64> {
+        let dp = b.reaction? - a.reaction?;
+        let du = b.displacement? - a.displacement?;
+        (du != 0.0).then(|| dp / du)
+    };
+    if n >= 3 {
+        if let (Some(k0), Some(k1)) = (slope(&rows[0], &rows[1]), slope(&rows[n - 2], &rows[n - 1]))
+        {
+            if k0 != 0.0 && (k1 / k0) < 0.05 {
+                return format!(
+                    ". Limit point: the load-displacement slope fell to {:.2} % of its initial value at reaction {last:.6e} (load factor {:.6e}): a load maximum, past which load control has no solution. To go past it, {REMEDY}",
+                    100.0 * k1 / k0,
+                    rows[n - 1].lambda
+                );
+            }
+        }
+    }
+    if rows.last().and_then(|r| r.negative_pivots).unwrap_or(0) > 0 {
+        return format!(
+            ". The tangent of the last converged increment is indefinite ({} negative pivots): the structure is past a limit point or a bifurcation. {REMEDY}",
+            rows.last().and_then(|r| r.negative_pivots).unwrap_or(0)
+        );
+    }
+    String::new()
+}
+
+/// Limit points and changes of stability along the converged increments:
+/// load maxima and minima (of the reaction, else of the load factor),
+/// displacement turning points (a snap-back starts at a displacement
+/// maximum), and increments where the number of negative pivots of the
+/// tangent changed (a limit point or a bifurcation was crossed).
+fn limit_points(rows: &[Row]) -> serde_json::Value {
+    const MAX_LISTED: usize = 50;
+    let load = |r: &Row| r.reaction.unwrap_or(r.lambda);
+    let mut points = Vec::new();
+    let mut counts = [0usize; 5];
+    let kinds = [
+        "load_maximum",
+        "load_minimum",
+        "displacement_maximum",
+        "displacement_minimum",
+        "stability_change",
+    ];
+    let mut push = |k: usize, r: &Row, extra: Option<String>| {
+        counts[k] += 1;
+        if points.len() < MAX_LISTED {
+            let mut v = json!({
+                "kind": kinds[k],
+                "increment": r.increment,
+                "load_factor": r.lambda,
+                "load": load(r),
+                "displacement": r.displacement,
+            });
+            if let Some(e) = extra {
+                v["negative_pivots"] = json!(e);
+            }
+            points.push(v);
+        }
+    };
+    for w in rows.windows(3) {
+        let (a, b, c) = (&w[0], &w[1], &w[2]);
+        let (la, lb, lc) = (load(a), load(b), load(c));
+        if lb > la && lb > lc {
+            push(0, b, None);
+        } else if lb < la && lb < lc {
+            push(1, b, None);
+        }
+        if let (Some(da), Some(db), Some(dc)) = (a.displacement, b.displacement, c.displacement) {
+            if db > da && db > dc {
+                push(2, b, None);
+            } else if db < da && db < dc {
+                push(3, b, None);
+            }
+        }
+    }
+    for w in rows.windows(2) {
+        if let (Some(x), Some(y)) = (w[0].negative_pivots, w[1].negative_pivots) {
+            if x != y {
+                push(4, &w[1], Some(format!("{x} -> {y}")));
+            }
+        }
+    }
+    let mut count = serde_json::Map::new();
+    for (k, n) in kinds.iter().zip(counts) {
+        count.insert((*k).into(), json!(n));
+    }
+    json!({ "counts": count, "first": points })
 }
 
 /// Points `(x, y)` of a reference curve file: CSV, two numeric columns,
@@ -353,6 +460,14 @@ pub fn run_static(
                     dissipated: energy.dissipated_energy,
                     damaged_area: energy.damaged_area,
                     negative_pivots: r.negative_pivots,
+                    load_sign: if r.delta_lambda > 0.0 {
+                        1
+                    } else if r.delta_lambda < 0.0 {
+                        -1
+                    } else {
+                        0
+                    },
+                    control: r.control.name().to_string(),
                 };
                 curve_file.write_all(row.csv().as_bytes())?;
                 curve_file.flush()?;
@@ -405,20 +520,33 @@ pub fn run_static(
             }
             Control::Continue
         };
-        solve_nonlinear(
-            model,
-            p.solver.as_mut(),
-            &analysis.steps,
-            &analysis.newton,
-            checkpoint.as_ref(),
-            &mut observer,
-        )
+        match analysis.control {
+            scene::Control::Load => solve_nonlinear(
+                model,
+                p.solver.as_mut(),
+                &analysis.steps,
+                &analysis.newton,
+                checkpoint.as_ref(),
+                &mut observer,
+            )
+            .map(|r| (r, None)),
+            scene::Control::ArcLength => solve_arc_length(
+                model,
+                p.solver.as_mut(),
+                &analysis.steps,
+                &analysis.newton,
+                &analysis.arc_length,
+                checkpoint.as_ref(),
+                &mut observer,
+            )
+            .map(|(r, end)| (r, Some(end))),
+        }
     };
     if let Some(e) = io_error {
         return Err(e.context("writing the results of an increment"));
     }
     let (status, run, failure) = match result {
-        Ok(run) => {
+        Ok((run, path_end)) => {
             let status = if INTERRUPTED.load(Ordering::SeqCst) {
                 "interrupted (Ctrl-C)".to_string()
             } else if let Some((step, n, line)) = inc_reached {
@@ -430,6 +558,13 @@ pub fn run_static(
                 "stopped: every interface point has failed".to_string()
             } else if run.summary.stopped_by_observer {
                 "stopped after the requested number of increments".to_string()
+            } else if path_end == Some(PathEnd::Unloaded) {
+                "completed: the load factor fell back to zero after its maximum (the structure carries no load any more)".to_string()
+            } else if path_end == Some(PathEnd::IncrementLimit) {
+                format!(
+                    "stopped: [analysis.arc_length] max_increments = {} reached before the end load factor",
+                    analysis.arc_length.max_increments
+                )
             } else {
                 "completed".to_string()
             };
@@ -458,6 +593,8 @@ pub fn run_static(
         "load_factor": rows.last().map(|r| r.lambda),
         "first_failure": first_failure,
         "restarted_from_increment": if start_increment > 0 { Some(start_increment) } else { None },
+        "control": analysis.control,
+        "limit_points": limit_points(&rows),
     });
     let step = junta_core::element::StepInfo {
         increment: last_increment,

@@ -81,6 +81,28 @@ pub struct AnalysisSpec {
     /// Newton-Raphson settings (`[analysis.newton]`, see `junta_solvers::newton::NewtonSettings`).
     #[serde(default)]
     pub newton: junta_solvers::newton::NewtonSettings,
+    /// What constrains the increments of a `static` run: `"load"` (default:
+    /// the load factor, i.e. load or displacement control, whatever the
+    /// scene prescribes) or `"arc_length"` (path following: cylindrical arc
+    /// length, then the dissipated energy once the laws dissipate; passes
+    /// limit points and snap-backs; see `junta_solvers::arc_length`).
+    #[serde(default)]
+    pub control: Control,
+    /// Path-following settings (`[analysis.arc_length]`, see
+    /// `junta_solvers::arc_length::ArcLengthSettings`).
+    #[serde(default)]
+    pub arc_length: junta_solvers::arc_length::ArcLengthSettings,
+}
+
+/// `[analysis] control`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Control {
+    /// The load factor is prescribed.
+    #[default]
+    Load,
+    /// Path following (arc length / dissipation).
+    ArcLength,
 }
 
 fn linear() -> String {
@@ -97,6 +119,8 @@ impl Default for AnalysisSpec {
             steps: one_step(),
             stop_when_separated: false,
             newton: Default::default(),
+            control: Control::Load,
+            arc_length: Default::default(),
         }
     }
 }

@@ -120,4 +120,53 @@ impl Model {
         }
         Ok(t)
     }
+
+    /// Energy dissipated so far by the laws, from the committed `state`:
+    /// the integral over every element's integration points of the per-area
+    /// outputs `dissipated_energy` and `viscous_energy` (see
+    /// [`crate::law::output`]) times the point's `area`. Zero for a model
+    /// whose laws dissipate nothing. `u` is the full displacement vector.
+    pub fn dissipated_energy(&self, u: &[f64], state: &StateStore) -> Result<f64, CoreError> {
+        use crate::law::output::{DISSIPATED_ENERGY, VISCOUS_ENERGY};
+        let mut total = 0.0;
+        let mut coords = Vec::new();
+        let mut disp = Vec::new();
+        for (b, block) in self.mesh.blocks.iter().enumerate() {
+            if !block.shape.is_interface() {
+                continue;
+            }
+            let el = &self.elements[b];
+            for e in 0..block.len() {
+                let conn = block.element(e);
+                coords.clear();
+                disp.clear();
+                for &n in conn {
+                    coords.push(self.mesh.nodes[n]);
+                    disp.extend_from_slice(&u[3 * n..3 * n + 3]);
+                }
+                let ctx = crate::element::ElementContext {
+                    coords: &coords,
+                    disp: &disp,
+                    state_committed: &state.committed[state.range(b, e)],
+                    step: crate::element::StepInfo::default(),
+                };
+                let pts = el
+                    .point_outputs(&ctx)
+                    .map_err(|source| CoreError::Element {
+                        block: block.name.clone(),
+                        element: e,
+                        source,
+                    })?;
+                for p in &pts {
+                    let area = p.get("area").map_or(0.0, |a| a[0]);
+                    for name in [DISSIPATED_ENERGY, VISCOUS_ENERGY] {
+                        if let Some(d) = p.get(name) {
+                            total += d[0] * area;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(total)
+    }
 }

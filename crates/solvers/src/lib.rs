@@ -10,6 +10,11 @@
 //! | `ldlt` | [`LdltSolver`] | supernodal `L D L^T` for symmetric indefinite (softening) tangents: Bunch-Kaufman 1x1/2x2 pivoting within each panel on the same ordering and symbolic analysis as `cholesky`, inertia (`negative_pivots`) in the report, static perturbation of tiny pivots with iterative refinement |
 //! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi or 3×3 nodal block-Jacobi |
 //!
+//! Nonlinear drivers: [`newton`] (incremental Newton-Raphson under load or
+//! displacement control) and [`arc_length`] (path following through limit
+//! points and snap-backs: cylindrical arc length, then a dissipation
+//! constraint once the laws dissipate).
+//!
 //! Embedders can skip the registry:
 //!
 //! ```
@@ -31,6 +36,7 @@
 //! by key must reference this crate (`use junta_solvers as _;`) so that the
 //! linker keeps the registrations.
 
+pub mod arc_length;
 pub mod cg;
 pub mod cholesky;
 mod common;

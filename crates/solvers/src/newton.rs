@@ -337,18 +337,25 @@ pub struct IncrementReport {
     /// indefinite (softening past a limit point of the structure or of a
     /// material point).
     pub negative_pivots: Option<usize>,
+    /// What constrained the increment: the load factor (load or
+    /// displacement control), a cylindrical arc length or the dissipation.
+    pub control: crate::arc_length::PathMode,
+    /// Energy dissipated in this increment by the energy balance
+    /// `½ (lambda_0 Δa - Δlambda a_0 + p_0 Δlambda - lambda_0 Δp)` (see
+    /// [`crate::arc_length`]); arc-length runs only.
+    pub dissipation: Option<f64>,
 }
 
 /// The driver's position in the program: everything its future depends on.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Cursor {
-    step: usize,
-    t: f64,
-    lambda: f64,
-    increment_index: usize,
-    size: f64,
-    small: bool,
-    force_peak: f64,
+pub(crate) struct Cursor {
+    pub(crate) step: usize,
+    pub(crate) t: f64,
+    pub(crate) lambda: f64,
+    pub(crate) increment_index: usize,
+    pub(crate) size: f64,
+    pub(crate) small: bool,
+    pub(crate) force_peak: f64,
 }
 
 /// A restart point after a converged increment. Serialisable, so that a
@@ -375,10 +382,13 @@ pub struct Checkpoint {
     pub u: Vec<f64>,
     /// Committed state.
     pub state_committed: Vec<f64>,
+    /// Path-following state (arc-length runs only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub path: Option<crate::arc_length::PathState>,
 }
 
 impl Checkpoint {
-    fn cursor(&self) -> Cursor {
+    pub(crate) fn cursor(&self) -> Cursor {
         Cursor {
             step: self.step,
             t: self.step_fraction,
@@ -390,7 +400,12 @@ impl Checkpoint {
         }
     }
 
-    fn new(c: &Cursor, u: &[f64], state: &StateStore) -> Self {
+    pub(crate) fn new(
+        c: &Cursor,
+        u: &[f64],
+        state: &StateStore,
+        path: Option<&crate::arc_length::PathState>,
+    ) -> Self {
         Checkpoint {
             step: c.step,
             step_fraction: c.t,
@@ -401,6 +416,7 @@ impl Checkpoint {
             force_peak: c.force_peak,
             u: u.to_vec(),
             state_committed: state.committed.clone(),
+            path: path.cloned(),
         }
     }
 }
@@ -419,13 +435,14 @@ pub struct IncrementView<'a> {
     /// Relative force residual after each iteration of the converged attempt
     /// (index 0: before the first correction).
     pub residual_history: &'a [f64],
-    cursor: Cursor,
+    pub(crate) cursor: Cursor,
+    pub(crate) path: Option<&'a crate::arc_length::PathState>,
 }
 
 impl IncrementView<'_> {
     /// A restart point after this increment.
     pub fn checkpoint(&self) -> Checkpoint {
-        Checkpoint::new(&self.cursor, self.u, self.state)
+        Checkpoint::new(&self.cursor, self.u, self.state, self.path)
     }
 }
 
@@ -465,25 +482,26 @@ pub struct NonlinearRun {
     pub residual: Vec<f64>,
     /// Final state.
     pub state: StateStore,
-    cursor: Cursor,
+    pub(crate) cursor: Cursor,
+    pub(crate) path: Option<crate::arc_length::PathState>,
 }
 
 impl NonlinearRun {
     /// A restart point at the end of this run.
     pub fn checkpoint(&self) -> Checkpoint {
-        Checkpoint::new(&self.cursor, &self.u, &self.state)
+        Checkpoint::new(&self.cursor, &self.u, &self.state, self.path.as_ref())
     }
 }
 
 /// One residual evaluation.
 #[derive(Debug, Clone, Copy)]
-struct Eval {
+pub(crate) struct Eval {
     /// |r_f|
-    abs: f64,
+    pub(crate) abs: f64,
     /// |r_f| / scale
-    rel: f64,
+    pub(crate) rel: f64,
     /// max(|lambda f_ext,f|, |reactions|)
-    scale_now: f64,
+    pub(crate) scale_now: f64,
 }
 
 /// Outcome of one increment attempt.
@@ -501,35 +519,76 @@ enum Attempt {
 }
 
 /// Buffers and counters of one run, allocated once.
-struct Work<'m> {
-    model: &'m Model,
-    asm: Assembler,
-    k: SymmetricCsc,
-    coords: Vec<[f64; 3]>,
-    free_dofs: Vec<usize>,
-    fext_free_norm: f64,
-    f_int: Vec<f64>,
-    res: Vec<f64>,
-    u: Vec<f64>,
-    u_base: Vec<f64>,
-    u_conv: Vec<f64>,
-    du: Vec<f64>,
-    r_prev: Vec<f64>,
-    history: Vec<f64>,
-    timings: Timings,
-    analyzed: bool,
-    iterations: usize,
-    secant_attempts: usize,
-    settings: NewtonSettings,
+pub(crate) struct Work<'m> {
+    pub(crate) model: &'m Model,
+    pub(crate) asm: Assembler,
+    pub(crate) k: SymmetricCsc,
+    pub(crate) coords: Vec<[f64; 3]>,
+    pub(crate) free_dofs: Vec<usize>,
+    pub(crate) fext_free_norm: f64,
+    pub(crate) f_int: Vec<f64>,
+    pub(crate) res: Vec<f64>,
+    pub(crate) u: Vec<f64>,
+    pub(crate) u_base: Vec<f64>,
+    pub(crate) u_conv: Vec<f64>,
+    pub(crate) du: Vec<f64>,
+    pub(crate) r_prev: Vec<f64>,
+    pub(crate) history: Vec<f64>,
+    pub(crate) timings: Timings,
+    pub(crate) analyzed: bool,
+    pub(crate) iterations: usize,
+    pub(crate) secant_attempts: usize,
+    pub(crate) settings: NewtonSettings,
+    /// Load factor of the current trial (path following).
+    pub(crate) lambda_trial: f64,
 }
 
-fn is_element_error(e: &CoreError) -> bool {
+pub(crate) fn is_element_error(e: &CoreError) -> bool {
     matches!(e, CoreError::Element { .. })
 }
 
-impl Work<'_> {
+impl<'m> Work<'m> {
+    /// Buffers of a run starting from the full displacement `u_start`;
+    /// `free_dofs[e]` is the dof of equation `e`.
+    pub(crate) fn new(
+        model: &'m Model,
+        asm: Assembler,
+        free_dofs: Vec<usize>,
+        u_start: Vec<f64>,
+        settings: &NewtonSettings,
+    ) -> Self {
+        let nf = free_dofs.len();
+        let fext_free_norm = free_dofs
+            .iter()
+            .map(|&d| model.f_ext[d] * model.f_ext[d])
+            .sum::<f64>()
+            .sqrt();
+        Work {
+            model,
+            k: asm.pattern.clone(),
+            asm,
+            coords: model.dofs.equation_coords(&model.mesh.nodes),
+            free_dofs,
+            fext_free_norm,
+            f_int: vec![0.0; u_start.len()],
+            res: vec![0.0; u_start.len()],
+            u: u_start.clone(),
+            u_base: u_start.clone(),
+            u_conv: u_start,
+            du: vec![0.0; nf],
+            r_prev: vec![0.0; nf],
+            history: Vec::with_capacity(settings.max_iterations + 1),
+            timings: Timings::default(),
+            analyzed: false,
+            iterations: 0,
+            secant_attempts: 0,
+            settings: settings.clone(),
+            lambda_trial: 0.0,
+        }
+    }
+
     /// Assemble at `self.u` and fill the residual.
-    fn evaluate(
+    pub(crate) fn evaluate(
         &mut self,
         state: &mut StateStore,
         step: StepInfo,
@@ -780,7 +839,7 @@ impl Work<'_> {
 }
 
 /// Does any element want small increments (committed state)?
-fn any_wants_small(model: &Model, state: &StateStore) -> bool {
+pub(crate) fn any_wants_small(model: &Model, state: &StateStore) -> bool {
     model.mesh.blocks.iter().enumerate().any(|(b, block)| {
         let el = &model.elements[b];
         (0..block.len()).any(|e| el.wants_small_increments(&state.committed[state.range(b, e)]))
@@ -872,32 +931,7 @@ where
             free_dofs[e] = d;
         }
     }
-    let fext_free_norm = free_dofs
-        .iter()
-        .map(|&d| model.f_ext[d] * model.f_ext[d])
-        .sum::<f64>()
-        .sqrt();
-    let mut w = Work {
-        model,
-        k: asm.pattern.clone(),
-        asm,
-        coords: model.dofs.equation_coords(&model.mesh.nodes),
-        free_dofs,
-        fext_free_norm,
-        f_int: vec![0.0; ndof],
-        res: vec![0.0; ndof],
-        u: u_start.clone(),
-        u_base: u_start.clone(),
-        u_conv: u_start,
-        du: vec![0.0; nf],
-        r_prev: vec![0.0; nf],
-        history: Vec::with_capacity(settings.max_iterations + 1),
-        timings: Timings::default(),
-        analyzed: false,
-        iterations: 0,
-        secant_attempts: 0,
-        settings: settings.clone(),
-    };
+    let mut w = Work::new(model, asm, free_dofs, u_start, settings);
     let mut summary = NonlinearSummary {
         final_lambda: cur.lambda,
         ..Default::default()
@@ -1035,6 +1069,8 @@ where
             } else {
                 None
             },
+            control: crate::arc_length::PathMode::Load,
+            dissipation: None,
         };
         tracing::info!(
             increment = report.increment_index,
@@ -1054,6 +1090,7 @@ where
             state: &state,
             residual_history: &w.history,
             cursor: cur,
+            path: None,
         };
         if observer(&view) == Control::Stop {
             summary.stopped_by_observer = true;
@@ -1075,5 +1112,6 @@ where
         residual: w.res,
         state,
         cursor: cur,
+        path: None,
     })
 }

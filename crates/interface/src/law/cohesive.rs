@@ -553,7 +553,14 @@ impl InterfaceLaw for CohesiveLaw {
                 if d_b.v >= FULL {
                     d_b = Dual3::cst(1.0);
                 }
-                if d_b.v > d_hist {
+                // On the damage surface itself (`d_B = d_committed`, e.g.
+                // at the converged point an increment starts from) the
+                // tangent is the loading one: the one-sided derivative in
+                // the direction of further damage. The secant one there
+                // would hide the softening from the first iteration (and
+                // make the dissipation constraint of path following
+                // singular).
+                if d_b.v > d_hist || (d_b.v == d_hist && d_hist > 0.0) {
                     d = d_b;
                     trial[DAMAGE_HISTORY] = d.v;
                 }

@@ -1,0 +1,244 @@
+//! Path following (`[analysis] control = "arc_length"`) against a closed
+//! form: a cohesive point in series with an elastic bar long enough to snap
+//! back (tests/data/snapback_bar.toml, whose header derives the path).
+
+mod common;
+
+use common::{junta, repo, run_ok, run_ok_with};
+use std::path::{Path, PathBuf};
+
+// The scene's data (tests/data/snapback_bar.toml).
+const K: f64 = 1000.0; // N/mm^3
+const N: f64 = 1.0; // MPa
+const G: f64 = 0.01; // N/mm
+const L_OVER_EA: f64 = 10.0 / 100.0; // mm/N (A = 1 mm^2)
+
+fn scene() -> PathBuf {
+    repo().join("crates/cli/tests/data/snapback_bar.toml")
+}
+
+#[derive(Debug, Clone)]
+struct Row {
+    increment: usize,
+    lambda: f64,
+    p: f64,
+    delta: f64,
+    dissipated: f64,
+    pivots: usize,
+    control: String,
+    raw: String,
+}
+
+fn rows(dir: &Path) -> Vec<Row> {
+    let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |n: &str| head.iter().position(|h| *h == n).unwrap();
+    let (ci, cl, cr, cd, ce, cp, cc) = (
+        col("increment"),
+        col("load_factor"),
+        col("reaction"),
+        col("displacement"),
+        col("dissipated_energy"),
+        col("negative_pivots"),
+        col("control"),
+    );
+    lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            Row {
+                increment: f[ci].parse().unwrap(),
+                lambda: f[cl].parse().unwrap(),
+                p: f[cr].parse().unwrap(),
+                delta: f[cd].parse().unwrap(),
+                dissipated: f[ce].parse().unwrap(),
+                pivots: f[cp].parse().unwrap_or(0),
+                control: f[cc].to_string(),
+                raw: f[..cc + 1]
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, _)| *i != 9) // wall time
+                    .map(|(_, v)| *v)
+                    .collect::<Vec<_>>()
+                    .join(","),
+            }
+        })
+        .collect()
+}
+
+/// Exact traction of the bilinear mode-I law for an opening `d` reached
+/// along a path whose largest opening so far is `dmax` (secant unloading).
+fn traction(d: f64, dmax: f64) -> f64 {
+    let (d0, df) = (N / K, 2.0 * G / N);
+    let virgin = |x: f64| {
+        if x <= d0 {
+            K * x
+        } else if x <= df {
+            N * (df - x) / (df - d0)
+        } else {
+            0.0
+        }
+    };
+    if d >= dmax || dmax <= d0 {
+        virgin(d)
+    } else {
+        virgin(dmax) / dmax * d.max(0.0)
+    }
+}
+
+/// Every converged point lies on the exact path: with the opening
+/// `delta = Delta - P L / (E A)`, `P = t(delta)` to 1e-6 N (1e-6 of the
+/// strength).
+fn check_on_path(rows: &[Row]) {
+    let mut dmax: f64 = 0.0;
+    for r in rows {
+        let d = r.delta - r.p * L_OVER_EA;
+        let t = traction(d, dmax);
+        assert!(
+            (r.p - t).abs() < 1e-6 * N,
+            "increment {}: P = {:.9e}, exact {:.9e} at opening {d:.6e}",
+            r.increment,
+            r.p,
+            t
+        );
+        dmax = dmax.max(d);
+    }
+}
+
+#[test]
+fn arc_length_traces_the_snap_back_of_a_bar_on_a_cohesive_point() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = run_ok(&scene(), dir.path());
+    let rows = rows(dir.path());
+    check_on_path(&rows);
+    // the snap-back itself: load and displacement fall together, and the
+    // run follows it in several increments
+    let back: Vec<&Row> = rows
+        .windows(2)
+        .filter(|w| w[1].delta < w[0].delta - 1e-9 && w[1].p < w[0].p && w[1].p > 1e-9)
+        .map(|w| &w[1])
+        .collect();
+    assert!(back.len() >= 5, "only {} snap-back increments", back.len());
+    // peak within 1 % of the strength N A = 1 N (the path passes near it)
+    let peak = rows.iter().map(|r| r.p).fold(0.0, f64::max);
+    assert!(peak > 0.99 * N && peak <= N + 1e-9, "peak {peak}");
+    // the whole fracture energy G A is dissipated, no more
+    let last = rows.last().unwrap();
+    assert!(
+        (last.dissipated - G).abs() < 1e-9,
+        "dissipated {}",
+        last.dissipated
+    );
+    // inertia: zero on the rising elastic branch; one negative pivot on the
+    // snap-back, where the equilibrium under displacement control is
+    // unstable (the softening interface is stiffer in magnitude than the
+    // bar: 52.6 > 10 N/mm)
+    for r in rows.iter().filter(|r| r.dissipated == 0.0) {
+        assert_eq!(r.pivots, 0, "rising branch, increment {}", r.increment);
+    }
+    for r in &back {
+        assert_eq!(r.pivots, 1, "snap-back, increment {}", r.increment);
+        assert_eq!(r.control, "dissipation");
+    }
+    // the summary lists the load maximum and the displacement turning point
+    let lp = &s["limit_points"]["counts"];
+    assert!(lp["load_maximum"].as_u64().unwrap() >= 1, "{s}");
+    assert!(lp["displacement_maximum"].as_u64().unwrap() >= 1, "{s}");
+    assert!(lp["stability_change"].as_u64().unwrap() >= 1, "{s}");
+    assert_eq!(s["control"], "arc_length");
+}
+
+#[test]
+fn arc_length_under_force_control_dissipates_the_whole_fracture_energy() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(scene())
+        .unwrap()
+        .replace("displacement = { z = 0.2 }\n", "")
+        .replace(
+            "[analysis]\n",
+            "[[load]]\nset = \"bar.z1\"\ntotal_force = [0.0, 0.0, 1.2]\n\n[analysis]\n",
+        );
+    let file = dir.path().join("force.toml");
+    std::fs::write(&file, text).unwrap();
+    let out = dir.path().join("out");
+    let s = run_ok(&file, &out);
+    assert!(
+        s["status"].as_str().unwrap().contains("fell back to zero"),
+        "{}",
+        s["status"]
+    );
+    let rows = rows(&out);
+    // reaction column is the support-free top: use the applied load 1.2 lambda
+    let rows: Vec<Row> = rows
+        .into_iter()
+        .map(|mut r| {
+            r.p = 1.2 * r.lambda;
+            r
+        })
+        .collect();
+    check_on_path(&rows);
+    let back = rows
+        .windows(2)
+        .filter(|w| w[1].delta < w[0].delta && w[1].p < w[0].p)
+        .count();
+    assert!(back >= 5, "{back}");
+    let last = rows.last().unwrap();
+    assert!(
+        (last.dissipated / G - 1.0).abs() < 1e-6,
+        "{}",
+        last.dissipated
+    );
+}
+
+#[test]
+fn load_control_stops_at_the_limit_point_and_names_the_remedy() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(scene())
+        .unwrap()
+        .replace("control = \"arc_length\"", "control = \"load\"");
+    let file = dir.path().join("load.toml");
+    std::fs::write(&file, text).unwrap();
+    let out = junta()
+        .arg("run")
+        .arg(&file)
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .arg("-q")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("Limit point"), "{err}");
+    assert!(err.contains("control = \"arc_length\""), "{err}");
+    // the converged part is on the exact elastic path up to the peak
+    let rows = rows(&dir.path().join("out"));
+    check_on_path(&rows);
+    let peak = rows.iter().map(|r| r.p).fold(0.0, f64::max);
+    assert!(peak > 0.95 * N, "{peak}");
+}
+
+#[test]
+fn restarted_arc_length_run_equals_the_uninterrupted_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let full = dir.path().join("full");
+    run_ok(&scene(), &full);
+    let part = dir.path().join("part");
+    run_ok_with(&scene(), &part, &["--max-increments", "6"]);
+    let out = junta()
+        .arg("run")
+        .arg("--restart")
+        .arg(&part)
+        .arg("-q")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (a, b) = (rows(&full), rows(&part));
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(x.raw, y.raw, "increment {}", x.increment);
+    }
+}

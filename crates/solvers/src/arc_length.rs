@@ -1,0 +1,1319 @@
+//! Path following: the load factor becomes an unknown, so that a run can
+//! pass load maxima (limit points) and follow snap-backs, where the load
+//! *and* the displacement decrease together.
+//!
+//! # Equations
+//!
+//! Everything the model applies is scaled by the load factor `lambda`
+//! (forces `lambda f_ext`, prescribed displacements `u_c = lambda ubar_c`),
+//! exactly as in [`crate::newton`]. The unknowns of an increment are the
+//! free displacements `u` and `lambda`; the residual and its linearisation
+//! are
+//!
+//! ```text
+//! r(u, lambda) = f_int,f(u, lambda ubar_c) - lambda f_ext,f
+//! K du - q dlambda = -r,     q = f_ext,f - K_fc ubar_c
+//! ```
+//!
+//! (`K = K_ff` the tangent on the free dofs, `K_fc` its coupling to the
+//! prescribed dofs, evaluated element by element on the few elements that
+//! touch a prescribed displacement). One factorisation of `K` and two
+//! solves per iteration give `du = du_I + dlambda du_II` with
+//! `du_I = -K^-1 r`, `du_II = K^-1 q` (no bordered matrix, so every back end
+//! works, `ldlt` included); a scalar constraint `phi(Δu, Δlambda) = 0` on
+//! the increment `Δ` (from the last converged state, index 0) fixes
+//! `dlambda`.
+//!
+//! # Constraints
+//!
+//! *Cylindrical arc length* (Crisfield 1981), on the elastic branch and
+//! wherever nothing dissipates:
+//!
+//! ```text
+//! |Δu|^2 + c Δlambda^2 = Δl^2,      c = |ubar_c|^2
+//! ```
+//!
+//! (the norm of the increment of *all* displacements, prescribed ones
+//! included). It is quadratic in `dlambda`; of its two roots the one whose
+//! increment makes the smaller angle with the current one is taken, and the
+//! predictor's sign follows the previous converged increment
+//! (`du_II . Δu_prev + c Δlambda_prev > 0`).
+//!
+//! *Dissipation* (Gutierrez 2004; Verhoosel, Remmers and Gutierrez 2009),
+//! once the laws dissipate. For laws with secant unloading
+//! (`t = S(state) delta`: the bilinear and exponential cohesive laws, their
+//! contact branch, the viscous regularisation) and linear solids, the
+//! stored energy is `U = ½ u . f_int` (Clapeyron) and the energy balance
+//! `D = W_ext - U` gives, with `a = f_ext,f . u_f` (work-conjugate of the
+//! load factor for applied forces) and `p = ubar_c . f_int,c` (the reaction
+//! conjugate to the prescribed displacements),
+//!
+//! ```text
+//! dD/dt = ½ (lambda da/dt - a dlambda/dt) + ½ (p dlambda/dt - lambda dp/dt)
+//! ΔD ≈ ½ (lambda_0 Δa - Δlambda a_0 + p_0 Δlambda - lambda_0 Δp) = tau
+//! ```
+//!
+//! For pure force control this is Verhoosel's
+//! `½ f^T (lambda_0 Δu - Δlambda u_0)`; for pure displacement control its
+//! mirror in the reaction. It is linear in `Δu` and `Δlambda` except for
+//! `Δp`, which is linearised with `dp = g . du + h dlambda`
+//! (`g = K_cf^T ubar_c`, `h = ubar_c . K_cc ubar_c`, the same element
+//! matrices as `q`). On an elastic branch the balance is identically zero,
+//! so the dissipation constraint cannot drive a run there: the driver
+//! starts with the cylindrical arc length and switches to the dissipation
+//! when a converged increment dissipated more than `switch_dissipation`
+//! times the stored energy *and* the laws' own state reports dissipated
+//! energy ([`junta_core::Model::dissipated_energy`]); a model whose laws
+//! dissipate nothing stays on the cylindrical constraint. When the
+//! dissipation constraint cannot be met any more (nothing left that can
+//! dissipate, e.g. the crack stopped under a contact zone), the driver goes
+//! back to the cylindrical constraint.
+//!
+//! # Increments
+//!
+//! The first increment is load-controlled with the Newton driver's
+//! `initial_increment` (fraction of the step); its displacement norm is the
+//! first arc length `Δl_0`. After each converged increment the size of the
+//! next one (`Δl` or `tau`) is scaled by `sqrt(target_iterations /
+//! iterations)`, clamped to `[1/growth, growth]` (Newton settings `growth`)
+//! and `tau <= max_dissipation` when given. A failed attempt (same causes
+//! as in [`crate::newton`]: iteration limit, divergence, solver or element
+//! failure, or a cylindrical constraint without a real root) restores the
+//! last converged state and retries with the size times `cutback`; below
+//! `min_step` times its first value it stops with
+//! [`NonlinearError::IncrementTooSmall`].
+//!
+//! The run ends when `lambda` reaches the end of the (single-step) program:
+//! the increment that would cross it is redone under load control to end
+//! exactly there. It also ends when `lambda` falls back to zero after a
+//! maximum (the structure carries no load any more), or after
+//! `max_increments` increments.
+//!
+//! # Restart
+//!
+//! The path state (constraint in use, next size, first arc length, the
+//! previous converged displacement and load factor for the predictor's
+//! sign) is part of the [`Checkpoint`], so a restarted run computes the
+//! increments of an uninterrupted one.
+
+use crate::linear_static::Timings;
+use crate::newton::{
+    any_wants_small, is_element_error, Checkpoint, Control, Cursor, IncrementFailure,
+    IncrementReport, IncrementView, NewtonSettings, NonlinearError, NonlinearRun, NonlinearSummary,
+    Work,
+};
+use junta_core::dof::CONSTRAINED;
+use junta_core::element::{ElementContext, StepInfo};
+use junta_core::state::StateStore;
+use junta_core::{CoreError, LinearSolver, Model};
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// What constrains an increment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PathMode {
+    /// The load factor is prescribed (load or displacement control).
+    #[default]
+    Load,
+    /// Cylindrical arc length on the displacements.
+    Arc,
+    /// Energy dissipated in the increment.
+    Dissipation,
+}
+
+impl PathMode {
+    /// Name written to `curve.csv`.
+    pub fn name(self) -> &'static str {
+        match self {
+            PathMode::Load => "load",
+            PathMode::Arc => "arc",
+            PathMode::Dissipation => "dissipation",
+        }
+    }
+}
+
+/// Settings of the path-following driver (`[analysis.arc_length]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ArcLengthSettings {
+    /// Newton iterations an increment should take; the next path step is
+    /// scaled by `sqrt(target_iterations / iterations)`. Default 5.
+    pub target_iterations: usize,
+    /// Stop after this many increments (bounds every run). Default 5000.
+    pub max_increments: usize,
+    /// Switch from the cylindrical arc length to the dissipation
+    /// constraint after an increment that dissipated more than this
+    /// fraction of the stored energy. Default 1e-4.
+    pub switch_dissipation: f64,
+    /// Smallest path step, as a fraction of the first one, before the run
+    /// stops. Default 1e-6.
+    pub min_step: f64,
+    /// Largest dissipation per increment (energy units); `None`: no limit.
+    pub max_dissipation: Option<f64>,
+    /// Largest arc length as a multiple of the first one. Default 10.
+    pub max_arc: f64,
+    /// An arc-length (or the first, load-controlled) increment that
+    /// dissipates more than this fraction of the stored energy is redone
+    /// with a shorter arc: a long arc can jump from the loading path to
+    /// another equilibrium branch (e.g. the fully cracked one) across a
+    /// snap-back. Default 1e-2.
+    pub max_arc_dissipation: f64,
+}
+
+impl Default for ArcLengthSettings {
+    fn default() -> Self {
+        ArcLengthSettings {
+            target_iterations: 5,
+            max_increments: 5000,
+            switch_dissipation: 1e-4,
+            min_step: 1e-6,
+            max_dissipation: None,
+            max_arc: 10.0,
+            max_arc_dissipation: 1e-2,
+        }
+    }
+}
+
+impl ArcLengthSettings {
+    fn validate(&self) -> Result<(), CoreError> {
+        let bad = |what: &str| Err(CoreError::Invalid(format!("arc-length settings: {what}")));
+        if self.target_iterations == 0 {
+            return bad("target_iterations must be >= 1");
+        }
+        if self.max_increments == 0 {
+            return bad("max_increments must be >= 1");
+        }
+        if !(self.switch_dissipation > 0.0 && self.switch_dissipation.is_finite()) {
+            return bad("switch_dissipation must be positive and finite");
+        }
+        if !(self.min_step > 0.0 && self.min_step < 1.0) {
+            return bad("min_step must lie in (0, 1)");
+        }
+        if !(self.max_arc_dissipation > self.switch_dissipation
+            && self.max_arc_dissipation.is_finite())
+        {
+            return bad("max_arc_dissipation must be finite and exceed switch_dissipation");
+        }
+        if !(self.max_arc >= 1.0 && self.max_arc.is_finite()) {
+            return bad("max_arc must be >= 1 and finite");
+        }
+        if let Some(m) = self.max_dissipation {
+            if !(m > 0.0 && m.is_finite()) {
+                return bad("max_dissipation must be positive and finite");
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The path-following part of a restart point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PathState {
+    /// Constraint of the next increment.
+    pub mode: PathMode,
+    /// Size of the next increment: arc length `Δl` or dissipation `tau`.
+    pub size: f64,
+    /// First arc length `Δl_0` (0 before the first increment).
+    pub arc0: f64,
+    /// First dissipation step `tau_0` of the current dissipation phase.
+    pub tau0: f64,
+    /// Arc length of the last converged increment.
+    pub arc_last: f64,
+    /// Load factor of the converged increment before the last one.
+    pub previous_lambda: f64,
+    /// Full displacement of the converged increment before the last one.
+    pub previous_u: Vec<f64>,
+    /// Largest load factor reached.
+    pub lambda_max: f64,
+    /// Largest stored energy met at a converged increment (floor of the
+    /// energy scale of the dissipation tests once the load has dropped).
+    #[serde(default)]
+    pub stored_max: f64,
+}
+
+/// Why a path-following run ended without error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathEnd {
+    /// The load factor reached the end of the program.
+    Completed,
+    /// The load factor fell back to zero (below 1e-6 times its maximum)
+    /// after a maximum.
+    Unloaded,
+    /// `max_increments` reached.
+    IncrementLimit,
+    /// The observer stopped the run.
+    Observer,
+}
+
+/// Element matrices needed for `q`, `g`, `h` (see the module doc).
+struct Coupling {
+    /// Elements `(block, element)` with a prescribed non-zero displacement.
+    elements: Vec<(usize, usize)>,
+    /// `ubar` (full length; zero on free dofs).
+    ubar: Vec<f64>,
+    /// `|ubar_c|^2`.
+    c: f64,
+    /// Scratch.
+    trial: Vec<f64>,
+    kbuf: Vec<f64>,
+    fbuf: Vec<f64>,
+    coords: Vec<[f64; 3]>,
+    disp: Vec<f64>,
+    dofs: Vec<usize>,
+}
+
+impl Coupling {
+    fn new(model: &Model) -> Self {
+        let ubar: Vec<f64> = model
+            .dofs
+            .prescribed
+            .iter()
+            .enumerate()
+            .map(|(d, &v)| {
+                if model.dofs.eq[d] == CONSTRAINED {
+                    v
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let mut elements = Vec::new();
+        for (b, block) in model.mesh.blocks.iter().enumerate() {
+            for e in 0..block.len() {
+                if block
+                    .element(e)
+                    .iter()
+                    .any(|&n| (0..3).any(|c| ubar[3 * n + c] != 0.0))
+                {
+                    elements.push((b, e));
+                }
+            }
+        }
+        Coupling {
+            elements,
+            c: ubar.iter().map(|v| v * v).sum(),
+            ubar,
+            trial: Vec::new(),
+            kbuf: Vec::new(),
+            fbuf: Vec::new(),
+            coords: Vec::new(),
+            disp: Vec::new(),
+            dofs: Vec::new(),
+        }
+    }
+
+    /// `q` (free, by equation), `g` (free, by equation) and `h` at `u`.
+    fn compute(
+        &mut self,
+        model: &Model,
+        u: &[f64],
+        state: &StateStore,
+        step: StepInfo,
+        q: &mut [f64],
+        g: &mut [f64],
+    ) -> Result<f64, CoreError> {
+        for (e, qv) in q.iter_mut().enumerate() {
+            *qv = 0.0;
+            g[e] = 0.0;
+        }
+        for (d, &eq) in model.dofs.eq.iter().enumerate() {
+            if eq != CONSTRAINED {
+                q[eq] = model.f_ext[d];
+            }
+        }
+        let mut h = 0.0;
+        for &(b, e) in &self.elements {
+            let block = &model.mesh.blocks[b];
+            let el = &model.elements[b];
+            let conn = block.element(e);
+            let nd = 3 * conn.len();
+            self.coords.clear();
+            self.disp.clear();
+            self.dofs.clear();
+            for &n in conn {
+                self.coords.push(model.mesh.nodes[n]);
+                for c in 0..3 {
+                    self.disp.push(u[3 * n + c]);
+                    self.dofs.push(3 * n + c);
+                }
+            }
+            let r = state.range(b, e);
+            self.trial.clear();
+            self.trial.extend_from_slice(&state.committed[r.clone()]);
+            self.kbuf.resize(nd * nd, 0.0);
+            self.fbuf.resize(nd, 0.0);
+            let ctx = ElementContext {
+                coords: &self.coords,
+                disp: &self.disp,
+                state_committed: &state.committed[r],
+                step,
+            };
+            el.compute(&ctx, &mut self.trial, &mut self.fbuf, Some(&mut self.kbuf))
+                .map_err(|source| CoreError::Element {
+                    block: block.name.clone(),
+                    element: e,
+                    source,
+                })?;
+            for i in 0..nd {
+                let di = self.dofs[i];
+                let ei = model.dofs.eq[di];
+                for j in 0..nd {
+                    let dj = self.dofs[j];
+                    let kij = self.kbuf[i * nd + j];
+                    let (ui, uj) = (self.ubar[di], self.ubar[dj]);
+                    if ei != CONSTRAINED {
+                        // row free, column prescribed: -K_fc ubar into q
+                        q[ei] -= kij * uj;
+                        // row prescribed, column free: K_cf^T ubar into g
+                    } else {
+                        let ej = model.dofs.eq[dj];
+                        if ej != CONSTRAINED {
+                            g[ej] += ui * kij;
+                        } else {
+                            h += ui * kij * uj;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(h)
+    }
+}
+
+/// Energy measures of a state: `a = f_ext,f . u_f`, `p = ubar_c . f_int,c`.
+fn work_measures(model: &Model, coupling: &Coupling, u: &[f64], f_int: &[f64]) -> (f64, f64) {
+    let (mut a, mut p) = (0.0, 0.0);
+    for (d, &eq) in model.dofs.eq.iter().enumerate() {
+        if eq != CONSTRAINED {
+            a += model.f_ext[d] * u[d];
+        } else {
+            p += coupling.ubar[d] * f_int[d];
+        }
+    }
+    (a, p)
+}
+
+/// Converged state at the start of an increment.
+#[derive(Debug, Clone, Copy)]
+struct Base {
+    lambda: f64,
+    a: f64,
+    p: f64,
+}
+
+/// The constraint of one attempt.
+#[derive(Debug, Clone, Copy)]
+enum Constraint {
+    /// Fixed load factor.
+    Load(f64),
+    /// Cylindrical arc length `Δl`.
+    Arc(f64),
+    /// Dissipation `tau`.
+    Dissipation(f64),
+}
+
+/// Outcome of one attempt.
+enum Attempt {
+    Converged {
+        iterations: usize,
+        rel: f64,
+        scale_now: f64,
+        dissipation: f64,
+    },
+    Failed {
+        iterations: usize,
+        rel: f64,
+        reason: IncrementFailure,
+    },
+}
+
+/// Work vectors of the path-following iteration (by equation).
+struct PathWork {
+    q: Vec<f64>,
+    g: Vec<f64>,
+    du2: Vec<f64>,
+    /// Δu of the current attempt (by equation).
+    delta: Vec<f64>,
+    /// Δu of the previous converged increment (by equation).
+    delta_prev: Vec<f64>,
+    delta_lambda_prev: f64,
+}
+
+/// Run the single-step load program `program` (its end load factor) on
+/// `model` with path following, from the unloaded state or from `restart`.
+/// See the module documentation for the method; `settings` are the Newton
+/// driver's (tolerances, iteration limit, first increment, growth, cut-back).
+/// The observer is called after every converged increment as in
+/// [`crate::newton::solve_nonlinear`].
+pub fn solve_arc_length<F>(
+    model: &Model,
+    solver: &mut dyn LinearSolver,
+    program: &[f64],
+    settings: &NewtonSettings,
+    arc: &ArcLengthSettings,
+    restart: Option<&Checkpoint>,
+    mut observer: F,
+) -> Result<(NonlinearRun, PathEnd), NonlinearError>
+where
+    F: FnMut(&IncrementView<'_>) -> Control,
+{
+    let t_run = Instant::now();
+    arc.validate()?;
+    if program.len() != 1 || !program[0].is_finite() || program[0] == 0.0 {
+        return Err(CoreError::Invalid(format!(
+            "path following needs a single step with a finite, non-zero end load factor \
+             (`steps = [lambda_end]`); the program has {} step(s): {program:?}",
+            program.len()
+        ))
+        .into());
+    }
+    // validate the Newton settings by running nothing
+    if settings.max_iterations == 0 || !(settings.tol_force > 0.0) {
+        return Err(CoreError::Invalid(
+            "Newton settings: max_iterations >= 1 and tol_force > 0 required".into(),
+        )
+        .into());
+    }
+    let end = program[0];
+    let ndof = model.dofs.num_dofs();
+    let mut state = model.initial_state();
+    let mut u_start = model.dofs.expand(None, 0.0);
+    let nf = model.dofs.num_free;
+    let mut free_dofs = vec![0; nf];
+    for (d, &e) in model.dofs.eq.iter().enumerate() {
+        if e != CONSTRAINED {
+            free_dofs[e] = d;
+        }
+    }
+    let mut cur;
+    let mut path;
+    match restart {
+        Some(c) => {
+            if c.u.len() != ndof || c.state_committed.len() != state.committed.len() {
+                return Err(CoreError::Invalid(format!(
+                    "checkpoint does not fit the model: {} displacements and {} state values, \
+                     the model has {} dofs and {} state values",
+                    c.u.len(),
+                    c.state_committed.len(),
+                    ndof,
+                    state.committed.len()
+                ))
+                .into());
+            }
+            let Some(p) = &c.path else {
+                return Err(CoreError::Invalid(
+                    "checkpoint of a load-controlled run: restart it with the same control".into(),
+                )
+                .into());
+            };
+            if p.previous_u.len() != ndof || !(p.size > 0.0) {
+                return Err(CoreError::Invalid(
+                    "checkpoint: path state does not fit the model".into(),
+                )
+                .into());
+            }
+            state.committed.copy_from_slice(&c.state_committed);
+            state.restore();
+            u_start.copy_from_slice(&c.u);
+            cur = c.cursor();
+            path = p.clone();
+        }
+        None => {
+            cur = Cursor {
+                step: 0,
+                t: 0.0,
+                lambda: 0.0,
+                increment_index: 0,
+                size: settings.initial_increment.min(settings.max_increment),
+                small: false,
+                force_peak: 0.0,
+            };
+            path = PathState {
+                mode: PathMode::Load,
+                size: settings.initial_increment.min(settings.max_increment) * end.abs(),
+                arc0: 0.0,
+                tau0: 0.0,
+                arc_last: 0.0,
+                previous_lambda: 0.0,
+                previous_u: u_start.clone(),
+                lambda_max: 0.0,
+                stored_max: 0.0,
+            };
+        }
+    }
+    let t = Instant::now();
+    let asm = model.assembler();
+    let mut timings = Timings {
+        pattern: t.elapsed().as_secs_f64(),
+        ..Default::default()
+    };
+    let mut w = Work::new(model, asm, free_dofs, u_start, settings);
+    let mut coupling = Coupling::new(model);
+    let mut pw = PathWork {
+        q: vec![0.0; nf],
+        g: vec![0.0; nf],
+        du2: vec![0.0; nf],
+        delta: vec![0.0; nf],
+        delta_prev: vec![0.0; nf],
+        delta_lambda_prev: cur.lambda - path.previous_lambda,
+    };
+    for (e, &d) in w.free_dofs.iter().enumerate() {
+        pw.delta_prev[e] = w.u_conv[d] - path.previous_u[d];
+    }
+    let mut summary = NonlinearSummary {
+        final_lambda: cur.lambda,
+        ..Default::default()
+    };
+    // state and measures of the starting point
+    let step0 = StepInfo {
+        increment: cur.increment_index,
+        load_factor: cur.lambda,
+        delta_load_factor: 0.0,
+        secant: false,
+    };
+    w.evaluate(&mut state, step0, cur.lambda, cur.force_peak)?;
+    state.restore();
+    let (a0, p0) = work_measures(model, &coupling, &w.u, &w.f_int);
+    let mut base = Base {
+        lambda: cur.lambda,
+        a: a0,
+        p: p0,
+    };
+    let mut dissipated_laws = model.dissipated_energy(&w.u_conv, &state)?;
+    let mut end_reason = PathEnd::Completed;
+
+    while cur.t < 1.0 {
+        if cur.increment_index >= arc.max_increments {
+            end_reason = PathEnd::IncrementLimit;
+            break;
+        }
+        let before = w.timings;
+        let mut cutbacks = 0;
+        let mut mode = path.mode;
+        let mut size = path.size;
+        let first_size = match mode {
+            PathMode::Load => path.size,
+            PathMode::Arc => path.arc0,
+            PathMode::Dissipation => path.tau0,
+        };
+        let mut fell_back = false;
+        let mut rescued = false;
+        let (iterations, rel, scale_now, dissipation, control) = loop {
+            let constraint = match mode {
+                PathMode::Load => {
+                    let l = cur.lambda + size.copysign(end);
+                    Constraint::Load(if (l - end) * end.signum() > 0.0 {
+                        end
+                    } else {
+                        l
+                    })
+                }
+                PathMode::Arc => Constraint::Arc(size),
+                PathMode::Dissipation => Constraint::Dissipation(size),
+            };
+            let mut outcome = attempt(
+                &mut w,
+                &mut pw,
+                &mut coupling,
+                solver,
+                &mut state,
+                &cur,
+                base,
+                constraint,
+                false,
+            )?;
+            // crossing the end of the program: redo under load control to
+            // end exactly there
+            if let Attempt::Converged { .. } = outcome {
+                let lam = lambda_now(&w);
+                if mode != PathMode::Load && (lam - end) * end.signum() > 0.0 {
+                    restore(&mut w, &mut state);
+                    outcome = attempt(
+                        &mut w,
+                        &mut pw,
+                        &mut coupling,
+                        solver,
+                        &mut state,
+                        &cur,
+                        base,
+                        Constraint::Load(end),
+                        false,
+                    )?;
+                    if let Attempt::Converged {
+                        iterations,
+                        rel,
+                        scale_now,
+                        dissipation,
+                    } = outcome
+                    {
+                        break (iterations, rel, scale_now, dissipation, PathMode::Load);
+                    }
+                }
+            }
+            // a long arc that dissipates much may have jumped to another
+            // branch across a snap-back: shorten it
+            if let Attempt::Converged {
+                iterations,
+                rel,
+                dissipation,
+                ..
+            } = outcome
+            {
+                let (a1, p1) = work_measures(model, &coupling, &w.u, &w.f_int);
+                let stored = (0.5 * lambda_now(&w) * (a1 + p1))
+                    .abs()
+                    .max(1e-9 * path.stored_max);
+                if mode != PathMode::Dissipation && dissipation > arc.max_arc_dissipation * stored {
+                    outcome = Attempt::Failed {
+                        iterations,
+                        rel,
+                        reason: IncrementFailure::Element(format!(
+                            "the increment dissipated {dissipation:.3e}, {:.1} % of the stored \
+                             energy {stored:.3e} (limit max_arc_dissipation = {}): shorter arc",
+                            100.0 * dissipation / stored.abs().max(f64::MIN_POSITIVE),
+                            arc.max_arc_dissipation
+                        )),
+                    };
+                }
+            }
+            match outcome {
+                Attempt::Converged {
+                    iterations,
+                    rel,
+                    scale_now,
+                    dissipation,
+                } => break (iterations, rel, scale_now, dissipation, mode),
+                Attempt::Failed {
+                    iterations,
+                    rel,
+                    reason,
+                } => {
+                    // An arc that failed at a sharp turn of the path (a
+                    // snap-back right at damage onset: the loading and the
+                    // softening branches meet at an angle above 90 degrees,
+                    // so the arc's root selection keeps pointing forward)
+                    // but whose last iterate is damaging: from there, the
+                    // dissipation constraint is well posed (the tangent is
+                    // no longer the secant), so try it once, warm.
+                    if mode == PathMode::Arc && !rescued {
+                        rescued = true;
+                        let (a1, p1) = work_measures(model, &coupling, &w.u, &w.f_int);
+                        let lam = lambda_now(&w);
+                        let d_try = 0.5
+                            * (base.lambda * (a1 - base.a) - (lam - base.lambda) * base.a
+                                + base.p * (lam - base.lambda)
+                                - base.lambda * (p1 - base.p));
+                        let stored = 0.5 * base.lambda * (base.a + base.p);
+                        if d_try.is_finite() && d_try > arc.switch_dissipation * stored.abs() {
+                            let tau = d_try.min(arc.max_arc_dissipation * stored.abs());
+                            let rescue = attempt(
+                                &mut w,
+                                &mut pw,
+                                &mut coupling,
+                                solver,
+                                &mut state,
+                                &cur,
+                                base,
+                                Constraint::Dissipation(tau),
+                                true,
+                            )?;
+                            if let Attempt::Converged {
+                                iterations,
+                                rel,
+                                scale_now,
+                                dissipation,
+                            } = rescue
+                            {
+                                tracing::info!(
+                                    tau,
+                                    "arc length failed at a sharp turn: continued under dissipation control"
+                                );
+                                size = tau;
+                                break (
+                                    iterations,
+                                    rel,
+                                    scale_now,
+                                    dissipation,
+                                    PathMode::Dissipation,
+                                );
+                            }
+                        }
+                    }
+                    restore(&mut w, &mut state);
+                    summary.cutbacks += 1;
+                    cutbacks += 1;
+                    tracing::warn!(
+                        lambda = cur.lambda,
+                        iterations,
+                        residual = rel,
+                        control = mode.name(),
+                        size,
+                        "path increment failed ({reason}); cutting back"
+                    );
+                    // the dissipation constraint cannot be met: go back to
+                    // the arc length once, with the last increment's length
+                    if mode == PathMode::Dissipation
+                        && !fell_back
+                        && (cutbacks >= 3 || matches!(reason, IncrementFailure::NonFinite))
+                        && path.arc_last > 0.0
+                    {
+                        fell_back = true;
+                        mode = PathMode::Arc;
+                        size = path.arc_last;
+                        continue;
+                    }
+                    size *= settings.cutback;
+                    let floor = match mode {
+                        PathMode::Load => settings.min_increment * end.abs(),
+                        PathMode::Arc if fell_back => path.arc0 * arc.min_step,
+                        _ => first_size * arc.min_step,
+                    };
+                    if size < floor {
+                        return Err(NonlinearError::IncrementTooSmall {
+                            step: 0,
+                            lambda: cur.lambda,
+                            increment: size,
+                            last_residual: rel,
+                            iterations,
+                            reason,
+                        });
+                    }
+                }
+            }
+        };
+        // converged: commit
+        state.commit();
+        let lambda_new = lambda_now(&w);
+        for (e, &d) in w.free_dofs.iter().enumerate() {
+            pw.delta_prev[e] = w.u[d] - w.u_conv[d];
+        }
+        let arc_len = (pw.delta_prev.iter().map(|v| v * v).sum::<f64>()
+            + coupling.c * (lambda_new - cur.lambda).powi(2))
+        .sqrt();
+        pw.delta_lambda_prev = lambda_new - cur.lambda;
+        path.previous_u.copy_from_slice(&w.u_conv);
+        path.previous_lambda = cur.lambda;
+        w.u_conv.copy_from_slice(&w.u);
+        let delta_lambda = lambda_new - cur.lambda;
+        let (a1, p1) = work_measures(model, &coupling, &w.u, &w.f_int);
+        let stored = (0.5 * lambda_new * (a1 + p1)).abs();
+        path.stored_max = path.stored_max.max(stored);
+        let stored = stored.max(1e-9 * path.stored_max);
+        let d_laws = model.dissipated_energy(&w.u, &state)?;
+        let laws_dissipate = d_laws > dissipated_laws;
+        dissipated_laws = d_laws;
+        base = Base {
+            lambda: lambda_new,
+            a: a1,
+            p: p1,
+        };
+        cur.lambda = lambda_new;
+        cur.t = if control == PathMode::Load && lambda_new == end {
+            1.0
+        } else {
+            (lambda_new / end).clamp(-1.0, 1.0 - 1e-12)
+        };
+        cur.increment_index += 1;
+        cur.force_peak = cur.force_peak.max(scale_now);
+        cur.small = any_wants_small(model, &state);
+        path.arc_last = arc_len;
+        path.lambda_max = path.lambda_max.max(lambda_new * end.signum());
+        // next constraint and size
+        let scale = ((arc.target_iterations as f64) / (iterations.max(1) as f64))
+            .sqrt()
+            .clamp(1.0 / settings.growth.max(1.0 + 1e-9), settings.growth);
+        let scale = if cutbacks > 0 { scale.min(1.0) } else { scale };
+        match control {
+            PathMode::Load if path.mode == PathMode::Load => {
+                // first increment: it sets the arc length
+                path.arc0 = arc_len;
+                path.mode = PathMode::Arc;
+                path.size = arc_len;
+            }
+            PathMode::Load => {}
+            PathMode::Arc => {
+                path.mode = PathMode::Arc;
+                path.size = (size * scale).min(arc.max_arc * path.arc0);
+            }
+            PathMode::Dissipation => {
+                if path.mode != PathMode::Dissipation {
+                    // entered by the rescue of a failed arc
+                    path.mode = PathMode::Dissipation;
+                    path.tau0 = size;
+                }
+                path.size = size * scale;
+                if let Some(m) = arc.max_dissipation {
+                    path.size = path.size.min(m);
+                }
+            }
+        }
+        if control != PathMode::Dissipation
+            && laws_dissipate
+            && dissipation > arc.switch_dissipation * stored.abs()
+        {
+            path.mode = PathMode::Dissipation;
+            path.tau0 = dissipation;
+            path.size = dissipation;
+            if let Some(m) = arc.max_dissipation {
+                path.size = path.size.min(m);
+            }
+        }
+        if control == PathMode::Arc && fell_back {
+            // stay on the arc length until the laws dissipate again
+            path.mode = PathMode::Arc;
+            path.size = size;
+            if laws_dissipate && dissipation > arc.switch_dissipation * stored.abs() {
+                path.mode = PathMode::Dissipation;
+                path.tau0 = dissipation;
+                path.size = dissipation;
+            }
+        }
+        summary.increments += 1;
+        summary.newton_iterations_max = summary.newton_iterations_max.max(iterations);
+        summary.final_lambda = cur.lambda;
+        let now = w.timings;
+        let seconds = Timings {
+            pattern: 0.0,
+            assemble: now.assemble - before.assemble,
+            analyze: now.analyze - before.analyze,
+            factor: now.factor - before.factor,
+            solve: now.solve - before.solve,
+            total: (now.assemble + now.analyze + now.factor + now.solve)
+                - (before.assemble + before.analyze + before.factor + before.solve),
+        };
+        let report = IncrementReport {
+            step: 0,
+            increment_index: cur.increment_index,
+            lambda: cur.lambda,
+            delta_lambda,
+            step_fraction: cur.t,
+            iterations,
+            residual: rel,
+            energy: 0.0,
+            cutbacks,
+            seconds,
+            small_increment_mode: false,
+            negative_pivots: solver.report().negative_pivots,
+            control,
+            dissipation: Some(dissipation),
+        };
+        tracing::info!(
+            increment = report.increment_index,
+            lambda = report.lambda,
+            delta_lambda,
+            iterations,
+            control = control.name(),
+            dissipation,
+            "path increment converged"
+        );
+        let view = IncrementView {
+            report: &report,
+            u: &w.u,
+            residual: &w.res,
+            state: &state,
+            residual_history: &w.history,
+            cursor: cur,
+            path: Some(&path),
+        };
+        if observer(&view) == Control::Stop {
+            summary.stopped_by_observer = true;
+            end_reason = PathEnd::Observer;
+            break;
+        }
+        if path.lambda_max > 0.0 && cur.lambda * end.signum() <= 1e-6 * path.lambda_max {
+            end_reason = PathEnd::Unloaded;
+            break;
+        }
+    }
+    summary.newton_iterations_total = w.iterations;
+    summary.analyze_count = usize::from(w.analyzed);
+    timings.assemble = w.timings.assemble;
+    timings.analyze = w.timings.analyze;
+    timings.factor = w.timings.factor;
+    timings.solve = w.timings.solve;
+    timings.total = t_run.elapsed().as_secs_f64();
+    summary.timings = timings;
+    Ok((
+        NonlinearRun {
+            summary,
+            u: w.u,
+            residual: w.res,
+            state,
+            cursor: cur,
+            path: Some(path),
+        },
+        end_reason,
+    ))
+}
+
+/// The load factor of the current trial (set by [`attempt`]).
+fn lambda_now(w: &Work<'_>) -> f64 {
+    w.lambda_trial
+}
+
+fn restore(w: &mut Work<'_>, state: &mut StateStore) {
+    state.restore();
+    w.u.copy_from_slice(&w.u_conv);
+}
+
+/// One attempt of an increment from the converged state (`w.u_conv`,
+/// `cur.lambda`) under `constraint`. On success `w.u`, `w.lambda_trial`,
+/// `w.res`, `w.f_int` and the trial state hold the converged increment.
+#[allow(clippy::too_many_arguments)]
+fn attempt(
+    w: &mut Work<'_>,
+    pw: &mut PathWork,
+    coupling: &mut Coupling,
+    solver: &mut dyn LinearSolver,
+    state: &mut StateStore,
+    cur: &Cursor,
+    base: Base,
+    constraint: Constraint,
+    warm: bool,
+) -> Result<Attempt, NonlinearError> {
+    let st = w.settings.clone();
+    let model = w.model;
+    let fail = |iterations, rel, reason| Attempt::Failed {
+        iterations,
+        rel,
+        reason,
+    };
+    // start: converged displacements, load factor unchanged (predictor in
+    // the first iteration) or the prescribed one
+    // (warm: from the current trial `w.u`, `w.lambda_trial`)
+    let mut lambda = match constraint {
+        Constraint::Load(l) => l,
+        _ if warm => w.lambda_trial,
+        _ => cur.lambda,
+    };
+    if !warm {
+        w.u.copy_from_slice(&w.u_conv);
+    }
+    let set_prescribed = |w: &mut Work<'_>, lambda: f64| {
+        for (d, u) in w.u.iter_mut().enumerate() {
+            if model.dofs.eq[d] == CONSTRAINED {
+                *u = lambda * model.dofs.prescribed[d];
+            }
+        }
+    };
+    set_prescribed(w, lambda);
+    w.lambda_trial = lambda;
+    for (e, &d) in w.free_dofs.iter().enumerate() {
+        pw.delta[e] = w.u[d] - w.u_conv[d];
+    }
+    w.history.clear();
+    let mut secant = false;
+    let step_info = |lambda: f64, secant: bool| StepInfo {
+        increment: cur.increment_index + 1,
+        load_factor: lambda,
+        delta_load_factor: lambda - cur.lambda,
+        secant,
+    };
+    let mut ev = match w.evaluate(state, step_info(lambda, secant), lambda, cur.force_peak) {
+        Ok(e) => e,
+        Err(e) if is_element_error(&e) => {
+            return Ok(fail(0, f64::NAN, IncrementFailure::Element(e.to_string())))
+        }
+        Err(e) => return Err(e.into()),
+    };
+    w.history.push(ev.rel);
+    let rho0 = ev.abs.max(f64::MIN_POSITIVE);
+    let nf = w.free_dofs.len();
+    let dissipation_of = |w: &Work<'_>, coupling: &Coupling, lambda: f64| {
+        let (a, p) = work_measures(model, coupling, &w.u, &w.f_int);
+        0.5 * (base.lambda * (a - base.a) - (lambda - base.lambda) * base.a
+            + base.p * (lambda - base.lambda)
+            - base.lambda * (p - base.p))
+    };
+    let mut rho_first = 0.0;
+    let mut rho_prev = f64::INFINITY;
+    for it in 1..=st.max_iterations {
+        w.iterations += 1;
+        if !w.analyzed {
+            let t = Instant::now();
+            solver.analyze(&w.k, Some(&w.coords))?;
+            w.timings.analyze += t.elapsed().as_secs_f64();
+            w.analyzed = true;
+        }
+        let t = Instant::now();
+        let r = solver.factorize(&w.k);
+        w.timings.factor += t.elapsed().as_secs_f64();
+        if let Err(e) = r {
+            return Ok(fail(it, ev.rel, IncrementFailure::Solver(e)));
+        }
+        // q, g, h at the current iterate (element matrices at the trial u)
+        let h = if matches!(constraint, Constraint::Load(_)) {
+            0.0
+        } else {
+            match coupling.compute(
+                model,
+                &w.u,
+                state,
+                step_info(lambda, secant),
+                &mut pw.q,
+                &mut pw.g,
+            ) {
+                Ok(h) => h,
+                Err(e) if is_element_error(&e) => {
+                    return Ok(fail(it, ev.rel, IncrementFailure::Element(e.to_string())))
+                }
+                Err(e) => return Err(e.into()),
+            }
+        };
+        for (e, &d) in w.free_dofs.iter().enumerate() {
+            w.du[e] = -w.res[d];
+        }
+        let t = Instant::now();
+        let factor_before = solver.report().factor_seconds;
+        let mut r = solver.solve_in_place(&w.k, &mut w.du);
+        if r.is_ok() && !matches!(constraint, Constraint::Load(_)) {
+            pw.du2.copy_from_slice(&pw.q);
+            r = solver.solve_in_place(&w.k, &mut pw.du2);
+        }
+        let refactor = (solver.report().factor_seconds - factor_before).max(0.0);
+        w.timings.factor += refactor;
+        w.timings.solve += t.elapsed().as_secs_f64() - refactor;
+        if let Err(e) = r {
+            return Ok(fail(it, ev.rel, IncrementFailure::Solver(e)));
+        }
+        // dlambda from the constraint
+        let dl = match constraint {
+            Constraint::Load(_) => 0.0,
+            Constraint::Arc(len) => {
+                let c = coupling.c;
+                let dlam0 = lambda - cur.lambda;
+                if it == 1 {
+                    // predictor: along du_II with the sign of the path
+                    let norm = (dot(&pw.du2, &pw.du2) + c).sqrt();
+                    let dir = dot(&pw.du2, &pw.delta_prev) + c * pw.delta_lambda_prev;
+                    let sign = if dir < 0.0 { -1.0 } else { 1.0 };
+                    // du_I is round-off here; keep it in the quadratic below
+                    let (a1, a2, a3) = quadratic(&pw.delta, &w.du, &pw.du2, c, dlam0, len);
+                    match roots(a1, a2, a3) {
+                        Some((r1, r2)) => {
+                            if (r1 - sign * len / norm).abs() < (r2 - sign * len / norm).abs() {
+                                r1
+                            } else {
+                                r2
+                            }
+                        }
+                        None => sign * len / norm,
+                    }
+                } else {
+                    let (a1, a2, a3) = quadratic(&pw.delta, &w.du, &pw.du2, c, dlam0, len);
+                    match roots(a1, a2, a3) {
+                        Some((r1, r2)) => {
+                            // the root whose increment is closest in angle
+                            // to the current one
+                            let cos = |dl: f64| {
+                                let mut s = c * dlam0 * (dlam0 + dl);
+                                for e in 0..nf {
+                                    s += pw.delta[e] * (pw.delta[e] + w.du[e] + dl * pw.du2[e]);
+                                }
+                                s
+                            };
+                            if cos(r1) >= cos(r2) {
+                                r1
+                            } else {
+                                r2
+                            }
+                        }
+                        None => {
+                            return Ok(fail(
+                                it,
+                                ev.rel,
+                                IncrementFailure::Element(
+                                    "arc-length constraint has no real root".into(),
+                                ),
+                            ))
+                        }
+                    }
+                }
+            }
+            Constraint::Dissipation(tau) => {
+                let phi = dissipation_of(w, coupling, lambda) - tau;
+                // dphi = w . du + c_l dlambda
+                let mut wdu1 = 0.0;
+                let mut wdu2 = 0.0;
+                for (e, &d) in w.free_dofs.iter().enumerate() {
+                    let wv = 0.5 * base.lambda * (model.f_ext[d] - pw.g[e]);
+                    wdu1 += wv * w.du[e];
+                    wdu2 += wv * pw.du2[e];
+                }
+                let c_l = 0.5 * (base.p - base.a - base.lambda * h);
+                let den = wdu2 + c_l;
+                let dl = -(phi + wdu1) / den;
+                if !dl.is_finite() || den.abs() <= 1e-14 * (wdu2.abs() + c_l.abs()) {
+                    return Ok(fail(it, ev.rel, IncrementFailure::NonFinite));
+                }
+                dl
+            }
+        };
+        for e in 0..nf {
+            w.du[e] += dl * pw.du2[e];
+        }
+        if !w.du.iter().all(|v| v.is_finite()) {
+            return Ok(fail(it, ev.rel, IncrementFailure::NonFinite));
+        }
+        // Backtracking line search on |r_f| along (du, dlambda), from the
+        // second iteration on (the predictor starts from equilibrium, so
+        // any step raises the residual). A damped step leaves the
+        // constraint unmet; the next iteration's constraint, written on the
+        // accumulated increment, restores it. This breaks the two-cycle of
+        // Newton across the kink of a softening law (elastic <-> damaging).
+        w.u_base.copy_from_slice(&w.u);
+        let lambda_base = lambda;
+        let rho_before = ev.abs;
+        let tries = if st.line_search && it >= 2 {
+            st.max_line_search + 1
+        } else {
+            1
+        };
+        let mut step_len = 1.0;
+        let mut best: Option<(f64, f64)> = None;
+        let mut last = f64::NAN;
+        for _ in 0..tries {
+            for (e, &d) in w.free_dofs.iter().enumerate() {
+                w.u[d] = w.u_base[d] + step_len * w.du[e];
+            }
+            lambda = lambda_base + step_len * dl;
+            set_prescribed(w, lambda);
+            last = step_len;
+            ev = match w.evaluate(state, step_info(lambda, secant), lambda, cur.force_peak) {
+                Ok(e) => e,
+                Err(e) if is_element_error(&e) => {
+                    return Ok(fail(it, ev.rel, IncrementFailure::Element(e.to_string())))
+                }
+                Err(e) => return Err(e.into()),
+            };
+            if ev.abs.is_finite() {
+                if !matches!(best, Some((_, b)) if b <= ev.abs) {
+                    best = Some((step_len, ev.abs));
+                }
+                if ev.abs <= (1.0 - 1e-4 * step_len) * rho_before {
+                    break;
+                }
+            }
+            step_len *= 0.5;
+        }
+        if let Some((sb, _)) = best {
+            if sb != last {
+                step_len = sb;
+                for (e, &d) in w.free_dofs.iter().enumerate() {
+                    w.u[d] = w.u_base[d] + step_len * w.du[e];
+                }
+                lambda = lambda_base + step_len * dl;
+                set_prescribed(w, lambda);
+                ev = match w.evaluate(state, step_info(lambda, secant), lambda, cur.force_peak) {
+                    Ok(e) => e,
+                    Err(e) if is_element_error(&e) => {
+                        return Ok(fail(it, ev.rel, IncrementFailure::Element(e.to_string())))
+                    }
+                    Err(e) => return Err(e.into()),
+                };
+            } else {
+                step_len = last;
+            }
+        }
+        for e in 0..nf {
+            pw.delta[e] += step_len * w.du[e];
+        }
+        w.lambda_trial = lambda;
+        w.history.push(ev.rel);
+        if !ev.abs.is_finite() {
+            return Ok(fail(it, ev.rel, IncrementFailure::NonFinite));
+        }
+        // The consistent tangent did not reduce the residual: Newton is
+        // cycling between the branches of a softening point (elastic and
+        // damaging). As in the Newton driver, use the laws' secant tangent
+        // for the rest of the attempt (linear, monotone convergence).
+        if it >= 2 && !secant && st.secant_fallback && ev.abs >= rho_prev && ev.rel > st.tol_force {
+            secant = true;
+            w.secant_attempts += 1;
+            ev = match w.evaluate(state, step_info(lambda, secant), lambda, cur.force_peak) {
+                Ok(e) => e,
+                Err(e) if is_element_error(&e) => {
+                    return Ok(fail(it, ev.rel, IncrementFailure::Element(e.to_string())))
+                }
+                Err(e) => return Err(e.into()),
+            };
+        }
+        rho_prev = ev.abs;
+        if it == 1 {
+            rho_first = ev.abs.max(rho0);
+        }
+        let constraint_ok = match constraint {
+            Constraint::Dissipation(tau) => {
+                (dissipation_of(w, coupling, lambda) - tau).abs() <= 1e-6 * tau.abs()
+            }
+            _ => true,
+        };
+        tracing::debug!(iteration = it, residual = ev.rel, lambda, "path iteration");
+        if ev.rel <= st.tol_force && constraint_ok {
+            let dissipation = dissipation_of(w, coupling, lambda);
+            return Ok(Attempt::Converged {
+                iterations: it,
+                rel: ev.rel,
+                scale_now: ev.scale_now,
+                dissipation,
+            });
+        }
+        if ev.abs > st.divergence_ratio * rho_first {
+            return Ok(fail(
+                it,
+                ev.rel,
+                IncrementFailure::Diverging {
+                    residual: ev.abs,
+                    initial: rho_first,
+                },
+            ));
+        }
+    }
+    Ok(fail(
+        st.max_iterations,
+        ev.rel,
+        IncrementFailure::IterationLimit,
+    ))
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Coefficients of `|delta + du1 + x du2|^2 + c (dlam0 + x)^2 - len^2`.
+fn quadratic(
+    delta: &[f64],
+    du1: &[f64],
+    du2: &[f64],
+    c: f64,
+    dlam0: f64,
+    len: f64,
+) -> (f64, f64, f64) {
+    let (mut a1, mut a2, mut a3) = (c, 2.0 * c * dlam0, c * dlam0 * dlam0 - len * len);
+    for e in 0..delta.len() {
+        let v = delta[e] + du1[e];
+        a1 += du2[e] * du2[e];
+        a2 += 2.0 * du2[e] * v;
+        a3 += v * v;
+    }
+    (a1, a2, a3)
+}
+
+/// Real roots of `a x^2 + b x + c`, if any.
+fn roots(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
+    if a <= 0.0 {
+        return None;
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let s = disc.sqrt();
+    // stable form
+    let qv = -0.5 * (b + s.copysign(b));
+    if qv == 0.0 {
+        return Some((0.0, 0.0));
+    }
+    Some((qv / a, c / qv))
+}
