@@ -7,6 +7,7 @@ mixed-mode bending split). Writes, next to this script:
 
   dcb_beam_theory.csv   opening delta (mm), load P on one arm (N)
   enf_beam_theory.csv   mid-span deflection (mm), total load P (N)
+  enf_snapback_beam_theory.csv   the same for a0 = 0.5 L (snaps back)
 
 and prints the characteristic numbers. Run: python3 beam_theory.py
 """
@@ -80,6 +81,10 @@ if __name__ == "__main__":
     pc, dc, pts = enf(a0=37.5, L=50.0)
     write("enf_beam_theory.csv", pts, "ENF beam theory (a0 = 37.5, L = 50): load-point deflection (mm), load P (N)")
     print(f"ENF: peak {pc:.1f} N at deflection {dc:.3f} mm; at a = L: {pts[-1][1]:.1f} N at {pts[-1][0]:.3f} mm")
+    pc, dc, pts = enf(a0=25.0, L=50.0)
+    write("enf_snapback_beam_theory.csv", pts, "ENF beam theory (a0 = 25 = 0.5 L, L = 50), crack from a0 to L: load-point deflection (mm), load P (N)")
+    dmin = min(x for x, _ in pts[21:])
+    print(f"ENF a0 = 0.5 L: peak {pc:.1f} N at deflection {dc:.3f} mm; snaps back to {dmin:.3f} mm; at a = L: {pts[-1][1]:.1f} N at {pts[-1][0]:.3f} mm")
     for r in (0.2, 0.5, 0.8):
         c, p = mmb_critical_load(r, a0=32.9, L=51.0)
         print(f"MMB G_II/G_T = {r}: lever c = {c:.3f} mm, critical load {p:.2f} N")
