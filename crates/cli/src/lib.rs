@@ -24,6 +24,7 @@ mod plot;
 mod run;
 mod scene;
 mod sweep;
+mod sweep_control;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -100,6 +101,17 @@ enum SweepKind {
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
+    /// One incremental scene under arc length, displacement control and
+    /// load control: where each method stops and why (control.csv,
+    /// control_summary.csv, control.svg).
+    Control {
+        /// Scene file (.toml), `[analysis] type = "static"` with an
+        /// `[output] curve`.
+        input: PathBuf,
+        /// Output directory (default out/NAME-control).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
     /// Gauss against Lobatto (nodal) integration of every interface: the
     /// normal traction along an axis (traction.csv, traction.svg).
     Integration {
@@ -172,6 +184,18 @@ pub fn main() -> ExitCode {
                 println!(
                     "wrote {}/sweep.csv and {}/sweep.svg",
                     out.display(),
+                    out.display()
+                );
+            })
+        }
+        Command::Sweep {
+            what: SweepKind::Control { input, output },
+        } => {
+            let out = output.unwrap_or_else(|| run::default_dir(&input, "-control"));
+            sweep_control::sweep_control(&input, &out).map(|runs| {
+                sweep_control::report(&runs);
+                println!(
+                    "wrote {}/control.csv, control_summary.csv and control.svg",
                     out.display()
                 );
             })

@@ -267,14 +267,16 @@ fn limit_points(rows: &[Row]) -> serde_json::Value {
 /// `#` comments and a header line allowed; the path is relative to the
 /// scene's folder.
 fn read_reference_curve(input: &Path, file: &str) -> Result<Vec<(f64, f64)>> {
-    let path = input.parent().unwrap_or(Path::new(".")).join(file);
-    let text = std::fs::read_to_string(&path).with_context(|| {
-        format!(
-            "{}: key `output.curve.reference.file`: cannot read {}",
-            input.display(),
-            path.display()
-        )
-    })?;
+    read_reference_points(&input.parent().unwrap_or(Path::new(".")).join(file))
+        .with_context(|| format!("{}: key `output.curve.reference.file`", input.display()))
+}
+
+/// Points `(x, y)` of the reference curve file `path` (see
+/// [`read_reference_curve`]).
+pub(crate) fn read_reference_points(path: &Path) -> Result<Vec<(f64, f64)>> {
+    let path = path.to_path_buf();
+    let text = std::fs::read_to_string(&path)
+        .with_context(|| format!("cannot read {}", path.display()))?;
     let mut pts = Vec::new();
     for line in text.lines().map(str::trim) {
         if line.is_empty() || line.starts_with('#') {
@@ -411,7 +413,12 @@ pub fn run_static(
                         };
                         let base = if rel.is_empty() { 0.0 } else { mean(rel) };
                         (
-                            Some(sign * model.set_total(set, v.residual)?[*rc]),
+                            // internal force on the set = reaction on
+                            // supports, applied load on a loaded free set
+                            Some(
+                                sign * (model.set_total(set, v.residual)?[*rc]
+                                    + r.lambda * model.set_total(set, &model.f_ext)?[*rc]),
+                            ),
                             Some(sign * (mean(pts) - base)),
                         )
                     }

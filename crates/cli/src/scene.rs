@@ -129,7 +129,8 @@ impl Default for AnalysisSpec {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CurveSpec {
-    /// Node set whose total reaction is recorded.
+    /// Node set whose total internal force is recorded: the reaction on
+    /// supports, the applied load on a loaded free set.
     pub reaction_set: String,
     /// Its component: x, y or z.
     pub reaction_component: String,

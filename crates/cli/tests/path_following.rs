@@ -311,3 +311,46 @@ fn enf_snapback_follows_the_lefm_propagation_branch() {
             >= 1
     );
 }
+
+/// `junta sweep control`: arc length follows the whole path; displacement
+/// and load control stop at the load maximum (the strength N A = 1 N of the
+/// closed form) and say why.
+#[test]
+fn sweep_control_charts_where_each_method_stops() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = junta()
+        .args(["sweep", "control"])
+        .arg(scene())
+        .arg("-o")
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(dir.path().join("control_summary.csv")).unwrap();
+    let lines: Vec<&str> = text.lines().skip(1).collect();
+    assert_eq!(lines.len(), 3, "{text}");
+    let line = |m: &str| *lines.iter().find(|l| l.starts_with(m)).unwrap();
+    assert!(line("arc_length").contains("completed"), "{text}");
+    for m in ["displacement", "load"] {
+        let l = line(m);
+        assert!(l.contains("Limit point"), "{l}");
+        assert!(l.contains("arc_length"), "{l}");
+    }
+    // each stopped method got to the peak (within 1 % of N A = 1 N) and not
+    // beyond it
+    let curve = std::fs::read_to_string(dir.path().join("control.csv")).unwrap();
+    for m in ["displacement", "load"] {
+        let peak = curve
+            .lines()
+            .filter(|l| l.starts_with(&format!("{m},")))
+            .map(|l| l.split(',').nth(3).unwrap().parse::<f64>().unwrap())
+            .fold(0.0, f64::max);
+        assert!(peak > 0.99 && peak < 1.0 + 1e-9, "{m}: {peak}");
+    }
+    let svg = std::fs::read_to_string(dir.path().join("control.svg")).unwrap();
+    assert!(svg.contains("arc length") && svg.contains("where a method stopped"));
+}

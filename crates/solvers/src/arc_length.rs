@@ -468,13 +468,7 @@ where
         ))
         .into());
     }
-    // validate the Newton settings by running nothing
-    if settings.max_iterations == 0 || !(settings.tol_force > 0.0) {
-        return Err(CoreError::Invalid(
-            "Newton settings: max_iterations >= 1 and tol_force > 0 required".into(),
-        )
-        .into());
-    }
+    settings.validate()?;
     let end = program[0];
     let ndof = model.dofs.num_dofs();
     let mut state = model.initial_state();
@@ -507,7 +501,7 @@ where
                 )
                 .into());
             };
-            if p.previous_u.len() != ndof || !(p.size > 0.0) {
+            if p.previous_u.len() != ndof || p.size.is_nan() || p.size <= 0.0 {
                 return Err(CoreError::Invalid(
                     "checkpoint: path state does not fit the model".into(),
                 )

@@ -194,7 +194,7 @@ impl NewtonSettings {
             .unwrap_or(self.initial_increment.min(0.01))
     }
 
-    fn validate(&self) -> Result<(), CoreError> {
+    pub(crate) fn validate(&self) -> Result<(), CoreError> {
         let bad = |what: &str| Err(CoreError::Invalid(format!("Newton settings: {what}")));
         let pos = |x: f64| x > 0.0 && x.is_finite();
         if !(pos(self.min_increment) && pos(self.initial_increment) && pos(self.max_increment)) {
