@@ -342,6 +342,7 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         relative_to: c.relative_to.clone(),
         negate: false,
         reference: None,
+        conjugate: false,
     });
     if let (Some(c), None) = (&deck.curve, &incremental) {
         notes.push(format!(

@@ -7,7 +7,10 @@
 //!   the crack growing), every `[output] every` increments, at separation,
 //!   and for the last converged increment when the run ends or stops;
 //! - `curve.csv`: increment, step, load factor, reaction, displacement,
-//!   failed points, Newton iterations, cut-backs, wall time;
+//!   failed points, Newton iterations, cut-backs, wall time, dissipated
+//!   energy, damaged area, negative pivots of the tangent, sign of the
+//!   load-factor increment, the constraint of the increment (`load`, `arc`,
+//!   `dissipation`) and the displacement conjugate to the applied forces;
 //! - `checkpoint.json`: the restart point (`junta run --restart DIR`);
 //! - at the end (also after a failure or Ctrl-C): `summary.json` and
 //!   `curve.svg` (load-displacement).
@@ -75,10 +78,14 @@ struct Row {
     load_sign: i8,
     /// What constrained the increment (`load`, `arc`, `dissipation`).
     control: String,
+    /// `f_ext . u`: the displacement work-conjugate to the load factor of
+    /// the applied forces (with forces of a unit total load, the load
+    /// point's displacement, e.g. the lever's in a mixed-mode bending test).
+    conjugate: f64,
 }
 
 const CURVE_HEADER: &str =
-    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control\n";
+    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement\n";
 
 fn opt(v: Option<f64>) -> String {
     v.map(|x| format!("{x:e}")).unwrap_or_default()
@@ -87,7 +94,7 @@ fn opt(v: Option<f64>) -> String {
 impl Row {
     fn csv(&self) -> String {
         format!(
-            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{}\n",
+            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e}\n",
             self.increment,
             self.step,
             self.lambda,
@@ -105,13 +112,14 @@ impl Row {
                 .map(|n| n.to_string())
                 .unwrap_or_default(),
             self.load_sign,
-            self.control
+            self.control,
+            self.conjugate
         )
     }
     fn parse(line: &str) -> Option<Row> {
         let f: Vec<&str> = line.split(',').collect();
         // 14 columns: a run written before the path-following columns
-        if f.len() != 16 && f.len() != 14 {
+        if ![14, 16, 17].contains(&f.len()) {
             return None;
         }
         Some(Row {
@@ -131,6 +139,7 @@ impl Row {
             negative_pivots: f[13].trim().parse().ok(),
             load_sign: f.get(14).and_then(|v| v.trim().parse().ok()).unwrap_or(0),
             control: f.get(15).map_or("load", |v| v.trim()).to_string(),
+            conjugate: f.get(16).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
         })
     }
 }
@@ -348,7 +357,7 @@ pub fn run_static(
                 None => Vec::new(),
             };
             let sign = if c.negate { -1.0 } else { 1.0 };
-            Some((c.reaction_set.clone(), rc, pts, pc, rel, sign))
+            Some((c.reaction_set.clone(), rc, pts, pc, rel, sign, c.conjugate))
         }
         None => None,
     };
@@ -405,8 +414,12 @@ pub fn run_static(
                     .flat_map(|i| i.points.iter())
                     .filter(|pt| pt.get("failed").is_some_and(|f| f[0] > 0.5))
                     .count();
+                let conjugate: f64 = model.f_ext.iter().zip(v.u).map(|(f, u)| f * u).sum();
                 let (reaction, displacement) = match &curve {
-                    Some((set, rc, pts, pc, rel, sign)) => {
+                    Some((_, _, _, _, _, sign, true)) => {
+                        (Some(sign * r.lambda), Some(sign * conjugate))
+                    }
+                    Some((set, rc, pts, pc, rel, sign, false)) => {
                         let mean = |nodes: &[usize]| {
                             nodes.iter().map(|&n| v.u[3 * n + pc]).sum::<f64>()
                                 / nodes.len().max(1) as f64
@@ -475,6 +488,7 @@ pub fn run_static(
                         0
                     },
                     control: r.control.name().to_string(),
+                    conjugate,
                 };
                 curve_file.write_all(row.csv().as_bytes())?;
                 curve_file.flush()?;
@@ -631,6 +645,9 @@ pub fn run_static(
             "driver_total": t.total, "total": t0.elapsed().as_secs_f64(),
         });
         summary["symbolic_analyses"] = json!(run.summary.analyze_count);
+        // of this call (a restarted run counts from its restart)
+        summary["linear_solves"] = json!(run.summary.linear_solves);
+        summary["secant_attempts"] = json!(run.summary.secant_attempts);
         summary["cutbacks"] = json!(run.summary.cutbacks);
     } else if let Some(last) = rows.last() {
         // failed run: the state of the last converged increment is in the

@@ -151,6 +151,14 @@ pub struct CurveSpec {
     /// A reference curve drawn with Junta's in `curve.svg`.
     #[serde(default)]
     pub reference: Option<ReferenceCurve>,
+    /// Record the load factor as the load and `f_ext . u` (the
+    /// displacement work-conjugate to the applied forces) as the
+    /// displacement, instead of the sets' values: for a force-driven scene
+    /// whose forces make up a unit load, e.g. a mixed-mode bending lever
+    /// replaced by the forces it applies, this is the load P and its
+    /// load-point displacement. The sets still name the axes.
+    #[serde(default)]
+    pub conjugate: bool,
 }
 
 /// A reference load-displacement curve (closed form, peer code, test).

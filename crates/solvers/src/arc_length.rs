@@ -407,8 +407,10 @@ struct Base {
 enum Constraint {
     /// Fixed load factor.
     Load(f64),
-    /// Cylindrical arc length `Δl`.
-    Arc(f64),
+    /// Cylindrical arc length `Δl`; with `Some(sign)` the predictor goes
+    /// in the direction of that sign of `dlambda` (loading), whatever the
+    /// previous increment did.
+    Arc(f64, Option<f64>),
     /// Dissipation `tau`.
     Dissipation(f64),
 }
@@ -603,7 +605,10 @@ where
                         l
                     })
                 }
-                PathMode::Arc => Constraint::Arc(size),
+                // back on the arc after a dissipation phase: nothing more
+                // dissipates on this path, so it goes on by loading
+                // elastically (unloading would retrace the path)
+                PathMode::Arc => Constraint::Arc(size, (path.tau0 > 0.0).then_some(end.signum())),
                 PathMode::Dissipation => Constraint::Dissipation(size),
             };
             let mut outcome = attempt(
@@ -749,7 +754,8 @@ where
                     // the arc length once, with the last increment's length
                     if mode == PathMode::Dissipation
                         && !fell_back
-                        && (cutbacks >= 3 || matches!(reason, IncrementFailure::NonFinite))
+                        && (size * settings.cutback < 1e-3 * path.tau0
+                            || matches!(reason, IncrementFailure::NonFinite))
                         && path.arc_last > 0.0
                     {
                         fell_back = true;
@@ -922,6 +928,8 @@ where
     }
     summary.newton_iterations_total = w.iterations;
     summary.analyze_count = usize::from(w.analyzed);
+    summary.secant_attempts = w.secant_attempts;
+    summary.linear_solves = w.solves;
     timings.assemble = w.timings.assemble;
     timings.analyze = w.timings.analyze;
     timings.factor = w.timings.factor;
@@ -1061,9 +1069,11 @@ fn attempt(
         let t = Instant::now();
         let factor_before = solver.report().factor_seconds;
         let mut r = solver.solve_in_place(&w.k, &mut w.du);
+        w.solves += 1;
         if r.is_ok() && !matches!(constraint, Constraint::Load(_)) {
             pw.du2.copy_from_slice(&pw.q);
             r = solver.solve_in_place(&w.k, &mut pw.du2);
+            w.solves += 1;
         }
         let refactor = (solver.report().factor_seconds - factor_before).max(0.0);
         w.timings.factor += refactor;
@@ -1074,14 +1084,18 @@ fn attempt(
         // dlambda from the constraint
         let dl = match constraint {
             Constraint::Load(_) => 0.0,
-            Constraint::Arc(len) => {
+            Constraint::Arc(len, forward) => {
                 let c = coupling.c;
                 let dlam0 = lambda - cur.lambda;
                 if it == 1 {
                     // predictor: along du_II with the sign of the path
                     let norm = (dot(&pw.du2, &pw.du2) + c).sqrt();
                     let dir = dot(&pw.du2, &pw.delta_prev) + c * pw.delta_lambda_prev;
-                    let sign = if dir < 0.0 { -1.0 } else { 1.0 };
+                    let sign = match forward {
+                        Some(s) => s,
+                        None if dir < 0.0 => -1.0,
+                        None => 1.0,
+                    };
                     // du_I is round-off here; keep it in the quadratic below
                     let (a1, a2, a3) = quadratic(&pw.delta, &w.du, &pw.du2, c, dlam0, len);
                     match roots(a1, a2, a3) {
@@ -1222,7 +1236,15 @@ fn attempt(
         // cycling between the branches of a softening point (elastic and
         // damaging). As in the Newton driver, use the laws' secant tangent
         // for the rest of the attempt (linear, monotone convergence).
-        if it >= 2 && !secant && st.secant_fallback && ev.abs >= rho_prev && ev.rel > st.tol_force {
+        // (Not under the dissipation constraint: with secant tangents its
+        // linearisation degenerates, as on an elastic branch.)
+        if it >= 2
+            && !secant
+            && st.secant_fallback
+            && !matches!(constraint, Constraint::Dissipation(_))
+            && ev.abs >= rho_prev
+            && ev.rel > st.tol_force
+        {
             secant = true;
             w.secant_attempts += 1;
             ev = match w.evaluate(state, step_info(lambda, secant), lambda, cur.force_peak) {

@@ -468,6 +468,9 @@ pub struct NonlinearSummary {
     /// Attempts that switched to the laws' secant tangent because the
     /// consistent one stopped reducing the residual.
     pub secant_attempts: usize,
+    /// Linear solves (right-hand sides), failed attempts included: one per
+    /// Newton iteration under load control, two under path following.
+    pub linear_solves: usize,
 }
 
 /// Result of [`solve_nonlinear`] that ran to the end of its program or was
@@ -538,6 +541,7 @@ pub(crate) struct Work<'m> {
     pub(crate) analyzed: bool,
     pub(crate) iterations: usize,
     pub(crate) secant_attempts: usize,
+    pub(crate) solves: usize,
     pub(crate) settings: NewtonSettings,
     /// Load factor of the current trial (path following).
     pub(crate) lambda_trial: f64,
@@ -582,6 +586,7 @@ impl<'m> Work<'m> {
             analyzed: false,
             iterations: 0,
             secant_attempts: 0,
+            solves: 0,
             settings: settings.clone(),
             lambda_trial: 0.0,
         }
@@ -712,6 +717,7 @@ impl<'m> Work<'m> {
             // Cholesky falling back to double): book that as factor time
             let factor_before = solver.report().factor_seconds;
             let r = solver.solve_in_place(&self.k, &mut self.du);
+            self.solves += 1;
             let refactor = (solver.report().factor_seconds - factor_before).max(0.0);
             self.timings.factor += refactor;
             self.timings.solve += t.elapsed().as_secs_f64() - refactor;
@@ -1100,6 +1106,7 @@ where
     summary.newton_iterations_total = w.iterations;
     summary.analyze_count = usize::from(w.analyzed);
     summary.secant_attempts = w.secant_attempts;
+    summary.linear_solves = w.solves;
     timings.assemble = w.timings.assemble;
     timings.analyze = w.timings.analyze;
     timings.factor = w.timings.factor;

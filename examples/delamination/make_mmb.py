@@ -1,0 +1,204 @@
+#!/usr/bin/env python3
+"""Write the mixed-mode bending scenes mmb50.toml and mmb80.toml
+(G_II/G_T = 0.5, 0.8: the two that snap back with this precrack), their
+beam-theory curves mmbNN_beam_theory.csv, and print the numbers.
+
+Specimen: the AS4/PEEK beam of dcb.toml used as an MMB (Reeder & Crews):
+half span L = 51 mm, b = 25.4 mm, h = 1.56 mm per arm, with a short
+precrack a0 = 0.4 L = 20.4 mm. By simple beam theory the lever's
+load-point displacement along the propagation branch,
+delta_P(a) = P_c(a) C_P(a), C_P(a) = C_0 + (2 b / 3) g a with
+G = P^2 g (g ~ a^2) and C_0 = (c + L)^2 L / (4 E11 b h^3) (the uncracked
+beam), decreases while a < a* = (3 C_0 / (4 b g / a^2))^(1/3): a* = 20.7,
+28.1 and 32.8 mm for G_II/G_T = 0.2, 0.5, 0.8, so the 50 % and 80 % cases
+snap back after their peak and the 20 % case sits at the limit.
+The lever of length c (from the mid-span hinge to the load P) is replaced
+by the two forces it applies: P c / L pulling the upper arm's end up, and
+P (c + L) / L pushing the mid-span down (BENCHMARKS.md section 4:
+P_I = P (3c - L)/(4L), P_II = P (c + L)/L). With these forces for P = 1 N
+the load factor *is* P, and curve.csv's `conjugate_displacement` is the
+lever's load-point displacement. Run: python3 make_mmb.py
+"""
+import math
+import os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+E11, E22, G13 = 122700.0, 10100.0, 5500.0
+GIC, GIIC, ETA = 0.969, 1.719, 2.284
+B, H, L = 25.4, 1.56, 51.0
+A0 = 0.4 * L  # 20.4 mm: short enough for the 50 % and 80 % cases to snap back
+
+
+def chi():
+    gamma = 1.18 * math.sqrt(E11 * E22) / G13
+    return math.sqrt(E11 / (11.0 * G13) * (3.0 - 2.0 * (gamma / (1.0 + gamma)) ** 2))
+
+
+def lever(ratio):
+    """Lever length c giving G_II/G_T = ratio by simple beam theory."""
+    q = math.sqrt(4.0 * ratio / (3.0 * (1.0 - ratio)))
+    return L * (1.0 + q) / (3.0 * q - 1.0)
+
+
+def critical_load(c, a, corrected=True):
+    """P from G_I + G_II = G_c(B) (BK); corrected beam theory uses
+    a + chi h for mode I and a + 0.42 chi h for mode II (Reeder)."""
+    a1 = a + (chi() * H if corrected else 0.0)
+    a2 = a + (0.42 * chi() * H if corrected else 0.0)
+    g1 = 3.0 * (3.0 * c - L) ** 2 * a1 ** 2 / (4.0 * B ** 2 * H ** 3 * L ** 2 * E11)
+    g2 = 9.0 * (c + L) ** 2 * a2 ** 2 / (16.0 * B ** 2 * H ** 3 * L ** 2 * E11)
+    mix = g2 / (g1 + g2)
+    gc = GIC + (GIIC - GIC) * mix ** ETA
+    return math.sqrt(gc / (g1 + g2)), mix
+
+
+MATERIAL = """[materials.as4peek]
+type = "orthotropic"
+E1 = 122700.0
+E2 = 10100.0
+E3 = 10100.0
+nu12 = 0.25
+nu13 = 0.25
+nu23 = 0.45
+G12 = 5500.0
+G13 = 5500.0
+G23 = 3700.0
+
+[laws.cz]
+type = "bilinear"
+K = 1.0e6
+N = 80.0
+S = 100.0
+G_Ic = 0.969
+G_IIc = 1.719
+eta = 2.284
+
+[laws.touch]
+type = "contact"
+K = 1.0e6
+"""
+
+
+def scene(ratio):
+    c = lever(ratio)
+    p_s, _ = critical_load(c, A0, corrected=False)
+    p_c, mix = critical_load(c, A0)
+    p_45, _ = critical_load(c, 45.0)
+    pct = round(100 * ratio)
+    # LEFM reference (simple beam theory): linear branch, then propagation
+    g1 = 3.0 * (3.0 * c - L) ** 2 / (4.0 * B ** 2 * H ** 3 * L ** 2 * E11)
+    g2 = 9.0 * (c + L) ** 2 / (16.0 * B ** 2 * H ** 3 * L ** 2 * E11)
+    gk = g1 + g2
+    gc = GIC + (GIIC - GIC) * (g2 / gk) ** ETA
+    c0 = (c + L) ** 2 * L / (4.0 * E11 * B * H ** 3)
+    comp = lambda a: c0 + 2.0 * B / 3.0 * gk * a ** 3
+    pc = lambda a: math.sqrt(gc / (gk * a * a))
+    pts = [(pc(A0) * comp(A0) * i / 20.0, pc(A0) * i / 20.0) for i in range(21)]
+    pts += [(pc(a) * comp(a), pc(a)) for a in (A0 + (L - A0) * i / 200.0 for i in range(1, 201))]
+    astar = (3.0 * c0 / (4.0 * B * gk)) ** (1.0 / 3.0)
+    dmin = min(x for x, _ in pts[21:])
+    with open(os.path.join(HERE, f"mmb{pct}_beam_theory.csv"), "w") as f:
+        f.write(f"# MMB G_II/G_T = {ratio}, a0 = {A0:.1f}: simple beam theory, lever load-point displacement (mm), load P (N); written by make_mmb.py\n")
+        for x, y in pts:
+            f.write(f"{x:.6e},{y:.6e}\n")
+    text = f"""# Mixed-mode bending, G_II/G_T = {ratio} (written by make_mmb.py; see its
+# docstring for the specimen and the lever forces). Units: N, mm, MPa.
+# AS4/PEEK (BENCHMARKS.md section 4), lever c = {c:.3f} mm.
+#
+# The load factor is the lever load P (N). curve.csv (`conjugate = true`):
+# `reaction` = P, `displacement` = the lever's load-point displacement
+# (f_ext . u), `damaged_area` / b = crack growth. Under load control the run stops at
+# the peak; path following (`control = "arc_length"`) traces the unstable
+# propagation that follows (the load drops while the load point moves
+# back). It stops after `max_increments`, with the crack near mid-span.
+#
+# Reference (beam theory, Reeder & Crews, BK): simple {p_s:.1f} N,
+# corrected {p_c:.1f} N at a0 (mode ratio {mix:.3f} with the corrections);
+# along the propagation branch P_c(a) = {p_45:.1f} N at a = 45 mm. Simple
+# beam theory's lever displacement: {pc(A0) * comp(A0):.3f} mm at the peak,
+# {"snapping back to " + format(dmin, ".3f") + " mm (while a < " + format(astar, ".1f") + " mm)" if dmin < pc(A0) * comp(A0) - 1e-9 else "no snap-back"};
+# mmb{pct}_beam_theory.csv is drawn in curve.svg.
+# Junta: see crates/cli/tests/path_following.rs (mmb50) and the README.
+#
+# Smallest model that shows it: H20, one element through each arm and
+# across the width, 0.5 mm along the bond, INTER16; the precrack faces
+# touch without friction (`contact`).
+
+[model]
+title = "MMB G_II/G_T = {ratio}, AS4/PEEK"
+units = "N, mm, MPa"
+
+{MATERIAL}
+[mesh]
+type = "boxes"
+"""
+    for arm, z in (("lower", 0.0), ("upper", H)):
+        for name, x0, lx, div in (("crack", 0.0, A0, 9), ("bond1", A0, L - A0, 61), ("bond2", L, L, 102)):
+            text += f"""[[mesh.boxes]]
+name = "{arm}_{name}"
+group = "{arm}"
+origin = [{x0:.6g}, 0.0, {z}]
+size = [{lx:.6g}, 25.4, 1.56]
+divisions = [{div}, 1, 1]
+element = "h20"
+material = "as4peek"
+"""
+    text += f"""
+[[interface]]
+name = "bond"
+between = ["lower", "upper"]
+law = "cz"
+precrack = {{ within = [[0.0, -1.0, -1.0], [{A0:.6g}, 26.4, 4.0]], law = "touch" }}
+
+[[node_set]]
+name = "left_support"
+within = [[0.0, 0.0, 0.0], [0.0, 25.4, 0.0]]
+[[node_set]]
+name = "right_support"
+within = [[102.0, 0.0, 0.0], [102.0, 25.4, 0.0]]
+[[node_set]]
+name = "lever_end"
+within = [[0.0, 0.0, 3.12], [0.0, 25.4, 3.12]]
+[[node_set]]
+name = "load_line"
+within = [[51.0, 0.0, 3.12], [51.0, 25.4, 3.12]]
+
+[[boundary]]
+set = "left_support"
+fixed = ["x", "y", "z"]
+[[boundary]]
+set = "right_support"
+fixed = ["z"]
+
+[[load]]
+set = "lever_end"
+total_force = [0.0, 0.0, {c / L:.9f}]
+[[load]]
+set = "load_line"
+total_force = [0.0, 0.0, {-(c + L) / L:.9f}]
+
+[analysis]
+type = "static"
+steps = [{1.5 * p_s:.0f}.0]
+control = "arc_length"
+
+[analysis.newton]
+initial_increment = 0.1
+tol_force = 1e-3   # Abaqus's default is 5e-3; at 1e-4 Newton crawls where many points switch between loading and unloading
+
+[analysis.arc_length]
+target_iterations = 8
+max_increments = {50 if pct == 50 else 150}
+
+[output]
+curve = {{ reaction_set = "load_line", reaction_component = "z", point_set = "load_line", point_component = "z", conjugate = true, reference = {{ file = "mmb{pct}_beam_theory.csv", label = "beam theory (LEFM)" }} }}
+every = 25
+"""
+    with open(os.path.join(HERE, f"mmb{pct}.toml"), "w") as f:
+        f.write(text)
+    print(f"mmb{pct}.toml: c = {c:.3f} mm, peak simple {p_s:.1f} N, corrected {p_c:.1f} N; lever displacement at the peak {pc(A0) * comp(A0):.3f} mm, minimum after it {dmin:.3f} mm (a* = {astar:.1f} mm)")
+
+
+if __name__ == "__main__":
+    for r in (0.5, 0.8):
+        scene(r)
