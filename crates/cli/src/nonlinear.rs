@@ -647,6 +647,8 @@ pub fn run_static(
         summary["symbolic_analyses"] = json!(run.summary.analyze_count);
         // of this call (a restarted run counts from its restart)
         summary["linear_solves"] = json!(run.summary.linear_solves);
+        summary["newton_iterations"]["with_failed_attempts"] =
+            json!(run.summary.newton_iterations_total);
         summary["secant_attempts"] = json!(run.summary.secant_attempts);
         summary["cutbacks"] = json!(run.summary.cutbacks);
     } else if let Some(last) = rows.last() {

@@ -134,6 +134,7 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
     match ext.as_deref() {
         Some("toml") => {
             let sf = scene::SceneFile::read(input)?;
+            check_path_following(input, &sf.scene.analysis)?;
             let model = scene::build_model(&sf)?;
             let (mut key, mut table) = scene::solver_table(&sf);
             apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
@@ -665,6 +666,28 @@ where
     }
 }
 
+/// `[analysis] control = "arc_length"`: one step to a non-zero load factor
+/// and valid `[analysis.arc_length]` settings, checked before anything is
+/// built (so that `junta check` reports it too).
+fn check_path_following(input: &Path, a: &scene::AnalysisSpec) -> Result<()> {
+    if a.control != scene::Control::ArcLength {
+        return Ok(());
+    }
+    let file = input.display();
+    if a.kind != "static" {
+        bail!("{file}: key `analysis.control`: \"arc_length\" needs `analysis.type = \"static\"`");
+    }
+    if a.steps.len() != 1 || !a.steps[0].is_finite() || a.steps[0] == 0.0 {
+        bail!(
+            "{file}: key `analysis.steps`: path following runs one step to a finite, non-zero end load factor (`steps = [lambda_end]`), got {:?}",
+            a.steps
+        );
+    }
+    a.arc_length
+        .validate()
+        .map_err(|e| anyhow!("{file}: key `analysis.arc_length`: {e}"))
+}
+
 /// `junta list`.
 pub fn list() {
     print_entries::<ElementEntry>("elements");
@@ -672,6 +695,12 @@ pub fn list() {
     print_entries::<LawEntry>("interface laws");
     print_entries::<CriterionEntry>("failure criteria");
     print_entries::<SolverEntry>("linear solvers");
+    println!("incremental controls ([analysis] type = \"static\"):");
+    println!("  {:<16} the load factor is prescribed: load or displacement control, whatever the scene prescribes; [analysis.newton]", "load");
+    println!("  {:<16} path following through limit points and snap-backs: cylindrical arc length, then the dissipated energy once the laws dissipate; one step, [analysis.newton] tolerances, and [analysis.arc_length]:", "arc_length");
+    for (name, doc) in junta_solvers::arc_length::PARAMETERS {
+        println!("      {name:<20} {doc}");
+    }
 }
 
 #[cfg(test)]

@@ -418,3 +418,47 @@ fn mmb50_snap_back_against_corrected_beam_theory() {
     }
     assert!(n >= 3, "only {n} points past 3 mm of growth");
 }
+
+/// Bad path-following input is refused by `junta check` (and `run`) with the
+/// file and the key, before anything is solved.
+#[test]
+fn bad_path_following_input_names_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(scene()).unwrap();
+    let cases = [
+        (
+            base.replace("steps = [1.0]", "steps = [1.0, 0.0]"),
+            "analysis.steps",
+        ),
+        (
+            base.replace("control = \"arc_length\"", "control = \"arclength\""),
+            "arc_length",
+        ),
+        (
+            base.replace(
+                "[analysis.newton]",
+                "[analysis.arc_length]\ntarget_iterations = 0\n\n[analysis.newton]",
+            ),
+            "analysis.arc_length",
+        ),
+        (
+            base.replace(
+                "[analysis.newton]",
+                "[analysis.arc_length]\nmax_arc_dissipation = 1e-9\n\n[analysis.newton]",
+            ),
+            "max_arc_dissipation",
+        ),
+    ];
+    for (i, (text, key)) in cases.iter().enumerate() {
+        let file = dir.path().join(format!("bad{i}.toml"));
+        std::fs::write(&file, text).unwrap();
+        let out = junta().arg("check").arg(&file).output().unwrap();
+        assert!(!out.status.success(), "case {i} accepted");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains(&format!("bad{i}.toml")) && err.contains(key),
+            "case {i}: {err}"
+        );
+        assert!(!err.contains("panicked"));
+    }
+}

@@ -175,8 +175,21 @@ impl Default for ArcLengthSettings {
     }
 }
 
+/// `[analysis.arc_length]` keys with their meaning and default (printed by
+/// `junta list`).
+pub const PARAMETERS: &[(&str, &str)] = &[
+    ("target_iterations", "Newton iterations an increment should take; the next path step scales with sqrt(target / iterations) (default 5)"),
+    ("max_increments", "stop after this many increments (default 5000)"),
+    ("switch_dissipation", "switch from the arc length to the dissipation constraint after an increment dissipating this fraction of the stored energy, when the laws report dissipation (default 1e-4)"),
+    ("max_arc_dissipation", "an arc-length increment dissipating more than this fraction of the stored energy is redone shorter: a long arc can jump to another branch (default 1e-2)"),
+    ("max_dissipation", "cap on the energy dissipated per increment, energy units (default: none)"),
+    ("min_step", "smallest path step as a fraction of the first one before the run stops (default 1e-6)"),
+    ("max_arc", "largest arc length as a multiple of the first one (default 10)"),
+];
+
 impl ArcLengthSettings {
-    fn validate(&self) -> Result<(), CoreError> {
+    /// Check the ranges of every setting.
+    pub fn validate(&self) -> Result<(), CoreError> {
         let bad = |what: &str| Err(CoreError::Invalid(format!("arc-length settings: {what}")));
         if self.target_iterations == 0 {
             return bad("target_iterations must be >= 1");
@@ -1332,4 +1345,71 @@ fn roots(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
         return Some((0.0, 0.0));
     }
     Some((qv / a, c / qv))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `junta list` documents every setting (and nothing else).
+    #[test]
+    fn parameter_docs_cover_every_setting() {
+        let v = serde_json::to_value(ArcLengthSettings::default()).unwrap();
+        let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+        let mut documented: Vec<&str> = PARAMETERS.iter().map(|p| p.0).collect();
+        keys.sort_unstable();
+        documented.sort_unstable();
+        assert_eq!(keys, documented);
+    }
+
+    #[test]
+    fn settings_out_of_range_are_refused() {
+        let ok = ArcLengthSettings::default();
+        assert!(ok.validate().is_ok());
+        for bad in [
+            ArcLengthSettings {
+                target_iterations: 0,
+                ..ok.clone()
+            },
+            ArcLengthSettings {
+                max_increments: 0,
+                ..ok.clone()
+            },
+            ArcLengthSettings {
+                switch_dissipation: f64::NAN,
+                ..ok.clone()
+            },
+            ArcLengthSettings {
+                min_step: 1.0,
+                ..ok.clone()
+            },
+            ArcLengthSettings {
+                max_arc: 0.5,
+                ..ok.clone()
+            },
+            ArcLengthSettings {
+                max_dissipation: Some(-1.0),
+                ..ok.clone()
+            },
+            ArcLengthSettings {
+                max_arc_dissipation: 1e-5,
+                ..ok.clone()
+            },
+        ] {
+            assert!(bad.validate().is_err(), "{bad:?}");
+        }
+    }
+
+    /// The roots of the arc-length quadratic, in the stable form.
+    #[test]
+    fn quadratic_roots() {
+        let (r1, r2) = roots(1.0, -3.0, 2.0).unwrap();
+        let (lo, hi) = (r1.min(r2), r1.max(r2));
+        assert!((lo - 1.0).abs() < 1e-15 && (hi - 2.0).abs() < 1e-15);
+        assert!(roots(1.0, 0.0, 1.0).is_none());
+        // no cancellation for a tiny root
+        let (r1, r2) = roots(1.0, 1e8, 1.0).unwrap();
+        let small = if r1.abs() < r2.abs() { r1 } else { r2 };
+        assert!((small + 1e-8).abs() < 1e-22, "{small}");
+    }
 }
