@@ -1,17 +1,19 @@
 #!/usr/bin/env python3
-"""Write the mixed-mode bending scenes mmb50.toml and mmb80.toml
-(G_II/G_T = 0.5, 0.8: the two that snap back with this precrack), their
-beam-theory curves mmbNN_beam_theory.csv, and print the numbers.
+"""Write the mixed-mode bending scenes and their beam-theory curves
+(NAME_beam_theory.csv), and print the numbers: mmb20.toml, mmb50.toml,
+mmb80.toml (G_II/G_T = 0.2, 0.5, 0.8 on the DCB specimen, a0 = 32.9 mm:
+a load maximum, then stable propagation) and mmb50_short.toml,
+mmb80_short.toml (a0 = 0.4 L: the two that snap back).
 
 Specimen: the AS4/PEEK beam of dcb.toml used as an MMB (Reeder & Crews):
-half span L = 51 mm, b = 25.4 mm, h = 1.56 mm per arm, with a short
-precrack a0 = 0.4 L = 20.4 mm. By simple beam theory the lever's
+half span L = 51 mm, b = 25.4 mm, h = 1.56 mm per arm, precrack a0. By
+simple beam theory the lever's
 load-point displacement along the propagation branch,
 delta_P(a) = P_c(a) C_P(a), C_P(a) = C_0 + (2 b / 3) g a with
 G = P^2 g (g ~ a^2) and C_0 = (c + L)^2 L / (4 E11 b h^3) (the uncracked
 beam), decreases while a < a* = (3 C_0 / (4 b g / a^2))^(1/3): a* = 20.7,
-28.1 and 32.8 mm for G_II/G_T = 0.2, 0.5, 0.8, so the 50 % and 80 % cases
-snap back after their peak and the 20 % case sits at the limit.
+28.1 and 32.8 mm for G_II/G_T = 0.2, 0.5, 0.8: with a0 = 32.9 mm none
+snaps back; with a0 = 0.4 L = 20.4 mm the 50 % and 80 % cases do.
 The lever of length c (from the mid-span hinge to the load P) is replaced
 by the two forces it applies: P c / L pulling the upper arm's end up, and
 P (c + L) / L pushing the mid-span down (BENCHMARKS.md section 4:
@@ -80,12 +82,22 @@ K = 1.0e6
 
 
 JUNTA = {
-    50: """peak 388.3 N at 5.36 mm (-5.3 % against corrected beam theory),
+    "mmb20": """peak 92.0 N (-0.25 % against corrected beam theory), then the
+# load follows corrected beam theory within +1.2 to +2.2 % at the crack
+# length read from the damaged area (a = 35 to 49 mm); 42 increments to
+# a = L, about 20 s.""",
+    "mmb50": """peak 259.1 N (-1.8 % against corrected beam theory), then
+# within -0.1 to +0.8 % along the branch (a = 35 to 49 mm); 33 increments
+# to a = L, about 15 s.""",
+    "mmb80": """peak 436.3 N (-4.6 % against corrected beam theory), then
+# within -1.7 to -0.8 % along the branch (a = 35 to 49 mm); 32 increments
+# to a = L, about 15 s.""",
+    "mmb50_short": """peak 388.3 N at 5.36 mm (-5.3 % against corrected beam theory),
 # the lever's load point moves back to 5.17 mm, then the load follows
 # corrected beam theory within 0.04 to 1.6 % at the crack length read from
 # the damaged area (a = 21.8 to 47.5 mm); 46 increments to a = L, ~27 s
 # (crates/cli/tests/path_following.rs checks the first 32).""",
-    80: """peak 650 N at 5.64 mm (-9 % against corrected beam theory);
+    "mmb80_short": """peak 650 N at 5.64 mm (-9 % against corrected beam theory);
 # traced into the snap-back (5.64 mm down to 5.10 mm at a = 31 mm) but
 # not yet in full: past a = 29 mm Newton stagnates near a 3e-3 relative
 # residual (most likely because many points of the mode-II-dominated
@@ -95,13 +107,12 @@ JUNTA = {
 }
 
 
-def scene(ratio):
+def scene(ratio, a0, name, max_increments):
     c = lever(ratio)
-    p_s, _ = critical_load(c, A0, corrected=False)
-    p_c, mix = critical_load(c, A0)
+    p_s, _ = critical_load(c, a0, corrected=False)
+    p_c, mix = critical_load(c, a0)
     p_45, _ = critical_load(c, 45.0)
-    pct = round(100 * ratio)
-    # LEFM reference (simple beam theory): linear branch, then propagation
+        # LEFM reference (simple beam theory): linear branch, then propagation
     g1 = 3.0 * (3.0 * c - L) ** 2 / (4.0 * B ** 2 * H ** 3 * L ** 2 * E11)
     g2 = 9.0 * (c + L) ** 2 / (16.0 * B ** 2 * H ** 3 * L ** 2 * E11)
     gk = g1 + g2
@@ -109,39 +120,40 @@ def scene(ratio):
     c0 = (c + L) ** 2 * L / (4.0 * E11 * B * H ** 3)
     comp = lambda a: c0 + 2.0 * B / 3.0 * gk * a ** 3
     pc = lambda a: math.sqrt(gc / (gk * a * a))
-    pts = [(pc(A0) * comp(A0) * i / 20.0, pc(A0) * i / 20.0) for i in range(21)]
-    pts += [(pc(a) * comp(a), pc(a)) for a in (A0 + (L - A0) * i / 200.0 for i in range(1, 201))]
+    pts = [(pc(a0) * comp(a0) * i / 20.0, pc(a0) * i / 20.0) for i in range(21)]
+    pts += [(pc(a) * comp(a), pc(a)) for a in (a0 + (L - a0) * i / 200.0 for i in range(1, 201))]
     astar = (3.0 * c0 / (4.0 * B * gk)) ** (1.0 / 3.0)
     dmin = min(x for x, _ in pts[21:])
-    with open(os.path.join(HERE, f"mmb{pct}_beam_theory.csv"), "w") as f:
-        f.write(f"# MMB G_II/G_T = {ratio}, a0 = {A0:.1f}: simple beam theory, lever load-point displacement (mm), load P (N); written by make_mmb.py\n")
+    with open(os.path.join(HERE, f"{name}_beam_theory.csv"), "w") as f:
+        f.write(f"# MMB G_II/G_T = {ratio}, a0 = {a0:.1f}: simple beam theory, lever load-point displacement (mm), load P (N); written by make_mmb.py\n")
         for x, y in pts:
             f.write(f"{x:.6e},{y:.6e}\n")
     text = f"""# Mixed-mode bending, G_II/G_T = {ratio} (written by make_mmb.py; see its
 # docstring for the specimen and the lever forces). Units: N, mm, MPa.
-# AS4/PEEK (BENCHMARKS.md section 4), lever c = {c:.3f} mm.
+# AS4/PEEK (BENCHMARKS.md section 4), lever c = {c:.3f} mm, a0 = {a0:.1f} mm.
 #
 # The load factor is the lever load P (N). curve.csv (`conjugate = true`):
 # `reaction` = P, `displacement` = the lever's load-point displacement
-# (f_ext . u), `damaged_area` / b = crack growth. Under load control the run stops at
-# the peak; path following (`control = "arc_length"`) traces the unstable
-# propagation that follows (the load drops while the load point moves
-# back). It stops after `max_increments`, with the crack near mid-span.
+# (f_ext . u), `damaged_area` / b = crack growth. Under load control the
+# run stops at the peak (a load maximum); path following
+# (`control = "arc_length"`) traces the propagation that follows (in a
+# snap-back the load point moves back too). It stops after
+# `max_increments`.
 #
 # Reference (beam theory, Reeder & Crews, BK): simple {p_s:.1f} N,
 # corrected {p_c:.1f} N at a0 (mode ratio {mix:.3f} with the corrections);
 # along the propagation branch P_c(a) = {p_45:.1f} N at a = 45 mm. Simple
-# beam theory's lever displacement: {pc(A0) * comp(A0):.3f} mm at the peak,
-# {"snapping back to " + format(dmin, ".3f") + " mm (while a < " + format(astar, ".1f") + " mm)" if dmin < pc(A0) * comp(A0) - 1e-9 else "no snap-back"};
-# mmb{pct}_beam_theory.csv is drawn in curve.svg.
-# Junta: {JUNTA[pct]}
+# beam theory's lever displacement: {pc(a0) * comp(a0):.3f} mm at the peak,
+# {"snapping back to " + format(dmin, ".3f") + " mm (while a < " + format(astar, ".1f") + " mm)" if dmin < pc(a0) * comp(a0) - 1e-9 else "no snap-back"};
+# {name}_beam_theory.csv is drawn in curve.svg.
+# Junta: {JUNTA[name]}
 #
 # Smallest model that shows it: H20, one element through each arm and
 # across the width, 0.5 mm along the bond, INTER16; the precrack faces
 # touch without friction (`contact`).
 
 [model]
-title = "MMB G_II/G_T = {ratio}, AS4/PEEK"
+title = "MMB G_II/G_T = {ratio}, a0 = {a0:.1f} mm, AS4/PEEK"
 units = "N, mm, MPa"
 
 {MATERIAL}
@@ -149,9 +161,9 @@ units = "N, mm, MPa"
 type = "boxes"
 """
     for arm, z in (("lower", 0.0), ("upper", H)):
-        for name, x0, lx, div in (("crack", 0.0, A0, 9), ("bond1", A0, L - A0, 61), ("bond2", L, L, 102)):
+        for part, x0, lx, div in (("crack", 0.0, a0, round(a0 / 2.3)), ("bond1", a0, L - a0, round((L - a0) / 0.5)), ("bond2", L, L, 102)):
             text += f"""[[mesh.boxes]]
-name = "{arm}_{name}"
+name = "{arm}_{part}"
 group = "{arm}"
 origin = [{x0:.6g}, 0.0, {z}]
 size = [{lx:.6g}, 25.4, 1.56]
@@ -164,7 +176,7 @@ material = "as4peek"
 name = "bond"
 between = ["lower", "upper"]
 law = "cz"
-precrack = {{ within = [[0.0, -1.0, -1.0], [{A0:.6g}, 26.4, 4.0]], law = "touch" }}
+precrack = {{ within = [[0.0, -1.0, -1.0], [{a0:.6g}, 26.4, 4.0]], law = "touch" }}
 
 [[node_set]]
 name = "left_support"
@@ -204,17 +216,21 @@ tol_force = 1e-3   # Abaqus's default is 5e-3; at 1e-4 Newton crawls where many 
 
 [analysis.arc_length]
 target_iterations = 8
-max_increments = {46 if pct == 50 else 150}
+max_increments = {max_increments}
 
 [output]
-curve = {{ reaction_set = "load_line", reaction_component = "z", point_set = "load_line", point_component = "z", conjugate = true, reference = {{ file = "mmb{pct}_beam_theory.csv", label = "beam theory (LEFM)" }} }}
+curve = {{ reaction_set = "load_line", reaction_component = "z", point_set = "load_line", point_component = "z", conjugate = true, reference = {{ file = "{name}_beam_theory.csv", label = "beam theory (LEFM)" }} }}
 every = 25
 """
-    with open(os.path.join(HERE, f"mmb{pct}.toml"), "w") as f:
+    with open(os.path.join(HERE, f"{name}.toml"), "w") as f:
         f.write(text)
-    print(f"mmb{pct}.toml: c = {c:.3f} mm, peak simple {p_s:.1f} N, corrected {p_c:.1f} N; lever displacement at the peak {pc(A0) * comp(A0):.3f} mm, minimum after it {dmin:.3f} mm (a* = {astar:.1f} mm)")
+    print(f"{name}.toml: c = {c:.3f} mm, peak simple {p_s:.1f} N, corrected {p_c:.1f} N; lever displacement at the peak {pc(a0) * comp(a0):.3f} mm, minimum after it {dmin:.3f} mm (a* = {astar:.1f} mm)")
 
 
 if __name__ == "__main__":
-    for r in (0.5, 0.8):
-        scene(r)
+    # the DCB specimen's precrack: stable propagation after the peak
+    for r, n in ((0.2, 42), (0.5, 33), (0.8, 32)):
+        scene(r, 32.9, f"mmb{round(100 * r)}", n)
+    # a short precrack: the 50 % and 80 % cases snap back
+    scene(0.5, A0, "mmb50_short", 46)
+    scene(0.8, A0, "mmb80_short", 150)
