@@ -66,8 +66,8 @@ def main():
         wall, s = run(junta, scene, extra, args.repeat)
         inc = s.get("increments", 0) - (s.get("restarted_from_increment") or 0)
         it = s["newton_iterations"]["total"]
-        it_all = s["newton_iterations"].get("with_failed_attempts", it)
-        solves = s.get("linear_solves", 0)
+        it_all = s["driver"]["newton_iterations_with_failed_attempts"]
+        solves = s["driver"]["linear_solves"]
         print(f"{name:<58} {s['equations']:>9} {wall:>7.2f} {inc:>5} {it:>5} {it_all:>5} "
               f"{solves / max(it_all, 1):>11.2f} {1e3 * wall / max(inc, 1):>8.1f} "
               f"{1e3 * wall / max(it_all, 1):>8.1f}  {s['status'][:60]}")

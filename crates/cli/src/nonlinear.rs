@@ -645,12 +645,13 @@ pub fn run_static(
             "driver_total": t.total, "total": t0.elapsed().as_secs_f64(),
         });
         summary["symbolic_analyses"] = json!(run.summary.analyze_count);
-        // of this call (a restarted run counts from its restart)
-        summary["linear_solves"] = json!(run.summary.linear_solves);
-        summary["newton_iterations"]["with_failed_attempts"] =
-            json!(run.summary.newton_iterations_total);
-        summary["secant_attempts"] = json!(run.summary.secant_attempts);
         summary["cutbacks"] = json!(run.summary.cutbacks);
+        // of this call (a restarted run counts from its restart)
+        summary["driver"] = json!({
+            "newton_iterations_with_failed_attempts": run.summary.newton_iterations_total,
+            "linear_solves": run.summary.linear_solves,
+            "secant_attempts": run.summary.secant_attempts,
+        });
     } else if let Some(last) = rows.last() {
         // failed run: the state of the last converged increment is in the
         // checkpoint

@@ -514,3 +514,39 @@ fn element_assembles_the_symmetric_part_of_a_mixed_mode_tangent() {
         }
     }
 }
+
+/// On the damage surface itself (the converged state an increment starts
+/// from: the committed damage equals the damage of the current jump) the
+/// tangent is the loading one: the one-sided derivative towards more
+/// opening, not the secant. Mode I, bilinear: the loading slope of the
+/// normal traction is `-N / (delta_f - delta_0)` (BENCHMARKS.md section 4).
+#[test]
+fn tangent_on_the_damage_surface_is_the_loading_one() {
+    for key in ["bilinear", "exponential"] {
+        let mut p = Point::new(build(key, ""));
+        let d0 = N / K;
+        let jump = [0.0, 0.0, 3.0 * d0];
+        p.step(jump);
+        assert!(p.damage() > 0.0);
+        // same jump again, from the committed state it produced
+        let (r, _) = p.trial(jump, 0.0);
+        let h = 1e-9 * d0;
+        let (rp, _) = p.trial([0.0, 0.0, jump[2] + h], 0.0);
+        let forward = (rp.traction[2] - r.traction[2]) / h;
+        assert!(forward < 0.0, "{key}: loading slope {forward}");
+        assert!(
+            (r.tangent[2][2] - forward).abs() < 1e-4 * forward.abs(),
+            "{key}: tangent {} against the one-sided difference {forward}",
+            r.tangent[2][2]
+        );
+        if key == "bilinear" {
+            let df = 2.0 * GIC / N;
+            let exact = -N / (df - d0);
+            assert!(
+                (r.tangent[2][2] / exact - 1.0).abs() < 1e-9,
+                "{}",
+                r.tangent[2][2]
+            );
+        }
+    }
+}

@@ -66,8 +66,40 @@
 //! energy ([`junta_core::Model::dissipated_energy`]); a model whose laws
 //! dissipate nothing stays on the cylindrical constraint. When the
 //! dissipation constraint cannot be met any more (nothing left that can
-//! dissipate, e.g. the crack stopped under a contact zone), the driver goes
-//! back to the cylindrical constraint.
+//! dissipate, e.g. the crack stopped under a contact zone: the dissipation
+//! constraint's correction is not finite, or `tau` fell below 1e-3 of its
+//! first value), the driver goes back to the cylindrical constraint, whose
+//! predictor then loads (`dlambda` of the sign of the end load factor):
+//! unloading would only retrace the path.
+//!
+//! *Sharp turns.* An arc can jump across a snap-back to another
+//! equilibrium branch (e.g. the fully cracked one): an arc-length increment
+//! that dissipates more than `max_arc_dissipation` times the stored energy
+//! is redone shorter. A snap-back right at damage onset (the loading and
+//! the softening branches meet at more than 90 degrees, so the arc's root
+//! selection keeps pointing forward and Newton cycles) is entered under the
+//! dissipation constraint, started from the failed arc's last iterate,
+//! where the tangent is no longer the secant one. The laws give the
+//! loading tangent on the damage surface itself (`d_B = d_committed`, the
+//! state an increment starts from), so the first iteration of an increment
+//! sees the softening.
+//!
+//! *Iterations.* From the second iteration on, a backtracking line search
+//! on `|r|` along `(du, dlambda)` (Newton settings `line_search`,
+//! `max_line_search`) breaks the two-cycles of a law's kink; the damped step
+//! leaves the constraint unmet and the next iteration, whose constraint is
+//! written on the accumulated increment, restores it. Under the arc length
+//! (not under the dissipation constraint, whose linearisation degenerates
+//! with secant tangents) an iteration that does not reduce the residual
+//! switches to the laws' secant tangent for the rest of the attempt, as in
+//! [`crate::newton`]. Convergence: the force criterion of
+//! [`crate::newton`] (`tol_force`) and, under the dissipation constraint,
+//! `|ΔD - tau| <= 1e-6 tau`.
+//!
+//! This driver shares with [`crate::newton`] the assembly and residual
+//! buffers (`Work`), the [`Checkpoint`], the observer and its
+//! [`IncrementView`], and the restart; it has its own increment loop (the
+//! constraint, the size rule, the switching and the end of the run).
 //!
 //! # Increments
 //!

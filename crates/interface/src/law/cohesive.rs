@@ -76,7 +76,11 @@
 //! **Tangent**: the whole evaluation runs in forward-mode dual numbers
 //! ([`Dual3`]) seeded on the jump, so the tangent is the exact derivative of
 //! the branch taken (loading: `d` depends on the jump; unloading,
-//! reloading below the curve and full separation: `d` fixed). With a mode
+//! reloading below the curve and full separation: `d` fixed). On the damage
+//! surface itself (`d_B = d_committed`: the converged state an increment
+//! starts from) it is the loading branch, the one-sided derivative towards
+//! more damage, so that the first iteration of an increment, and the
+//! dissipation constraint of path following, see the softening. With a mode
 //! ratio that changes with the jump, the exact tangent is not symmetric;
 //! the interface element assembles its symmetric part (the tangent of a
 //! symmetric storage), which keeps Newton's convergence quadratic in pure
