@@ -282,8 +282,9 @@ pub struct PathState {
 pub enum PathEnd {
     /// The load factor reached the end of the program.
     Completed,
-    /// The load factor fell back to zero (below 1e-6 times its maximum)
-    /// after a maximum.
+    /// The load factor fell back to zero after a maximum (below 1e-6 times
+    /// its maximum, or below 1e-3 of it when no further increment
+    /// converges).
     Unloaded,
     /// `max_increments` reached.
     IncrementLimit,
@@ -624,7 +625,7 @@ where
     let mut dissipated_laws = model.dissipated_energy(&w.u_conv, &state)?;
     let mut end_reason = PathEnd::Completed;
 
-    while cur.t < 1.0 {
+    'path: while cur.t < 1.0 {
         if cur.increment_index >= arc.max_increments {
             end_reason = PathEnd::IncrementLimit;
             break;
@@ -815,6 +816,16 @@ where
                         _ => first_size * arc.min_step,
                     };
                     if size < floor {
+                        // the load has all but vanished after its maximum:
+                        // the structure has come apart (e.g. a fully cracked
+                        // interface under force control, where no
+                        // equilibrium carries a load any more)
+                        if path.lambda_max > 0.0
+                            && cur.lambda * end.signum() <= 1e-3 * path.lambda_max
+                        {
+                            end_reason = PathEnd::Unloaded;
+                            break 'path;
+                        }
                         return Err(NonlinearError::IncrementTooSmall {
                             step: 0,
                             lambda: cur.lambda,
@@ -971,6 +982,17 @@ where
             break;
         }
     }
+    // the residual (reactions) of the last converged state: an attempt
+    // that failed after it may have left its own in the buffers
+    w.u.copy_from_slice(&w.u_conv);
+    let step_end = StepInfo {
+        increment: cur.increment_index,
+        load_factor: cur.lambda,
+        delta_load_factor: 0.0,
+        secant: false,
+    };
+    w.evaluate(&mut state, step_end, cur.lambda, cur.force_peak)?;
+    state.restore();
     summary.newton_iterations_total = w.iterations;
     summary.analyze_count = usize::from(w.analyzed);
     summary.secant_attempts = w.secant_attempts;
