@@ -68,9 +68,9 @@ impl InterfaceLaw for BimodularPenalty {
         let kn = if ctx.jump[2] >= 0.0 { self.kt } else { self.kc };
         let k = [self.ks, self.ks, kn];
         let mut r = LawResponse::default();
-        for i in 0..3 {
-            r.traction[i] = k[i] * ctx.jump[i];
-            r.tangent[i][i] = k[i];
+        for (i, ki) in k.into_iter().enumerate() {
+            r.traction[i] = ki * ctx.jump[i];
+            r.tangent[i][i] = ki;
         }
         Ok(r)
     }
