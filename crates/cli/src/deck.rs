@@ -254,6 +254,15 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         .map_err(|e| anyhow!("cannot read deck {}: {e}", path.display()))?;
     let file = path.display().to_string();
     let mut deck = parse_inp(&text, &file).map_err(|e| anyhow!("{e}"))?;
+    if deck.mesh.nodes.is_empty() && deck.mesh.blocks.is_empty() {
+        bail!("{file}: the deck is empty: no *NODE and no *ELEMENT");
+    }
+    if deck.mesh.num_elements() == 0 {
+        bail!("{file}: the deck has no *ELEMENT: nothing to solve");
+    }
+    if deck.steps.is_empty() {
+        bail!("{file}: the deck has no *STEP: nothing to solve; add *STEP, *STATIC, the loads and *END STEP");
+    }
     let mut notes = deck.notes.clone();
     let mut elements = Vec::new();
     let mut softening = false;
@@ -351,6 +360,10 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     }
     let title = deck.heading.lines().next().unwrap_or("").trim().to_string();
     let every = deck.every;
+    crate::limits::check_memory(
+        &format!("{file}: the model ({} nodes)", deck.mesh.nodes.len()),
+        crate::limits::model_bytes(&deck.mesh),
+    )?;
     let model = Model::new(
         deck.mesh,
         elements,

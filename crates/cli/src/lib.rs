@@ -18,12 +18,14 @@ use junta_interface as _;
 use junta_solvers as _;
 
 mod deck;
+mod limits;
 mod nonlinear;
 mod output;
 mod plot;
 mod run;
 mod scene;
 mod sweep;
+mod validate;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;

@@ -127,6 +127,12 @@ fn apply_solver_overrides(
 /// Read a scene (`.toml`) or a deck (`.inp`) and build the model;
 /// `solver_overrides` are `--solver KEY=VALUE` options.
 pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
+    let p = prepare_unchecked(input, solver_overrides)?;
+    crate::validate::prepared(&input.display().to_string(), &p)?;
+    Ok(p)
+}
+
+fn prepare_unchecked(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
     let ext = input
         .extension()
         .and_then(|e| e.to_str())
