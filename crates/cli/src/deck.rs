@@ -364,6 +364,13 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         &format!("{file}: the model ({} nodes)", deck.mesh.nodes.len()),
         crate::limits::model_bytes(&deck.mesh),
     )?;
+    // element errors name the deck's own element label, not the index
+    let labels: std::collections::HashMap<(usize, usize), usize> = deck
+        .element_labels
+        .iter()
+        .map(|(&l, r)| ((r.block, r.element), l))
+        .collect();
+    let block_names: Vec<String> = deck.mesh.blocks.iter().map(|b| b.name.clone()).collect();
     let model = Model::new(
         deck.mesh,
         elements,
@@ -371,7 +378,28 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         first.f_ext.clone(),
         reaction_sets,
     )
-    .map_err(|e| anyhow!("{file}: {e}"))?;
+    .map_err(|e| match e {
+        junta_core::CoreError::Element {
+            block,
+            element,
+            source,
+        } => {
+            let label = block_names
+                .iter()
+                .position(|n| *n == block)
+                .and_then(|b| labels.get(&(b, element)));
+            match label {
+                Some(label) => {
+                    anyhow!("{file}: element {label} (*ELEMENT label) of ELSET `{block}`: {source}")
+                }
+                None => anyhow!(
+                    "{file}: element {} of block `{block}`: {source}",
+                    element + 1
+                ),
+            }
+        }
+        e => anyhow!("{file}: {e}"),
+    })?;
     Ok(DeckModel {
         model,
         notes,

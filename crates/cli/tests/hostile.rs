@@ -293,3 +293,85 @@ fn mutated_scenes_never_crash_check() {
         );
     }
 }
+
+#[test]
+fn an_inverted_element_is_named_by_its_deck_label() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck =
+        std::fs::read_to_string(common::repo().join("crates/core/tests/data/cube_h8_n2.inp"))
+            .unwrap();
+    let mut lines: Vec<String> = deck.lines().map(String::from).collect();
+    let at = lines
+        .iter()
+        .position(|l| l.to_ascii_uppercase().starts_with("*ELEMENT"))
+        .unwrap();
+    // third element (label 3, index 2): swap a bottom and a top node
+    let mut f: Vec<String> = lines[at + 3].split(',').map(String::from).collect();
+    assert_eq!(f[0].trim(), "3");
+    f.swap(1, 5);
+    lines[at + 3] = f.join(",");
+    let p = write(dir.path(), "inverted.inp", &lines.join("\n"));
+    let out = junta().arg("check").arg(&p).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    has(&err, &["element 3 (*ELEMENT label)", "Jacobian"]);
+}
+
+/// Mutated decks through `junta check` (deck reader and model builder).
+#[test]
+fn mutated_decks_never_crash_check() {
+    const HOSTILE: &[&str] = &[
+        "0",
+        "-1",
+        "1e300",
+        "nan",
+        "inf",
+        "18446744073709551615",
+        "1000000000000",
+        "",
+        "*STEP",
+        "*END STEP",
+        "GENERATE",
+        "x",
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let deck =
+        std::fs::read_to_string(common::repo().join("crates/core/tests/data/cube_h8_n2.inp"))
+            .unwrap();
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    for case in 0..40 {
+        let mut lines: Vec<String> = deck.lines().map(String::from).collect();
+        for _ in 0..1 + rng.below(3) {
+            let i = rng.below(lines.len());
+            match rng.below(4) {
+                0 => {
+                    lines.remove(i);
+                }
+                1 => {
+                    let l = lines[i].clone();
+                    lines.insert(i, l);
+                }
+                _ => {
+                    let mut t: Vec<String> = lines[i].split(',').map(String::from).collect();
+                    let k = rng.below(t.len());
+                    t[k] = HOSTILE[rng.below(HOSTILE.len())].to_string();
+                    lines[i] = t.join(",");
+                }
+            }
+        }
+        let text = lines.join("\n") + "\n";
+        let p = write(dir.path(), "fuzz.inp", &text);
+        let out = junta()
+            .arg("check")
+            .arg(&p)
+            .env("JUNTA_MEMORY_LIMIT", "2e9")
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            out.status.code().is_some() && !err.contains("panicked"),
+            "case {case} crashed ({:?}):\n{err}\ndeck:\n{text}",
+            out.status
+        );
+    }
+}
