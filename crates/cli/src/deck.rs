@@ -254,6 +254,15 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         .map_err(|e| anyhow!("cannot read deck {}: {e}", path.display()))?;
     let file = path.display().to_string();
     let mut deck = parse_inp(&text, &file).map_err(|e| anyhow!("{e}"))?;
+    if deck.mesh.nodes.is_empty() && deck.mesh.blocks.is_empty() {
+        bail!("{file}: the deck is empty: no *NODE and no *ELEMENT");
+    }
+    if deck.mesh.num_elements() == 0 {
+        bail!("{file}: the deck has no *ELEMENT: nothing to solve");
+    }
+    if deck.steps.is_empty() {
+        bail!("{file}: the deck has no *STEP: nothing to solve; add *STEP, *STATIC, the loads and *END STEP");
+    }
     let mut notes = deck.notes.clone();
     let mut elements = Vec::new();
     let mut softening = false;
@@ -352,6 +361,17 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     }
     let title = deck.heading.lines().next().unwrap_or("").trim().to_string();
     let every = deck.every;
+    crate::limits::check_memory(
+        &format!("{file}: the model ({} nodes)", deck.mesh.nodes.len()),
+        crate::limits::model_bytes(&deck.mesh),
+    )?;
+    // element errors name the deck's own element label, not the index
+    let labels: std::collections::HashMap<(usize, usize), usize> = deck
+        .element_labels
+        .iter()
+        .map(|(&l, r)| ((r.block, r.element), l))
+        .collect();
+    let block_names: Vec<String> = deck.mesh.blocks.iter().map(|b| b.name.clone()).collect();
     let model = Model::new(
         deck.mesh,
         elements,
@@ -359,7 +379,28 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         first.f_ext.clone(),
         reaction_sets,
     )
-    .map_err(|e| anyhow!("{file}: {e}"))?;
+    .map_err(|e| match e {
+        junta_core::CoreError::Element {
+            block,
+            element,
+            source,
+        } => {
+            let label = block_names
+                .iter()
+                .position(|n| *n == block)
+                .and_then(|b| labels.get(&(b, element)));
+            match label {
+                Some(label) => {
+                    anyhow!("{file}: element {label} (*ELEMENT label) of ELSET `{block}`: {source}")
+                }
+                None => anyhow!(
+                    "{file}: element {} of block `{block}`: {source}",
+                    element + 1
+                ),
+            }
+        }
+        e => anyhow!("{file}: {e}"),
+    })?;
     Ok(DeckModel {
         model,
         notes,

@@ -18,13 +18,16 @@ use junta_interface as _;
 use junta_solvers as _;
 
 mod deck;
+mod limits;
 mod nonlinear;
 mod output;
 mod plot;
+mod restart_guard;
 mod run;
 mod scene;
 mod sweep;
 mod sweep_control;
+mod validate;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -58,6 +61,10 @@ enum Command {
         /// last converged increment.
         #[arg(long, value_name = "DIR", conflicts_with = "input")]
         restart: Option<PathBuf>,
+        /// With --restart: continue although the scene or a file it reads
+        /// changed since the run stopped (the changes are listed).
+        #[arg(long, requires = "restart")]
+        allow_edited: bool,
         /// Incremental runs: stop after this many increments (a restart point is kept).
         #[arg(long)]
         max_increments: Option<usize>,
@@ -152,8 +159,9 @@ pub fn main() -> ExitCode {
             restart,
             max_increments,
             solver,
+            allow_edited,
         } => match (input, restart) {
-            (_, Some(dir)) => run::restart(&dir, !cli.quiet, max_increments),
+            (_, Some(dir)) => run::restart(&dir, !cli.quiet, max_increments, allow_edited),
             (Some(input), None) => run::run(
                 &input,
                 output.as_deref(),

@@ -42,6 +42,17 @@ pub struct RestartFile {
     /// The run's `--solver KEY=VALUE` overrides (applied again on restart).
     #[serde(default)]
     pub solver_overrides: Vec<String>,
+    /// Hashes of the scene and every file it reads (a restart refuses
+    /// edited inputs).
+    #[serde(default)]
+    pub inputs: Vec<crate::restart_guard::InputHash>,
+    /// The scene's text, to name the keys an edit changed.
+    #[serde(default)]
+    pub scene_text: Option<String>,
+    /// The status of a run that ended for good (end of the program, or
+    /// every interface point failed): a restart has nothing to do.
+    #[serde(default)]
+    pub finished: Option<String>,
 }
 
 /// When the first interface point failed.
@@ -394,6 +405,12 @@ pub fn run_static(
     let mut separated = false;
     let every = p.every.max(1);
     let solver_overrides = p.solver_overrides.clone();
+    let inputs = crate::restart_guard::hash_inputs(input);
+    let scene_text = input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
+        .then(|| std::fs::read_to_string(input).ok())
+        .flatten();
     let increment_limits = p.increment_limits.clone();
     // (step, INC, line of its *STEP) when a deck's INC stopped the run
     let mut inc_reached: Option<(usize, usize, usize)> = None;
@@ -509,6 +526,9 @@ pub fn run_static(
                     first_failure: first_failure.clone(),
                     frames: frames.clone(),
                     solver_overrides: solver_overrides.clone(),
+                    inputs: inputs.clone(),
+                    scene_text: scene_text.clone(),
+                    finished: None,
                 };
                 write_atomic(&dir.join("checkpoint.json"), &serde_json::to_vec(&restart)?)?;
                 pb.set_message(format!(
@@ -722,6 +742,12 @@ pub fn run_static(
                 vlines: vec![],
             }],
         )?;
+    }
+    let ended = status == "completed" || status.starts_with("stopped: every interface point");
+    if ended && dir.join("checkpoint.json").exists() {
+        let mut restart = read_restart(dir)?;
+        restart.finished = Some(status.clone());
+        write_atomic(&dir.join("checkpoint.json"), &serde_json::to_vec(&restart)?)?;
     }
     pb.finish_and_clear();
     println!(

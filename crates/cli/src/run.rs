@@ -127,6 +127,12 @@ fn apply_solver_overrides(
 /// Read a scene (`.toml`) or a deck (`.inp`) and build the model;
 /// `solver_overrides` are `--solver KEY=VALUE` options.
 pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
+    let p = prepare_unchecked(input, solver_overrides)?;
+    crate::validate::prepared(&input.display().to_string(), &p)?;
+    Ok(p)
+}
+
+fn prepare_unchecked(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
     let ext = input
         .extension()
         .and_then(|e| e.to_str())
@@ -530,9 +536,26 @@ fn solve_deck_steps(
 
 /// `junta run --restart DIR`: continue an incremental run from its last
 /// converged increment.
-pub fn restart(dir: &Path, progress: bool, max_increments: Option<usize>) -> Result<()> {
+pub fn restart(
+    dir: &Path,
+    progress: bool,
+    max_increments: Option<usize>,
+    allow_edited: bool,
+) -> Result<()> {
     let r = crate::nonlinear::read_restart(dir)?;
     let input = r.input.clone();
+    if let Some(status) = &r.finished {
+        println!(
+            "{}: the run already finished ({status}) at increment {}; nothing to restart, {} left unchanged",
+            input.display(),
+            r.checkpoint.increment_index,
+            dir.display()
+        );
+        return Ok(());
+    }
+    for change in crate::restart_guard::check_inputs(&r, allow_edited)? {
+        eprintln!("note: continuing with an edited input (--allow-edited): {change}");
+    }
     let pb = spinner(
         progress,
         format!(
@@ -549,6 +572,12 @@ pub fn restart(dir: &Path, progress: bool, max_increments: Option<usize>) -> Res
             input.display()
         );
     }
+    crate::restart_guard::check_fields(
+        &r,
+        &dir.join("checkpoint.json"),
+        p.analysis.steps.len(),
+        p.model.dofs.num_dofs(),
+    )?;
     crate::nonlinear::run_static(&input, &mut p, dir, &pb, Some(r), max_increments)
 }
 

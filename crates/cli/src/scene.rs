@@ -438,11 +438,13 @@ impl SceneFile {
     pub fn parse(path: &Path, text: String) -> Result<Self> {
         let scene: Scene = toml::from_str(&text)
             .map_err(|e| anyhow!("{}: {}", path.display(), e.to_string().trim_end()))?;
-        Ok(SceneFile {
+        let sf = SceneFile {
             path: path.to_path_buf(),
             text,
             scene,
-        })
+        };
+        crate::validate::scene(&sf)?;
+        Ok(sf)
     }
 
     /// `file:line` of a span, for messages.
@@ -547,6 +549,31 @@ fn generate_box(
             entry.key
         );
     }
+    for (name, v) in [("size", size), ("origin", origin), ("grading", grading)] {
+        if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+            bail!(
+                "{}: key `{key}.{name}`: {x} is not a finite number",
+                sf.at(element.span())
+            );
+        }
+    }
+    if let Some(g) = grading
+        .iter()
+        .find(|g| **g <= 0.0 || **g > 1e6 || **g < 1e-6)
+    {
+        bail!(
+            "{}: key `{key}.grading`: {g} is out of range; the ratio of last to first element size must lie in [1e-6, 1e6]",
+            sf.at(element.span())
+        );
+    }
+    let order = if entry.shape.num_nodes() > 8 { 2 } else { 1 };
+    crate::limits::check_memory(
+        &format!(
+            "{}: key `{key}.divisions` = {divisions:?}: the box and its model",
+            sf.at(element.span())
+        ),
+        crate::limits::box_bytes(divisions, order, entry.shape.num_nodes()),
+    )?;
     let spec = BoxSpec {
         origin,
         size,
@@ -618,6 +645,26 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
         "boxes" => {
             if m.boxes.is_empty() {
                 return Err(missing("boxes"));
+            }
+            // boxes sharing volume would be merged at their coincident
+            // nodes and bonded on many faces: refuse them
+            for (j, b) in m.boxes.iter().enumerate() {
+                for (i, a) in m.boxes.iter().enumerate().take(j) {
+                    let overlap = (0..3).all(|c| {
+                        let lo = a.origin[c].max(b.origin[c]);
+                        let hi = (a.origin[c] + a.size[c]).min(b.origin[c] + b.size[c]);
+                        let scale = a.size[c].abs().min(b.size[c].abs());
+                        hi - lo > 1e-9 * scale
+                    });
+                    if overlap {
+                        bail!(
+                            "{}: key `mesh.boxes[{j}]`: box `{}` overlaps box `{}` (mesh.boxes[{i}]); boxes may touch but not share volume",
+                            sf.at(b.element.span()),
+                            b.name,
+                            a.name
+                        );
+                    }
+                }
             }
             let mut parts = Vec::new();
             for (i, b) in m.boxes.iter().enumerate() {
@@ -1050,6 +1097,15 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
             ),
         }
     }
+    crate::limits::check_memory(
+        &format!(
+            "{}: the model ({} nodes, {} elements)",
+            sf.path.display(),
+            mesh.nodes.len(),
+            mesh.num_elements()
+        ),
+        crate::limits::model_bytes(&mesh),
+    )?;
     Model::new(mesh, elements, &constraints, f_ext, reaction_sets)
         .map_err(|e| anyhow!("{}: {e}", sf.path.display()))
 }
@@ -1061,7 +1117,10 @@ pub fn solver_table(sf: &SceneFile) -> (String, toml::Table) {
             let mut t = t.clone();
             let key = match t.remove("type") {
                 Some(toml::Value::String(s)) => s,
-                _ => "auto".to_string(),
+                None => "auto".to_string(),
+                // not a string (`type = 5`): keep it as text so that the
+                // registry lookup names it with the valid keys
+                Some(v) => v.to_string(),
             };
             (key, t)
         }

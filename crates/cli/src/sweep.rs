@@ -86,6 +86,12 @@ pub fn sweep_penalty(
     if !(from > 0.0 && to > from && from.is_finite() && to.is_finite()) {
         bail!("--from and --to must be positive with from < to (got {from:e}, {to:e})");
     }
+    if per_decade == 0 || (to.log10() - from.log10()) * per_decade as f64 > 10_000.0 {
+        bail!(
+            "--per-decade {per_decade}: give 1 or more values per decade and at most 10000 values in all ({:.1} decades from {from:e} to {to:e})",
+            to.log10() - from.log10()
+        );
+    }
     let mut sf = scene::SceneFile::read(input)?;
     if set_penalty(&mut sf, from) == 0 {
         bail!(

@@ -178,7 +178,22 @@ impl CgSolver {
 
     /// From a TOML parameter table (unknown keys are an error).
     pub fn from_table(table: &toml::Table) -> Result<Self, junta_core::CoreError> {
-        Ok(Self::new(parse_params("solver", "cg", table)?))
+        let s: CgSettings = parse_params("solver", "cg", table)?;
+        let bad = |message: String| junta_core::CoreError::InvalidParameters {
+            kind: "solver",
+            key: "cg".into(),
+            message,
+        };
+        if !(s.tol.is_finite() && s.tol > 0.0 && s.tol < 1.0) {
+            return Err(bad(format!("`tol` = {} must lie in (0, 1)", s.tol)));
+        }
+        if s.max_iterations == Some(0) {
+            return Err(bad("`max_iterations` = 0 must be >= 1".into()));
+        }
+        if s.stagnation_window == 0 {
+            return Err(bad("`stagnation_window` = 0 must be >= 1".into()));
+        }
+        Ok(Self::new(s))
     }
 
     /// The settings.

@@ -245,6 +245,16 @@ pub enum IncrementFailure {
     IterationLimit,
     /// NaN or infinity in the residual or the correction.
     NonFinite,
+    /// The relative residual stopped decreasing above `tol_force` (round
+    /// off reached, or a tolerance the arithmetic cannot meet).
+    Stagnated {
+        /// Smallest relative residual reached.
+        best: f64,
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// Iterations without a decrease of the best residual by 1 %.
+        iterations: usize,
+    },
     /// The residual norm grew past `divergence_ratio` times the first one.
     Diverging {
         /// Residual norm reached.
@@ -263,6 +273,14 @@ impl std::fmt::Display for IncrementFailure {
         match self {
             IncrementFailure::IterationLimit => write!(f, "iteration limit reached"),
             IncrementFailure::NonFinite => write!(f, "residual or correction not finite"),
+            IncrementFailure::Stagnated {
+                best,
+                tolerance,
+                iterations,
+            } => write!(
+                f,
+                "stagnated: relative residual {best:.3e} not decreasing for {iterations} iterations, tol_force = {tolerance:.3e} cannot be met"
+            ),
             IncrementFailure::Diverging { residual, initial } => write!(
                 f,
                 "diverging: residual norm {residual:.3e} against {initial:.3e} at the start"
@@ -694,6 +712,9 @@ impl<'m> Work<'m> {
         }
         let rho0 = ev.abs;
         let mut e_ref = 0.0;
+        // stagnation: the best relative residual and when it last fell by 1 %
+        let mut best_rel = ev.rel;
+        let mut best_at = 0;
         for it in 1..=st.max_iterations {
             self.iterations += 1;
             if !self.analyzed {
@@ -825,6 +846,26 @@ impl<'m> Work<'m> {
                     energy,
                 });
             }
+            if ev.rel < 0.99 * best_rel {
+                best_rel = ev.rel;
+                best_at = it;
+            } else if it - best_at
+                >= if step.secant {
+                    4 * STAGNATION_ITERATIONS
+                } else {
+                    STAGNATION_ITERATIONS
+                }
+            {
+                return Ok(fail(
+                    it,
+                    ev.rel,
+                    IncrementFailure::Stagnated {
+                        best: best_rel,
+                        tolerance: st.tol_force,
+                        iterations: it - best_at,
+                    },
+                ));
+            }
             if ev.abs > st.divergence_ratio * rho0 {
                 return Ok(fail(
                     it,
@@ -843,6 +884,12 @@ impl<'m> Work<'m> {
         ))
     }
 }
+
+/// Newton iterations without a 1 % decrease of the best relative residual
+/// after which an attempt stops as stagnated (a quadratically converging
+/// Newton gains far more per iteration; the secant fallback, which
+/// converges linearly, gets four times as many).
+const STAGNATION_ITERATIONS: usize = 12;
 
 /// Does any element want small increments (committed state)?
 pub(crate) fn any_wants_small(model: &Model, state: &StateStore) -> bool {

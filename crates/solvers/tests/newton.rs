@@ -697,3 +697,31 @@ fn bad_program_and_checkpoint_are_errors() {
     let last = r.reports.last().unwrap();
     assert_eq!((last.step, last.iterations, last.delta_lambda), (1, 0, 0.0));
 }
+
+/// A tolerance below round-off (`tol_force = 1e-300`) with a huge iteration
+/// limit: every attempt stops as stagnated after a few iterations, and the
+/// run ends with an error carrying the numbers instead of iterating 1e8
+/// times per attempt.
+#[test]
+fn unreachable_tolerance_stops_on_stagnation_with_its_numbers() {
+    let sp = Arc::new(Springs {
+        springs: vec![(None, 1, Law::Cubic { k: 1.0, c: 1.0 })],
+        ..Default::default()
+    });
+    let model = spring_model(sp, &[1], &[], &[(1, 10.0)]);
+    let settings = NewtonSettings {
+        tol_force: 1e-300,
+        max_iterations: 100_000_000,
+        ..Default::default()
+    };
+    let r = run(&model, &[1.0], &settings, None, None);
+    let e = r.result.unwrap_err().to_string();
+    assert!(e.contains("stagnated") && e.contains("1.000e-300"), "{e}");
+    // increments that reach a residual of exactly 0 converge; none took
+    // more iterations than the stagnation window allows
+    assert!(
+        r.reports.iter().all(|rep| rep.iterations < 100),
+        "{:?}",
+        r.reports
+    );
+}

@@ -111,6 +111,25 @@ impl<'a> Cursor<'a> {
             message: message.into(),
         }
     }
+    /// Check that at least `need` more lines follow before reserving room
+    /// for a count read from the file (a header declaring 1e12 entries in a
+    /// small file is an error, not an allocation).
+    fn enough_lines(
+        &self,
+        line: usize,
+        what: &str,
+        count: usize,
+        lines_each: usize,
+    ) -> Result<(), GmshError> {
+        let left = self.lines.len().saturating_sub(self.pos);
+        if count.saturating_mul(lines_each) > left {
+            return Err(self.err(
+                line,
+                format!("header declares {count} {what}, but only {left} lines follow"),
+            ));
+        }
+        Ok(())
+    }
     /// Next line (trimmed), with its 1-based number.
     fn next(&mut self, what: &str) -> Result<(usize, &'a str), GmshError> {
         if self.pos >= self.lines.len() {
@@ -256,6 +275,12 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
                 for (d, cnt) in counts.iter_mut().enumerate() {
                     *cnt = c.num(ln, t.get(d), "entity count")?;
                 }
+                c.enough_lines(
+                    ln,
+                    "entities",
+                    counts.iter().fold(0usize, |a, &b| a.saturating_add(b)),
+                    1,
+                )?;
                 for (dim, &cnt) in counts.iter().enumerate() {
                     for _ in 0..cnt {
                         let (ln, t) = c.tokens("an entity")?;
@@ -263,6 +288,15 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
                         // points: tag x y z nPhys ...; others: tag 6 bbox values nPhys ...
                         let at = if dim == 0 { 4 } else { 7 };
                         let np: usize = c.num(ln, t.get(at), "number of physical tags")?;
+                        if np > t.len() {
+                            return Err(c.err(
+                                ln,
+                                format!(
+                                    "{np} physical tags declared, {} values on the line",
+                                    t.len()
+                                ),
+                            ));
+                        }
                         let mut phys = Vec::with_capacity(np);
                         for k in 0..np {
                             let p: i64 = c.num(ln, t.get(at + 1 + k), "physical tag")?;
@@ -277,12 +311,15 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
                 let (ln, t) = c.tokens("$Nodes")?;
                 let nblocks: usize = c.num(ln, t.first(), "number of node blocks")?;
                 let total: usize = c.num(ln, t.get(1), "number of nodes")?;
+                c.enough_lines(ln, "node blocks", nblocks, 1)?;
+                c.enough_lines(ln, "nodes", total, 2)?;
                 nodes.reserve(total);
                 labels.reserve(total);
                 for _ in 0..nblocks {
                     let (ln, t) = c.tokens("a node block")?;
                     let _parametric: usize = c.num(ln, t.get(2), "parametric flag")?;
                     let count: usize = c.num(ln, t.get(3), "number of nodes in block")?;
+                    c.enough_lines(ln, "nodes", count, 2)?;
                     let mut tags = Vec::with_capacity(count);
                     for _ in 0..count {
                         let (ln, t) = c.tokens("a node tag")?;
@@ -310,12 +347,14 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
             "$Elements" => {
                 let (ln, t) = c.tokens("$Elements")?;
                 let nblocks: usize = c.num(ln, t.first(), "number of element blocks")?;
+                c.enough_lines(ln, "element blocks", nblocks, 1)?;
                 for _ in 0..nblocks {
                     let (ln, t) = c.tokens("an element block")?;
                     let dim: usize = c.num(ln, t.first(), "entity dimension")?;
                     let entity: i64 = c.num(ln, t.get(1), "entity tag")?;
                     let code: usize = c.num(ln, t.get(2), "element type")?;
                     let count: usize = c.num(ln, t.get(3), "number of elements")?;
+                    c.enough_lines(ln, "elements", count, 1)?;
                     let (_, npe) = shape_of(code).ok_or_else(|| GmshError::ElementType {
                         file: file_name.into(),
                         line: ln,

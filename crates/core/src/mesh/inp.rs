@@ -1439,15 +1439,30 @@ impl<'a> Parser<'a> {
                         format!("GENERATE range {a}..{b} is empty (last < first)"),
                     ));
                 }
-                // labels missing inside a range are skipped, as gaps are common
-                for l in (a..=b).step_by(inc) {
-                    let hit = if is_node {
-                        self.node_id.get(&l)
-                    } else {
-                        self.elem_id.get(&l)
-                    };
-                    if let Some(&id) = hit {
-                        members.push(id);
+                if inc == 0 {
+                    return Err(self.invalid(dl, kw, "GENERATE increment must be >= 1"));
+                }
+                // labels missing inside a range are skipped, as gaps are common;
+                // a range wider than the labels defined walks the labels
+                // instead (bounded by the deck, not by the range: 1..1e11 is quick)
+                let map = if is_node {
+                    &self.node_id
+                } else {
+                    &self.elem_id
+                };
+                if (b - a) / inc >= map.len() {
+                    let mut hits: Vec<(usize, usize)> = map
+                        .iter()
+                        .filter(|(&l, _)| l >= a && l <= b && (l - a) % inc == 0)
+                        .map(|(&l, &id)| (l, id))
+                        .collect();
+                    hits.sort_unstable();
+                    members.extend(hits.into_iter().map(|h| h.1));
+                } else {
+                    for l in (a..=b).step_by(inc) {
+                        if let Some(&id) = map.get(&l) {
+                            members.push(id);
+                        }
                     }
                 }
             } else {

@@ -158,6 +158,17 @@ impl Mesh {
     /// Check connectivity indices and set contents.
     pub fn validate(&self) -> Result<(), CoreError> {
         let n = self.nodes.len();
+        if let Some(i) = self
+            .nodes
+            .iter()
+            .position(|p| !p.iter().all(|x| x.is_finite()))
+        {
+            return Err(CoreError::Invalid(format!(
+                "node {} has coordinates {:?}; coordinates must be finite numbers",
+                self.node_label(i),
+                self.nodes[i]
+            )));
+        }
         for b in &self.blocks {
             for e in 0..b.len() {
                 for &node in b.element(e) {

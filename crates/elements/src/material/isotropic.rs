@@ -65,6 +65,14 @@ impl Isotropic {
                 "Young's modulus E = {e} is invalid; E must be positive and finite"
             )));
         }
+        if !(super::MODULUS_RANGE.0..=super::MODULUS_RANGE.1).contains(&e) {
+            return Err(invalid(format!(
+                "Young's modulus E = {e:e} is out of range [{:e}, {:e}] in any unit system; \
+                 stiffness products would overflow or underflow",
+                super::MODULUS_RANGE.0,
+                super::MODULUS_RANGE.1
+            )));
+        }
         if !(nu > -1.0 && nu < 0.5) {
             return Err(invalid(format!(
                 "Poisson's ratio nu = {nu} is invalid; it must satisfy -1 < nu < 0.5 \

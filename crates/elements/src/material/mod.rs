@@ -66,6 +66,12 @@ pub fn rotate_elasticity(c_local: &Voigt6, q: &Matrix3<f64>) -> Voigt6 {
     t * c_local * t.transpose()
 }
 
+/// Moduli accepted by the materials: wide enough for any unit system (Pa to
+/// GPa, psi to Msi, soft gels to diamond), narrow enough that the element
+/// stiffness (modulus x length, squared in the factorisation) stays far
+/// from overflow and underflow.
+pub const MODULUS_RANGE: (f64, f64) = (1e-20, 1e20);
+
 #[cfg(test)]
 mod tests {
     use super::*;

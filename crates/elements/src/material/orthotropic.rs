@@ -195,6 +195,13 @@ impl Orthotropic {
                     "{name} = {v} is invalid; moduli E1, E2, E3, G12, G13, G23 must be positive and finite"
                 )));
             }
+            if !(super::MODULUS_RANGE.0..=super::MODULUS_RANGE.1).contains(&v) {
+                return Err(invalid(format!(
+                    "{name} = {v:e} is out of range [{:e}, {:e}] in any unit system",
+                    super::MODULUS_RANGE.0,
+                    super::MODULUS_RANGE.1
+                )));
+            }
         }
         for (name, v) in [("nu12", k.nu12), ("nu13", k.nu13), ("nu23", k.nu23)] {
             if !v.is_finite() {
