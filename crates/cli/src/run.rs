@@ -179,7 +179,8 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
         Some("inp") => {
             let d = deck::build_model(input)?;
             let mut notes = d.notes;
-            let (mut key, mut table) = ("auto".to_string(), toml::Table::new());
+            let mut key = d.solver.clone().unwrap_or_else(|| "auto".to_string());
+            let mut table = toml::Table::new();
             apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
             let solver = resolve_solver(
                 &mut key,

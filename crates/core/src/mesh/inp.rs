@@ -20,8 +20,10 @@
 //! MATERIAL=, RESPONSE=TRACTION SEPARATION [, THICKNESS=SPECIFIED]` (data
 //! line: the constitutive thickness, default 1), `*BOUNDARY [,
 //! OP=MOD|NEW]`, `*CLOAD [, OP=MOD|NEW]`, `*STEP [, NLGEOM, INC, NAME]` (any
-//! number of steps), `*STATIC [, DIRECT]` (data line `dt0, T, dtmin,
-//! dtmax`), `*END STEP`; the output requests `*NODE PRINT`, `*NODE FILE`,
+//! number of steps), `*STATIC [, DIRECT] [, SOLVER=]` (data line `dt0, T, dtmin,
+//! dtmax`; SOLVER is mapped to a back end by the CLI; TIME RESET, TOTAL TIME
+//! AT START, ALLSDTOL, CONTINUE, FACTOR noted and skipped; RIKS,
+//! STABILIZE, FULLY PLASTIC, LONG TERM refused), `*END STEP`; the output requests `*NODE PRINT`, `*NODE FILE`,
 //! `*EL PRINT`, `*EL FILE`, `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*OUTPUT` are
 //! skipped with a note (Junta's outputs are chosen in the scene). Anything
 //! else is an error that lists these keywords.
@@ -423,8 +425,34 @@ pub struct InpStatic {
     pub max_increment: Option<f64>,
     /// DIRECT parameter (fixed increments).
     pub direct: bool,
+    /// `SOLVER=` (upper case, as written): the CLI maps it to a back end.
+    pub solver: Option<String>,
     pub line: usize,
 }
+
+/// Parameters of `*STATIC` that do not change a linear-static or
+/// incremental result of Junta (noted and skipped): CalculiX `TIME RESET`,
+/// `TOTAL TIME AT START` (time labels only), Abaqus `ALLSDTOL`, `CONTINUE`,
+/// `FACTOR` (automatic stabilisation controls without `STABILIZE`).
+const STATIC_NOTED: [&str; 5] = [
+    "TIME RESET",
+    "TOTAL TIME AT START",
+    "ALLSDTOL",
+    "CONTINUE",
+    "FACTOR",
+];
+
+/// Parameters of `*STATIC` that change the answer and that Junta does not
+/// have: an error naming the line.
+const STATIC_REFUSED: [(&str, &str); 4] = [
+    (
+        "RIKS",
+        "the Riks arc-length method (use a TOML scene with an arc-length analysis)",
+    ),
+    ("STABILIZE", "automatic viscous stabilisation"),
+    ("FULLY PLASTIC", "fully plastic limit analysis"),
+    ("LONG TERM", "long-term viscoelastic response"),
+];
 
 /// A `*STEP ... *END STEP`.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -1185,7 +1213,37 @@ impl<'a> Parser<'a> {
                     self.step_open = Some(line);
                 }
                 "STATIC" => {
-                    self.check_params(line, kw, params, &["DIRECT"])?;
+                    let mut valid = vec!["DIRECT", "SOLVER"];
+                    valid.extend(STATIC_NOTED);
+                    valid.extend(STATIC_REFUSED.iter().map(|(k, _)| *k));
+                    self.check_params(line, kw, params, &valid)?;
+                    for (k, what) in STATIC_REFUSED {
+                        if Self::param(params, k).is_some() {
+                            return Err(self.invalid(
+                                line,
+                                kw,
+                                format!("*STATIC, {k} ({what}) is not supported"),
+                            ));
+                        }
+                    }
+                    for k in STATIC_NOTED {
+                        if Self::param(params, k).is_some() {
+                            self.deck.notes.push(format!(
+                                "line {line}: *STATIC, {k} does not change Junta's results; skipped"
+                            ));
+                        }
+                    }
+                    let solver = match Self::param(params, "SOLVER") {
+                        None => None,
+                        Some((_, Some(v))) if !v.is_empty() => Some(v.to_uppercase()),
+                        Some(_) => {
+                            return Err(self.invalid(
+                                line,
+                                kw,
+                                "SOLVER needs a value (SPOOLES, PARDISO, PASTIX, ITERATIVE SCALING, ITERATIVE CHOLESKY)",
+                            ))
+                        }
+                    };
                     if self.step_open.is_none() {
                         return Err(self.invalid(
                             line,
@@ -1224,6 +1282,7 @@ impl<'a> Parser<'a> {
                         min_increment: v[2],
                         max_increment: v[3],
                         direct: Self::param(params, "DIRECT").is_some(),
+                        solver,
                         line,
                     });
                 }
