@@ -327,6 +327,27 @@ pub fn run(
             output::write_fractions(&dir, &p.model, &res.u, &res.state, &p.fractions)?;
         }
     }
+    let prints = crate::deck_print::node_prints(input)?;
+    if !prints.is_empty() {
+        // a multi-step deck: the rows of its last step (the result at hand)
+        let last = p.deck_steps.len().max(1) - 1;
+        let mut csv = crate::deck_print::HEADER.to_string();
+        let mut notes = Vec::new();
+        crate::deck_print::rows(
+            &p.model,
+            &prints,
+            last,
+            &res.u,
+            &res.residual,
+            &mut csv,
+            &mut notes,
+        )?;
+        for n in notes {
+            pb.suspend(|| eprintln!("note: {n}"));
+        }
+        std::fs::write(dir.join("node_print.csv"), csv)
+            .with_context(|| format!("writing {}", dir.join("node_print.csv").display()))?;
+    }
     let (advice, advice_lines) =
         output::penalty_advice(&p.model, &|b| p.thickness.get(b).copied())?;
     for l in advice_lines.iter().filter(|l| !l.contains(": good:")) {

@@ -56,3 +56,30 @@ fn static_parameters_that_change_the_answer_are_refused() {
     let err = run_err(&deck);
     assert!(err.contains("BOGUS"), "{err}");
 }
+
+/// `*NODE PRINT` becomes node_print.csv: the cube's `TOTALS=ONLY` RF
+/// request gives one row with CalculiX 2.20's total (Fz = -2224.553 on TOP,
+/// README); a `U` request lists the set's nodes in ascending label with the
+/// prescribed -0.01 in z (exact).
+#[test]
+fn node_print_is_written_as_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(repo().join("examples/cube.inp")).unwrap();
+    let text = text.replace("*END STEP", "*node print, nset=top\nU\n*END STEP");
+    let deck = write(dir.path(), "cube.inp", &text);
+    run_ok(&deck, &dir.path().join("out"));
+    let csv = std::fs::read_to_string(dir.path().join("out/node_print.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("step,set,variable,node,1,2,3"));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows[0][..4], ["1", "TOP", "RF", "total"]);
+    let fz: f64 = rows[0][6].parse().unwrap();
+    assert!(rel(fz, -2224.553) < 1e-6, "{fz}");
+    let u: Vec<&Vec<&str>> = rows.iter().filter(|r| r[2] == "U").collect();
+    assert_eq!(u.len(), 9, "{csv}");
+    let labels: Vec<usize> = u.iter().map(|r| r[3].parse().unwrap()).collect();
+    assert!(labels.windows(2).all(|w| w[0] < w[1]), "{labels:?}");
+    for r in &u {
+        assert_eq!(r[6].parse::<f64>().unwrap(), -0.01, "{r:?}");
+    }
+}

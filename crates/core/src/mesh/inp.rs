@@ -23,7 +23,7 @@
 //! number of steps), `*STATIC [, DIRECT] [, SOLVER=]` (data line `dt0, T, dtmin,
 //! dtmax`; SOLVER is mapped to a back end by the CLI; TIME RESET, TOTAL TIME
 //! AT START, ALLSDTOL, CONTINUE, FACTOR noted and skipped; RIKS,
-//! STABILIZE, FULLY PLASTIC, LONG TERM refused), `*END STEP`; the output requests `*NODE PRINT`, `*NODE FILE`,
+//! STABILIZE, FULLY PLASTIC, LONG TERM refused), `*END STEP`; the output requests `*NODE PRINT` (kept in [`InpDeck::node_prints`]: the CLI writes its `U` and `RF` as CSV), `*NODE FILE`,
 //! `*EL PRINT`, `*EL FILE`, `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*OUTPUT` are
 //! skipped with a note (Junta's outputs are chosen in the scene). Anything
 //! else is an error that lists these keywords.
@@ -496,6 +496,22 @@ pub struct InpDeck {
     pub curve: Option<InpCurve>,
     /// `** junta: output every=N` directive, if any.
     pub every: Option<usize>,
+    /// `*NODE PRINT` requests, in order.
+    pub node_prints: Vec<InpNodePrint>,
+}
+
+/// A `*NODE PRINT, NSET= [, TOTALS=YES|ONLY|NO]` request: its data lines
+/// name the variables (`U`, `RF`, ...), upper case. The set name is as
+/// written (matched case-insensitively); `step` is the index of the
+/// enclosing `*STEP` (`None`: outside any step).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct InpNodePrint {
+    pub nset: String,
+    pub variables: Vec<String>,
+    /// `TOTALS=`: `NO` (default), `YES` (rows and their sum) or `ONLY`.
+    pub totals: String,
+    pub step: Option<usize>,
+    pub line: usize,
 }
 
 impl InpDeck {
@@ -1291,6 +1307,39 @@ impl<'a> Parser<'a> {
                     if self.step_open.take().is_none() {
                         return Err(self.invalid(line, kw, "*END STEP without *STEP"));
                     }
+                }
+                "NODE PRINT" => {
+                    let nset = self.required(line, kw, params, "NSET")?;
+                    let totals = match Self::param(params, "TOTALS") {
+                        None => "NO".to_string(),
+                        Some((_, Some(v))) => v.to_uppercase(),
+                        Some((_, None)) => "YES".to_string(),
+                    };
+                    if !["NO", "YES", "ONLY"].contains(&totals.as_str()) {
+                        return Err(self.invalid(
+                            line,
+                            kw,
+                            format!("TOTALS={totals}: valid are YES, ONLY, NO"),
+                        ));
+                    }
+                    let variables = data
+                        .iter()
+                        .flat_map(|(_, f, _)| f.iter())
+                        .filter(|t| !t.is_empty())
+                        .map(|t| t.to_uppercase())
+                        .collect::<Vec<_>>();
+                    let variables = if variables.is_empty() {
+                        vec!["U".to_string()]
+                    } else {
+                        variables
+                    };
+                    self.deck.node_prints.push(InpNodePrint {
+                        nset,
+                        variables,
+                        totals,
+                        step: self.step_open.map(|_| self.deck.steps.len() - 1),
+                        line,
+                    });
                 }
                 k if OUTPUT_KEYWORDS.contains(&k) => {
                     self.deck.notes.push(format!(
