@@ -83,3 +83,49 @@ fn node_print_is_written_as_csv() {
         assert_eq!(r[6].parse::<f64>().unwrap(), -0.01, "{r:?}");
     }
 }
+
+/// The integers of the VTU DataArray `name` (ascii).
+fn vtu_ints(vtu: &str, name: &str) -> Vec<u64> {
+    let tag = format!("Name=\"{name}\"");
+    let at = vtu
+        .find(&tag)
+        .unwrap_or_else(|| panic!("no {name} in the VTU"));
+    let body = &vtu[at..];
+    let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+    body.split_whitespace()
+        .map(|t| t.parse().unwrap())
+        .collect()
+}
+
+/// results.vtu carries the deck's own numbers: the cube's elements
+/// renumbered 101..108 (in deck order) come back as `element_id`, its
+/// nodes as `node_id` in point order.
+#[test]
+fn vtu_carries_the_deck_labels() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(repo().join("examples/cube.inp")).unwrap();
+    let mut in_elements = false;
+    let mut out = Vec::new();
+    for l in text.lines() {
+        if l.starts_with('*') {
+            in_elements = l.to_uppercase().starts_with("*ELEMENT");
+            out.push(l.to_string());
+        } else if in_elements {
+            let (label, rest) = l.split_once(',').unwrap();
+            out.push(format!(
+                "{},{rest}",
+                100 + label.trim().parse::<u64>().unwrap()
+            ));
+        } else {
+            out.push(l.to_string());
+        }
+    }
+    let deck = write(dir.path(), "cube.inp", &out.join("\n"));
+    run_ok(&deck, &dir.path().join("out"));
+    let vtu = std::fs::read_to_string(dir.path().join("out/results.vtu")).unwrap();
+    assert_eq!(
+        vtu_ints(&vtu, "element_id"),
+        (101..=108).collect::<Vec<_>>()
+    );
+    assert_eq!(vtu_ints(&vtu, "node_id"), (1..=27).collect::<Vec<_>>());
+}

@@ -2418,8 +2418,10 @@ impl<'a> Parser<'a> {
             v.dedup();
             mesh.element_sets.insert(s.name, v);
         }
+        mesh.element_labels = mesh.blocks.iter().map(|b| vec![0; b.len()]).collect();
         for (id, e) in self.elems.iter().enumerate() {
             self.deck.element_labels.insert(e.label, refs[id]);
+            mesh.element_labels[refs[id].block][refs[id].element] = e.label;
         }
         mesh.validate().map_err(|e| InpError::Invalid {
             file: self.file.into(),
