@@ -129,3 +129,18 @@ fn vtu_carries_the_deck_labels() {
     );
     assert_eq!(vtu_ints(&vtu, "node_id"), (1..=27).collect::<Vec<_>>());
 }
+
+/// `*ELASTIC, TYPE=ORTHO` (nine D_ijkl) on the unit cube, TOP sheared by
+/// 0.002 in x and compressed by 0.01 in z: CalculiX 2.11 on the same deck
+/// (tests/data/ortho_cube.inp, `ccx ortho_cube`) prints the TOP total force
+/// 4.169381E+01, -1.947878E-14, -8.090795E+02.
+#[test]
+fn elastic_ortho_matches_calculix() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = repo().join("crates/cli/tests/data/ortho_cube.inp");
+    let s = run_ok(&deck, dir.path());
+    let r = &s["reactions"]["TOP"];
+    let (fx, fz) = (r[0].as_f64().unwrap(), r[2].as_f64().unwrap());
+    assert!(rel(fx, 4.169381e1) < 2e-6, "{fx}");
+    assert!(rel(fz, -8.090795e2) < 2e-6, "{fz}");
+}

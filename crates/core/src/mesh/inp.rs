@@ -14,7 +14,7 @@
 //! Keywords: `*HEADING`, `*NODE [, NSET=]`, `*ELEMENT, TYPE= [, ELSET=]`,
 //! `*NSET, NSET= [, GENERATE]`, `*ELSET, ELSET= [, GENERATE]`,
 //! `*MATERIAL, NAME=`, `*ELASTIC [, TYPE=ISOTROPIC | ENGINEERING CONSTANTS |
-//! TRACTION]`, `*DENSITY` (kept, noted as unused), `*DAMAGE INITIATION`,
+//! ORTHO | TRACTION]`, `*DENSITY` (kept, noted as unused), `*DAMAGE INITIATION`,
 //! `*DAMAGE EVOLUTION`, `*DAMAGE STABILIZATION` (cohesive damage, below),
 //! `*SOLID SECTION, ELSET=, MATERIAL=`, `*COHESIVE SECTION, ELSET=,
 //! MATERIAL=, RESPONSE=TRACTION SEPARATION [, THICKNESS=SPECIFIED]` (data
@@ -1644,13 +1644,20 @@ impl<'a> Parser<'a> {
                 ],
             ),
             "TRACTION" => (3, &["K_nn", "K_ss", "K_tt"]),
+            "ORTHOTROPIC" | "ORTHO" => (
+                9,
+                &[
+                    "D1111", "D1122", "D2222", "D1133", "D2233", "D3333", "D1212", "D1313", "D2323",
+                ],
+            ),
             _ => {
                 return Err(InpError::Parameter {
                     file: self.file.into(),
                     line,
                     keyword: kw.into(),
                     parameter: format!("TYPE={ty}"),
-                    valid: "TYPE=ISOTROPIC, TYPE=ENGINEERING CONSTANTS, TYPE=TRACTION".into(),
+                    valid: "TYPE=ISOTROPIC, TYPE=ENGINEERING CONSTANTS, TYPE=ORTHO, TYPE=TRACTION"
+                        .into(),
                 })
             }
         };
@@ -1697,6 +1704,44 @@ impl<'a> Parser<'a> {
                     v.len()
                 ),
             ));
+        }
+        if ty == "ORTHO" || ty == "ORTHOTROPIC" {
+            // stiffness -> engineering constants: S = inverse of the normal
+            // block [[D1111 D1122 D1133] [D1122 D2222 D2233] [D1133 D2233
+            // D3333]]; E_i = 1 / S_ii, nu_ij = -S_ij / S_ii (S_ij = -nu_ij /
+            // E_i), G_ij = D_ijij (Abaqus Analysis User's Guide, "Linear
+            // elastic behavior", orthotropic D_ijkl)
+            let d = [[v[0], v[1], v[3]], [v[1], v[2], v[4]], [v[3], v[4], v[5]]];
+            let det = d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1])
+                - d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0])
+                + d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
+            let pos = d[0][0] > 0.0 && d[0][0] * d[1][1] - d[0][1] * d[0][1] > 0.0 && det > 0.0;
+            if !pos || !(v[6] > 0.0 && v[7] > 0.0 && v[8] > 0.0) {
+                return Err(self.invalid(
+                    data[0].0,
+                    kw,
+                    "TYPE=ORTHO: the stiffness is not positive definite",
+                ));
+            }
+            let cof = |i: usize, j: usize| {
+                let (r, c) = ([(i + 1) % 3, (i + 2) % 3], [(j + 1) % 3, (j + 2) % 3]);
+                d[r[0]][c[0]] * d[r[1]][c[1]] - d[r[0]][c[1]] * d[r[1]][c[0]]
+            };
+            // symmetric: S_ij = cof(j, i) / det = cof(i, j) / det
+            let sm = |i: usize, j: usize| cof(j, i) / det;
+            let e = [1.0 / sm(0, 0), 1.0 / sm(1, 1), 1.0 / sm(2, 2)];
+            let (g12, g13, g23) = (v[6], v[7], v[8]);
+            v = vec![
+                e[0],
+                e[1],
+                e[2],
+                -sm(0, 1) / sm(0, 0),
+                -sm(0, 2) / sm(0, 0),
+                -sm(1, 2) / sm(1, 1),
+                g12,
+                g13,
+                g23,
+            ];
         }
         let kind = match count {
             2 => InpMaterialKind::Isotropic { e: v[0], nu: v[1] },
