@@ -107,6 +107,43 @@ pub struct DeckModel {
     pub curve: Option<CurveSpec>,
     /// `** junta: output every=N` directive.
     pub every: Option<usize>,
+    /// The linear solver the deck's `*STATIC, SOLVER=` asks for (a
+    /// registry key), if any.
+    pub solver: Option<String>,
+}
+
+/// Map a `*STATIC, SOLVER=` name to a Junta back end, with a note.
+///
+/// Direct solvers (CalculiX SPOOLES, PARDISO, PASTIX; Abaqus DIRECT or
+/// DEFAULT) -> `cholesky` (SPD, the linear and hardening case) or `ldlt`
+/// (a softening cohesive law); CalculiX ITERATIVE SCALING / ITERATIVE
+/// CHOLESKY (and Abaqus ITERATIVE) -> `cg`. Anything else is an error.
+pub fn solver_of_deck(
+    name: &str,
+    softening: bool,
+    at: &str,
+    notes: &mut Vec<String>,
+) -> Result<String> {
+    let n = name.split_whitespace().collect::<Vec<_>>().join(" ");
+    let key = match n.as_str() {
+        "SPOOLES" | "PARDISO" | "PASTIX" | "DIRECT" | "DEFAULT" | "SGI" | "TAUCS" => {
+            if softening {
+                "ldlt"
+            } else {
+                "cholesky"
+            }
+        }
+        "ITERATIVE SCALING" | "ITERATIVE CHOLESKY" | "ITERATIVE" => "cg",
+        _ => {
+            return Err(anyhow!(
+                "{at}: *STATIC, SOLVER={name}: unknown solver; valid: SPOOLES, PARDISO, PASTIX, ITERATIVE SCALING, ITERATIVE CHOLESKY"
+            ))
+        }
+    };
+    notes.push(format!(
+        "{at}: *STATIC, SOLVER={name} -> Junta's `{key}` back end (override with --solver type=...)"
+    ));
+    Ok(key.to_string())
 }
 
 /// The incremental analysis of a deck (see the module docs).
@@ -317,6 +354,21 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         elements
             .push((entry.build)(&build).map_err(|e| anyhow!("{file}: block `{}`: {e}", b.name))?);
     }
+    let mut solver = None;
+    for st in &deck.steps {
+        if let Some(p) = &st.static_procedure {
+            if let Some(name) = &p.solver {
+                let at = format!("{file}:{}", p.line);
+                let key = solver_of_deck(name, softening, &at, &mut notes)?;
+                if solver.as_ref().is_some_and(|k| k != &key) {
+                    return Err(anyhow!(
+                        "{at}: *STATIC, SOLVER={name} differs from an earlier step's solver; Junta uses one back end per run"
+                    ));
+                }
+                solver = Some(key);
+            }
+        }
+    }
     let steps = deck_steps(&deck, &file)?;
     let incremental = if softening {
         Some(incremental_program(&deck, &steps, &file, &mut notes)?)
@@ -409,6 +461,7 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         incremental,
         curve,
         every,
+        solver,
     })
 }
 

@@ -18,6 +18,7 @@ use junta_interface as _;
 use junta_solvers as _;
 
 mod deck;
+mod deck_print;
 mod limits;
 mod nonlinear;
 mod output;

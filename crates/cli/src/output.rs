@@ -159,6 +159,12 @@ pub fn write_vtu(path: &Path, model: &Model, u: &[f64], cells: &CellResults) -> 
         .enumerate()
         .filter(|(_, b)| b.shape.is_solid())
         .flat_map(|(i, b)| std::iter::repeat_n(i as f64, b.len()));
+    let element_ids = mesh
+        .blocks
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| b.shape.is_solid())
+        .flat_map(|(i, b)| (0..b.len()).map(move |e| mesh.element_label(i, e) as u64));
     (|| -> std::io::Result<()> {
         vtu_head(&mut w, mesh.nodes.len(), ncells)?;
         write_array(
@@ -176,6 +182,13 @@ pub fn write_vtu(path: &Path, model: &Model, u: &[f64], cells: &CellResults) -> 
             "      </Cells>\n      <PointData Vectors=\"displacement\">"
         )?;
         write_array(&mut w, "displacement", 3, u.iter().copied())?;
+        // the input's own numbers (deck or mesh-file labels)
+        write_ints(
+            &mut w,
+            "node_id",
+            "Int64",
+            (0..mesh.nodes.len()).map(|n| mesh.node_label(n) as u64),
+        )?;
         writeln!(w, "      </PointData>\n      <CellData Tensors=\"stress\">")?;
         write_array(
             &mut w,
@@ -185,6 +198,7 @@ pub fn write_vtu(path: &Path, model: &Model, u: &[f64], cells: &CellResults) -> 
         )?;
         write_array(&mut w, "mises", 1, cells.mises.iter().copied())?;
         write_array(&mut w, "block", 1, block_ids)?;
+        write_ints(&mut w, "element_id", "Int64", element_ids)?;
         writeln!(w, "      </CellData>")?;
         vtu_tail(&mut w)
     })()

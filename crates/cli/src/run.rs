@@ -186,7 +186,8 @@ fn prepare_unchecked(input: &Path, solver_overrides: &[String]) -> Result<Prepar
         Some("inp") => {
             let d = deck::build_model(input)?;
             let mut notes = d.notes;
-            let (mut key, mut table) = ("auto".to_string(), toml::Table::new());
+            let mut key = d.solver.clone().unwrap_or_else(|| "auto".to_string());
+            let mut table = toml::Table::new();
             apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
             let solver = resolve_solver(
                 &mut key,
@@ -332,6 +333,27 @@ pub fn run(
         if !p.fractions.is_empty() {
             output::write_fractions(&dir, &p.model, &res.u, &res.state, &p.fractions)?;
         }
+    }
+    let prints = crate::deck_print::node_prints(input)?;
+    if !prints.is_empty() {
+        // a multi-step deck: the rows of its last step (the result at hand)
+        let last = p.deck_steps.len().max(1) - 1;
+        let mut csv = crate::deck_print::HEADER.to_string();
+        let mut notes = Vec::new();
+        crate::deck_print::rows(
+            &p.model,
+            &prints,
+            last,
+            &res.u,
+            &res.residual,
+            &mut csv,
+            &mut notes,
+        )?;
+        for n in notes {
+            pb.suspend(|| eprintln!("note: {n}"));
+        }
+        std::fs::write(dir.join("node_print.csv"), csv)
+            .with_context(|| format!("writing {}", dir.join("node_print.csv").display()))?;
     }
     let (advice, advice_lines) =
         output::penalty_advice(&p.model, &|b| p.thickness.get(b).copied())?;

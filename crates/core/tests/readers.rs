@@ -118,11 +118,14 @@ fn cube_h8_deck() {
     assert!(!deck.steps[0].nlgeom);
     assert!(deck.steps[0].static_procedure.is_some());
     assert!(deck.heading.contains("2x2x2 C3D8"));
-    assert!(
-        deck.notes.iter().any(|n| n.contains("*NODE PRINT")),
-        "{:?}",
-        deck.notes
+    // *NODE PRINT is kept (the CLI writes it as CSV), no longer a note
+    assert_eq!(deck.node_prints.len(), 1, "{:?}", deck.notes);
+    let p = &deck.node_prints[0];
+    assert_eq!(
+        (p.nset.as_str(), p.totals.as_str(), p.step),
+        ("TOP", "ONLY", Some(0))
     );
+    assert_eq!(p.variables, ["RF"]);
 }
 
 #[test]

@@ -470,8 +470,11 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
                 mesh.blocks.len() - 1
             }
         };
-        for (_, conn) in &b.elements {
+        for (tag, conn) in &b.elements {
             let e = mesh.blocks[bi].len();
+            // the mesh file's element tags (Mesh::element_labels)
+            mesh.element_labels.resize(mesh.blocks.len(), Vec::new());
+            mesh.element_labels[bi].push(*tag);
             for &k in &GMSH_TO_OURS_HEX27[..npe] {
                 let id = resolve(&c, b.line, conn[k])?;
                 mesh.blocks[bi].connectivity.push(id);

@@ -14,14 +14,16 @@
 //! Keywords: `*HEADING`, `*NODE [, NSET=]`, `*ELEMENT, TYPE= [, ELSET=]`,
 //! `*NSET, NSET= [, GENERATE]`, `*ELSET, ELSET= [, GENERATE]`,
 //! `*MATERIAL, NAME=`, `*ELASTIC [, TYPE=ISOTROPIC | ENGINEERING CONSTANTS |
-//! TRACTION]`, `*DENSITY` (kept, noted as unused), `*DAMAGE INITIATION`,
+//! ORTHO | TRACTION]`, `*DENSITY` (kept, noted as unused), `*DAMAGE INITIATION`,
 //! `*DAMAGE EVOLUTION`, `*DAMAGE STABILIZATION` (cohesive damage, below),
 //! `*SOLID SECTION, ELSET=, MATERIAL=`, `*COHESIVE SECTION, ELSET=,
 //! MATERIAL=, RESPONSE=TRACTION SEPARATION [, THICKNESS=SPECIFIED]` (data
 //! line: the constitutive thickness, default 1), `*BOUNDARY [,
 //! OP=MOD|NEW]`, `*CLOAD [, OP=MOD|NEW]`, `*STEP [, NLGEOM, INC, NAME]` (any
-//! number of steps), `*STATIC [, DIRECT]` (data line `dt0, T, dtmin,
-//! dtmax`), `*END STEP`; the output requests `*NODE PRINT`, `*NODE FILE`,
+//! number of steps), `*STATIC [, DIRECT] [, SOLVER=]` (data line `dt0, T, dtmin,
+//! dtmax`; SOLVER is mapped to a back end by the CLI; TIME RESET, TOTAL TIME
+//! AT START, ALLSDTOL, CONTINUE, FACTOR noted and skipped; RIKS,
+//! STABILIZE, FULLY PLASTIC, LONG TERM refused), `*END STEP`; the output requests `*NODE PRINT` (kept in [`InpDeck::node_prints`]: the CLI writes its `U` and `RF` as CSV), `*NODE FILE`,
 //! `*EL PRINT`, `*EL FILE`, `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*OUTPUT` are
 //! skipped with a note (Junta's outputs are chosen in the scene). Anything
 //! else is an error that lists these keywords.
@@ -423,8 +425,34 @@ pub struct InpStatic {
     pub max_increment: Option<f64>,
     /// DIRECT parameter (fixed increments).
     pub direct: bool,
+    /// `SOLVER=` (upper case, as written): the CLI maps it to a back end.
+    pub solver: Option<String>,
     pub line: usize,
 }
+
+/// Parameters of `*STATIC` that do not change a linear-static or
+/// incremental result of Junta (noted and skipped): CalculiX `TIME RESET`,
+/// `TOTAL TIME AT START` (time labels only), Abaqus `ALLSDTOL`, `CONTINUE`,
+/// `FACTOR` (automatic stabilisation controls without `STABILIZE`).
+const STATIC_NOTED: [&str; 5] = [
+    "TIME RESET",
+    "TOTAL TIME AT START",
+    "ALLSDTOL",
+    "CONTINUE",
+    "FACTOR",
+];
+
+/// Parameters of `*STATIC` that change the answer and that Junta does not
+/// have: an error naming the line.
+const STATIC_REFUSED: [(&str, &str); 4] = [
+    (
+        "RIKS",
+        "the Riks arc-length method (use a TOML scene with an arc-length analysis)",
+    ),
+    ("STABILIZE", "automatic viscous stabilisation"),
+    ("FULLY PLASTIC", "fully plastic limit analysis"),
+    ("LONG TERM", "long-term viscoelastic response"),
+];
 
 /// A `*STEP ... *END STEP`.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -468,6 +496,22 @@ pub struct InpDeck {
     pub curve: Option<InpCurve>,
     /// `** junta: output every=N` directive, if any.
     pub every: Option<usize>,
+    /// `*NODE PRINT` requests, in order.
+    pub node_prints: Vec<InpNodePrint>,
+}
+
+/// A `*NODE PRINT, NSET= [, TOTALS=YES|ONLY|NO]` request: its data lines
+/// name the variables (`U`, `RF`, ...), upper case. The set name is as
+/// written (matched case-insensitively); `step` is the index of the
+/// enclosing `*STEP` (`None`: outside any step).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct InpNodePrint {
+    pub nset: String,
+    pub variables: Vec<String>,
+    /// `TOTALS=`: `NO` (default), `YES` (rows and their sum) or `ONLY`.
+    pub totals: String,
+    pub step: Option<usize>,
+    pub line: usize,
 }
 
 impl InpDeck {
@@ -1185,7 +1229,37 @@ impl<'a> Parser<'a> {
                     self.step_open = Some(line);
                 }
                 "STATIC" => {
-                    self.check_params(line, kw, params, &["DIRECT"])?;
+                    let mut valid = vec!["DIRECT", "SOLVER"];
+                    valid.extend(STATIC_NOTED);
+                    valid.extend(STATIC_REFUSED.iter().map(|(k, _)| *k));
+                    self.check_params(line, kw, params, &valid)?;
+                    for (k, what) in STATIC_REFUSED {
+                        if Self::param(params, k).is_some() {
+                            return Err(self.invalid(
+                                line,
+                                kw,
+                                format!("*STATIC, {k} ({what}) is not supported"),
+                            ));
+                        }
+                    }
+                    for k in STATIC_NOTED {
+                        if Self::param(params, k).is_some() {
+                            self.deck.notes.push(format!(
+                                "line {line}: *STATIC, {k} does not change Junta's results; skipped"
+                            ));
+                        }
+                    }
+                    let solver = match Self::param(params, "SOLVER") {
+                        None => None,
+                        Some((_, Some(v))) if !v.is_empty() => Some(v.to_uppercase()),
+                        Some(_) => {
+                            return Err(self.invalid(
+                                line,
+                                kw,
+                                "SOLVER needs a value (SPOOLES, PARDISO, PASTIX, ITERATIVE SCALING, ITERATIVE CHOLESKY)",
+                            ))
+                        }
+                    };
                     if self.step_open.is_none() {
                         return Err(self.invalid(
                             line,
@@ -1224,6 +1298,7 @@ impl<'a> Parser<'a> {
                         min_increment: v[2],
                         max_increment: v[3],
                         direct: Self::param(params, "DIRECT").is_some(),
+                        solver,
                         line,
                     });
                 }
@@ -1232,6 +1307,39 @@ impl<'a> Parser<'a> {
                     if self.step_open.take().is_none() {
                         return Err(self.invalid(line, kw, "*END STEP without *STEP"));
                     }
+                }
+                "NODE PRINT" => {
+                    let nset = self.required(line, kw, params, "NSET")?;
+                    let totals = match Self::param(params, "TOTALS") {
+                        None => "NO".to_string(),
+                        Some((_, Some(v))) => v.to_uppercase(),
+                        Some((_, None)) => "YES".to_string(),
+                    };
+                    if !["NO", "YES", "ONLY"].contains(&totals.as_str()) {
+                        return Err(self.invalid(
+                            line,
+                            kw,
+                            format!("TOTALS={totals}: valid are YES, ONLY, NO"),
+                        ));
+                    }
+                    let variables = data
+                        .iter()
+                        .flat_map(|(_, f, _)| f.iter())
+                        .filter(|t| !t.is_empty())
+                        .map(|t| t.to_uppercase())
+                        .collect::<Vec<_>>();
+                    let variables = if variables.is_empty() {
+                        vec!["U".to_string()]
+                    } else {
+                        variables
+                    };
+                    self.deck.node_prints.push(InpNodePrint {
+                        nset,
+                        variables,
+                        totals,
+                        step: self.step_open.map(|_| self.deck.steps.len() - 1),
+                        line,
+                    });
                 }
                 k if OUTPUT_KEYWORDS.contains(&k) => {
                     self.deck.notes.push(format!(
@@ -1551,13 +1659,20 @@ impl<'a> Parser<'a> {
                 ],
             ),
             "TRACTION" => (3, &["K_nn", "K_ss", "K_tt"]),
+            "ORTHOTROPIC" | "ORTHO" => (
+                9,
+                &[
+                    "D1111", "D1122", "D2222", "D1133", "D2233", "D3333", "D1212", "D1313", "D2323",
+                ],
+            ),
             _ => {
                 return Err(InpError::Parameter {
                     file: self.file.into(),
                     line,
                     keyword: kw.into(),
                     parameter: format!("TYPE={ty}"),
-                    valid: "TYPE=ISOTROPIC, TYPE=ENGINEERING CONSTANTS, TYPE=TRACTION".into(),
+                    valid: "TYPE=ISOTROPIC, TYPE=ENGINEERING CONSTANTS, TYPE=ORTHO, TYPE=TRACTION"
+                        .into(),
                 })
             }
         };
@@ -1604,6 +1719,44 @@ impl<'a> Parser<'a> {
                     v.len()
                 ),
             ));
+        }
+        if ty == "ORTHO" || ty == "ORTHOTROPIC" {
+            // stiffness -> engineering constants: S = inverse of the normal
+            // block [[D1111 D1122 D1133] [D1122 D2222 D2233] [D1133 D2233
+            // D3333]]; E_i = 1 / S_ii, nu_ij = -S_ij / S_ii (S_ij = -nu_ij /
+            // E_i), G_ij = D_ijij (Abaqus Analysis User's Guide, "Linear
+            // elastic behavior", orthotropic D_ijkl)
+            let d = [[v[0], v[1], v[3]], [v[1], v[2], v[4]], [v[3], v[4], v[5]]];
+            let det = d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1])
+                - d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0])
+                + d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
+            let pos = d[0][0] > 0.0 && d[0][0] * d[1][1] - d[0][1] * d[0][1] > 0.0 && det > 0.0;
+            if !(pos && v[6] > 0.0 && v[7] > 0.0 && v[8] > 0.0) {
+                return Err(self.invalid(
+                    data[0].0,
+                    kw,
+                    "TYPE=ORTHO: the stiffness is not positive definite",
+                ));
+            }
+            let cof = |i: usize, j: usize| {
+                let (r, c) = ([(i + 1) % 3, (i + 2) % 3], [(j + 1) % 3, (j + 2) % 3]);
+                d[r[0]][c[0]] * d[r[1]][c[1]] - d[r[0]][c[1]] * d[r[1]][c[0]]
+            };
+            // symmetric: S_ij = cof(j, i) / det = cof(i, j) / det
+            let sm = |i: usize, j: usize| cof(j, i) / det;
+            let e = [1.0 / sm(0, 0), 1.0 / sm(1, 1), 1.0 / sm(2, 2)];
+            let (g12, g13, g23) = (v[6], v[7], v[8]);
+            v = vec![
+                e[0],
+                e[1],
+                e[2],
+                -sm(0, 1) / sm(0, 0),
+                -sm(0, 2) / sm(0, 0),
+                -sm(1, 2) / sm(1, 1),
+                g12,
+                g13,
+                g23,
+            ];
         }
         let kind = match count {
             2 => InpMaterialKind::Isotropic { e: v[0], nu: v[1] },
@@ -2325,8 +2478,10 @@ impl<'a> Parser<'a> {
             v.dedup();
             mesh.element_sets.insert(s.name, v);
         }
+        mesh.element_labels = mesh.blocks.iter().map(|b| vec![0; b.len()]).collect();
         for (id, e) in self.elems.iter().enumerate() {
             self.deck.element_labels.insert(e.label, refs[id]);
+            mesh.element_labels[refs[id].block][refs[id].element] = e.label;
         }
         mesh.validate().map_err(|e| InpError::Invalid {
             file: self.file.into(),

@@ -79,6 +79,10 @@ pub struct Mesh {
     pub element_sets: BTreeMap<String, Vec<ElementRef>>,
     /// Named face sets (for pressures and interfaces).
     pub face_sets: BTreeMap<String, Vec<FaceRef>>,
+    /// The user's element labels per block (`element_labels[block][e]`,
+    /// e.g. `.inp` numbers); a missing block or element means the running
+    /// number over all blocks, 1-based (see [`Mesh::element_label`]).
+    pub element_labels: Vec<Vec<usize>>,
 }
 
 fn names<T>(m: &BTreeMap<String, T>) -> String {
@@ -98,6 +102,22 @@ impl Mesh {
     /// Label of node `i` for messages.
     pub fn node_label(&self, i: usize) -> usize {
         self.node_labels.get(i).copied().unwrap_or(i + 1)
+    }
+
+    /// Label of element `e` of block `block`: the user's
+    /// ([`Mesh::element_labels`]) or the 1-based running number over the
+    /// blocks in order.
+    pub fn element_label(&self, block: usize, e: usize) -> usize {
+        match self.element_labels.get(block).and_then(|l| l.get(e)) {
+            Some(&l) => l,
+            None => {
+                let before: usize = self.blocks[..block.min(self.blocks.len())]
+                    .iter()
+                    .map(ElementBlock::len)
+                    .sum();
+                before + e + 1
+            }
+        }
     }
 
     /// Node set `name`, or an error listing the defined sets.

@@ -1,0 +1,106 @@
+//! `*NODE PRINT` requests of a deck, honoured as a CSV table
+//! (`node_print.csv` in the output directory), so that a deck's printed
+//! results compare line by line with CalculiX's `.dat`.
+//!
+//! One row per node of the named set, in ascending node label as CalculiX
+//! prints them: `step,set,variable,node,1,2,3` where `variable` is `U`
+//! (displacements) or `RF` (reaction forces, the assembled residual
+//! `f_int - f_ext` at the node, CalculiX's sign). With `TOTALS=YES` a row
+//! `node = total` follows the nodes of each set; with `TOTALS=ONLY` it is
+//! the only row. Other variables (`NT`, `PU`, ...) have no meaning in a
+//! Junta run: noted, not written. Only the steps Junta solves get rows:
+//! the request's own step, or the last solved step for a request written
+//! outside any step.
+
+use anyhow::{anyhow, Context, Result};
+use junta_core::mesh::inp::{parse_inp, InpNodePrint};
+use junta_core::Model;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The `*NODE PRINT` requests of the deck `input`, or none for a scene.
+pub fn node_prints(input: &Path) -> Result<Vec<InpNodePrint>> {
+    if input.extension().and_then(|e| e.to_str()) != Some("inp") {
+        return Ok(Vec::new());
+    }
+    let text = std::fs::read_to_string(input)
+        .with_context(|| format!("cannot read deck {}", input.display()))?;
+    let deck = parse_inp(&text, &input.display().to_string()).map_err(|e| anyhow!("{e}"))?;
+    Ok(deck.node_prints)
+}
+
+/// Append the rows of the requests of step `step` (0-based) for the
+/// solution `u` and the residual `r` (both `3 * node + component`) to
+/// `out`; `notes` gets what was skipped.
+pub fn rows(
+    model: &Model,
+    prints: &[InpNodePrint],
+    step: usize,
+    u: &[f64],
+    r: &[f64],
+    out: &mut String,
+    notes: &mut Vec<String>,
+) -> Result<()> {
+    for p in prints.iter().filter(|p| p.step.unwrap_or(step) == step) {
+        let Some((name, nodes)) = model
+            .mesh
+            .node_sets
+            .iter()
+            .find(|(k, _)| k.eq_ignore_ascii_case(&p.nset))
+        else {
+            return Err(anyhow!(
+                "line {}: *NODE PRINT, NSET={}: no such node set",
+                p.line,
+                p.nset
+            ));
+        };
+        let mut nodes: Vec<usize> = nodes.clone();
+        nodes.sort_by_key(|&n| model.mesh.node_label(n));
+        nodes.dedup();
+        for v in &p.variables {
+            let field = match v.as_str() {
+                "U" => u,
+                "RF" => r,
+                other => {
+                    notes.push(format!(
+                        "line {}: *NODE PRINT variable {other} has no Junta counterpart; not written",
+                        p.line
+                    ));
+                    continue;
+                }
+            };
+            let mut total = [0.0; 3];
+            for &n in &nodes {
+                let x = [0, 1, 2].map(|c| field[3 * n + c]);
+                for c in 0..3 {
+                    total[c] += x[c];
+                }
+                if p.totals != "ONLY" {
+                    let _ = writeln!(
+                        out,
+                        "{},{name},{v},{},{:e},{:e},{:e}",
+                        step + 1,
+                        model.mesh.node_label(n),
+                        x[0],
+                        x[1],
+                        x[2]
+                    );
+                }
+            }
+            if p.totals != "NO" {
+                let _ = writeln!(
+                    out,
+                    "{},{name},{v},total,{:e},{:e},{:e}",
+                    step + 1,
+                    total[0],
+                    total[1],
+                    total[2]
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Header of `node_print.csv`.
+pub const HEADER: &str = "step,set,variable,node,1,2,3\n";
