@@ -8,7 +8,7 @@
 //! |---|---|---|
 //! | `cholesky` | [`CholeskySolver`] | supernodal Cholesky on faer's symbolic analysis and dense kernels, nested-dissection or AMD ordering ([`ordering`]; by default the one with fewer predicted flops), double or mixed precision ([`Precision`]), iterative refinement, conditioning warnings |
 //! | `ldlt` | [`LdltSolver`] | supernodal `L D L^T` for symmetric indefinite (softening) tangents: Bunch-Kaufman 1x1/2x2 pivoting within each panel on the same ordering and symbolic analysis as `cholesky`, inertia (`negative_pivots`) in the report, static perturbation of tiny pivots with iterative refinement |
-//! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi or 3×3 nodal block-Jacobi |
+//! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi, 3×3 nodal block-Jacobi or smoothed-aggregation AMG ([`amg`]) with rigid-body modes per body |
 //!
 //! Embedders can skip the registry:
 //!
@@ -31,6 +31,7 @@
 //! by key must reference this crate (`use junta_solvers as _;`) so that the
 //! linker keeps the registrations.
 
+pub mod amg;
 pub mod cg;
 pub mod cholesky;
 mod common;

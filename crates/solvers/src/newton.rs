@@ -506,6 +506,7 @@ struct Work<'m> {
     asm: Assembler,
     k: SymmetricCsc,
     coords: Vec<[f64; 3]>,
+    layout: junta_core::EquationLayout,
     free_dofs: Vec<usize>,
     fext_free_norm: f64,
     f_int: Vec<f64>,
@@ -634,6 +635,7 @@ impl Work<'_> {
             self.iterations += 1;
             if !self.analyzed {
                 let t = Instant::now();
+                solver.set_layout(&self.layout);
                 solver.analyze(&self.k, Some(&self.coords))?;
                 self.timings.analyze += t.elapsed().as_secs_f64();
                 self.analyzed = true;
@@ -882,6 +884,7 @@ where
         k: asm.pattern.clone(),
         asm,
         coords: model.dofs.equation_coords(&model.mesh.nodes),
+        layout: model.equation_layout(),
         free_dofs,
         fext_free_norm,
         f_int: vec![0.0; ndof],
