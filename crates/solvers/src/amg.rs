@@ -11,25 +11,28 @@
 //! 1. **Strength of connection** on nodal blocks: with `||.||_F` the
 //!    Frobenius norm of the block `A_IJ` between nodes `I != J`, `J` is a
 //!    strong neighbour of `I` when
-//!    `||A_IJ||_F^2 > θ^2 ||A_II||_F ||A_JJ||_F` and `I`, `J` belong to the
-//!    same *body* (`θ = 0`, the default, keeps every non-zero block). Nodes of
-//!    different bodies (solids joined only by interface elements, see
-//!    [`junta_core::EquationLayout`]) are never strong neighbours, so no
-//!    aggregate crosses an interface.
+//!    `||A_IJ||_F^2 > θ^2 ||A_II||_F ||A_JJ||_F`, with `θ = theta` (0 by
+//!    default: every non-zero block) when `I` and `J` belong to the same
+//!    *body*, and `θ = theta_interface` (0.25) when they belong to different
+//!    bodies (solids joined only by interface elements, see
+//!    [`junta_core::EquationLayout`]). A stiff bond (penalty `d a` large
+//!    against the solid's nodal stiffness) couples its node pairs strongly
+//!    and is aggregated across, like one body; a soft, damaged or failed
+//!    interface is weak, and no aggregate crosses it.
 //! 2. **Aggregation** (Vaněk, Mandel, Brezina 1996), three passes over the
 //!    node graph: (i) a node whose strong neighbours are all free forms an
 //!    aggregate with them; (ii) every remaining node joins the aggregate of
 //!    a strong neighbour; (iii) what is left forms aggregates with its free
 //!    strong neighbours (a node without any is an aggregate alone).
-//! 3. **Near-null space** `B_0` (`n × 6`): the rigid-body modes of each
-//!    body from the node coordinates `x` (relative to the centroid, scaled
-//!    by the model size): translations `e_1, e_2, e_3` and rotations
-//!    `θ × (x - x_c)`, evaluated at the node and component of each
-//!    equation. A rigid motion of one body is a null vector of that body's
-//!    stiffness; when bodies are joined only by soft or failed interfaces
-//!    these are near-null vectors of the whole system, and because
-//!    aggregates stay inside bodies the coarse spaces contain the rigid
-//!    modes of every body separately.
+//! 3. **Near-null space** `B_0` (`n × 6`): the rigid-body modes from the
+//!    node coordinates `x` (relative to the centroid, scaled by the model
+//!    size): translations `e_1, e_2, e_3` and rotations `θ × (x - x_c)`,
+//!    evaluated at the node and component of each equation. A rigid motion
+//!    of one body is a null vector of that body's stiffness; when bodies are
+//!    joined only by soft or failed interfaces these are near-null vectors
+//!    of the whole system. Because aggregates stay inside such bodies, the
+//!    coarse spaces contain the rigid modes of every body separately (the
+//!    per-body near-null space) without storing more than six columns.
 //! 4. **Tentative prolongator** `T`: per aggregate `a`, the rows of `B_l`
 //!    of its equations, `B_a = Q_a R_a` by modified Gram-Schmidt (twice),
 //!    dropping columns whose remainder is below `1e-8` of their norm (an
@@ -76,6 +79,10 @@ pub const NULL_DIM: usize = 6;
 pub struct AmgSettings {
     /// Strength threshold `θ` (0: every non-zero block is strong).
     pub theta: f64,
+    /// Strength threshold between nodes of different bodies (joined by
+    /// interface elements): a bond this strong is aggregated across, a
+    /// weaker (soft, damaged, failed) one is not.
+    pub theta_interface: f64,
     /// Stop coarsening at this many equations (dense coarse solve).
     pub max_coarse: usize,
     /// Maximum number of levels.
@@ -88,6 +95,7 @@ impl Default for AmgSettings {
     fn default() -> Self {
         AmgSettings {
             theta: 0.0,
+            theta_interface: 0.25,
             max_coarse: 1500,
             max_levels: 12,
             degree: 2,
@@ -315,42 +323,25 @@ fn nonpd(detail: String) -> SolverError {
     SolverError::NotPositiveDefinite { detail }
 }
 
-/// Rigid-body modes (relative to the centroid of each body, scaled by the
-/// model size) of each equation.
+/// Rigid-body modes of each equation: translations and rotations about
+/// the centroid of all equations, coordinates scaled by the model size. One
+/// set for all bodies: the span of a body's rigid modes does not depend on
+/// the centre of rotation, and per-body modes arise from aggregates that
+/// stay inside bodies.
 pub fn rigid_modes(coords: &[[f64; 3]], layout: &EquationLayout) -> Vec<[f64; NULL_DIM]> {
     let n = coords.len();
-    let nb = layout
-        .body
-        .iter()
-        .copied()
-        .max()
-        .map_or(1, |m| m as usize + 1);
-    let mut sum = vec![[0.0f64; 4]; nb];
-    for i in 0..n {
-        let s = &mut sum[layout.body[i] as usize];
+    let mut c = [0.0f64; 3];
+    for x in coords {
         for k in 0..3 {
-            s[k] += coords[i][k];
-        }
-        s[3] += 1.0;
-    }
-    let centre: Vec<[f64; 3]> = sum
-        .iter()
-        .map(|s| {
-            let c = s[3].max(1.0);
-            [s[0] / c, s[1] / c, s[2] / c]
-        })
-        .collect();
-    let mut size = 0.0f64;
-    for i in 0..n {
-        let c = centre[layout.body[i] as usize];
-        for k in 0..3 {
-            size = size.max((coords[i][k] - c[k]).abs());
+            c[k] += x[k] / n.max(1) as f64;
         }
     }
+    let size = coords.iter().fold(0.0f64, |m, x| {
+        (0..3).fold(m, |m, k| m.max((x[k] - c[k]).abs()))
+    });
     let scale = if size > 0.0 { 1.0 / size } else { 1.0 };
     (0..n)
         .map(|i| {
-            let c = centre[layout.body[i] as usize];
             let x = (coords[i][0] - c[0]) * scale;
             let y = (coords[i][1] - c[1]) * scale;
             let z = (coords[i][2] - c[2]) * scale;
@@ -378,7 +369,13 @@ pub fn rigid_modes(coords: &[[f64; 3]], layout: &EquationLayout) -> Vec<[f64; NU
 }
 
 /// Strong neighbours of every node (CSR over nodes).
-fn strength(a: &Csr, node_ptr: &[usize], body: &[u32], theta: f64) -> (Vec<usize>, Vec<u32>) {
+fn strength(
+    a: &Csr,
+    node_ptr: &[usize],
+    body: &[u32],
+    theta: f64,
+    theta_interface: f64,
+) -> (Vec<usize>, Vec<u32>) {
     let nn = node_ptr.len() - 1;
     let mut node_of = vec![0u32; a.n_rows];
     for k in 0..nn {
@@ -402,6 +399,7 @@ fn strength(a: &Csr, node_ptr: &[usize], body: &[u32], theta: f64) -> (Vec<usize
         })
         .collect();
     let t2 = theta * theta;
+    let ti2 = theta_interface * theta_interface;
     let chunk = 1024;
     let parts: Vec<(Vec<usize>, Vec<u32>)> = (0..nn.div_ceil(chunk))
         .into_par_iter()
@@ -417,7 +415,7 @@ fn strength(a: &Csr, node_ptr: &[usize], body: &[u32], theta: f64) -> (Vec<usize
                 for i in node_ptr[k]..node_ptr[k + 1] {
                     for p in a.row_ptr[i]..a.row_ptr[i + 1] {
                         let m = node_of[a.col[p] as usize] as usize;
-                        if m == k || body[m] != body[k] {
+                        if m == k {
                             continue;
                         }
                         if marker[m] != k {
@@ -431,7 +429,8 @@ fn strength(a: &Csr, node_ptr: &[usize], body: &[u32], theta: f64) -> (Vec<usize
                 let start = out.len();
                 for &m in &seen {
                     let s = acc[m as usize];
-                    if s > 0.0 && s > t2 * dnorm[k] * dnorm[m as usize] {
+                    let t = if body[m as usize] == body[k] { t2 } else { ti2 };
+                    if s > 0.0 && s > t * dnorm[k] * dnorm[m as usize] {
                         out.push(m);
                     }
                 }
@@ -697,7 +696,13 @@ impl Amg {
             if nl <= settings.max_coarse || levels.len() >= settings.max_levels {
                 break;
             }
-            let (ptr, adj) = strength(&cur.a, &cur.node_ptr, &cur.node_body, settings.theta);
+            let (ptr, adj) = strength(
+                &cur.a,
+                &cur.node_ptr,
+                &cur.node_body,
+                settings.theta,
+                settings.theta_interface,
+            );
             let (agg, n_agg) = aggregate(&ptr, &adj);
             let (t, bc, cptr, cbody) = tentative(cur, &agg, n_agg);
             if t.n_cols as f64 > 0.9 * nl as f64 {

