@@ -80,8 +80,7 @@ pub fn export_matrix(model: &Model, dir: &Path) -> Result<()> {
         std::fs::File::create(&lp).with_context(|| format!("cannot write {}", lp.display()))?,
     );
     writeln!(w, "equation,node,component,body,x,y,z")?;
-    for i in 0..n {
-        let x = coords[i];
+    for (i, x) in coords.iter().enumerate() {
         writeln!(
             w,
             "{i},{},{},{},{:e},{:e},{:e}",

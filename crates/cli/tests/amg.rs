@@ -238,7 +238,7 @@ fn export_matrix_reads_back_as_the_assembled_matrix() {
         .collect();
     assert_eq!(bm.len(), 6 * k.n);
     let layout = model.equation_layout();
-    for i in 0..k.n {
-        assert_eq!(bm[i], if layout.component[i] == 0 { 1.0 } else { 0.0 });
+    for (v, &c) in bm.iter().zip(&layout.component) {
+        assert_eq!(*v, if c == 0 { 1.0 } else { 0.0 });
     }
 }
