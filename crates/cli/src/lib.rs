@@ -17,6 +17,7 @@ use junta_elements as _;
 use junta_interface as _;
 use junta_solvers as _;
 
+mod auto;
 mod deck;
 mod export;
 mod nonlinear;
