@@ -63,3 +63,37 @@ if max(rel, reld) > 1e-6:
     sys.exit(1)
 PY
 done
+
+# ---------------------------------------------------------------- AMG scaling
+# Junta with cg + smoothed-aggregation AMG on H8 cubes (AMG_SIZES, default
+# "40 60"; 80 and 100 need minutes and several GB), and pyamg's smoothed
+# aggregation (default settings, rigid-body modes as B, CG accel. to 1e-10)
+# on the matrix Junta exports for the smallest size (--export-matrix).
+amg_sizes=(${AMG_SIZES:-40 60})
+python3 -c "import pyamg" 2>/dev/null || pip install -q pyamg
+printf '\n| H8 n | equations | wall s | peak MB | AMG set-up s | solve s | iterations | levels | wall us/equation |\n|---|---|---|---|---|---|---|---|---|\n'
+for n in "${amg_sizes[@]}"; do
+  name="cube_c3d8_n$n"
+  python3 "$here/make_cube_deck.py" C3D8 "$n" "$work/$name.inp"
+  extra=()
+  [ "$n" = "${amg_sizes[0]}" ] && extra=(--export-matrix "$work/$name.mtx")
+  read -r aw am < <(measure "$work/$name.amg" "$junta" run "$work/$name.inp" -o "$work/$name.amgout" -q \
+    --solver type=cg --solver preconditioner=amg "${extra[@]}")
+  python3 - "$work/$name.amgout/summary.json" "$n" "$aw" "$am" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1])); n, aw, am = sys.argv[2], float(sys.argv[3]), float(sys.argv[4])
+t, so = s["timings"], s["solver"]
+lv = [x for x in so["notes"] if x.startswith("amg:")][0].split(" levels ")[1].split("]")[0] + "]"
+print(f"| {n} | {s['dofs']} | {aw:.1f} | {am:.0f} | {t['factor']:.1f} | {t['solve']:.1f} | {so['iterations']} | {lv} | {1e6*aw/s['dofs']:.0f} |")
+PY
+done
+python3 - "$work/cube_c3d8_n${amg_sizes[0]}.mtx" <<'PY'
+import sys, time, numpy as np, scipy.io, pyamg
+d = sys.argv[1]
+A = scipy.io.mmread(f"{d}/K.mtx").tocsr(); b = scipy.io.mmread(f"{d}/b.mtx").ravel(); B = scipy.io.mmread(f"{d}/B.mtx")
+t = time.time(); ml = pyamg.smoothed_aggregation_solver(A, B=B); ts = time.time() - t
+res = []; t = time.time(); x = ml.solve(b, tol=1e-10, accel="cg", residuals=res); tsol = time.time() - t
+print(f"\npyamg {pyamg.__version__} smoothed aggregation on {d}: {len(res)-1} CG iterations to "
+      f"{np.linalg.norm(b - A @ x) / np.linalg.norm(b):.1e}, levels {[l.A.shape[0] for l in ml.levels]}, "
+      f"set-up {ts:.1f} s, solve {tsol:.1f} s")
+PY

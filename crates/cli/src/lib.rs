@@ -17,8 +17,10 @@ use junta_elements as _;
 use junta_interface as _;
 use junta_solvers as _;
 
+mod auto;
 mod deck;
 mod deck_print;
+mod export;
 mod limits;
 mod nonlinear;
 mod output;
@@ -74,6 +76,10 @@ enum Command {
         /// A restart reuses the overrides of the run it continues.
         #[arg(long = "solver", value_name = "KEY=VALUE", conflicts_with = "restart")]
         solver: Vec<String>,
+        /// Also write the assembled stiffness (free dofs), load vector and
+        /// near-null space (rigid-body modes) in Matrix Market format into DIR.
+        #[arg(long, value_name = "DIR", conflicts_with = "restart")]
+        export_matrix: Option<PathBuf>,
     },
     /// Validate a scene or deck and print a model summary without solving.
     Check {
@@ -161,15 +167,22 @@ pub fn main() -> ExitCode {
             max_increments,
             solver,
             allow_edited,
+            export_matrix,
         } => match (input, restart) {
             (_, Some(dir)) => run::restart(&dir, !cli.quiet, max_increments, allow_edited),
-            (Some(input), None) => run::run(
-                &input,
-                output.as_deref(),
-                !cli.quiet,
-                max_increments,
-                &solver,
-            ),
+            (Some(input), None) => export_matrix
+                .map_or(Ok(()), |dir| {
+                    export::export_matrix(&run::prepare(&input, &solver)?.model, &dir)
+                })
+                .and_then(|()| {
+                    run::run(
+                        &input,
+                        output.as_deref(),
+                        !cli.quiet,
+                        max_increments,
+                        &solver,
+                    )
+                }),
             (None, None) => Err(anyhow::anyhow!("give a scene or --restart DIR")),
         },
         Command::Check { input } => run::check(&input),

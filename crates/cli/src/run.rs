@@ -59,6 +59,15 @@ pub fn resolve_solver(
     notes: &mut Vec<String>,
 ) -> Result<Box<dyn LinearSolver>> {
     let kind = model.matrix_kind();
+    if key == "auto" && kind == MatrixKind::SymmetricPositiveDefinite {
+        if let Some(reason) = crate::auto::prefer_amg(model) {
+            notes.push(reason);
+            *key = "cg".to_string();
+            let mut t = toml::Table::new();
+            t.insert("preconditioner".into(), "amg".into());
+            return build_solver(key, &t, where_);
+        }
+    }
     if key == "auto" {
         *key = match kind {
             MatrixKind::SymmetricPositiveDefinite => "cholesky",

@@ -5,7 +5,8 @@
 //! double precision), the mixed-precision direct (`cholesky_mixed`: single
 //! precision factor refined in double, which falls back to double by itself
 //! when the penalty makes single precision useless) and the iterative (`cg`)
-//! back end, and records for each run: the relative
+//! back end with block-Jacobi (`cg`) and with the smoothed-aggregation AMG
+//! (`amg`) preconditioner, and records for each run: the relative
 //! error of the reference reaction (`[reference]` of the scene, e.g. the
 //! perfectly bonded closed form of the confined prism), the largest normal
 //! jump |delta_3| (interpenetration or opening), the solve time, and what
@@ -42,7 +43,7 @@ pub struct SweepRow {
 }
 
 /// The back ends of the sweep: label, registry key, parameters.
-const SWEEP_SOLVERS: [(&str, &str, &str); 3] = [
+const SWEEP_SOLVERS: [(&str, &str, &str); 4] = [
     ("cholesky", "cholesky", "precision = \"double\""),
     (
         "cholesky_mixed",
@@ -50,6 +51,7 @@ const SWEEP_SOLVERS: [(&str, &str, &str); 3] = [
         "precision = \"mixed\"\nmixed_min_equations = 0",
     ),
     ("cg", "cg", ""),
+    ("amg", "cg", "preconditioner = \"amg\""),
 ];
 
 /// Log-spaced values from `from` to `to`, `per_decade` per decade.
@@ -253,6 +255,8 @@ pub fn sweep_penalty(
         },
         failed("cholesky", 4, 1.0),
         failed("cg", 3, 1.0),
+        series("amg", 5, &|r| r.rel_error),
+        failed("amg", 5, 1.0),
     ];
     error_series.push(plot::Series {
         name: "eq. 53 estimate k/(d a) + n e_c d a / k".into(),
@@ -295,6 +299,7 @@ pub fn sweep_penalty(
                 series("cg", 1, &|r| r.max_normal_jump),
                 series("cholesky", 0, &|r| r.max_normal_jump),
                 dots(series("cholesky_mixed", 2, &|r| r.max_normal_jump)),
+                series("amg", 5, &|r| r.max_normal_jump),
             ],
             vlines: vec![],
         },
@@ -308,6 +313,7 @@ pub fn sweep_penalty(
                 series("cholesky", 0, &|r| Some(r.seconds)),
                 series("cholesky_mixed", 2, &|r| Some(r.seconds)),
                 series("cg", 1, &|r| Some(r.seconds)),
+                series("amg", 5, &|r| Some(r.seconds)),
             ],
             vlines: vec![],
         },

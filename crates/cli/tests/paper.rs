@@ -152,6 +152,9 @@ fn penalty_sweep_charts_where_methods_fail() {
     let direct = get("cholesky");
     let cg = get("cg");
     assert_eq!(direct.len(), 19);
+    // the AMG row family: a row per penalty, converged or failed with its
+    // message
+    assert_eq!(get("amg").len(), 19);
     // the mixed-precision direct solve: single precision while the penalty
     // leaves it usable, with the double's answer; from some d on it falls
     // back to double by itself (and says so), never a silent wrong answer

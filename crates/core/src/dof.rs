@@ -107,6 +107,24 @@ impl DofMap {
         v
     }
 
+    /// Node, component and body (from `node_body`, one per node) of each
+    /// equation.
+    pub fn equation_layout(&self, node_body: &[u32]) -> crate::solver::EquationLayout {
+        let mut l = crate::solver::EquationLayout {
+            node: vec![0; self.num_free],
+            component: vec![0; self.num_free],
+            body: vec![0; self.num_free],
+        };
+        for (d, &e) in self.eq.iter().enumerate() {
+            if e != CONSTRAINED {
+                l.node[e] = d / 3;
+                l.component[e] = (d % 3) as u8;
+                l.body[e] = node_body.get(d / 3).copied().unwrap_or(0);
+            }
+        }
+        l
+    }
+
     /// Coordinates of the node of each equation (for geometric orderings).
     pub fn equation_coords(&self, nodes: &[[f64; 3]]) -> Vec<[f64; 3]> {
         let mut c = vec![[0.0; 3]; self.num_free];

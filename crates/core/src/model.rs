@@ -73,6 +73,54 @@ impl Model {
         })
     }
 
+    /// Body of each node: nodes connected through elements that are not
+    /// interface elements (those with [`Element::interface_stiffness`])
+    /// share a body; bodies are numbered 0.. in node order. Nodes of no
+    /// element form bodies of their own.
+    pub fn node_bodies(&self) -> Vec<u32> {
+        let n = self.mesh.nodes.len();
+        let mut parent: Vec<usize> = (0..n).collect();
+        fn find(p: &mut [usize], mut i: usize) -> usize {
+            while p[i] != i {
+                p[i] = p[p[i]];
+                i = p[i];
+            }
+            i
+        }
+        for (b, el) in self.mesh.blocks.iter().zip(&self.elements) {
+            if el.interface_stiffness().is_some() {
+                continue;
+            }
+            let k = b.nodes_per_element();
+            for cell in b.connectivity.chunks(k.max(1)) {
+                let r0 = find(&mut parent, cell[0]);
+                for &v in &cell[1..] {
+                    let r = find(&mut parent, v);
+                    if r != r0 {
+                        parent[r] = r0;
+                    }
+                }
+            }
+        }
+        let mut id = vec![u32::MAX; n];
+        let mut next = 0u32;
+        (0..n)
+            .map(|i| {
+                let r = find(&mut parent, i);
+                if id[r] == u32::MAX {
+                    id[r] = next;
+                    next += 1;
+                }
+                id[r]
+            })
+            .collect()
+    }
+
+    /// Node, component and body of each equation (for AMG).
+    pub fn equation_layout(&self) -> crate::solver::EquationLayout {
+        self.dofs.equation_layout(&self.node_bodies())
+    }
+
     /// Kind of the tangent matrix: the largest kind over the elements
     /// (SPD < symmetric indefinite < general).
     pub fn matrix_kind(&self) -> crate::solver::MatrixKind {

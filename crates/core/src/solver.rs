@@ -100,6 +100,21 @@ impl MatrixKind {
     }
 }
 
+/// What algebraic multigrid needs to know of each equation (free dof):
+/// its mesh node, its displacement component (0, 1, 2) and the body it
+/// belongs to (solids connected through solid elements; interface
+/// elements do not connect bodies). Built by
+/// [`crate::DofMap::equation_layout`].
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct EquationLayout {
+    /// Node of each equation (equations of a node are consecutive).
+    pub node: Vec<usize>,
+    /// Component (0 = x, 1 = y, 2 = z) of each equation.
+    pub component: Vec<u8>,
+    /// Body of each equation.
+    pub body: Vec<u32>,
+}
+
 /// A linear solver for symmetric positive-definite systems stored as the
 /// upper triangle in [`SymmetricCsc`].
 pub trait LinearSolver: Send + std::fmt::Debug {
@@ -118,6 +133,10 @@ pub trait LinearSolver: Send + std::fmt::Debug {
     /// Solve `A x = b` for the last factorised `A` (passed again: iterative
     /// back ends multiply by it), overwriting `b` with `x`.
     fn solve_in_place(&mut self, matrix: &SymmetricCsc, b: &mut [f64]) -> Result<(), SolverError>;
+    /// Node, component and body of each equation, given by the driver
+    /// before `analyze` (used by AMG for the rigid-body modes; ignored by
+    /// default).
+    fn set_layout(&mut self, _layout: &EquationLayout) {}
     /// Cumulative report of what the solver did.
     fn report(&self) -> SolveReport;
     /// The matrix kinds this back end can solve (default: SPD only).

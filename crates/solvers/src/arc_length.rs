@@ -1101,6 +1101,7 @@ fn attempt(
         w.iterations += 1;
         if !w.analyzed {
             let t = Instant::now();
+            solver.set_layout(&w.layout);
             solver.analyze(&w.k, Some(&w.coords))?;
             w.timings.analyze += t.elapsed().as_secs_f64();
             w.analyzed = true;

@@ -51,6 +51,7 @@
 //! The product `A p` uses both triangles in CSR built once in `analyze`
 //! (rows in parallel, no scatter).
 
+use crate::amg::{layout_from_coords, Amg, AmgSettings};
 use crate::common::{dot, norm2, validate, FullCsr, Pattern};
 use crate::ordering;
 use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
@@ -72,6 +73,9 @@ pub enum Preconditioner {
     /// 3×3 nodal blocks, scalar where a node has fewer than 3 dofs.
     #[default]
     BlockJacobi,
+    /// Smoothed-aggregation algebraic multigrid ([`crate::amg`]), one
+    /// V-cycle per iteration, rigid-body modes per body as near-null space.
+    Amg,
 }
 
 /// Settings of [`CgSolver`] (TOML parameters of the `cg` key).
@@ -87,6 +91,18 @@ pub struct CgSettings {
     /// Give up when the best residual has not halved over this many
     /// iterations (default 2000).
     pub stagnation_window: usize,
+    /// AMG strength-of-connection threshold `θ` (default 0).
+    pub amg_theta: f64,
+    /// AMG: coarsen until at most this many equations (default 1500).
+    pub amg_max_coarse: usize,
+    /// AMG: Chebyshev smoother degree (default 2).
+    pub amg_degree: usize,
+    /// AMG: aggregation per body (default true): aggregates cross an
+    /// interface only where its bond is strong (`amg_interface_theta`);
+    /// `false` treats the model as one body.
+    pub amg_per_body: bool,
+    /// AMG: strength threshold across interfaces (default 0.25).
+    pub amg_interface_theta: f64,
 }
 
 impl Default for CgSettings {
@@ -96,6 +112,11 @@ impl Default for CgSettings {
             tol: 1e-10,
             max_iterations: None,
             stagnation_window: 2000,
+            amg_theta: 0.0,
+            amg_max_coarse: 1500,
+            amg_degree: 2,
+            amg_per_body: true,
+            amg_interface_theta: 0.25,
         }
     }
 }
@@ -104,7 +125,7 @@ impl Default for CgSettings {
 pub const CG_PARAMS: &[ParamDoc] = &[
     ParamDoc {
         name: "preconditioner",
-        doc: "\"block_jacobi\" (3x3 nodal blocks, default) or \"jacobi\"",
+        doc: "\"block_jacobi\" (3x3 nodal blocks, default), \"jacobi\" or \"amg\" (smoothed-aggregation multigrid, rigid-body modes per body)",
     },
     ParamDoc {
         name: "tol",
@@ -117,6 +138,26 @@ pub const CG_PARAMS: &[ParamDoc] = &[
     ParamDoc {
         name: "stagnation_window",
         doc: "stop when the best residual has not halved over this many iterations (default 2000)",
+    },
+    ParamDoc {
+        name: "amg_theta",
+        doc: "amg: strength-of-connection threshold on 3x3 nodal blocks (default 0: all non-zero blocks)",
+    },
+    ParamDoc {
+        name: "amg_max_coarse",
+        doc: "amg: coarsen until at most this many equations, solved densely (default 1500)",
+    },
+    ParamDoc {
+        name: "amg_degree",
+        doc: "amg: degree of the Chebyshev smoother (default 2)",
+    },
+    ParamDoc {
+        name: "amg_per_body",
+        doc: "amg: aggregates per body: an interface is aggregated across only where its bond is strong (default true)",
+    },
+    ParamDoc {
+        name: "amg_interface_theta",
+        doc: "amg: strength threshold on 3x3 blocks across interfaces; weaker (soft, damaged) bonds separate the bodies (default 0.25)",
     },
 ];
 
@@ -133,6 +174,10 @@ pub struct CgSolver {
     block_size: Vec<u8>,
     inv_row: Vec<[f64; 3]>,
     ready: bool,
+    /// Coordinates per equation and layout (AMG).
+    coords: Vec<[f64; 3]>,
+    layout: Option<junta_core::EquationLayout>,
+    amg: Option<Amg>,
     report: SolveReport,
     analyze_count: usize,
     blocks3: usize,
@@ -167,6 +212,9 @@ impl CgSolver {
             block_size: Vec::new(),
             inv_row: Vec::new(),
             ready: false,
+            coords: Vec::new(),
+            layout: None,
+            amg: None,
             report: SolveReport {
                 solver: "cg".into(),
                 ..Default::default()
@@ -239,8 +287,17 @@ impl CgSolver {
         }
     }
 
+    /// The AMG hierarchy (after `factorize` with `preconditioner = "amg"`).
+    pub fn amg(&self) -> Option<&Amg> {
+        self.amg.as_ref()
+    }
+
     /// z = M^-1 r, and returns r · z.
-    fn precondition(&self, r: &[f64], z: &mut [f64]) -> f64 {
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) -> f64 {
+        if let Some(amg) = &mut self.amg {
+            amg.apply(r, z);
+            return dot(r, z);
+        }
         z.par_iter_mut()
             .enumerate()
             .map(|(i, zi)| {
@@ -254,6 +311,44 @@ impl CgSolver {
                 v * r[i]
             })
             .sum()
+    }
+
+    fn factorize_amg(&mut self, matrix: &SymmetricCsc, t0: Instant) -> Result<(), SolverError> {
+        if let Some(amg) = &mut self.amg {
+            amg.refresh(matrix)?;
+        } else {
+            let mut layout = match &self.layout {
+                Some(l) if l.node.len() == matrix.n => l.clone(),
+                _ => layout_from_coords(&self.coords),
+            };
+            if !self.settings.amg_per_body {
+                layout.body.iter_mut().for_each(|b| *b = 0);
+            }
+            let settings = AmgSettings {
+                theta: self.settings.amg_theta,
+                theta_interface: self.settings.amg_interface_theta,
+                max_coarse: self.settings.amg_max_coarse.max(1),
+                degree: self.settings.amg_degree.max(1),
+                ..Default::default()
+            };
+            let amg = Amg::setup(matrix, &self.coords, &layout, settings)?;
+            let bodies = layout.body.iter().copied().max().map_or(0, |b| b + 1);
+            let note = format!(
+                "amg: {} levels {:?}, operator complexity {:.2}, {} bod{}",
+                amg.num_levels(),
+                amg.sizes(),
+                amg.operator_complexity(),
+                bodies,
+                if bodies == 1 { "y" } else { "ies" }
+            );
+            tracing::info!("{note}");
+            self.report.notes.retain(|n| !n.starts_with("amg:"));
+            self.report.notes.push(note);
+            self.amg = Some(amg);
+        }
+        self.ready = true;
+        self.report.factor_seconds += t0.elapsed().as_secs_f64();
+        Ok(())
     }
 
     fn fail(
@@ -292,6 +387,8 @@ impl LinearSolver for CgSolver {
         self.group_ptr = ordering::equation_groups(matrix, coords);
         self.layout_blocks(matrix.n);
         self.inv_row = vec![[0.0; 3]; matrix.n];
+        self.amg = None;
+        self.coords = coords.map_or_else(|| vec![[0.0; 3]; matrix.n], |c| c.to_vec());
         self.pattern = Some(Pattern::of(matrix));
         self.analyze_count += 1;
         self.report.analyze_seconds += t0.elapsed().as_secs_f64();
@@ -318,6 +415,9 @@ impl LinearSolver for CgSolver {
         }
         self.full.fill(matrix);
         let n = matrix.n;
+        if self.settings.preconditioner == Preconditioner::Amg {
+            return self.factorize_amg(matrix, t0);
+        }
         let diag = matrix.diagonal();
         let mut i = 0;
         while i < n {
@@ -521,6 +621,11 @@ impl LinearSolver for CgSolver {
         Ok(())
     }
 
+    fn set_layout(&mut self, layout: &junta_core::EquationLayout) {
+        self.layout = Some(layout.clone());
+        self.amg = None;
+    }
+
     fn report(&self) -> SolveReport {
         self.report.clone()
     }
@@ -529,7 +634,7 @@ impl LinearSolver for CgSolver {
 inventory::submit! {
     SolverEntry {
         key: "cg",
-        description: "preconditioned conjugate gradients with Jacobi or 3x3 nodal block-Jacobi preconditioning",
+        description: "preconditioned conjugate gradients with Jacobi, 3x3 nodal block-Jacobi or smoothed-aggregation AMG preconditioning",
         params: CG_PARAMS,
         build: |table| Ok(Box::new(CgSolver::from_table(table)?)),
     }

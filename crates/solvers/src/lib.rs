@@ -8,7 +8,8 @@
 //! |---|---|---|
 //! | `cholesky` | [`CholeskySolver`] | supernodal Cholesky on faer's symbolic analysis and dense kernels, nested-dissection or AMD ordering ([`ordering`]; by default the one with fewer predicted flops), double or mixed precision ([`Precision`]), iterative refinement, conditioning warnings |
 //! | `ldlt` | [`LdltSolver`] | supernodal `L D L^T` for symmetric indefinite (softening) tangents: Bunch-Kaufman 1x1/2x2 pivoting within each panel on the same ordering and symbolic analysis as `cholesky`, inertia (`negative_pivots`) in the report, static perturbation of tiny pivots with iterative refinement |
-//! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi or 3×3 nodal block-Jacobi |
+//! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi, 3×3 nodal block-Jacobi or smoothed-aggregation AMG ([`amg`]) with rigid-body modes per body |
+//! | `minres` | [`MinresSolver`] | MINRES for symmetric indefinite tangents, `|diag(A)|` preconditioner |
 //!
 //! Nonlinear drivers: [`newton`] (incremental Newton-Raphson under load or
 //! displacement control) and [`arc_length`] (path following through limit
@@ -36,6 +37,7 @@
 //! by key must reference this crate (`use junta_solvers as _;`) so that the
 //! linker keeps the registrations.
 
+pub mod amg;
 pub mod arc_length;
 pub mod cg;
 pub mod cholesky;
@@ -43,6 +45,7 @@ mod common;
 pub mod gallery;
 pub mod ldlt;
 pub mod linear_static;
+pub mod minres;
 pub mod newton;
 pub mod ordering;
 mod supernodal;
@@ -50,4 +53,5 @@ mod supernodal;
 pub use cg::{CgSettings, CgSolver, Preconditioner};
 pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats, Precision};
 pub use ldlt::{LdltSettings, LdltSolver, LdltStats};
+pub use minres::{MinresSettings, MinresSolver};
 pub use ordering::OrderingKind;

@@ -159,6 +159,7 @@ pub fn solve_linear_static_cases(
     timings.assemble += t.elapsed().as_secs_f64();
     let coords = model.dofs.equation_coords(&model.mesh.nodes);
     let t = Instant::now();
+    solver.set_layout(&model.equation_layout());
     solver.analyze(&k, Some(&coords))?;
     timings.analyze = t.elapsed().as_secs_f64();
     let t = Instant::now();

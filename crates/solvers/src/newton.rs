@@ -545,6 +545,7 @@ pub(crate) struct Work<'m> {
     pub(crate) asm: Assembler,
     pub(crate) k: SymmetricCsc,
     pub(crate) coords: Vec<[f64; 3]>,
+    pub(crate) layout: junta_core::EquationLayout,
     pub(crate) free_dofs: Vec<usize>,
     pub(crate) fext_free_norm: f64,
     pub(crate) f_int: Vec<f64>,
@@ -590,6 +591,7 @@ impl<'m> Work<'m> {
             k: asm.pattern.clone(),
             asm,
             coords: model.dofs.equation_coords(&model.mesh.nodes),
+            layout: model.equation_layout(),
             free_dofs,
             fext_free_norm,
             f_int: vec![0.0; u_start.len()],
@@ -719,6 +721,7 @@ impl<'m> Work<'m> {
             self.iterations += 1;
             if !self.analyzed {
                 let t = Instant::now();
+                solver.set_layout(&self.layout);
                 solver.analyze(&self.k, Some(&self.coords))?;
                 self.timings.analyze += t.elapsed().as_secs_f64();
                 self.analyzed = true;
