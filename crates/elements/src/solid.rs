@@ -42,9 +42,12 @@
 //! [`junta_core::topology::WEDGE15_NODES`], which is Abaqus / CalculiX's).
 //! Rules ([`crate::quadrature::wedge_rule`]): Wedge6 3-point triangle x
 //! 2-point Gauss (6 points: exact for the stiffness of an undistorted
-//! prism, whose `B` is linear in (r, s) and in zeta); Wedge15 3-point
-//! triangle x 3-point Gauss (9 points, CalculiX's C3D15 rule). Both have
-//! exactly the 6 rigid-body zero modes. The geometry check uses the 6
+//! prism, whose `B` is linear in (r, s) and in zeta; `wedge6r`: centroid x
+//! 2-point Gauss, CalculiX's C3D6 rule, used for C3D6 in decks so that
+//! results match CalculiX; a single free element then has one spurious
+//! zero mode besides the 6 rigid ones); Wedge15 3-point
+//! triangle x 3-point Gauss (9 points, CalculiX's C3D15 rule). `wedge6`
+//! and `wedge15` have exactly the 6 rigid-body zero modes. The geometry check uses the 6
 //! corners.
 //!
 //! ## Zero-energy modes (single element, free)
@@ -161,9 +164,10 @@ fn key_of(shape: CellShape, integration: Integration) -> Result<&'static str, St
         (CellShape::Hex27, Integration::Full) => Ok("h27"),
         (CellShape::Hex27, Integration::Reduced) => Ok("h27r"),
         (CellShape::Wedge6, Integration::Full) => Ok("wedge6"),
+        (CellShape::Wedge6, Integration::Reduced) => Ok("wedge6r"),
         (CellShape::Wedge15, Integration::Full) => Ok("wedge15"),
-        (CellShape::Wedge6 | CellShape::Wedge15, Integration::Reduced) => {
-            Err("the wedges have no reduced integration; use integration = \"full\"".into())
+        (CellShape::Wedge15, Integration::Reduced) => {
+            Err("wedge15 has no reduced integration; use integration = \"full\"".into())
         }
         (s, _) => Err(format!(
             "solid elements are hexahedra (hex8, hex20, hex27) or wedges (wedge6, wedge15), not {}",
@@ -187,11 +191,15 @@ impl SolidElement {
             message,
         })?;
         let n1 = match (shape, integration) {
+            (CellShape::Wedge6, Integration::Full) => 3,
             (CellShape::Hex8, _) | (_, Integration::Reduced) => 2,
             _ => 3,
         };
         let (rule, corner_nodes): (Rule<3>, &[[f64; 3]]) = match shape {
-            CellShape::Wedge6 => (wedge_rule(3, 2).expect("rule exists"), &WEDGE15_NODES[..6]),
+            CellShape::Wedge6 => (
+                wedge_rule(if n1 == 2 { 1 } else { 3 }, 2).expect("rule exists"),
+                &WEDGE15_NODES[..6],
+            ),
             CellShape::Wedge15 => (wedge_rule(3, 3).expect("rule exists"), &WEDGE15_NODES[..6]),
             _ => (
                 gauss_legendre_3d(n1).expect("2 and 3 point rules exist"),
@@ -532,6 +540,12 @@ register_solid!(
     "6-node linear wedge (C3D6), 3-point triangle x 2-point Gauss, small-strain elasticity"
 );
 register_solid!(
+    "wedge6r",
+    CellShape::Wedge6,
+    Integration::Reduced,
+    "6-node linear wedge, centroid x 2-point Gauss as CalculiX's C3D6 (one spurious mode per free element)"
+);
+register_solid!(
     "wedge15",
     CellShape::Wedge15,
     Integration::Full,
@@ -560,7 +574,9 @@ mod tests {
         };
         assert_eq!(n(CellShape::Wedge6), 6);
         assert_eq!(n(CellShape::Wedge15), 9);
-        assert!(SolidElement::new(CellShape::Wedge6, Integration::Reduced, m).is_err());
+        let r = SolidElement::new(CellShape::Wedge6, Integration::Reduced, m.clone()).unwrap();
+        assert_eq!(r.num_points(), 2);
+        assert!(SolidElement::new(CellShape::Wedge15, Integration::Reduced, m).is_err());
     }
 
     #[test]
