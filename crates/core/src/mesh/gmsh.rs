@@ -637,4 +637,28 @@ mod tests {
         // hex20: the first 20 entries only use gmsh nodes 0..20
         assert!(GMSH_TO_OURS_HEX27[..20].iter().all(|&k| k < 20));
     }
+
+    #[test]
+    fn prism15_order_maps_to_ours_geometrically() {
+        use crate::topology::WEDGE15_NODES;
+        // Gmsh's reference prism: corners as ours, edges 0-1, 0-2, 0-3, 1-2,
+        // 1-4, 2-5, 3-4, 3-5, 4-5 (Gmsh manual, node ordering)
+        let mut g: Vec<[f64; 3]> = WEDGE15_NODES[..6].to_vec();
+        for (a, b) in [
+            (0, 1),
+            (0, 2),
+            (0, 3),
+            (1, 2),
+            (1, 4),
+            (2, 5),
+            (3, 4),
+            (3, 5),
+            (4, 5),
+        ] {
+            g.push([0, 1, 2].map(|d| 0.5 * (g[a][d] + g[b][d])));
+        }
+        for (i, &k) in GMSH_TO_OURS_PRISM15.iter().enumerate() {
+            assert_eq!(g[k], WEDGE15_NODES[i], "our node {i}");
+        }
+    }
 }
