@@ -140,9 +140,22 @@ pub fn write_vtu(path: &Path, model: &Model, u: &[f64], cells: &CellResults) -> 
     let solids: Vec<&junta_core::mesh::ElementBlock> =
         mesh.blocks.iter().filter(|b| b.shape.is_solid()).collect();
     let ncells: usize = solids.iter().map(|b| b.len()).sum();
-    let conn = solids
-        .iter()
-        .flat_map(|b| b.connectivity.iter().map(|&n| n as u64));
+    // wedges: VTK's node order differs from ours (Abaqus'), see WEDGE15_TO_VTK
+    let conn = solids.iter().flat_map(|b| {
+        let npe = b.nodes_per_element();
+        let wedge = matches!(
+            b.shape,
+            junta_core::topology::CellShape::Wedge6 | junta_core::topology::CellShape::Wedge15
+        );
+        b.connectivity.iter().enumerate().map(move |(i, &n)| {
+            if wedge {
+                let (e, k) = (i / npe, i % npe);
+                b.connectivity[e * npe + junta_core::topology::WEDGE15_TO_VTK[k]] as u64
+            } else {
+                n as u64
+            }
+        })
+    });
     let offsets = solids
         .iter()
         .flat_map(|b| std::iter::repeat_n(b.nodes_per_element(), b.len()))

@@ -566,3 +566,32 @@ fn h8i_cantilever_does_not_lock() {
     // measured: 1.8917e-4 m, -1.45 % (the clamp stiffens, as for H20: -2.0 %)
     assert!(err < 0.0 && err > -0.02, "{err}");
 }
+
+/// `*ELEMENT, TYPE=C3D6` (as `wedge6r`, CalculiX's 2-point rule) and
+/// `TYPE=C3D15` (`wedge15`): the cantilever split into 20 wedges.
+/// Golden: CalculiX on the same decks (tests/data/cantilever_c3d6.inp,
+/// cantilever_c3d15.inp; values in their headers).
+#[test]
+fn wedge_cantilever_decks_match_calculix() {
+    for (deck, key, ccx) in [
+        (
+            "cantilever_c3d6.inp",
+            "wedge6r",
+            [-1.179377e-5, 1.765133e-6, -1.591284e-4],
+        ),
+        (
+            "cantilever_c3d15.inp",
+            "wedge15",
+            [-1.410788e-5, 2.878743e-8, -1.881095e-4],
+        ),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let s = run_ok(&repo().join("crates/cli/tests/data").join(deck), dir.path());
+        assert_eq!(s["elements"][key].as_u64(), Some(20), "{}", s["elements"]);
+        let want = ccx.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let u = s["displacement_max"].as_f64().unwrap();
+        assert!(rel(u, want) < 2e-6, "{deck}: |u| {u:.7e} vs ccx {want:.7e}");
+        let fz = s["reactions"]["ROOT"][2].as_f64().unwrap();
+        assert!(rel(fz, 1000.0) < 1e-9, "{deck}: {fz}");
+    }
+}

@@ -44,7 +44,43 @@ pub enum CellShape {
     Inter8,
     Inter16,
     Inter18,
+    /// 6-node linear wedge (pentahedron), Abaqus / CalculiX C3D6 order.
+    Wedge6,
+    /// 15-node serendipity wedge, Abaqus / CalculiX C3D15 order.
+    Wedge15,
 }
+
+/// Natural coordinates `(r, s, zeta)` of the 15 wedge nodes (the first 6
+/// serve Wedge6), Abaqus / CalculiX order: the triangle `r, s >= 0,
+/// r + s <= 1` at `zeta = -1` (nodes 0, 1, 2: (0,0), (1,0), (0,1)), the same
+/// at `zeta = +1` (3, 4, 5), bottom mid-edges 6: 0-1, 7: 1-2, 8: 2-0, top
+/// mid-edges 9: 3-4, 10: 4-5, 11: 5-3, vertical mid-edges 12: 0-3, 13: 1-4,
+/// 14: 2-5. The bottom triangle's right-hand normal points into the cell
+/// (towards the top triangle), as for Abaqus. VTK's wedge has the opposite
+/// orientation: the writer maps with [`WEDGE15_TO_VTK`].
+pub const WEDGE15_NODES: [[f64; 3]; 15] = [
+    [0.0, 0.0, -1.0],
+    [1.0, 0.0, -1.0],
+    [0.0, 1.0, -1.0],
+    [0.0, 0.0, 1.0],
+    [1.0, 0.0, 1.0],
+    [0.0, 1.0, 1.0],
+    [0.5, 0.0, -1.0],
+    [0.5, 0.5, -1.0],
+    [0.0, 0.5, -1.0],
+    [0.5, 0.0, 1.0],
+    [0.5, 0.5, 1.0],
+    [0.0, 0.5, 1.0],
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+];
+
+/// VTK cell node `k` is Junta (Abaqus) wedge node `WEDGE15_TO_VTK[k]` (take
+/// the first 6 for Wedge6): VTK lists the triangle 0-1-2 with its normal
+/// pointing out of the cell, so nodes 1 and 2 (4 and 5) swap and the
+/// mid-edge nodes follow.
+pub const WEDGE15_TO_VTK: [usize; 15] = [0, 2, 1, 3, 5, 4, 8, 7, 6, 11, 10, 9, 12, 14, 13];
 
 /// Natural coordinates of the 27 hexahedron nodes (the first 8 / 20 serve H8 / H20).
 pub const HEX27_NODES: [[f64; 3]; 27] = [
@@ -118,12 +154,21 @@ impl CellShape {
             CellShape::Inter8 => 8,
             CellShape::Inter16 => 16,
             CellShape::Inter18 => 18,
+            CellShape::Wedge6 => 6,
+            CellShape::Wedge15 => 15,
         }
     }
 
     /// True for the 3D solid shapes.
     pub fn is_solid(self) -> bool {
-        matches!(self, CellShape::Hex8 | CellShape::Hex20 | CellShape::Hex27)
+        matches!(
+            self,
+            CellShape::Hex8
+                | CellShape::Hex20
+                | CellShape::Hex27
+                | CellShape::Wedge6
+                | CellShape::Wedge15
+        )
     }
 
     /// True for the zero-thickness interface shapes.
@@ -144,9 +189,10 @@ impl CellShape {
         }
     }
 
-    /// Number of faces (6 for hexahedra, 0 otherwise).
+    /// Number of faces (6 for hexahedra, 0 otherwise: wedge faces are not
+    /// yet matched for interface insertion).
     pub fn num_faces(self) -> usize {
-        if self.is_solid() {
+        if self.face_shape().is_some() && self.is_solid() {
             6
         } else {
             0
@@ -171,7 +217,8 @@ impl CellShape {
         }
     }
 
-    /// VTK cell type id (our node order equals VTK's for all shapes listed).
+    /// VTK cell type id (our node order equals VTK's for all shapes but the
+    /// wedges, see [`WEDGE15_TO_VTK`]).
     pub fn vtk_type(self) -> u8 {
         match self {
             CellShape::Quad4 | CellShape::Inter8 => 9,
@@ -180,6 +227,8 @@ impl CellShape {
             CellShape::Hex8 => 12,
             CellShape::Hex20 => 25,
             CellShape::Hex27 => 29,
+            CellShape::Wedge6 => 13,
+            CellShape::Wedge15 => 26,
         }
     }
 
@@ -195,6 +244,8 @@ impl CellShape {
             CellShape::Inter8 => "inter8",
             CellShape::Inter16 => "inter16",
             CellShape::Inter18 => "inter18",
+            CellShape::Wedge6 => "wedge6",
+            CellShape::Wedge15 => "wedge15",
         }
     }
 }

@@ -396,7 +396,8 @@ fn error_unknown_element_type() {
     let msg = e.to_string();
     assert!(matches!(e, InpError::ElementType { line: 3, .. }));
     assert!(
-        msg.contains("C3D8R") && msg.contains("C3D8, C3D8I, C3D20, C3D20R, C3D27, COH3D8"),
+        msg.contains("C3D8R")
+            && msg.contains("C3D8, C3D8I, C3D20, C3D20R, C3D27, C3D6, C3D15, COH3D8"),
         "{msg}"
     );
 }

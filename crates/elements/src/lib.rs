@@ -5,14 +5,17 @@
 //! * [`shape`]: Lagrange / serendipity shape functions and their natural
 //!   derivatives for Q4, Q8, Q9 ([`shape::quad_shape`], also used on the
 //!   faces of the interface elements) and H8, H20, H27
-//!   ([`shape::hex_shape`]), in the node order of [`junta_core::topology`].
+//!   ([`shape::hex_shape`]), W6, W15 ([`shape::wedge_shape`]), in the node
+//!   order of [`junta_core::topology`].
 //! * [`quadrature`]: Gauss-Legendre (1-5 points) and Gauss-Lobatto (2-5
-//!   points) rules and their 2D / 3D tensor products.
+//!   points) rules and their 2D / 3D tensor products; triangle x line
+//!   rules for wedges ([`quadrature::wedge_rule`]).
 //! * [`material`]: linear elastic materials implementing
 //!   [`junta_core::Material`]: [`Isotropic`] (`isotropic`) and
 //!   [`Orthotropic`] (`orthotropic`, with an Abaqus-style orientation).
 //! * [`solid`]: the small-strain hexahedral [`SolidElement`], registered as
-//!   `h8`, `h20`, `h27`, `h20r`, `h27r`.
+//!   `h8`, `h20`, `h27`, `h20r`, `h27r`, and the wedges `wedge6` (C3D6),
+//!   `wedge15` (C3D15).
 //! * [`h8i`]: the 8-node hexahedron with incompatible modes
 //!   [`IncompatibleHex8`] (as C3D8I), registered as `h8i`: bends without
 //!   shear locking.
@@ -45,5 +48,5 @@ pub mod solid;
 pub use h8i::IncompatibleHex8;
 pub use material::{EngineeringConstants, Isotropic, Orientation, Orthotropic};
 pub use quadrature::{gauss_legendre, gauss_lobatto, tensor_2d, tensor_3d, Rule, Rule1D};
-pub use shape::{hex_shape, quad_shape};
+pub use shape::{hex_shape, quad_shape, solid_shape, wedge_shape};
 pub use solid::{Integration, SolidElement};

@@ -248,6 +248,40 @@ pub fn gauss_lobatto_3d(n: usize) -> Result<Rule<3>, QuadratureError> {
     Ok(tensor_3d(&gauss_lobatto(n)?))
 }
 
+/// Wedge rule: a triangle rule (`r, s >= 0, r + s <= 1`, weights summing to
+/// the area 1/2) times an `n_line`-point Gauss-Legendre rule in `zeta`.
+///
+/// Triangle rules: `n_tri = 1` the centroid (degree 1); `n_tri = 3` the
+/// points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3) with weights 1/6 (degree 2,
+/// Strang-Fix; the rule CalculiX uses for C3D15).
+pub fn wedge_rule(n_tri: usize, n_line: usize) -> Result<Rule<3>, QuadratureError> {
+    let line = gauss_legendre(n_line)?;
+    let tri: &[([f64; 2], f64)] = match n_tri {
+        1 => &[([1.0 / 3.0, 1.0 / 3.0], 0.5)],
+        3 => &[
+            ([1.0 / 6.0, 1.0 / 6.0], 1.0 / 6.0),
+            ([2.0 / 3.0, 1.0 / 6.0], 1.0 / 6.0),
+            ([1.0 / 6.0, 2.0 / 3.0], 1.0 / 6.0),
+        ],
+        n => {
+            return Err(QuadratureError::UnsupportedPoints {
+                family: "triangle",
+                n,
+                valid: "1, 3",
+            })
+        }
+    };
+    let mut points = Vec::with_capacity(tri.len() * line.len());
+    let mut weights = Vec::with_capacity(tri.len() * line.len());
+    for (&z, &wz) in line.points.iter().zip(line.weights) {
+        for &([r, s], w) in tri {
+            points.push([r, s, z]);
+            weights.push(w * wz);
+        }
+    }
+    Ok(Rule { points, weights })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

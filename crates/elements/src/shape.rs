@@ -194,6 +194,84 @@ pub fn hex_shape(shape: CellShape, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64; 
     }
 }
 
+/// Shape functions of a wedge (Wedge6 or Wedge15) at `xi = [r, s, zeta]`
+/// (triangle `r, s >= 0, r + s <= 1`, `zeta` in `[-1, 1]`), in the node order
+/// of [`junta_core::topology::WEDGE15_NODES`].
+///
+/// With the area coordinates `L = (1 - r - s, r, s)` of the triangle corners
+/// and `zeta_a = ±1` the level of node `a`:
+///
+/// ```text
+/// Wedge6:   N_a = L_i (1 + zeta zeta_a) / 2
+/// Wedge15:  corner        N_a = L_i (2 L_i - 1)(1 + zeta zeta_a) / 2 - L_i (1 - zeta^2) / 2
+///           triangle edge N_a = 2 L_i L_j (1 + zeta zeta_a)
+///           vertical edge N_a = L_i (1 - zeta^2)
+/// ```
+///
+/// # Panics
+/// If `shape` is not a wedge or a buffer is too short (programming errors).
+pub fn wedge_shape(shape: CellShape, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64; 3]]) {
+    let [r, s, z] = xi;
+    let l = [1.0 - r - s, r, s];
+    // dL_i/d(r, s)
+    let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
+    let corner = |a: usize| (a % 3, if a < 3 { -1.0 } else { 1.0 });
+    match shape {
+        CellShape::Wedge6 => {
+            for a in 0..6 {
+                let (i, za) = corner(a);
+                let h = 0.5 * (1.0 + z * za);
+                n[a] = l[i] * h;
+                dn[a] = [dl[i][0] * h, dl[i][1] * h, l[i] * 0.5 * za];
+            }
+        }
+        CellShape::Wedge15 => {
+            let b = 1.0 - z * z;
+            for a in 0..6 {
+                let (i, za) = corner(a);
+                let h = 1.0 + z * za;
+                let li = l[i];
+                let q = li * (2.0 * li - 1.0);
+                let dq = 4.0 * li - 1.0;
+                n[a] = 0.5 * q * h - 0.5 * li * b;
+                let dli = |d: f64| 0.5 * dq * d * h - 0.5 * d * b;
+                dn[a] = [dli(dl[i][0]), dli(dl[i][1]), 0.5 * q * za + li * z];
+            }
+            // triangle mid-edges: (i, j, zeta_a)
+            const EDGES: [(usize, usize, f64); 6] = [
+                (0, 1, -1.0),
+                (1, 2, -1.0),
+                (2, 0, -1.0),
+                (0, 1, 1.0),
+                (1, 2, 1.0),
+                (2, 0, 1.0),
+            ];
+            for (k, &(i, j, za)) in EDGES.iter().enumerate() {
+                let h = 1.0 + z * za;
+                let a = 6 + k;
+                n[a] = 2.0 * l[i] * l[j] * h;
+                let d = |c: usize| 2.0 * (dl[i][c] * l[j] + l[i] * dl[j][c]) * h;
+                dn[a] = [d(0), d(1), 2.0 * l[i] * l[j] * za];
+            }
+            for i in 0..3 {
+                let a = 12 + i;
+                n[a] = l[i] * b;
+                dn[a] = [dl[i][0] * b, dl[i][1] * b, -2.0 * z * l[i]];
+            }
+        }
+        s => panic!("wedge_shape called with non-wedge shape {s:?}"),
+    }
+}
+
+/// Shape functions of any solid (hexahedron or wedge): dispatches to
+/// [`hex_shape`] or [`wedge_shape`].
+pub fn solid_shape(shape: CellShape, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64; 3]]) {
+    match shape {
+        CellShape::Wedge6 | CellShape::Wedge15 => wedge_shape(shape, xi, n, dn),
+        _ => hex_shape(shape, xi, n, dn),
+    }
+}
+
 /// Natural coordinates of node `a` of a quadrilateral or hexahedron, padded
 /// with zeros to three components.
 pub fn natural_node(shape: CellShape, a: usize) -> [f64; 3] {
@@ -201,6 +279,7 @@ pub fn natural_node(shape: CellShape, a: usize) -> [f64; 3] {
         CellShape::Quad4 | CellShape::Quad8 | CellShape::Quad9 => {
             [QUAD9_NODES[a][0], QUAD9_NODES[a][1], 0.0]
         }
+        CellShape::Wedge6 | CellShape::Wedge15 => junta_core::topology::WEDGE15_NODES[a],
         _ => HEX27_NODES[a],
     }
 }
@@ -421,5 +500,42 @@ mod tests {
         let mut n = [0.0; 27];
         let mut dn = [[0.0; 3]; 27];
         hex_shape(CellShape::Quad4, [0.0; 3], &mut n, &mut dn);
+    }
+
+    #[test]
+    fn wedge_shapes_are_kronecker_partition_of_unity_and_derivatives_match() {
+        use junta_core::topology::WEDGE15_NODES;
+        for shape in [CellShape::Wedge6, CellShape::Wedge15] {
+            let nn = shape.num_nodes();
+            let eval = |x: [f64; 3]| {
+                let mut n = [0.0; 15];
+                let mut dn = [[0.0; 3]; 15];
+                wedge_shape(shape, x, &mut n, &mut dn);
+                (n, dn)
+            };
+            for (b, &xb) in WEDGE15_NODES[..nn].iter().enumerate() {
+                let (n, _) = eval(xb);
+                for (a, &v) in n[..nn].iter().enumerate() {
+                    let want = if a == b { 1.0 } else { 0.0 };
+                    assert!((v - want).abs() < 1e-14, "{shape:?} N_{a}(node {b}) = {v}");
+                }
+            }
+            for x in [[0.2, 0.3, 0.1], [0.6, 0.1, -0.7], [0.05, 0.8, 0.9]] {
+                let (n, dn) = eval(x);
+                assert!((n[..nn].iter().sum::<f64>() - 1.0).abs() < 1e-14);
+                let h = 1e-6;
+                for c in 0..3 {
+                    let (mut xp, mut xm) = (x, x);
+                    xp[c] += h;
+                    xm[c] -= h;
+                    let (np, _) = eval(xp);
+                    let (nm, _) = eval(xm);
+                    for a in 0..nn {
+                        let fd = (np[a] - nm[a]) / (2.0 * h);
+                        assert!((fd - dn[a][c]).abs() < 1e-8, "{shape:?} dN_{a}/dx{c}");
+                    }
+                }
+            }
+        }
     }
 }

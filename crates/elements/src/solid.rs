@@ -34,6 +34,22 @@
 //! so that `f_int = K u` (linear). Rules: H8 2x2x2, H20 / H27 3x3x3 (full),
 //! H20r / H27r 2x2x2 (reduced).
 //!
+//! ## Wedges (C3D6, C3D15)
+//!
+//! The same kinematics and integrals with the wedge shape functions of
+//! [`crate::shape::wedge_shape`] (natural coordinates `(r, s, zeta)`,
+//! triangle `r, s >= 0, r + s <= 1` times `zeta` in `[-1, 1]`, node order of
+//! [`junta_core::topology::WEDGE15_NODES`], which is Abaqus / CalculiX's).
+//! Rules ([`crate::quadrature::wedge_rule`]): Wedge6 3-point triangle x
+//! 2-point Gauss (6 points: exact for the stiffness of an undistorted
+//! prism, whose `B` is linear in (r, s) and in zeta; `wedge6r`: centroid x
+//! 2-point Gauss, CalculiX's C3D6 rule, used for C3D6 in decks so that
+//! results match CalculiX; a single free element then has one spurious
+//! zero mode besides the 6 rigid ones); Wedge15 3-point
+//! triangle x 3-point Gauss (9 points, CalculiX's C3D15 rule). `wedge6`
+//! and `wedge15` have exactly the 6 rigid-body zero modes. The geometry check uses the 6
+//! corners.
+//!
 //! ## Zero-energy modes (single element, free)
 //!
 //! Full integration: exactly the 6 rigid-body modes. Reduced 2x2x2
@@ -58,11 +74,11 @@
 //! `mises` (1): `sqrt(((sxx-syy)^2 + (syy-szz)^2 + (szz-sxx)^2)/2 +
 //! 3 (sxy^2 + syz^2 + szx^2))`.
 
-use crate::quadrature::{gauss_legendre_3d, Rule};
-use crate::shape::hex_shape;
+use crate::quadrature::{gauss_legendre_3d, wedge_rule, Rule};
+use crate::shape::solid_shape;
 use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
 use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
-use junta_core::topology::{CellShape, HEX27_NODES};
+use junta_core::topology::{CellShape, HEX27_NODES, WEDGE15_NODES};
 use junta_core::{CoreError, Material, Voigt6};
 use nalgebra::{Matrix3, Vector6};
 use serde::Deserialize;
@@ -102,7 +118,7 @@ impl PointData {
     fn new(shape: CellShape, xi: [f64; 3], w: f64) -> Self {
         let mut n = [0.0; MAX_NODES];
         let mut dn = [[0.0; 3]; MAX_NODES];
-        hex_shape(shape, xi, &mut n, &mut dn);
+        solid_shape(shape, xi, &mut n, &mut dn);
         PointData { xi, w, n, dn }
     }
 }
@@ -147,8 +163,14 @@ fn key_of(shape: CellShape, integration: Integration) -> Result<&'static str, St
         (CellShape::Hex20, Integration::Reduced) => Ok("h20r"),
         (CellShape::Hex27, Integration::Full) => Ok("h27"),
         (CellShape::Hex27, Integration::Reduced) => Ok("h27r"),
+        (CellShape::Wedge6, Integration::Full) => Ok("wedge6"),
+        (CellShape::Wedge6, Integration::Reduced) => Ok("wedge6r"),
+        (CellShape::Wedge15, Integration::Full) => Ok("wedge15"),
+        (CellShape::Wedge15, Integration::Reduced) => {
+            Err("wedge15 has no reduced integration; use integration = \"full\"".into())
+        }
         (s, _) => Err(format!(
-            "solid elements are hexahedra (hex8, hex20, hex27), not {}",
+            "solid elements are hexahedra (hex8, hex20, hex27) or wedges (wedge6, wedge15), not {}",
             s.name()
         )),
     }
@@ -169,15 +191,26 @@ impl SolidElement {
             message,
         })?;
         let n1 = match (shape, integration) {
+            (CellShape::Wedge6, Integration::Full) => 3,
             (CellShape::Hex8, _) | (_, Integration::Reduced) => 2,
             _ => 3,
         };
-        let rule: Rule<3> = gauss_legendre_3d(n1).expect("2 and 3 point rules exist");
+        let (rule, corner_nodes): (Rule<3>, &[[f64; 3]]) = match shape {
+            CellShape::Wedge6 => (
+                wedge_rule(if n1 == 2 { 1 } else { 3 }, 2).expect("rule exists"),
+                &WEDGE15_NODES[..6],
+            ),
+            CellShape::Wedge15 => (wedge_rule(3, 3).expect("rule exists"), &WEDGE15_NODES[..6]),
+            _ => (
+                gauss_legendre_3d(n1).expect("2 and 3 point rules exist"),
+                &HEX27_NODES[..8],
+            ),
+        };
         let points = rule
             .iter()
             .map(|(&xi, w)| PointData::new(shape, xi, w))
             .collect();
-        let corners = HEX27_NODES[..8]
+        let corners = corner_nodes
             .iter()
             .map(|&xi| PointData::new(shape, xi, 0.0))
             .collect();
@@ -500,6 +533,24 @@ register_solid!(
     Integration::Reduced,
     "27-node triquadratic hexahedron, reduced 2x2x2 Gauss (has spurious modes), small-strain elasticity"
 );
+register_solid!(
+    "wedge6",
+    CellShape::Wedge6,
+    Integration::Full,
+    "6-node linear wedge (C3D6), 3-point triangle x 2-point Gauss, small-strain elasticity"
+);
+register_solid!(
+    "wedge6r",
+    CellShape::Wedge6,
+    Integration::Reduced,
+    "6-node linear wedge, centroid x 2-point Gauss as CalculiX's C3D6 (one spurious mode per free element)"
+);
+register_solid!(
+    "wedge15",
+    CellShape::Wedge15,
+    Integration::Full,
+    "15-node serendipity wedge (C3D15), 3-point triangle x 3-point Gauss, small-strain elasticity"
+);
 
 #[cfg(test)]
 mod tests {
@@ -511,6 +562,21 @@ mod tests {
         assert!((von_mises(&[3.0, 0.0, 0.0, 0.0, 0.0, 0.0]) - 3.0).abs() < 1e-15);
         assert!((von_mises(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0]) - 3f64.sqrt()).abs() < 1e-15);
         assert!(von_mises(&[2.0, 2.0, 2.0, 0.0, 0.0, 0.0]).abs() < 1e-15);
+    }
+
+    #[test]
+    fn wedge_rule_sizes() {
+        let m: Arc<dyn Material> = Arc::new(Isotropic::new(1.0, 0.3).unwrap());
+        let n = |s| {
+            SolidElement::new(s, Integration::Full, m.clone())
+                .unwrap()
+                .num_points()
+        };
+        assert_eq!(n(CellShape::Wedge6), 6);
+        assert_eq!(n(CellShape::Wedge15), 9);
+        let r = SolidElement::new(CellShape::Wedge6, Integration::Reduced, m.clone()).unwrap();
+        assert_eq!(r.num_points(), 2);
+        assert!(SolidElement::new(CellShape::Wedge15, Integration::Reduced, m).is_err());
     }
 
     #[test]

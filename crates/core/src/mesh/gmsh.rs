@@ -38,6 +38,11 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 use thiserror::Error;
 
+/// `ours[i] = gmsh[GMSH_TO_OURS_PRISM15[i]]` (take the first 6 for prism6):
+/// Gmsh's corners equal ours (Abaqus'), its mid-edge nodes run 0-1, 0-2,
+/// 0-3, 1-2, 1-4, 2-5, 3-4, 3-5, 4-5.
+pub const GMSH_TO_OURS_PRISM15: [usize; 15] = [0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11];
+
 /// `ours[i] = gmsh[GMSH_TO_OURS_HEX27[i]]` (take the first 20 for hex20).
 pub const GMSH_TO_OURS_HEX27: [usize; 27] = [
     0, 1, 2, 3, 4, 5, 6, 7, // corners
@@ -180,6 +185,8 @@ fn shape_of(code: usize) -> Option<(CellShape, usize)> {
         5 => Some((CellShape::Hex8, 8)),
         17 => Some((CellShape::Hex20, 20)),
         12 => Some((CellShape::Hex27, 27)),
+        6 => Some((CellShape::Wedge6, 6)),
+        18 => Some((CellShape::Wedge15, 15)),
         3 => Some((CellShape::Quad4, 4)),
         16 => Some((CellShape::Quad8, 8)),
         10 => Some((CellShape::Quad9, 9)),
@@ -457,6 +464,8 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
                     element_type: match shape {
                         CellShape::Hex8 => "h8",
                         CellShape::Hex20 => "h20",
+                        CellShape::Wedge6 => "wedge6",
+                        CellShape::Wedge15 => "wedge15",
                         _ => "h27",
                     }
                     .into(),
@@ -475,7 +484,11 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
             // the mesh file's element tags (Mesh::element_labels)
             mesh.element_labels.resize(mesh.blocks.len(), Vec::new());
             mesh.element_labels[bi].push(*tag);
-            for &k in &GMSH_TO_OURS_HEX27[..npe] {
+            let order: &[usize] = match shape {
+                CellShape::Wedge6 | CellShape::Wedge15 => &GMSH_TO_OURS_PRISM15[..npe],
+                _ => &GMSH_TO_OURS_HEX27[..npe],
+            };
+            for &k in order {
                 let id = resolve(&c, b.line, conn[k])?;
                 mesh.blocks[bi].connectivity.push(id);
             }
@@ -665,5 +678,29 @@ mod tests {
         assert_eq!(seen, (0..27).collect::<Vec<_>>());
         // hex20: the first 20 entries only use gmsh nodes 0..20
         assert!(GMSH_TO_OURS_HEX27[..20].iter().all(|&k| k < 20));
+    }
+
+    #[test]
+    fn prism15_order_maps_to_ours_geometrically() {
+        use crate::topology::WEDGE15_NODES;
+        // Gmsh's reference prism: corners as ours, edges 0-1, 0-2, 0-3, 1-2,
+        // 1-4, 2-5, 3-4, 3-5, 4-5 (Gmsh manual, node ordering)
+        let mut g: Vec<[f64; 3]> = WEDGE15_NODES[..6].to_vec();
+        for (a, b) in [
+            (0, 1),
+            (0, 2),
+            (0, 3),
+            (1, 2),
+            (1, 4),
+            (2, 5),
+            (3, 4),
+            (3, 5),
+            (4, 5),
+        ] {
+            g.push([0, 1, 2].map(|d| 0.5 * (g[a][d] + g[b][d])));
+        }
+        for (i, &k) in GMSH_TO_OURS_PRISM15.iter().enumerate() {
+            assert_eq!(g[k], WEDGE15_NODES[i], "our node {i}");
+        }
     }
 }

@@ -83,6 +83,8 @@
 //! | C3D20  | Hex20  | `h20`          | none |
 //! | C3D20R | Hex20  | `h20r`         | none |
 //! | C3D27  | Hex27  | `h27`          | face / body centres, see [`C3D27_TO_OURS`] |
+//! | C3D6   | Wedge6 | `wedge6r`      | none (Abaqus = ours; VTK differs, mapped by the writer); CalculiX's 2-point rule |
+//! | C3D15  | Wedge15| `wedge15`      | none |
 //! | COH3D8 | Inter8 | `inter8`       | none: bottom face 1-4 then top face 5-8 |
 //!
 //! Each (TYPE, ELSET) pair of `*ELEMENT` makes one [`ElementBlock`] named
@@ -119,7 +121,7 @@ pub const SUPPORTED_KEYWORDS: &str =
 *NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT";
 
 /// Element types the reader understands (for messages).
-pub const SUPPORTED_ELEMENT_TYPES: &str = "C3D8, C3D8I, C3D20, C3D20R, C3D27, COH3D8";
+pub const SUPPORTED_ELEMENT_TYPES: &str = "C3D8, C3D8I, C3D20, C3D20R, C3D27, C3D6, C3D15, COH3D8";
 
 const OUTPUT_KEYWORDS: [&str; 7] = [
     "NODE PRINT",
@@ -687,6 +689,8 @@ fn element_kind(t: &str) -> Option<(CellShape, &'static str)> {
         "C3D20" => Some((CellShape::Hex20, "h20")),
         "C3D20R" => Some((CellShape::Hex20, "h20r")),
         "C3D27" => Some((CellShape::Hex27, "h27")),
+        "C3D6" => Some((CellShape::Wedge6, "wedge6r")),
+        "C3D15" => Some((CellShape::Wedge15, "wedge15")),
         "COH3D8" => Some((CellShape::Inter8, "inter8")),
         _ => None,
     }
