@@ -130,9 +130,9 @@
 
 use crate::linear_static::Timings;
 use crate::newton::{
-    any_wants_small, is_element_error, Checkpoint, Control, Cursor, IncrementFailure,
-    IncrementReport, IncrementView, NewtonSettings, NonlinearError, NonlinearRun, NonlinearSummary,
-    Work,
+    any_wants_small, check_checkpoint_fits, increment_timings, is_element_error, Checkpoint,
+    Control, Cursor, IncrementFailure, IncrementReport, IncrementView, NewtonSettings,
+    NonlinearError, NonlinearRun, NonlinearSummary, Work,
 };
 use junta_core::dof::CONSTRAINED;
 use junta_core::element::{ElementContext, StepInfo};
@@ -532,17 +532,7 @@ where
     let mut path;
     match restart {
         Some(c) => {
-            if c.u.len() != ndof || c.state_committed.len() != state.committed.len() {
-                return Err(CoreError::Invalid(format!(
-                    "checkpoint does not fit the model: {} displacements and {} state values, \
-                     the model has {} dofs and {} state values",
-                    c.u.len(),
-                    c.state_committed.len(),
-                    ndof,
-                    state.committed.len()
-                ))
-                .into());
-            }
+            check_checkpoint_fits(c, ndof, &state)?;
             let Some(p) = &c.path else {
                 return Err(CoreError::Invalid(
                     "checkpoint of a load-controlled run: restart it with the same control".into(),
@@ -929,15 +919,7 @@ where
         summary.newton_iterations_max = summary.newton_iterations_max.max(iterations);
         summary.final_lambda = cur.lambda;
         let now = w.timings;
-        let seconds = Timings {
-            pattern: 0.0,
-            assemble: now.assemble - before.assemble,
-            analyze: now.analyze - before.analyze,
-            factor: now.factor - before.factor,
-            solve: now.solve - before.solve,
-            total: (now.assemble + now.analyze + now.factor + now.solve)
-                - (before.assemble + before.analyze + before.factor + before.solve),
-        };
+        let seconds = increment_timings(now, before);
         let report = IncrementReport {
             step: 0,
             increment_index: cur.increment_index,

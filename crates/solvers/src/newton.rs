@@ -894,6 +894,40 @@ impl<'m> Work<'m> {
 /// converges linearly, gets four times as many).
 const STAGNATION_ITERATIONS: usize = 12;
 
+/// Seconds spent between two snapshots of the run's timings (one
+/// increment, failed attempts included; `pattern` unused).
+pub(crate) fn increment_timings(now: Timings, before: Timings) -> Timings {
+    Timings {
+        pattern: 0.0,
+        assemble: now.assemble - before.assemble,
+        analyze: now.analyze - before.analyze,
+        factor: now.factor - before.factor,
+        solve: now.solve - before.solve,
+        total: (now.assemble + now.analyze + now.factor + now.solve)
+            - (before.assemble + before.analyze + before.factor + before.solve),
+    }
+}
+
+/// A checkpoint's displacement and state sizes must be the model's.
+pub(crate) fn check_checkpoint_fits(
+    c: &Checkpoint,
+    ndof: usize,
+    state: &StateStore,
+) -> Result<(), NonlinearError> {
+    if c.u.len() != ndof || c.state_committed.len() != state.committed.len() {
+        return Err(CoreError::Invalid(format!(
+            "checkpoint does not fit the model: {} displacements and {} state values, \
+             the model has {} dofs and {} state values",
+            c.u.len(),
+            c.state_committed.len(),
+            ndof,
+            state.committed.len()
+        ))
+        .into());
+    }
+    Ok(())
+}
+
 /// Does any element want small increments (committed state)?
 pub(crate) fn any_wants_small(model: &Model, state: &StateStore) -> bool {
     model.mesh.blocks.iter().enumerate().any(|(b, block)| {
@@ -936,17 +970,7 @@ where
     let mut u_start = model.dofs.expand(None, 0.0);
     let mut cur = match restart {
         Some(c) => {
-            if c.u.len() != ndof || c.state_committed.len() != state.committed.len() {
-                return Err(CoreError::Invalid(format!(
-                    "checkpoint does not fit the model: {} displacements and {} state values, \
-                     the model has {} dofs and {} state values",
-                    c.u.len(),
-                    c.state_committed.len(),
-                    ndof,
-                    state.committed.len()
-                ))
-                .into());
-            }
+            check_checkpoint_fits(c, ndof, &state)?;
             if c.step >= program.len() {
                 return Err(CoreError::Invalid(format!(
                     "checkpoint is in step {} but the program has {} steps",
@@ -1099,15 +1123,7 @@ where
         summary.newton_iterations_max = summary.newton_iterations_max.max(iterations);
         summary.final_lambda = cur.lambda;
         let now = w.timings;
-        let seconds = Timings {
-            pattern: 0.0,
-            assemble: now.assemble - before.assemble,
-            analyze: now.analyze - before.analyze,
-            factor: now.factor - before.factor,
-            solve: now.solve - before.solve,
-            total: (now.assemble + now.analyze + now.factor + now.solve)
-                - (before.assemble + before.analyze + before.factor + before.solve),
-        };
+        let seconds = increment_timings(now, before);
         let report = IncrementReport {
             step: cur.step,
             increment_index: cur.increment_index,
