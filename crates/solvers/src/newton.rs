@@ -849,15 +849,18 @@ impl<'m> Work<'m> {
                     energy,
                 });
             }
+            // (stagnation of the force residual only: once it meets
+            // tol_force, the energy criterion needs a step or two more)
             if ev.rel < 0.99 * best_rel {
                 best_rel = ev.rel;
                 best_at = it;
-            } else if it - best_at
-                >= if step.secant {
-                    4 * STAGNATION_ITERATIONS
-                } else {
-                    STAGNATION_ITERATIONS
-                }
+            } else if ev.rel > st.tol_force
+                && it - best_at
+                    >= if step.secant {
+                        4 * STAGNATION_ITERATIONS
+                    } else {
+                        STAGNATION_ITERATIONS
+                    }
             {
                 return Ok(fail(
                     it,
