@@ -370,6 +370,19 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         }
     }
     let steps = deck_steps(&deck, &file)?;
+    if !softening {
+        if let Some(p) = deck
+            .steps
+            .iter()
+            .filter_map(|st| st.static_procedure.as_ref())
+            .find(|p| p.riks.is_some())
+        {
+            notes.push(format!(
+                "{file}:{}: *STATIC, RIKS on a model without a softening law: its path is linear, solved in one linear step",
+                p.line
+            ));
+        }
+    }
     let incremental = if softening {
         Some(incremental_program(&deck, &steps, &file, &mut notes)?)
     } else {
@@ -603,15 +616,58 @@ fn incremental_program(
             "{file}: *DAMAGE STABILIZATION with steps of different periods: Junta's viscosity is in load-factor units, one value per law; give the steps the same period"
         );
     }
-    let (newton, _) = settings.expect("at least one step");
+    let (mut newton, _) = settings.expect("at least one step");
+    // `*STATIC, RIKS`: Abaqus's arc length, run with path following; the
+    // load factor is the load proportionality factor (LPF) of the step's
+    // loads, the 5th data value its maximum
+    let mut control = crate::scene::Control::Load;
+    let mut arc_length = junta_solvers::arc_length::ArcLengthSettings::default();
+    let riks = deck.steps.iter().find_map(|st| {
+        let p = st.static_procedure.as_ref()?;
+        Some((p.riks.as_ref()?, p, st))
+    });
+    if let Some((r, p, st)) = riks {
+        if steps.len() != 1 {
+            bail!(
+                "{file}:{}: *STATIC, RIKS: path following runs one step; this deck has {} steps",
+                p.line,
+                steps.len()
+            );
+        }
+        let t = p.period.unwrap_or(1.0);
+        let first = p.initial_increment.unwrap_or(0.1 * t) / t;
+        let end = match r.max_load_factor {
+            Some(m) if m > 0.0 && m.is_finite() => m,
+            Some(m) => bail!(
+                "{file}:{}: *STATIC, RIKS: the maximum load proportionality factor {m} must be positive",
+                p.line
+            ),
+            None => 1e6,
+        };
+        program = vec![end];
+        newton.initial_increment = (first / end).min(1.0);
+        newton.max_increment = 1.0;
+        newton.min_increment = newton.min_increment.min(1e-3 * newton.initial_increment);
+        control = crate::scene::Control::ArcLength;
+        // Abaqus ends a Riks step after INC increments (default 100)
+        arc_length.max_increments = st.max_increments.unwrap_or(100);
+        notes.push(format!(
+            "{file}:{}: *STATIC, RIKS: path following (`control = \"arc_length\"`): the load factor is the load proportionality factor of the step's loads, first increment {first:e}, {}; arc lengths and their limits are Junta's own (cylindrical, then the dissipated energy)",
+            p.line,
+            match r.max_load_factor {
+                Some(m) => format!("up to LPF = {m}"),
+                None => format!("no maximum LPF: up to {} increments", arc_length.max_increments),
+            }
+        ));
+    }
     Ok(DeckIncremental {
         analysis: AnalysisSpec {
             kind: "static".into(),
             steps: program,
             stop_when_separated: false,
             newton,
-            control: Default::default(),
-            arc_length: Default::default(),
+            control,
+            arc_length,
         },
         increment_limits: limits,
     })

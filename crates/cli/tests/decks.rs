@@ -46,9 +46,21 @@ fn static_solver_parameter_maps_to_back_ends() {
 #[test]
 fn static_parameters_that_change_the_answer_are_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let deck = cube_with_static(dir.path(), "*STATIC, RIKS");
+    let deck = cube_with_static(dir.path(), "*STATIC, STABILIZE");
     let err = run_err(&deck);
-    assert!(err.contains("RIKS") && err.contains(":55:"), "{err}");
+    assert!(err.contains("STABILIZE") && err.contains(":55:"), "{err}");
+    // RIKS on a linear model: the linear answer (CalculiX 2.20's reaction),
+    // with a note (a softening deck runs it with path following:
+    // cohesive_deck.rs)
+    let deck = cube_with_static(dir.path(), "*STATIC, RIKS");
+    let s = run_ok(&deck, &dir.path().join("riks"));
+    let fz = s["reactions"]["TOP"][2].as_f64().unwrap();
+    assert!(rel(fz, -2224.553) < 1e-6, "{fz}");
+    assert!(
+        s.to_string()
+            .contains("RIKS on a model without a softening law"),
+        "{s}"
+    );
     let deck = cube_with_static(dir.path(), "*STATIC, SOLVER=MAGIC");
     let err = run_err(&deck);
     assert!(err.contains("MAGIC") && err.contains("SPOOLES"), "{err}");

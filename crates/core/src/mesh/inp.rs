@@ -429,7 +429,16 @@ pub struct InpStatic {
     pub direct: bool,
     /// `SOLVER=` (upper case, as written): the CLI maps it to a back end.
     pub solver: Option<String>,
+    /// `RIKS` (Abaqus arc length): the CLI runs it with path following.
+    pub riks: Option<InpRiks>,
     pub line: usize,
+}
+
+/// `*STATIC, RIKS` data beyond the four increment values: the maximum load
+/// proportionality factor (the 5th value), which ends the run.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct InpRiks {
+    pub max_load_factor: Option<f64>,
 }
 
 /// Parameters of `*STATIC` that do not change a linear-static or
@@ -446,11 +455,7 @@ const STATIC_NOTED: [&str; 5] = [
 
 /// Parameters of `*STATIC` that change the answer and that Junta does not
 /// have: an error naming the line.
-const STATIC_REFUSED: [(&str, &str); 4] = [
-    (
-        "RIKS",
-        "the Riks arc-length method (use a TOML scene with an arc-length analysis)",
-    ),
+const STATIC_REFUSED: [(&str, &str); 3] = [
     ("STABILIZE", "automatic viscous stabilisation"),
     ("FULLY PLASTIC", "fully plastic limit analysis"),
     ("LONG TERM", "long-term viscoelastic response"),
@@ -1233,7 +1238,7 @@ impl<'a> Parser<'a> {
                     self.step_open = Some(line);
                 }
                 "STATIC" => {
-                    let mut valid = vec!["DIRECT", "SOLVER"];
+                    let mut valid = vec!["DIRECT", "SOLVER", "RIKS"];
                     valid.extend(STATIC_NOTED);
                     valid.extend(STATIC_REFUSED.iter().map(|(k, _)| *k));
                     self.check_params(line, kw, params, &valid)?;
@@ -1274,13 +1279,19 @@ impl<'a> Parser<'a> {
                     if data.len() > 1 {
                         return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
                     }
-                    let mut v = [None; 4];
+                    let riks = Self::param(params, "RIKS").is_some();
+                    let mut v = [None; 8];
                     if let Some((dl, f, _)) = data.first() {
-                        if f.len() > 4 {
+                        let most = if riks { 8 } else { 4 };
+                        if f.len() > most {
                             return Err(self.invalid(
                                 *dl,
                                 kw,
-                                "expected at most 4 values: initial increment, period, minimum, maximum increment",
+                                if riks {
+                                    "expected at most 8 values: initial arc length, period, minimum, maximum arc length, maximum load factor, node, dof, displacement"
+                                } else {
+                                    "expected at most 4 values: initial increment, period, minimum, maximum increment"
+                                },
                             ));
                         }
                         let names = [
@@ -1288,12 +1299,21 @@ impl<'a> Parser<'a> {
                             "time period",
                             "minimum increment",
                             "maximum increment",
+                            "maximum load proportionality factor",
+                            "monitored node",
+                            "monitored degree of freedom",
+                            "finishing displacement",
                         ];
                         for (k, t) in f.iter().enumerate() {
                             if !t.is_empty() {
                                 v[k] = Some(self.float(*dl, kw, names[k], t)?);
                             }
                         }
+                    }
+                    if riks && v[5..].iter().any(Option::is_some) {
+                        self.deck.notes.push(format!(
+                            "line {line}: *STATIC, RIKS: the stop on a node's displacement (values 6-8) is not supported; the run ends at the maximum load factor or after INC increments"
+                        ));
                     }
                     let step = self.deck.steps.last_mut().unwrap();
                     step.static_procedure = Some(InpStatic {
@@ -1303,6 +1323,9 @@ impl<'a> Parser<'a> {
                         max_increment: v[3],
                         direct: Self::param(params, "DIRECT").is_some(),
                         solver,
+                        riks: riks.then_some(InpRiks {
+                            max_load_factor: v[4],
+                        }),
                         line,
                     });
                 }
