@@ -877,9 +877,17 @@ where
         .map(|&d| model.f_ext[d] * model.f_ext[d])
         .sum::<f64>()
         .sqrt();
+    // A nonsymmetric tangent (a law with a general tangent) is stored in
+    // full when the back end can solve it; a symmetric back end the user
+    // forced gets the symmetric part (Newton then loses its quadratic
+    // convergence: the iterations per increment show it).
+    let mut k = asm.pattern.clone();
+    let general = model.matrix_kind() == junta_core::MatrixKind::General
+        && solver.accepts(junta_core::MatrixKind::General);
+    k.set_general(general);
     let mut w = Work {
         model,
-        k: asm.pattern.clone(),
+        k,
         asm,
         coords: model.dofs.equation_coords(&model.mesh.nodes),
         free_dofs,
