@@ -73,6 +73,7 @@ impl SymmetricCsc {
     /// The full matrix in CSC form `(col_ptr, row_idx, values)`, both
     /// triangles (from `values` and, for a nonsymmetric matrix, `lower`;
     /// the mirror of `values` otherwise). Rows sorted within each column.
+    #[allow(clippy::needless_range_loop)]
     pub fn to_full_csc(&self) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
         let n = self.n;
         let mut count = vec![0usize; n + 1];

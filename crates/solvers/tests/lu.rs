@@ -136,7 +136,7 @@ fn lu_refactorises_on_one_analysis() {
     lu.factorize(&s).unwrap();
     lu.solve_in_place(&s, &mut b).unwrap();
     assert!(max_rel_error(&b, &xs) < 1e-10);
-    assert_eq!(lu.report().analyze_seconds > 0.0, true);
+    assert_eq!(lu.permutation().len(), s.n);
 }
 
 #[test]

@@ -160,9 +160,9 @@ impl InterfaceLaw for BilinearFriction {
             let s = 1.0 - d.v;
             tangent = [[s * ks, 0.0, 0.0], [0.0, s * ks, 0.0], [0.0, 0.0, 0.0]];
             tangent[2][2] = if ctx.jump[2] > 0.0 { s * kn } else { kn };
-            for i in 0..2 {
-                for j in 0..2 {
-                    tangent[i][j] += d.v * r.tau[i].d[j];
+            for (row, tau) in tangent.iter_mut().zip(&r.tau) {
+                for (k, dk) in row.iter_mut().zip(&tau.d).take(2) {
+                    *k += d.v * dk;
                 }
             }
         }

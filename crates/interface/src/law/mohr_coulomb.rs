@@ -353,11 +353,10 @@ impl InterfaceLaw for MohrCoulomb {
         let mut tangent = t.map(|x| x.d);
         if ctx.step.secant {
             // symmetric part (a positive semi-definite secant-like tangent)
-            for i in 0..3 {
-                for j in 0..i {
-                    let m = 0.5 * (tangent[i][j] + tangent[j][i]);
-                    tangent[i][j] = m;
-                    tangent[j][i] = m;
+            let t0 = tangent;
+            for (i, row) in tangent.iter_mut().enumerate() {
+                for (j, v) in row.iter_mut().enumerate() {
+                    *v = 0.5 * (t0[i][j] + t0[j][i]);
                 }
             }
         }
