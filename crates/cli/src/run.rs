@@ -49,7 +49,8 @@ fn build_solver(key: &str, table: &toml::Table, where_: &str) -> Result<Box<dyn 
 
 /// Resolve the solver `type = "auto"` (the default) from the model's
 /// matrix kind: `cholesky` for symmetric positive-definite tangents, `ldlt`
-/// when a law can soften (symmetric indefinite). The choice, or a back end
+/// when a law can soften (symmetric indefinite), `lu` when a law's tangent
+/// is nonsymmetric (general). The choice, or a back end
 /// the user forced that does not accept the model's kind, is a note.
 pub fn resolve_solver(
     key: &mut String,
@@ -71,10 +72,16 @@ pub fn resolve_solver(
     if key == "auto" {
         *key = match kind {
             MatrixKind::SymmetricPositiveDefinite => "cholesky",
-            MatrixKind::SymmetricIndefinite | MatrixKind::General => "ldlt",
+            MatrixKind::SymmetricIndefinite => "ldlt",
+            MatrixKind::General => "lu",
         }
         .to_string();
-        if kind != MatrixKind::SymmetricPositiveDefinite {
+        if kind == MatrixKind::General {
+            notes.push(format!(
+                "solver auto: the tangent is {} (friction or non-associated plasticity), so the direct back end is `lu` (supernodal LU with partial pivoting)",
+                kind.name()
+            ));
+        } else if kind != MatrixKind::SymmetricPositiveDefinite {
             notes.push(format!(
                 "solver auto: the tangent can be {} (a softening interface law), so the direct back end is `{key}` (LDL^T with Bunch-Kaufman pivots, reports the negative pivots)",
                 kind.name()
@@ -82,7 +89,12 @@ pub fn resolve_solver(
         }
     }
     let solver = build_solver(key, table, where_)?;
-    if !solver.accepts(kind) {
+    if kind == MatrixKind::General && !solver.accepts(kind) {
+        notes.push(format!(
+            "solver `{key}` solves symmetric matrices only, but the tangent is {}: the symmetric part of the tangent is assembled instead, so Newton loses its quadratic convergence (see the iterations per increment in curve.csv and summary.json); use [solver] type = \"auto\" or \"lu\" for the consistent tangent",
+            kind.name()
+        ));
+    } else if !solver.accepts(kind) {
         notes.push(format!(
             "solver `{key}` accepts symmetric positive-definite matrices only, but the tangent can be {}: it will stop where the tangent stops being positive definite; use [solver] type = \"auto\" or \"ldlt\"",
             kind.name()

@@ -1,7 +1,10 @@
 //! Assembly into a fixed sparsity pattern.
 //!
 //! The pattern (upper triangle of the free-dof matrix, [`SymmetricCsc`]) is
-//! built once from the connectivity; values are then filled in parallel
+//! built once from the connectivity (structurally symmetric: the lower
+//! triangle of a nonsymmetric tangent lives in [`SymmetricCsc::lower`] on
+//! the same pattern; a symmetric matrix receives the symmetric part
+//! `(K_e + K_e^T) / 2` of each element matrix); values are then filled in parallel
 //! with rayon. Elements are greedily coloured so that no two elements of a
 //! colour share a node: within a colour, every element writes to its own
 //! matrix entries and force entries, so the scatter needs no lock. Scratch
@@ -157,6 +160,7 @@ impl Assembler {
             col_ptr,
             row_idx,
             values: vec![0.0; nnz],
+            lower: Vec::new(),
         };
         drop(adj);
         Assembler {
@@ -201,6 +205,11 @@ impl Assembler {
         )?;
         if let Some(k) = k {
             k.values
+                .par_iter_mut()
+                .zip(cache.values.par_iter())
+                .for_each(|(a, b)| *a += b);
+            // linear elements are symmetric: the same values in the lower part
+            k.lower
                 .par_iter_mut()
                 .zip(cache.values.par_iter())
                 .for_each(|(a, b)| *a += b);
@@ -293,7 +302,7 @@ impl Assembler {
                     source,
                 })?;
             let (cp, ri) = (&self.pattern.col_ptr, &self.pattern.row_idx);
-            scatter_upper(cp, ri, dofs, &s.dofs[..nd], ke, |p, v| values[p] += v);
+            scatter_upper(cp, ri, dofs, &s.dofs[..nd], ke, |p, v, _| values[p] += v);
         }
         Ok(LinearCache {
             values,
@@ -339,6 +348,7 @@ impl Assembler {
         f_int.iter_mut().for_each(|v| *v = 0.0);
         if let Some(k) = k.as_deref_mut() {
             k.values.iter_mut().for_each(|v| *v = 0.0);
+            k.lower.iter_mut().for_each(|v| *v = 0.0);
         }
         let max_nodes = mesh
             .blocks
@@ -347,20 +357,27 @@ impl Assembler {
             .max()
             .unwrap_or(0);
         let want_k = k.is_some();
-        let (kp, kv) = match k {
+        let (kp, kv, kl) = match k {
             Some(k) => {
                 let SymmetricCsc {
                     col_ptr,
                     row_idx,
                     values,
+                    lower,
                     ..
                 } = k;
+                let kl = if lower.is_empty() {
+                    None
+                } else {
+                    Some(SharedMut(lower.as_mut_ptr()))
+                };
                 (
                     Some((col_ptr.as_slice(), row_idx.as_slice())),
                     SharedMut(values.as_mut_ptr()),
+                    kl,
                 )
             }
-            None => (None, SharedMut(std::ptr::null_mut())),
+            None => (None, SharedMut(std::ptr::null_mut()), None),
         };
         let fv = SharedMut(f_int.as_mut_ptr());
         let committed = &state.committed;
@@ -418,7 +435,15 @@ impl Assembler {
                             dofs,
                             &s.dofs[..nd],
                             &s.k[..nd * nd],
-                            |p, v| unsafe { kv.add(p, v) },
+                            |p, upper, lower| match kl {
+                                // nonsymmetric storage: both triangles
+                                Some(kl) => unsafe {
+                                    kv.add(p, upper);
+                                    kl.add(p, lower);
+                                },
+                                // symmetric storage: the symmetric part
+                                None => unsafe { kv.add(p, 0.5 * (upper + lower)) },
+                            },
                         );
                     }
                     Ok(())
@@ -431,7 +456,9 @@ impl Assembler {
 
 /// Add the upper-triangle entries of an element matrix `ke` (`nd x nd`,
 /// row-major, dofs `edofs`) of free dofs to the pattern `(cp, ri)`:
-/// `add(position, value)`.
+/// `add(position, K[i][j], K[j][i])` for the global entry `(i, j)`,
+/// `i <= j` (the caller stores both for a nonsymmetric matrix, or their
+/// mean, the symmetric part, for a symmetric one).
 #[inline]
 fn scatter_upper(
     cp: &[usize],
@@ -439,7 +466,7 @@ fn scatter_upper(
     dofs: &DofMap,
     edofs: &[usize],
     ke: &[f64],
-    mut add: impl FnMut(usize, f64),
+    mut add: impl FnMut(usize, f64, f64),
 ) {
     let nd = edofs.len();
     for b in 0..nd {
@@ -454,7 +481,7 @@ fn scatter_upper(
                 continue;
             }
             let p = cp[j] + rows.binary_search(&i).expect("pattern covers element");
-            add(p, ke[a * nd + b]);
+            add(p, ke[a * nd + b], ke[b * nd + a]);
         }
     }
 }

@@ -46,6 +46,26 @@ pub mod output {
     pub const VISCOUS_ENERGY: &str = "viscous_energy";
     /// Mode ratio `B = G_II / (G_I + G_II)` of the last opening evaluation.
     pub const MODE_RATIO: &str = "mode_ratio";
+    /// Plastic (irreversible) slip, first and second local slip direction.
+    pub const PLASTIC_SLIP_1: &str = "plastic_slip_1";
+    /// See [`PLASTIC_SLIP_1`].
+    pub const PLASTIC_SLIP_2: &str = "plastic_slip_2";
+    /// Plastic opening (dilatancy, tension cut-off).
+    pub const PLASTIC_OPENING: &str = "plastic_opening";
+    /// Accumulated plastic slip `int |d slip_p|`.
+    pub const ACCUMULATED_SLIP: &str = "accumulated_slip";
+    /// Contact state of a frictional or plastic point as a number:
+    /// [`STICK`] (elastic), [`SLIP`] (plastic / sliding), [`OPEN`].
+    pub const SLIP_STATE: &str = "slip_state";
+    /// Value of [`SLIP_STATE`]: closed and elastic (sticking).
+    pub const STICK: f64 = 0.0;
+    /// Value of [`SLIP_STATE`]: on the yield surface (sliding).
+    pub const SLIP: f64 = 1.0;
+    /// Value of [`SLIP_STATE`]: open (no contact).
+    pub const OPEN: f64 = 2.0;
+    /// Energy dissipated per unit area by friction or interface plasticity
+    /// (`int t . d jump_p`, never negative).
+    pub const FRICTIONAL_DISSIPATION: &str = "frictional_dissipation";
     /// Damage from which a point counts as fully damaged (damaged area).
     pub const DAMAGED_THRESHOLD: f64 = 0.99;
 }

@@ -1,6 +1,14 @@
 //! [`SymmetricCsc`]: a symmetric sparse matrix stored as its upper triangle
 //! in compressed sparse column form (column `j` holds rows `i <= j`, sorted).
 //! This is the layout faer's sparse Cholesky reads with `Side::Upper`.
+//!
+//! A nonsymmetric matrix with a symmetric pattern (the tangent of a model
+//! whose laws declare [`crate::MatrixKind::General`]: friction,
+//! non-associated plasticity) uses the same pattern plus a second value
+//! array, [`SymmetricCsc::lower`]: for the stored entry `p = (i, j)`,
+//! `i <= j`, `values[p] = A[i][j]` and `lower[p] = A[j][i]` (so on the
+//! diagonal both hold `A[j][j]`). An empty `lower` means a symmetric
+//! matrix; symmetric back ends refuse a matrix with a non-empty `lower`.
 
 use rayon::prelude::*;
 
@@ -15,6 +23,9 @@ pub struct SymmetricCsc {
     pub row_idx: Vec<usize>,
     /// Values aligned with `row_idx`.
     pub values: Vec<f64>,
+    /// Transposed values of a nonsymmetric matrix: `lower[p] = A[j][i]`
+    /// for the entry `p = (i, j)` of `row_idx`; empty for a symmetric one.
+    pub lower: Vec<f64>,
 }
 
 impl SymmetricCsc {
@@ -40,7 +51,75 @@ impl SymmetricCsc {
             col_ptr,
             row_idx,
             values,
+            lower: Vec::new(),
         }
+    }
+
+    /// True for a nonsymmetric matrix (a non-empty [`SymmetricCsc::lower`]).
+    pub fn is_general(&self) -> bool {
+        !self.lower.is_empty()
+    }
+
+    /// Make this a nonsymmetric matrix with the same pattern (`lower`
+    /// allocated, copied from `values`), or symmetric again (`false`).
+    pub fn set_general(&mut self, general: bool) {
+        if general {
+            self.lower = self.values.clone();
+        } else {
+            self.lower = Vec::new();
+        }
+    }
+
+    /// The full matrix in CSC form `(col_ptr, row_idx, values)`, both
+    /// triangles (from `values` and, for a nonsymmetric matrix, `lower`;
+    /// the mirror of `values` otherwise). Rows sorted within each column.
+    #[allow(clippy::needless_range_loop)]
+    pub fn to_full_csc(&self) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
+        let n = self.n;
+        let mut count = vec![0usize; n + 1];
+        for j in 0..n {
+            for p in self.col_ptr[j]..self.col_ptr[j + 1] {
+                let i = self.row_idx[p];
+                count[j + 1] += 1;
+                if i != j {
+                    count[i + 1] += 1;
+                }
+            }
+        }
+        for j in 0..n {
+            count[j + 1] += count[j];
+        }
+        let nnz = count[n];
+        let mut next = count.clone();
+        let mut rows = vec![0usize; nnz];
+        let mut vals = vec![0.0; nnz];
+        let low = if self.is_general() {
+            &self.lower
+        } else {
+            &self.values
+        };
+        // two passes keep the rows sorted: first the upper part of every
+        // column (rows <= j), then the mirrored rows (> i) in increasing order
+        for j in 0..n {
+            for p in self.col_ptr[j]..self.col_ptr[j + 1] {
+                let i = self.row_idx[p];
+                rows[next[j]] = i;
+                vals[next[j]] = self.values[p];
+                next[j] += 1;
+            }
+        }
+        for j in 0..n {
+            for p in self.col_ptr[j]..self.col_ptr[j + 1] {
+                let i = self.row_idx[p];
+                if i != j {
+                    // A[j][i] is entry (row j, column i), row j > i
+                    rows[next[i]] = j;
+                    vals[next[i]] = low[p];
+                    next[i] += 1;
+                }
+            }
+        }
+        (count, rows, vals)
     }
 
     /// Position of entry (i, j) with i <= j in `values`, if present.
@@ -67,20 +146,27 @@ impl SymmetricCsc {
             .collect()
     }
 
-    /// y = A x (full symmetric product from the upper triangle).
+    /// y = A x (full product from the upper triangle, and `lower` for a
+    /// nonsymmetric matrix).
     pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
+        let low = if self.is_general() {
+            &self.lower
+        } else {
+            &self.values
+        };
         // Row i of A = column i of the upper triangle (entries k<=i) plus the
         // transposed entries (i, j) stored in later columns j > i. Computing
         // y_j = sum over column j (upper part) in parallel, then scattering
         // the strictly-upper transpose part serially would serialise half
         // the work; instead use the column view twice: y = U x + U^T x - D x.
         let n = self.n;
-        // U^T x and the diagonal: per column j, dot(column j, x) -> y_j (parallel)
+        // L x and the diagonal: per column j of the upper pattern, row j of
+        // the lower triangle is dot(lower column j, x) -> y_j (parallel)
         y.par_iter_mut().enumerate().for_each(|(j, yj)| {
             let (s, e) = (self.col_ptr[j], self.col_ptr[j + 1]);
             let mut acc = 0.0;
             for p in s..e {
-                acc += self.values[p] * x[self.row_idx[p]];
+                acc += low[p] * x[self.row_idx[p]];
             }
             *yj = acc;
         });
@@ -112,5 +198,21 @@ mod tests {
         assert_eq!(a.position(2, 1), Some(3));
         assert_eq!(a.position(0, 2), None);
         assert_eq!(a.diagonal(), vec![4.0, 3.0, 5.0]);
+    }
+
+    #[test]
+    fn general_product_and_full_csc_match_dense() {
+        // A = [[4,1,0],[7,3,2],[0,-1,5]]: upper from `values`, lower from `lower`
+        let mut a = SymmetricCsc::from_columns(vec![vec![0], vec![0, 1], vec![1, 2]]);
+        a.values = vec![4.0, 1.0, 3.0, 2.0, 5.0];
+        a.lower = vec![4.0, 7.0, 3.0, -1.0, 5.0];
+        let x = [1.0, -2.0, 3.0];
+        let mut y = [0.0; 3];
+        a.mul_vec(&x, &mut y);
+        assert_eq!(y, [4.0 - 2.0, 7.0 - 6.0 + 6.0, 2.0 + 15.0]);
+        let (cp, ri, v) = a.to_full_csc();
+        assert_eq!(cp, vec![0, 2, 5, 7]);
+        assert_eq!(ri, vec![0, 1, 0, 1, 2, 1, 2]);
+        assert_eq!(v, vec![4.0, 7.0, 1.0, 3.0, -1.0, 2.0, 5.0]);
     }
 }

@@ -581,6 +581,11 @@ where
         ..Default::default()
     };
     let mut w = Work::new(model, asm, free_dofs, u_start, settings);
+    // nonsymmetric tangents stored in full when the back end solves them
+    w.k.set_general(
+        model.matrix_kind() == junta_core::MatrixKind::General
+            && solver.accepts(junta_core::MatrixKind::General),
+    );
     let mut coupling = Coupling::new(model);
     let mut pw = PathWork {
         q: vec![0.0; nf],

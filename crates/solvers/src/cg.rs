@@ -52,7 +52,7 @@
 //! (rows in parallel, no scatter).
 
 use crate::amg::{layout_from_coords, Amg, AmgSettings};
-use crate::common::{dot, norm2, validate, FullCsr, Pattern};
+use crate::common::{dot, norm2, symmetric_only, validate, FullCsr, Pattern};
 use crate::ordering;
 use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
 use junta_core::{LinearSolver, SolveReport, SolverError, SymmetricCsc};
@@ -378,6 +378,7 @@ impl LinearSolver for CgSolver {
     ) -> Result<(), SolverError> {
         let t0 = Instant::now();
         validate(matrix)?;
+        symmetric_only(matrix, "cg")?;
         if matrix.n > u32::MAX as usize {
             return Err(SolverError::Usage("cg: more than 2^32 equations".into()));
         }
@@ -396,6 +397,7 @@ impl LinearSolver for CgSolver {
     }
 
     fn factorize(&mut self, matrix: &SymmetricCsc) -> Result<(), SolverError> {
+        symmetric_only(matrix, "cg")?;
         let t0 = Instant::now();
         let Some(pattern) = &self.pattern else {
             return Err(SolverError::Usage(

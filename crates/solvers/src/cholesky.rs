@@ -63,7 +63,9 @@
 //!   no correct digit (a floating-point factorisation of a singular matrix
 //!   rarely meets an exactly non-positive pivot).
 
-use crate::common::{inf_norm, norm2, residual, symmetric_norm_inf, validate, Pattern};
+use crate::common::{
+    inf_norm, norm2, residual, symmetric_norm_inf, symmetric_only, validate, Pattern,
+};
 use crate::ordering::OrderingKind;
 use crate::supernodal::{FactorScalar, PanelFactor};
 use faer::Par;
@@ -678,6 +680,7 @@ impl LinearSolver for CholeskySolver {
     ) -> Result<(), SolverError> {
         let t0 = Instant::now();
         validate(matrix)?;
+        symmetric_only(matrix, "cholesky")?;
         let n = matrix.n;
         self.factored = false;
         let crate::supernodal::Analysis {
@@ -728,6 +731,7 @@ impl LinearSolver for CholeskySolver {
     }
 
     fn factorize(&mut self, matrix: &SymmetricCsc) -> Result<(), SolverError> {
+        symmetric_only(matrix, "cholesky")?;
         let t0 = Instant::now();
         let Some(pattern) = &self.pattern else {
             return Err(SolverError::Usage(

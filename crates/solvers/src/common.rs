@@ -19,6 +19,13 @@ pub(crate) fn validate(m: &SymmetricCsc) -> Result<(), SolverError> {
     if m.col_ptr[0] != 0 || m.col_ptr[m.n] != m.row_idx.len() {
         return bad("col_ptr must start at 0 and end at nnz".into());
     }
+    if !m.lower.is_empty() && m.lower.len() != m.row_idx.len() {
+        return bad(format!(
+            "{} lower values for {} row indices",
+            m.lower.len(),
+            m.row_idx.len()
+        ));
+    }
     if m.values.len() != m.row_idx.len() {
         return bad(format!(
             "{} values for {} row indices",
@@ -40,6 +47,17 @@ pub(crate) fn validate(m: &SymmetricCsc) -> Result<(), SolverError> {
                 "column {j} holds a row below the diagonal (upper triangle expected)"
             ));
         }
+    }
+    Ok(())
+}
+
+/// `Usage` error naming `lu` when a symmetric back end (`key`) is given a
+/// nonsymmetric matrix ([`SymmetricCsc::is_general`]).
+pub(crate) fn symmetric_only(m: &SymmetricCsc, key: &str) -> Result<(), SolverError> {
+    if m.is_general() {
+        return Err(SolverError::Usage(format!(
+            "{key} solves symmetric matrices only, but this matrix is nonsymmetric (a law with a general tangent: friction or non-associated plasticity); use the `lu` back end ([solver] type = \"lu\" or \"auto\")"
+        )));
     }
     Ok(())
 }

@@ -133,6 +133,7 @@ fn build(
             col_ptr,
             row_idx,
             values,
+            lower: Vec::new(),
         },
         coords,
     )

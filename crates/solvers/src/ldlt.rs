@@ -81,7 +81,7 @@
 //! steps, stopping when a step no longer lowers `rho`). Double precision
 //! only.
 
-use crate::common::{norm2, residual, symmetric_norm_inf, validate, Pattern};
+use crate::common::{norm2, residual, symmetric_norm_inf, symmetric_only, validate, Pattern};
 use crate::ordering::OrderingKind;
 use crate::supernodal::{PanelFactor, SharedPtr};
 use faer::linalg::triangular_solve as tri;
@@ -789,6 +789,7 @@ impl LinearSolver for LdltSolver {
     ) -> Result<(), SolverError> {
         let t0 = Instant::now();
         validate(matrix)?;
+        symmetric_only(matrix, "ldlt")?;
         self.settings
             .check()
             .map_err(|m| SolverError::Usage(format!("ldlt: {m}")))?;
@@ -827,6 +828,7 @@ impl LinearSolver for LdltSolver {
     }
 
     fn factorize(&mut self, matrix: &SymmetricCsc) -> Result<(), SolverError> {
+        symmetric_only(matrix, "ldlt")?;
         let t0 = Instant::now();
         let Some(pattern) = &self.pattern else {
             return Err(SolverError::Usage(

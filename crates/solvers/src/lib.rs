@@ -8,6 +8,7 @@
 //! |---|---|---|
 //! | `cholesky` | [`CholeskySolver`] | supernodal Cholesky on faer's symbolic analysis and dense kernels, nested-dissection or AMD ordering ([`ordering`]; by default the one with fewer predicted flops), double or mixed precision ([`Precision`]), iterative refinement, conditioning warnings |
 //! | `ldlt` | [`LdltSolver`] | supernodal `L D L^T` for symmetric indefinite (softening) tangents: Bunch-Kaufman 1x1/2x2 pivoting within each panel on the same ordering and symbolic analysis as `cholesky`, inertia (`negative_pivots`) in the report, static perturbation of tiny pivots with iterative refinement |
+//! | `lu` | [`LuSolver`] | supernodal `LU` with partial pivoting for general (nonsymmetric) tangents (friction, non-associated plasticity): faer's numeric LU on the ordering of the shared analysis, symbolic analysis reused, iterative refinement |
 //! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi, 3×3 nodal block-Jacobi or smoothed-aggregation AMG ([`amg`]) with rigid-body modes per body |
 //! | `minres` | [`MinresSolver`] | MINRES for symmetric indefinite tangents, `|diag(A)|` preconditioner |
 //!
@@ -45,6 +46,7 @@ mod common;
 pub mod gallery;
 pub mod ldlt;
 pub mod linear_static;
+pub mod lu;
 pub mod minres;
 pub mod newton;
 pub mod ordering;
@@ -53,5 +55,6 @@ mod supernodal;
 pub use cg::{CgSettings, CgSolver, Preconditioner};
 pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats, Precision};
 pub use ldlt::{LdltSettings, LdltSolver, LdltStats};
+pub use lu::{LuSettings, LuSolver};
 pub use minres::{MinresSettings, MinresSolver};
 pub use ordering::OrderingKind;

@@ -1015,6 +1015,14 @@ where
         }
     }
     let mut w = Work::new(model, asm, free_dofs, u_start, settings);
+    // A nonsymmetric tangent (a law with a general tangent) is stored in
+    // full when the back end can solve it; a symmetric back end the user
+    // forced gets the symmetric part (Newton then loses its quadratic
+    // convergence: the iterations per increment show it).
+    w.k.set_general(
+        model.matrix_kind() == junta_core::MatrixKind::General
+            && solver.accepts(junta_core::MatrixKind::General),
+    );
     let mut summary = NonlinearSummary {
         final_lambda: cur.lambda,
         ..Default::default()

@@ -462,6 +462,7 @@ impl FillCounter {
                 col_ptr: matrix.col_ptr.clone(),
                 row_idx: matrix.row_idx.clone(),
                 values: Vec::new(),
+                lower: Vec::new(),
             },
         }
     }
@@ -659,6 +660,7 @@ pub fn permute_upper_pattern(matrix: &SymmetricCsc, perm: &[usize]) -> Symmetric
         col_ptr,
         row_idx,
         values: vec![0.0; nnz],
+        lower: Vec::new(),
     }
 }
 

@@ -504,8 +504,84 @@ impl InterfaceLaw for CohesiveLaw {
     }
 
     fn evaluate(&self, ctx: &LawContext<'_>, trial: &mut [f64]) -> Result<LawResponse, LawError> {
+        let (t, d) = self.evaluate_dual(ctx, trial)?;
+        let (ks, kn) = (self.k_s, self.k_n);
+        let mut tangent = t.map(|x| x.d);
+        if ctx.step.secant {
+            // secant stiffness of the damaged point (positive definite)
+            let s = 1.0 - d.v;
+            tangent = [[s * ks, 0.0, 0.0], [0.0, s * ks, 0.0], [0.0, 0.0, 0.0]];
+            tangent[2][2] = if ctx.jump[2] > 0.0 { s * kn } else { kn };
+        }
+        Ok(LawResponse {
+            traction: t.map(|x| x.v),
+            tangent,
+        })
+    }
+
+    fn initial_stiffness(&self) -> [f64; 3] {
+        [self.k_s, self.k_s, self.k_n]
+    }
+
+    fn is_failed(&self, state: &[f64]) -> bool {
+        state.get(slot::DAMAGE).copied().unwrap_or(0.0) >= output::DAMAGED_THRESHOLD
+    }
+
+    fn failure_index(&self, state: &[f64]) -> Option<f64> {
+        state.get(slot::INDEX).copied()
+    }
+
+    fn tangent_kind(&self) -> MatrixKind {
+        MatrixKind::SymmetricIndefinite
+    }
+
+    fn output_names(&self) -> &'static [&'static str] {
+        &[
+            output::DAMAGE,
+            output::DISSIPATED_ENERGY,
+            output::VISCOUS_ENERGY,
+            output::MODE_RATIO,
+        ]
+    }
+
+    fn outputs(&self, state: &[f64], out: &mut [f64]) {
+        use slot::*;
+        if state.len() == STATE_LEN && out.len() == 4 {
+            out[0] = state[DAMAGE];
+            out[1] = state[ENERGY];
+            out[2] = state[VISCOUS];
+            out[3] = state[MODE_RATIO];
+        }
+    }
+
+    fn fracture_properties(&self) -> Option<FractureProperties> {
+        Some(FractureProperties {
+            strength_normal: self.n,
+            strength_shear: self.s,
+            toughness_mode_i: self.g_ic,
+            toughness_mode_ii: self.g_iic,
+            penalty: self.initial_stiffness(),
+        })
+    }
+
+    fn warnings(&self) -> Vec<String> {
+        self.warnings.clone()
+    }
+}
+
+impl CohesiveLaw {
+    /// The law in dual numbers seeded on the jump: the traction and the
+    /// damage the traction uses (`d`, or the viscous `d_v`), each with its
+    /// derivatives in the jump; trial state into `trial`. Laws built on
+    /// this one (`bilinear_friction`) combine these.
+    pub fn evaluate_dual(
+        &self,
+        ctx: &LawContext<'_>,
+        trial: &mut [f64],
+    ) -> Result<([Dual3; 3], Dual3), LawError> {
         use slot::*;
         let c = ctx.state_committed;
+
         if c.len() != STATE_LEN || trial.len() != STATE_LEN {
             return Err(LawError::Failed(format!(
                 "{}: state slices of length {} (committed) and {} (trial), expected {STATE_LEN}",
@@ -602,70 +678,9 @@ impl InterfaceLaw for CohesiveLaw {
                 dj[2] * kn
             },
         ];
-        let mut tangent = t.map(|x| x.d);
-        if ctx.step.secant {
-            // secant stiffness of the damaged point (positive definite)
-            let s = 1.0 - d.v;
-            tangent = [[s * ks, 0.0, 0.0], [0.0, s * ks, 0.0], [0.0, 0.0, 0.0]];
-            tangent[2][2] = if dj[2].v > 0.0 { s * kn } else { kn };
-        }
-        Ok(LawResponse {
-            traction: t.map(|x| x.v),
-            tangent,
-        })
+        Ok((t, d))
     }
 
-    fn initial_stiffness(&self) -> [f64; 3] {
-        [self.k_s, self.k_s, self.k_n]
-    }
-
-    fn is_failed(&self, state: &[f64]) -> bool {
-        state.get(slot::DAMAGE).copied().unwrap_or(0.0) >= output::DAMAGED_THRESHOLD
-    }
-
-    fn failure_index(&self, state: &[f64]) -> Option<f64> {
-        state.get(slot::INDEX).copied()
-    }
-
-    fn tangent_kind(&self) -> MatrixKind {
-        MatrixKind::SymmetricIndefinite
-    }
-
-    fn output_names(&self) -> &'static [&'static str] {
-        &[
-            output::DAMAGE,
-            output::DISSIPATED_ENERGY,
-            output::VISCOUS_ENERGY,
-            output::MODE_RATIO,
-        ]
-    }
-
-    fn outputs(&self, state: &[f64], out: &mut [f64]) {
-        use slot::*;
-        if state.len() == STATE_LEN && out.len() == 4 {
-            out[0] = state[DAMAGE];
-            out[1] = state[ENERGY];
-            out[2] = state[VISCOUS];
-            out[3] = state[MODE_RATIO];
-        }
-    }
-
-    fn fracture_properties(&self) -> Option<FractureProperties> {
-        Some(FractureProperties {
-            strength_normal: self.n,
-            strength_shear: self.s,
-            toughness_mode_i: self.g_ic,
-            toughness_mode_ii: self.g_iic,
-            penalty: self.initial_stiffness(),
-        })
-    }
-
-    fn warnings(&self) -> Vec<String> {
-        self.warnings.clone()
-    }
-}
-
-impl CohesiveLaw {
     /// Viscous damage relaxing towards the (unchanged) history while the
     /// point does not load: `d_v = (mu d_v,0 + dt d) / (mu + dt)`, constant
     /// in the jump. Books its energy like a loading increment.

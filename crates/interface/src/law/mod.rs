@@ -11,12 +11,21 @@
 //! fracture properties (for the mesh advice) and parameter warnings. The
 //! fracture-energy laws compute in dual numbers ([`junta_core::Dual3`]), so
 //! their tangents need no hand derivation.
+//!
+//! Plastic and frictional laws (`coulomb_friction`, `mohr_coulomb`,
+//! `bilinear_friction`) keep a plastic jump in their state, return to their
+//! yield surface in closed form and declare a general (nonsymmetric)
+//! tangent, which makes the driver pick `lu`; they report the plastic slip,
+//! the stick/slip/open state and the frictional dissipation.
 
 pub mod bilinear;
+pub mod bilinear_friction;
 pub mod cohesive;
 pub mod contact;
+pub mod coulomb_friction;
 pub mod exponential;
 pub mod linear_penalty;
+pub mod mohr_coulomb;
 pub mod paper_debond;
 
 use junta_core::CoreError;

@@ -1,0 +1,518 @@
+//! Sparse direct solver for general (nonsymmetric) matrices: supernodal
+//! `LU` with partial pivoting (registry key `"lu"`), for the tangents of
+//! friction and non-associated plasticity.
+//!
+//! # Method
+//!
+//! `P_r A Q = L U` with `L` unit lower triangular, `U` upper triangular,
+//! `Q` the fill-reducing column ordering and `P_r` the row interchanges of
+//! partial pivoting (within each supernodal front, the entry of largest
+//! magnitude of the pivot column is the pivot, so `|L_ij| <= 1`).
+//!
+//! - **Ordering.** `Q` is the ordering of the shared analysis of the
+//!   symmetric back ends ([`crate::ordering::choose`]: nested dissection or
+//!   AMD on the pattern of `A + A^T`, by predicted flops). The assembled
+//!   pattern is structurally symmetric, so `A + A^T` has the pattern the
+//!   symmetric back ends order; this is SuperLU's `MMD_AT_PLUS_A` choice,
+//!   which suits matrices with a nearly symmetric structure better than a
+//!   column ordering of `A^T A` (COLAMD, faer's default).
+//! - **Symbolic analysis, once per pattern.** faer's public building
+//!   blocks with that `Q`: the column elimination tree of `A Q` (the
+//!   elimination tree of `Q^T A^T A Q`), its postorder, the column counts
+//!   of the Cholesky factor of `Q^T A^T A Q` (an upper bound of the
+//!   structure of `L` and `U` for every row pivoting: George and Ng), and
+//!   the supernodes. Kept across refactorisations of matrices with this
+//!   pattern.
+//! - **Numeric factorisation, per matrix.** faer's supernodal numeric LU
+//!   (left-looking over supernodes, dense partial-pivoting LU of each front
+//!   and BLAS-3 updates). The values of `A` (and of `A^T`, which faer also
+//!   reads) are scattered from [`SymmetricCsc::values`] / `lower` through
+//!   maps built in the analysis: no search, no allocation per factorisation.
+//! - **Solve.** `x = Q U^{-1} L^{-1} P_r b`, then iterative refinement
+//!   (`r = b - A x`, `x += (LU)^{-1} r`) while the relative residual is
+//!   above `refine_tol`, at most `max_refinements` times. A non-finite
+//!   solution (a singular matrix: zero pivot) is an error with its numbers.
+//!
+//! A symmetric matrix ([`SymmetricCsc::is_general`] false) is accepted too
+//! (mirrored), so `lu` solves every [`MatrixKind`].
+
+use crate::common::{norm2, residual, validate, Pattern};
+use crate::ordering::{self, OrderingKind};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::lu::partial_pivoting::factor::PartialPivLuParams;
+use faer::sparse::linalg::lu::supernodal::{
+    factorize_supernodal_numeric_lu, factorize_supernodal_numeric_lu_scratch,
+    factorize_supernodal_symbolic_lu, factorize_supernodal_symbolic_lu_scratch,
+    solve_in_place_scratch, SupernodalLu, SymbolicSupernodalLu,
+};
+use faer::sparse::linalg::qr::{
+    col_etree, col_etree_scratch, column_counts_aat_scratch, column_counts_ata, postorder,
+    postorder_scratch,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Spec};
+use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
+use junta_core::{LinearSolver, MatrixKind, SolveReport, SolverError, SymmetricCsc};
+use serde::Deserialize;
+use std::time::Instant;
+
+/// Settings of [`LuSolver`] (TOML parameters of the `lu` key).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LuSettings {
+    /// Fill-reducing ordering: `"auto"` (default), `"nested_dissection"`,
+    /// `"amd"` or `"natural"` (the analysis shared with `cholesky`).
+    pub ordering: OrderingKind,
+    /// Relative residual above which iterative refinement runs (1e-12).
+    pub refine_tol: f64,
+    /// Maximum refinement steps per solve (3).
+    pub max_refinements: usize,
+    /// Relative residual after refinement above which the report warns (1e-6).
+    pub warn_tol: f64,
+    /// Threads for the numeric factorisation (0: rayon's pool).
+    pub threads: usize,
+}
+
+impl Default for LuSettings {
+    fn default() -> Self {
+        LuSettings {
+            ordering: OrderingKind::default(),
+            refine_tol: 1e-12,
+            max_refinements: 3,
+            warn_tol: 1e-6,
+            threads: 0,
+        }
+    }
+}
+
+/// Parameters of the `lu` registry entry.
+pub const LU_PARAMS: &[ParamDoc] = &[
+    ParamDoc {
+        name: "ordering",
+        doc: "fill-reducing column ordering: \"auto\" (default: nested dissection or AMD on A + A^T, whichever is predicted cheaper), \"nested_dissection\", \"amd\", \"natural\"",
+    },
+    ParamDoc {
+        name: "refine_tol",
+        doc: "relative residual above which iterative refinement runs (default 1e-12)",
+    },
+    ParamDoc {
+        name: "max_refinements",
+        doc: "maximum refinement steps per solve (default 3)",
+    },
+    ParamDoc {
+        name: "warn_tol",
+        doc: "relative residual after refinement above which the report warns (default 1e-6)",
+    },
+    ParamDoc {
+        name: "threads",
+        doc: "threads of the numeric factorisation (default 0: all)",
+    },
+];
+
+/// faer's workspace of the numeric factorisation and solve (allocated
+/// once per analysis).
+struct Workspace(MemBuffer);
+
+impl std::fmt::Debug for Workspace {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Workspace")
+    }
+}
+
+/// Sparse supernodal LU with partial pivoting (registry key `"lu"`).
+#[derive(Debug)]
+pub struct LuSolver {
+    settings: LuSettings,
+    pattern: Option<Pattern>,
+    /// Full pattern of `A` (CSC, both triangles); the pattern of `A^T` is
+    /// the same (structurally symmetric).
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    /// For each full entry `q`: `2 p + 1` when `A[q]` is `lower[p]`, `2 p`
+    /// when it is `values[p]` (of the [`SymmetricCsc`]).
+    src: Vec<usize>,
+    a_values: Vec<f64>,
+    at_values: Vec<f64>,
+    col_perm: Vec<usize>,
+    col_perm_inv: Vec<usize>,
+    row_perm: Vec<usize>,
+    row_perm_inv: Vec<usize>,
+    symbolic: Option<SymbolicSupernodalLu<usize>>,
+    numeric: SupernodalLu<usize, f64>,
+    mem: Option<Workspace>,
+    factored: bool,
+    /// Refinement scratch: residual and correction.
+    r: Vec<f64>,
+    dx: Vec<f64>,
+    b0: Vec<f64>,
+    report: SolveReport,
+}
+
+impl LuSolver {
+    /// A solver with these settings.
+    pub fn new(settings: LuSettings) -> Self {
+        LuSolver {
+            settings,
+            pattern: None,
+            col_ptr: Vec::new(),
+            row_idx: Vec::new(),
+            src: Vec::new(),
+            a_values: Vec::new(),
+            at_values: Vec::new(),
+            col_perm: Vec::new(),
+            col_perm_inv: Vec::new(),
+            row_perm: Vec::new(),
+            row_perm_inv: Vec::new(),
+            symbolic: None,
+            numeric: SupernodalLu::new(),
+            mem: None,
+            factored: false,
+            r: Vec::new(),
+            dx: Vec::new(),
+            b0: Vec::new(),
+            report: SolveReport {
+                solver: "lu".into(),
+                precision: "double".into(),
+                ..Default::default()
+            },
+        }
+    }
+
+    /// From the TOML table of the `lu` key.
+    pub fn from_table(table: &toml::Table) -> Result<Self, junta_core::CoreError> {
+        let settings: LuSettings = parse_params("solver", "lu", table)?;
+        if !(settings.refine_tol > 0.0 && settings.warn_tol > 0.0) {
+            return Err(junta_core::CoreError::InvalidParameters {
+                kind: "solver",
+                key: "lu".into(),
+                message: "refine_tol and warn_tol must be positive".into(),
+            });
+        }
+        Ok(Self::new(settings))
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &LuSettings {
+        &self.settings
+    }
+
+    /// The column ordering of the last analysis (`perm[new] = old`).
+    pub fn permutation(&self) -> &[usize] {
+        &self.col_perm
+    }
+
+    fn par(&self) -> Par {
+        let t = if self.settings.threads == 0 {
+            rayon::current_num_threads()
+        } else {
+            self.settings.threads
+        };
+        if t <= 1 {
+            Par::Seq
+        } else {
+            Par::rayon(t)
+        }
+    }
+
+    /// Solve with the factors in place (no refinement).
+    fn apply_inverse(&mut self, x: &mut [f64]) {
+        let n = x.len();
+        let symbolic_ok = self.symbolic.is_some();
+        debug_assert!(symbolic_ok);
+        let par = self.par();
+        let mem = self.mem.as_mut().expect("analysed");
+        let stack = MemStack::new(&mut mem.0);
+        let row_perm = faer::perm::PermRef::new_checked(&self.row_perm, &self.row_perm_inv, n);
+        let col_perm = faer::perm::PermRef::new_checked(&self.col_perm, &self.col_perm_inv, n);
+        let rhs = MatMut::from_column_major_slice_mut(x, n, 1);
+        self.numeric
+            .solve_in_place_with_conj(row_perm, col_perm, Conj::No, rhs, par, stack);
+    }
+}
+
+impl Default for LuSolver {
+    fn default() -> Self {
+        Self::new(LuSettings::default())
+    }
+}
+
+impl LinearSolver for LuSolver {
+    fn key(&self) -> &'static str {
+        "lu"
+    }
+
+    fn accepts(&self, _kind: MatrixKind) -> bool {
+        true
+    }
+
+    fn analyze(
+        &mut self,
+        matrix: &SymmetricCsc,
+        coords: Option<&[[f64; 3]]>,
+    ) -> Result<(), SolverError> {
+        let t0 = Instant::now();
+        validate(matrix)?;
+        self.factored = false;
+        let n = matrix.n;
+        // full pattern of A and the source of every entry
+        let (col_ptr, row_idx, _) = matrix.to_full_csc();
+        let mut src = vec![0usize; row_idx.len()];
+        let mut next = col_ptr.clone();
+        for j in 0..n {
+            for p in matrix.col_ptr[j]..matrix.col_ptr[j + 1] {
+                src[next[j]] = 2 * p;
+                next[j] += 1;
+            }
+        }
+        for j in 0..n {
+            for p in matrix.col_ptr[j]..matrix.col_ptr[j + 1] {
+                let i = matrix.row_idx[p];
+                if i != j {
+                    src[next[i]] = 2 * p + 1;
+                    next[i] += 1;
+                }
+            }
+        }
+        // column ordering: the shared analysis on the pattern of A + A^T
+        let choice = ordering::choose(self.settings.ordering, matrix, coords);
+        self.report.notes.retain(|n| !n.starts_with("ordering "));
+        self.report.notes.push(choice.note());
+        self.report.ordering = choice.kind.name().into();
+        self.report.ordering_candidates = choice
+            .candidates
+            .iter()
+            .map(|(k, e)| (k.name().to_string(), e.nonzeros))
+            .collect();
+        let perm = choice.perm;
+        let perm_inv = ordering::inverse(&perm);
+        let nnz = row_idx.len();
+        let req = StackReq::any_of(&[
+            col_etree_scratch::<usize>(n, n),
+            postorder_scratch::<usize>(n),
+            column_counts_aat_scratch::<usize>(n, n),
+            factorize_supernodal_symbolic_lu_scratch::<usize>(n, n).and(StackReq::new::<usize>(n)),
+        ]);
+        let mut mem = MemBuffer::try_new(req).map_err(|_| SolverError::OutOfMemory {
+            detail: format!("lu: symbolic analysis workspace for n = {n}"),
+        })?;
+        let stack = MemStack::new(&mut mem);
+        let a = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
+        let perm_ref = faer::perm::PermRef::new_checked(&perm, &perm_inv, n);
+        let mut etree = vec![0usize; n];
+        let mut post = vec![0usize; n];
+        let mut col_counts = vec![0usize; n];
+        let mut min_col = vec![0usize; n];
+        let et = col_etree(a, Some(perm_ref), &mut etree, stack);
+        postorder(&mut post, et, stack);
+        // A is structurally symmetric: A^T has the pattern of A
+        column_counts_ata(
+            &mut col_counts,
+            &mut min_col,
+            a,
+            Some(perm_ref),
+            et,
+            &post,
+            stack,
+        );
+        let symbolic = factorize_supernodal_symbolic_lu(
+            a,
+            Some(perm_ref),
+            &min_col,
+            et,
+            &col_counts,
+            stack,
+            Default::default(),
+        )
+        .map_err(|e| SolverError::OutOfMemory {
+            detail: format!("lu: symbolic analysis: {e:?}"),
+        })?;
+        let par = self.par();
+        let params: Spec<PartialPivLuParams, f64> = Default::default();
+        let numeric_req = StackReq::all_of(&[
+            factorize_supernodal_numeric_lu_scratch::<usize, f64>(&symbolic, params),
+            StackReq::new::<usize>(n + 1),
+            StackReq::new::<usize>(nnz),
+        ])
+        .or(solve_in_place_scratch::<usize, f64>(n, 1, par));
+        let _ = par;
+        self.mem = Some(Workspace(MemBuffer::try_new(numeric_req).map_err(
+            |_| SolverError::OutOfMemory {
+                detail: format!("lu: factorisation workspace for n = {n}"),
+            },
+        )?));
+        self.symbolic = Some(symbolic);
+        self.numeric = SupernodalLu::new();
+        self.col_ptr = col_ptr;
+        self.row_idx = row_idx;
+        self.src = src;
+        self.a_values = vec![0.0; nnz];
+        self.at_values = vec![0.0; nnz];
+        self.col_perm = perm;
+        self.col_perm_inv = perm_inv;
+        self.row_perm = vec![0; n];
+        self.row_perm_inv = vec![0; n];
+        self.r = vec![0.0; n];
+        self.dx = vec![0.0; n];
+        self.b0 = vec![0.0; n];
+        self.pattern = Some(Pattern::of(matrix));
+        let secs = t0.elapsed().as_secs_f64();
+        self.report.analyze_seconds += secs;
+        tracing::info!(
+            n,
+            nnz,
+            ordering = self.report.ordering.as_str(),
+            analyze_seconds = secs,
+            "lu: symbolic analysis"
+        );
+        Ok(())
+    }
+
+    fn factorize(&mut self, matrix: &SymmetricCsc) -> Result<(), SolverError> {
+        let t0 = Instant::now();
+        let Some(pattern) = &self.pattern else {
+            return Err(SolverError::Usage(
+                "lu: factorize called before analyze".into(),
+            ));
+        };
+        pattern.check(matrix, "lu factorize")?;
+        if !matrix.lower.is_empty() && matrix.lower.len() != matrix.values.len() {
+            return Err(SolverError::Usage(format!(
+                "lu factorize: {} lower values for {} entries",
+                matrix.lower.len(),
+                matrix.values.len()
+            )));
+        }
+        self.factored = false;
+        self.report.warnings.clear();
+        let low = if matrix.is_general() {
+            &matrix.lower
+        } else {
+            &matrix.values
+        };
+        for (q, &s) in self.src.iter().enumerate() {
+            let p = s >> 1;
+            // A^T at the same position holds the transposed entry: the other array
+            let (a, at) = if s & 1 == 1 {
+                (low[p], matrix.values[p])
+            } else {
+                (matrix.values[p], low[p])
+            };
+            self.a_values[q] = a;
+            self.at_values[q] = at;
+        }
+        if let Some(q) = self.a_values.iter().position(|v| !v.is_finite()) {
+            let col = self.col_ptr.partition_point(|&c| c <= q) - 1;
+            return Err(SolverError::NonFinite {
+                method: format!(
+                    "lu factorisation: the matrix holds {} at entry ({}, {col})",
+                    self.a_values[q], self.row_idx[q]
+                ),
+            });
+        }
+        let n = matrix.n;
+        let par = self.par();
+        let symbolic = self.symbolic.as_ref().expect("analysed");
+        let mem = self.mem.as_mut().expect("analysed");
+        let stack = MemStack::new(&mut mem.0);
+        let a = SparseColMatRef::new(
+            SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx),
+            &self.a_values,
+        );
+        let at = SparseColMatRef::new(
+            SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx),
+            &self.at_values,
+        );
+        let col_perm = faer::perm::PermRef::new_checked(&self.col_perm, &self.col_perm_inv, n);
+        factorize_supernodal_numeric_lu(
+            &mut self.row_perm,
+            &mut self.row_perm_inv,
+            &mut self.numeric,
+            a,
+            at,
+            col_perm,
+            symbolic,
+            par,
+            stack,
+            Default::default(),
+        )
+        .map_err(|e| SolverError::NotPositiveDefinite {
+            detail: format!(": lu: the matrix is structurally singular ({e:?})"),
+        })?;
+        self.factored = true;
+        self.report.factor_seconds += t0.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    fn solve_in_place(&mut self, matrix: &SymmetricCsc, b: &mut [f64]) -> Result<(), SolverError> {
+        let t0 = Instant::now();
+        if !self.factored {
+            return Err(SolverError::Usage(
+                "lu: solve called before a successful factorize".into(),
+            ));
+        }
+        if b.len() != matrix.n {
+            return Err(SolverError::Usage(format!(
+                "lu: right-hand side of length {} for n = {}",
+                b.len(),
+                matrix.n
+            )));
+        }
+        let bnorm = norm2(b);
+        self.b0.copy_from_slice(b);
+        self.apply_inverse(b);
+        let mut rel = 0.0;
+        let mut steps = 0;
+        if bnorm > 0.0 {
+            let mut r = std::mem::take(&mut self.r);
+            let mut dx = std::mem::take(&mut self.dx);
+            loop {
+                if b.iter().any(|v| !v.is_finite()) {
+                    self.r = r;
+                    self.dx = dx;
+                    return Err(SolverError::NonFinite {
+                        method: "lu solve (a zero pivot: the matrix is singular; is the model constrained against rigid-body motion?)".into(),
+                    });
+                }
+                rel = residual(matrix, b, &self.b0, &mut r) / bnorm;
+                if rel <= self.settings.refine_tol || steps >= self.settings.max_refinements {
+                    break;
+                }
+                dx.copy_from_slice(&r);
+                self.apply_inverse(&mut dx);
+                for (x, d) in b.iter_mut().zip(&dx) {
+                    *x += d;
+                }
+                steps += 1;
+            }
+            self.r = r;
+            self.dx = dx;
+        }
+        if rel > self.settings.warn_tol {
+            let w = format!(
+                "lu: direct solve lost digits: residual {rel:.3e} after {steps} refinement steps (warn_tol {:.1e}): the matrix is ill-conditioned or nearly singular",
+                self.settings.warn_tol
+            );
+            tracing::warn!("{w}");
+            if !self.report.warnings.contains(&w) {
+                self.report.warnings.push(w);
+            }
+        }
+        self.report.residual = rel;
+        self.report.refinement_steps = steps;
+        self.report.solve_seconds += t0.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    fn report(&self) -> SolveReport {
+        self.report.clone()
+    }
+}
+
+inventory::submit! {
+    SolverEntry {
+        key: "lu",
+        description: "sparse supernodal LU with partial pivoting for general (nonsymmetric) matrices (friction, non-associated plasticity): faer's numeric LU on the ordering of the shared analysis (nested dissection or AMD on A + A^T), symbolic analysis reused across refactorisations, iterative refinement",
+        params: LU_PARAMS,
+        build: |table| Ok(Box::new(LuSolver::from_table(table)?)),
+    }
+}

@@ -1,0 +1,197 @@
+//! Tests of the general (nonsymmetric) `lu` back end: nonsymmetric systems
+//! solved to round-off against a known solution, a matrix that needs row
+//! interchanges (zero diagonal), refactorisation on one analysis, a
+//! singular matrix, the refusal of the symmetric back ends naming `lu`,
+//! and the registry entry.
+
+use junta_core::registry::find;
+use junta_core::{LinearSolver, MatrixKind, SolverError, SymmetricCsc};
+use junta_solvers::gallery::{grid_3d, Stencil};
+use junta_solvers::{CgSolver, CholeskySolver, LdltSolver, LuSolver};
+
+/// A known, non-trivial solution.
+fn exact(n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| ((i * 37 % 101) as f64 - 50.0) / 25.0 + (i as f64 * 0.01).sin())
+        .collect()
+}
+
+fn rhs(a: &SymmetricCsc, x: &[f64]) -> Vec<f64> {
+    let mut b = vec![0.0; a.n];
+    a.mul_vec(x, &mut b);
+    b
+}
+
+fn max_rel_error(x: &[f64], xs: &[f64]) -> f64 {
+    let scale = xs.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    x.iter()
+        .zip(xs)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        / scale
+}
+
+/// A stiffness-like SPD grid matrix made nonsymmetric: `A = K + c S` with
+/// `S` skew-symmetric (convection-like) and a nonsymmetric diagonal-block
+/// perturbation, so that `A != A^T` in every off-diagonal entry.
+fn nonsymmetric_grid(c: f64) -> (SymmetricCsc, Vec<[f64; 3]>) {
+    let (mut a, coords) = grid_3d(5, 4, 4, 3, Stencil::Point27);
+    a.set_general(true);
+    for j in 0..a.n {
+        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+            let i = a.row_idx[p];
+            if i != j {
+                let s = c * (1.0 + ((i + 2 * j) % 7) as f64 / 7.0);
+                a.values[p] += s;
+                a.lower[p] -= 0.5 * s;
+            }
+        }
+    }
+    (a, coords)
+}
+
+fn is_nonsymmetric(a: &SymmetricCsc) -> bool {
+    a.col_ptr.windows(2).enumerate().any(|(j, w)| {
+        (w[0]..w[1]).any(|p| a.row_idx[p] != j && (a.values[p] - a.lower[p]).abs() > 1e-3)
+    })
+}
+
+#[test]
+fn lu_solves_a_nonsymmetric_system_to_round_off() {
+    let (a, coords) = nonsymmetric_grid(0.3);
+    assert!(is_nonsymmetric(&a));
+    let xs = exact(a.n);
+    let mut b = rhs(&a, &xs);
+    let mut lu = LuSolver::default();
+    assert!(lu.accepts(MatrixKind::General));
+    lu.analyze(&a, Some(&coords)).unwrap();
+    lu.factorize(&a).unwrap();
+    lu.solve_in_place(&a, &mut b).unwrap();
+    let r = lu.report();
+    assert!(r.residual < 1e-13, "residual {}", r.residual);
+    assert!(max_rel_error(&b, &xs) < 1e-10, "{}", max_rel_error(&b, &xs));
+    assert!(!r.ordering.is_empty());
+}
+
+/// `[[0, 1], [2, 0]]` blocks on the diagonal: no elimination without row
+/// interchanges (every diagonal entry is zero).
+#[test]
+fn lu_pivots_on_zero_diagonals() {
+    let m = 6; // 2x2 blocks on the diagonal, coupled to the next block
+    let n = 2 * m;
+    let mut cols = Vec::new();
+    for j in 0..n {
+        let lo = if j >= 2 { (j / 2 - 1) * 2 } else { 0 };
+        cols.push((lo..=j).collect::<Vec<_>>());
+    }
+    let mut a = SymmetricCsc::from_columns(cols);
+    a.set_general(true);
+    for j in 0..n {
+        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+            let i = a.row_idx[p];
+            let (v, l) = if i == j {
+                (0.0, 0.0)
+            } else if i / 2 == j / 2 {
+                (1.0, 2.0)
+            } else {
+                (0.1 * (i + 1) as f64, -0.05 * (j + 1) as f64)
+            };
+            a.values[p] = v;
+            a.lower[p] = l;
+        }
+    }
+    let xs = exact(n);
+    let mut b = rhs(&a, &xs);
+    let mut lu = LuSolver::default();
+    lu.analyze(&a, None).unwrap();
+    lu.factorize(&a).unwrap();
+    lu.solve_in_place(&a, &mut b).unwrap();
+    assert!(max_rel_error(&b, &xs) < 1e-12, "{}", max_rel_error(&b, &xs));
+}
+
+/// One analysis, several matrices with the pattern (a Newton run): each
+/// solve to round-off; a symmetric matrix (empty `lower`) is solved too.
+#[test]
+fn lu_refactorises_on_one_analysis() {
+    let (mut a, coords) = nonsymmetric_grid(0.1);
+    let mut lu = LuSolver::default();
+    lu.analyze(&a, Some(&coords)).unwrap();
+    for c in [0.1, 0.5, -0.4] {
+        for (p, v) in a.lower.iter_mut().enumerate() {
+            *v += c * ((p % 5) as f64 - 2.0) * 0.01;
+        }
+        // keep the diagonal consistent (lower[diag] = values[diag])
+        for j in 0..a.n {
+            let d = a.col_ptr[j + 1] - 1;
+            a.lower[d] = a.values[d];
+        }
+        let xs = exact(a.n);
+        let mut b = rhs(&a, &xs);
+        lu.factorize(&a).unwrap();
+        lu.solve_in_place(&a, &mut b).unwrap();
+        assert!(max_rel_error(&b, &xs) < 1e-10);
+    }
+    let (s, _) = grid_3d(5, 4, 4, 3, Stencil::Point27);
+    let xs = exact(s.n);
+    let mut b = rhs(&s, &xs);
+    lu.factorize(&s).unwrap();
+    lu.solve_in_place(&s, &mut b).unwrap();
+    assert!(max_rel_error(&b, &xs) < 1e-10);
+    assert_eq!(lu.permutation().len(), s.n);
+}
+
+#[test]
+fn lu_reports_a_singular_matrix() {
+    // rank one 2x2 block: [[1, 2], [2, 4]] stored general, plus an identity
+    let mut a = SymmetricCsc::from_columns(vec![vec![0], vec![0, 1], vec![2]]);
+    a.set_general(true);
+    a.values = vec![1.0, 2.0, 4.0, 1.0];
+    a.lower = vec![1.0, 2.0, 4.0, 1.0];
+    let mut lu = LuSolver::default();
+    lu.analyze(&a, None).unwrap();
+    let mut b = vec![1.0, 0.0, 1.0];
+    let r = lu.factorize(&a).and_then(|_| lu.solve_in_place(&a, &mut b));
+    assert!(
+        matches!(
+            r,
+            Err(SolverError::NonFinite { .. }) | Err(SolverError::NotPositiveDefinite { .. })
+        ),
+        "{r:?}"
+    );
+}
+
+/// The symmetric back ends refuse a nonsymmetric matrix, naming `lu`.
+#[test]
+fn symmetric_back_ends_refuse_a_general_matrix_naming_lu() {
+    let (a, coords) = nonsymmetric_grid(0.3);
+    let mut solvers: Vec<Box<dyn LinearSolver>> = vec![
+        Box::new(CholeskySolver::new(Default::default())),
+        Box::new(LdltSolver::new(Default::default())),
+        Box::new(CgSolver::new(Default::default())),
+    ];
+    for s in &mut solvers {
+        assert!(!s.accepts(MatrixKind::General));
+        let e = s.analyze(&a, Some(&coords)).unwrap_err();
+        let msg = e.to_string();
+        assert!(matches!(e, SolverError::Usage(_)), "{msg}");
+        assert!(
+            msg.contains("nonsymmetric") && msg.contains("`lu`"),
+            "{msg}"
+        );
+        // analysed on the symmetric part, then given the general matrix
+        let mut sym = a.clone();
+        sym.set_general(false);
+        s.analyze(&sym, Some(&coords)).unwrap();
+        let e = s.factorize(&a).unwrap_err();
+        assert!(e.to_string().contains("`lu`"), "{e}");
+    }
+}
+
+#[test]
+fn lu_is_registered() {
+    let e = find::<junta_core::registry::SolverEntry>("lu").unwrap();
+    let s = (e.build)(&toml::Table::new()).unwrap();
+    assert_eq!(s.key(), "lu");
+    assert!(s.accepts(MatrixKind::General));
+    let bad: toml::Table = toml::from_str("pivot = 1").unwrap();
+    assert!((e.build)(&bad).is_err());
+}
