@@ -550,3 +550,88 @@ fn tangent_on_the_damage_surface_is_the_loading_one() {
         }
     }
 }
+
+/// `tangent = "exact"`: the law declares a general tangent, the element
+/// assembles the full (nonsymmetric in mixed mode) matrix, and it equals
+/// the finite-difference derivative of the element forces; a bad value is
+/// a clear error.
+#[test]
+fn exact_tangent_option_assembles_the_nonsymmetric_tangent() {
+    use junta_core::element::{Element, ElementContext};
+    use junta_core::topology::CellShape;
+    use junta_core::MatrixKind;
+    use junta_interface::{InterfaceElement, InterfaceRule};
+    assert_eq!(
+        build("bilinear", "").tangent_kind(),
+        MatrixKind::SymmetricIndefinite
+    );
+    let law = build("bilinear", "tangent = \"exact\"");
+    assert_eq!(law.tangent_kind(), MatrixKind::General);
+    let err = build_err(
+        "bilinear",
+        "K = 1e6\nN = 80\nS = 100\nG_Ic = 1\nG_IIc = 2\neta = 2\ntangent = \"full\"",
+    );
+    assert!(err.contains("tangent") && err.contains("exact"), "{err}");
+    let el = InterfaceElement::new(CellShape::Inter8, InterfaceRule::Gauss, law).unwrap();
+    let face = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ];
+    let coords: Vec<[f64; 3]> = face.iter().chain(face.iter()).copied().collect();
+    let mut disp = vec![0.0; 24];
+    for a in 0..4 {
+        let s = 1.0 + a as f64;
+        disp[3 * (4 + a)] = 0.6e-4 * s;
+        disp[3 * (4 + a) + 2] = 0.5e-4 * s;
+    }
+    let mut state = vec![0.0; el.state_len()];
+    el.init_state(&mut state);
+    let eval = |u: &[f64], k: Option<&mut [f64]>| {
+        let mut trial = vec![0.0; state.len()];
+        let mut f = vec![0.0; 24];
+        el.compute(
+            &ElementContext {
+                coords: &coords,
+                disp: u,
+                state_committed: &state,
+                step: StepInfo {
+                    increment: 1,
+                    load_factor: 1.0,
+                    delta_load_factor: 1.0,
+                    secant: false,
+                },
+            },
+            &mut trial,
+            &mut f,
+            k,
+        )
+        .unwrap();
+        f
+    };
+    let mut k = vec![0.0; 24 * 24];
+    eval(&disp, Some(&mut k));
+    let (mut asym, mut scale, mut err) = (0.0f64, 0.0f64, 0.0f64);
+    let h = 1e-10;
+    for j in 0..24 {
+        let (mut up, mut dn) = (disp.clone(), disp.clone());
+        up[j] += h;
+        dn[j] -= h;
+        let (fp, fm) = (eval(&up, None), eval(&dn, None));
+        for i in 0..24 {
+            let fd = (fp[i] - fm[i]) / (2.0 * h);
+            err = err.max((k[i * 24 + j] - fd).abs());
+            scale = scale.max(k[i * 24 + j].abs());
+            asym = asym.max((k[i * 24 + j] - k[j * 24 + i]).abs());
+        }
+    }
+    assert!(
+        err < 1e-5 * scale,
+        "tangent against FD: {err:e} (scale {scale:e})"
+    );
+    assert!(
+        asym > 1e-6 * scale,
+        "the mixed-mode tangent is not symmetric: {asym:e}"
+    );
+}

@@ -194,6 +194,9 @@ pub struct CohesiveLaw {
     pub shear_penalty: ShearPenalty,
     /// Viscosity (load-factor units; 0 = none).
     pub viscosity: f64,
+    /// Assemble the exact (nonsymmetric in mixed mode) tangent instead of
+    /// its symmetric part (`tangent = "exact"`; needs the `lu` back end).
+    pub exact_tangent: bool,
     criterion: Arc<dyn FailureCriterion>,
     warnings: Vec<String>,
 }
@@ -217,6 +220,7 @@ struct Params {
     onset: Option<toml::Value>,
     shear_penalty: Option<ShearPenalty>,
     viscosity: Option<f64>,
+    tangent: Option<String>,
 }
 
 /// Parameter documentation shared by the fracture-energy laws.
@@ -232,6 +236,7 @@ pub const PARAMS: &[junta_core::registry::ParamDoc] = &[
     junta_core::registry::ParamDoc { name: "onset", doc: "damage-onset criterion: \"quadratic\" (default, Abaqus QUADS), \"max_stress\" (MAXS), \"bk\" (Turon), given N and S (and eta); or a table { type = .., .. } with its own parameters" },
     junta_core::registry::ParamDoc { name: "shear_penalty", doc: "\"equal\" (default: K_s = K) or \"turon2018\" (K_s = K (G_Ic/G_IIc)(S/N)^2)" },
     junta_core::registry::ParamDoc { name: "viscosity", doc: "viscous regularisation mu >= 0 in load-factor units (default 0: none); its energy is reported apart from the fracture energy" },
+    junta_core::registry::ParamDoc { name: "tangent", doc: "\"symmetric\" (default: the interface element assembles the symmetric part of the mixed-mode tangent; cholesky/ldlt) or \"exact\" (the full, nonsymmetric tangent where the mode ratio changes; quadratic convergence in mixed mode; solved by lu)" },
 ];
 
 fn criterion_keys() -> String {
@@ -299,6 +304,15 @@ impl CohesiveLaw {
             ShearPenalty::Turon2018 => k * (g_ic / g_iic) * (s / n).powi(2),
         };
         let criterion = build_onset(key, p.onset.as_ref(), n, s, p.eta)?;
+        let exact_tangent = match p.tangent.as_deref() {
+            None | Some("symmetric") => false,
+            Some("exact") => true,
+            Some(other) => {
+                return Err(invalid(format!(
+                    "`tangent` = \"{other}\": use \"symmetric\" or \"exact\""
+                )))
+            }
+        };
         let mut law = CohesiveLaw {
             key,
             shape,
@@ -311,6 +325,7 @@ impl CohesiveLaw {
             propagation,
             shear_penalty,
             viscosity,
+            exact_tangent,
             criterion,
             warnings: Vec::new(),
         };
@@ -532,7 +547,11 @@ impl InterfaceLaw for CohesiveLaw {
     }
 
     fn tangent_kind(&self) -> MatrixKind {
-        MatrixKind::SymmetricIndefinite
+        if self.exact_tangent {
+            MatrixKind::General
+        } else {
+            MatrixKind::SymmetricIndefinite
+        }
     }
 
     fn output_names(&self) -> &'static [&'static str] {
