@@ -70,10 +70,12 @@ struct Row {
     /// Negative pivots of the last factorised tangent (inertia), when the
     /// back end knows it.
     negative_pivots: Option<usize>,
+    /// Energy dissipated by friction / interface plasticity so far.
+    frictional: f64,
 }
 
 const CURVE_HEADER: &str =
-    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots\n";
+    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,frictional_dissipation\n";
 
 fn opt(v: Option<f64>) -> String {
     v.map(|x| format!("{x:e}")).unwrap_or_default()
@@ -82,7 +84,7 @@ fn opt(v: Option<f64>) -> String {
 impl Row {
     fn csv(&self) -> String {
         format!(
-            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{}\n",
+            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{:e}\n",
             self.increment,
             self.step,
             self.lambda,
@@ -98,12 +100,14 @@ impl Row {
             self.damaged_area,
             self.negative_pivots
                 .map(|n| n.to_string())
-                .unwrap_or_default()
+                .unwrap_or_default(),
+            self.frictional
         )
     }
     fn parse(line: &str) -> Option<Row> {
         let f: Vec<&str> = line.split(',').collect();
-        if f.len() != 14 {
+        // 14 columns: curves written before the frictional dissipation
+        if f.len() != 14 && f.len() != 15 {
             return None;
         }
         Some(Row {
@@ -121,6 +125,7 @@ impl Row {
             dissipated: f[11].parse().ok()?,
             damaged_area: f[12].parse().ok()?,
             negative_pivots: f[13].trim().parse().ok(),
+            frictional: f.get(14).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
         })
     }
 }
@@ -336,6 +341,8 @@ pub fn run_static(
                         damaged_area: a.damaged_area + e.damaged_area,
                         process_zone_area: a.process_zone_area + e.process_zone_area,
                         has_damage: a.has_damage || e.has_damage,
+                        frictional_dissipation: a.frictional_dissipation + e.frictional_dissipation,
+                        has_friction: a.has_friction || e.has_friction,
                     },
                 );
                 let row = Row {
@@ -353,6 +360,7 @@ pub fn run_static(
                     dissipated: energy.dissipated_energy,
                     damaged_area: energy.damaged_area,
                     negative_pivots: r.negative_pivots,
+                    frictional: energy.frictional_dissipation,
                 };
                 curve_file.write_all(row.csv().as_bytes())?;
                 curve_file.flush()?;
@@ -454,7 +462,12 @@ pub fn run_static(
         "equations": model.dofs.num_free,
         "elements": output::element_counts(model),
         "increments": last_increment,
-        "newton_iterations": { "total": total_iterations, "max_per_increment": max_iterations },
+        "newton_iterations": {
+            "total": total_iterations,
+            "max_per_increment": max_iterations,
+            "mean_per_increment": total_iterations as f64 / rows.len().max(1) as f64,
+            "per_increment": rows.iter().map(|r| r.iterations).collect::<Vec<_>>(),
+        },
         "load_factor": rows.last().map(|r| r.lambda),
         "first_failure": first_failure,
         "restarted_from_increment": if start_increment > 0 { Some(start_increment) } else { None },
@@ -514,6 +527,10 @@ pub fn run_static(
     let report = p.solver.report();
     let mut notes = p.notes.clone();
     notes.extend(report.notes.iter().cloned());
+    let frictional = rows.last().map_or(0.0, |r| r.frictional);
+    if model.matrix_kind() == junta_core::MatrixKind::General {
+        summary["frictional_dissipation"] = json!(frictional);
+    }
     summary["solver"] = json!({
         "name": report.solver,
         "ordering": report.ordering,
@@ -522,6 +539,16 @@ pub fn run_static(
         "ordering": report.ordering,
         "factor_nonzeros": report.factor_nonzeros,
         "negative_pivots_max": rows.iter().filter_map(|r| r.negative_pivots).max(),
+        "matrix_kind": model.matrix_kind().name(),
+        // a general tangent is assembled in full only for a back end that
+        // solves general matrices; otherwise its symmetric part is used
+        "tangent": if model.matrix_kind() != junta_core::MatrixKind::General {
+            "symmetric"
+        } else if p.solver.accepts(junta_core::MatrixKind::General) {
+            "consistent (nonsymmetric, full storage)"
+        } else {
+            "symmetric part of the nonsymmetric tangent (Newton converges linearly)"
+        },
         "warnings": report.warnings,
         "notes": notes,
     });
