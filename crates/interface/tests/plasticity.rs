@@ -473,6 +473,16 @@ fn bad_parameters_are_clear_errors() {
         "K = 1e6\nN = 30.0\nS = -40.0\nG_Ic = 0.01\nG_IIc = 0.02\neta = 2.0\nmu = 0.3",
     );
     assert!(e.contains("bilinear_friction") && e.contains("`S`"), "{e}");
+    let e = build_err(
+        "bilinear_friction",
+        "K = 1e6\nN = 30.0\nS = 40.0\nG_Ic = 0.3\nG_IIc = 0.8\neta = 2.0\nmu = \"high\"",
+    );
+    assert!(e.contains("mu") && e.contains("number"), "{e}");
+    let e = build_err(
+        "coulomb_friction",
+        "K = 1e6\nmu = 0.3\ninterference = -1e-3",
+    );
+    assert!(e.contains("interference"), "{e}");
     let _ = (
         coulomb_friction::slot::STATE_LEN,
         mohr_coulomb::slot::STATE_LEN,
