@@ -642,6 +642,24 @@ pub fn write_interface_vtu_named(
         for name in &law_names {
             write_array(&mut w, name, 1, all.iter().map(|p| scalar(p, name)))?;
         }
+        {
+            // plastic jump as one vector of the local frame [s1, s2, n]
+            use junta_core::law::output as lo;
+            if law_names.contains(&lo::PLASTIC_SLIP_1) {
+                write_array(
+                    &mut w,
+                    "plastic_jump_local",
+                    3,
+                    all.iter().flat_map(|p| {
+                        [
+                            scalar(p, lo::PLASTIC_SLIP_1),
+                            scalar(p, lo::PLASTIC_SLIP_2),
+                            scalar(p, lo::PLASTIC_OPENING),
+                        ]
+                    }),
+                )?;
+            }
+        }
         if state_len > 0 {
             write_array(
                 &mut w,

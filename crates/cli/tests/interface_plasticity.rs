@@ -69,6 +69,7 @@ fn block_friction_slides_at_mu_n() {
         "accumulated_slip",
         "slip_state",
         "frictional_dissipation",
+        "plastic_jump_local",
     ] {
         assert!(
             vtu.contains(&format!("Name=\"{name}\"")),
