@@ -221,8 +221,7 @@ impl LuSolver {
     /// Solve with the factors in place (no refinement).
     fn apply_inverse(&mut self, x: &mut [f64]) {
         let n = x.len();
-        let symbolic_ok = self.symbolic.is_some();
-        debug_assert!(symbolic_ok);
+        debug_assert!(self.symbolic.is_some());
         let par = self.par();
         let mem = self.mem.as_mut().expect("analysed");
         let stack = MemStack::new(&mut mem.0);
@@ -342,7 +341,6 @@ impl LinearSolver for LuSolver {
             StackReq::new::<usize>(nnz),
         ])
         .or(solve_in_place_scratch::<usize, f64>(n, 1, par));
-        let _ = par;
         self.mem = Some(Workspace(MemBuffer::try_new(numeric_req).map_err(
             |_| SolverError::OutOfMemory {
                 detail: format!("lu: factorisation workspace for n = {n}"),
