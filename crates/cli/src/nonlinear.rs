@@ -93,10 +93,12 @@ struct Row {
     /// the applied forces (with forces of a unit total load, the load
     /// point's displacement, e.g. the lever's in a mixed-mode bending test).
     conjugate: f64,
+    /// Energy dissipated by friction / interface plasticity so far.
+    frictional: f64,
 }
 
 const CURVE_HEADER: &str =
-    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement\n";
+    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation\n";
 
 fn opt(v: Option<f64>) -> String {
     v.map(|x| format!("{x:e}")).unwrap_or_default()
@@ -105,7 +107,7 @@ fn opt(v: Option<f64>) -> String {
 impl Row {
     fn csv(&self) -> String {
         format!(
-            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e}\n",
+            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e}\n",
             self.increment,
             self.step,
             self.lambda,
@@ -124,13 +126,15 @@ impl Row {
                 .unwrap_or_default(),
             self.load_sign,
             self.control,
-            self.conjugate
+            self.conjugate,
+            self.frictional
         )
     }
     fn parse(line: &str) -> Option<Row> {
         let f: Vec<&str> = line.split(',').collect();
-        // 14 columns: a run written before the path-following columns
-        if ![14, 16, 17].contains(&f.len()) {
+        // 14 columns: a run written before the path-following and
+        // frictional columns
+        if ![14, 16, 17, 18].contains(&f.len()) {
             return None;
         }
         Some(Row {
@@ -151,6 +155,7 @@ impl Row {
             load_sign: f.get(14).and_then(|v| v.trim().parse().ok()).unwrap_or(0),
             control: f.get(15).map_or("load", |v| v.trim()).to_string(),
             conjugate: f.get(16).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
+            frictional: f.get(17).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
         })
     }
 }
@@ -480,6 +485,8 @@ pub fn run_static(
                         damaged_area: a.damaged_area + e.damaged_area,
                         process_zone_area: a.process_zone_area + e.process_zone_area,
                         has_damage: a.has_damage || e.has_damage,
+                        frictional_dissipation: a.frictional_dissipation + e.frictional_dissipation,
+                        has_friction: a.has_friction || e.has_friction,
                     },
                 );
                 let row = Row {
@@ -506,6 +513,7 @@ pub fn run_static(
                     },
                     control: r.control.name().to_string(),
                     conjugate,
+                    frictional: energy.frictional_dissipation,
                 };
                 curve_file.write_all(row.csv().as_bytes())?;
                 curve_file.flush()?;
@@ -630,7 +638,12 @@ pub fn run_static(
         "equations": model.dofs.num_free,
         "elements": output::element_counts(model),
         "increments": last_increment,
-        "newton_iterations": { "total": total_iterations, "max_per_increment": max_iterations },
+        "newton_iterations": {
+            "total": total_iterations,
+            "max_per_increment": max_iterations,
+            "mean_per_increment": total_iterations as f64 / rows.len().max(1) as f64,
+            "per_increment": rows.iter().map(|r| r.iterations).collect::<Vec<_>>(),
+        },
         "load_factor": rows.last().map(|r| r.lambda),
         "first_failure": first_failure,
         "restarted_from_increment": if start_increment > 0 { Some(start_increment) } else { None },
@@ -698,6 +711,10 @@ pub fn run_static(
     let report = p.solver.report();
     let mut notes = p.notes.clone();
     notes.extend(report.notes.iter().cloned());
+    let frictional = rows.last().map_or(0.0, |r| r.frictional);
+    if model.matrix_kind() == junta_core::MatrixKind::General {
+        summary["frictional_dissipation"] = json!(frictional);
+    }
     summary["solver"] = json!({
         "name": report.solver,
         "ordering": report.ordering,
@@ -706,6 +723,16 @@ pub fn run_static(
         "ordering": report.ordering,
         "factor_nonzeros": report.factor_nonzeros,
         "negative_pivots_max": rows.iter().filter_map(|r| r.negative_pivots).max(),
+        "matrix_kind": model.matrix_kind().name(),
+        // a general tangent is assembled in full only for a back end that
+        // solves general matrices; otherwise its symmetric part is used
+        "tangent": if model.matrix_kind() != junta_core::MatrixKind::General {
+            "symmetric"
+        } else if p.solver.accepts(junta_core::MatrixKind::General) {
+            "consistent (nonsymmetric, full storage)"
+        } else {
+            "symmetric part of the nonsymmetric tangent (Newton converges linearly)"
+        },
         "warnings": report.warnings,
         "notes": notes,
     });

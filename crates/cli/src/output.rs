@@ -375,6 +375,11 @@ pub struct InterfaceEnergy {
     pub process_zone_area: f64,
     /// Whether the law reports damage (else the numbers are zero).
     pub has_damage: bool,
+    /// Energy dissipated by friction or interface plasticity (integral of
+    /// the law output `frictional_dissipation`).
+    pub frictional_dissipation: f64,
+    /// Whether a law reports frictional dissipation.
+    pub has_friction: bool,
 }
 
 /// [`InterfaceEnergy`] of one block's points.
@@ -388,6 +393,10 @@ pub fn interface_energy(r: &InterfaceResults) -> InterfaceEnergy {
         }
         if let Some(d) = p.get(output::VISCOUS_ENERGY) {
             e.viscous_energy += d[0] * area;
+        }
+        if let Some(d) = p.get(output::FRICTIONAL_DISSIPATION) {
+            e.has_friction = true;
+            e.frictional_dissipation += d[0] * area;
         }
         if let Some(d) = p.get(output::DAMAGE) {
             e.has_damage = true;
@@ -439,6 +448,24 @@ pub fn interface_summary(model: &Model, res: &[InterfaceResults]) -> Value {
             o.insert("viscous_energy".into(), json!(energy.viscous_energy));
             o.insert("damaged_area".into(), json!(energy.damaged_area));
             o.insert("process_zone_area".into(), json!(energy.process_zone_area));
+        }
+        if energy.has_friction {
+            let o = entry.as_object_mut().expect("json object");
+            o.insert(
+                "frictional_dissipation".into(),
+                json!(energy.frictional_dissipation),
+            );
+            // points per contact state (stick / slip / open)
+            let mut counts = [0usize; 3];
+            for p in &r.points {
+                if let Some(s) = p.get(junta_core::law::output::SLIP_STATE) {
+                    counts[(s[0].round() as usize).min(2)] += 1;
+                }
+            }
+            o.insert(
+                "slip_state_points".into(),
+                json!({ "stick": counts[0], "slip": counts[1], "open": counts[2] }),
+            );
         }
         m.insert(b.name.clone(), entry);
     }
@@ -641,6 +668,24 @@ pub fn write_interface_vtu_named(
         )?;
         for name in &law_names {
             write_array(&mut w, name, 1, all.iter().map(|p| scalar(p, name)))?;
+        }
+        {
+            // plastic jump as one vector of the local frame [s1, s2, n]
+            use junta_core::law::output as lo;
+            if law_names.contains(&lo::PLASTIC_SLIP_1) {
+                write_array(
+                    &mut w,
+                    "plastic_jump_local",
+                    3,
+                    all.iter().flat_map(|p| {
+                        [
+                            scalar(p, lo::PLASTIC_SLIP_1),
+                            scalar(p, lo::PLASTIC_SLIP_2),
+                            scalar(p, lo::PLASTIC_OPENING),
+                        ]
+                    }),
+                )?;
+            }
         }
         if state_len > 0 {
             write_array(

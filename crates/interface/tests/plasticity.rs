@@ -473,9 +473,162 @@ fn bad_parameters_are_clear_errors() {
         "K = 1e6\nN = 30.0\nS = -40.0\nG_Ic = 0.01\nG_IIc = 0.02\neta = 2.0\nmu = 0.3",
     );
     assert!(e.contains("bilinear_friction") && e.contains("`S`"), "{e}");
+    let e = build_err(
+        "bilinear_friction",
+        "K = 1e6\nN = 30.0\nS = 40.0\nG_Ic = 0.3\nG_IIc = 0.8\neta = 2.0\nmu = \"high\"",
+    );
+    assert!(e.contains("mu") && e.contains("number"), "{e}");
+    let e = build_err(
+        "coulomb_friction",
+        "K = 1e6\nmu = 0.3\ninterference = -1e-3",
+    );
+    assert!(e.contains("interference"), "{e}");
     let _ = (
         coulomb_friction::slot::STATE_LEN,
         mohr_coulomb::slot::STATE_LEN,
         bilinear_friction::slot::STATE_LEN,
     );
+}
+
+/// In an element and through the assembly: the interface element's
+/// stiffness is the derivative of its internal force (finite differences,
+/// nonsymmetric part included) for a sliding frictional interface, and the
+/// assembler stores that full matrix when the storage is general
+/// ([`junta_core::SymmetricCsc::set_general`]), its symmetric part
+/// otherwise.
+#[test]
+fn element_and_assembly_keep_the_nonsymmetric_friction_tangent() {
+    use junta_core::element::{Element, ElementContext};
+    use junta_core::mesh::{ElementBlock, Mesh};
+    use junta_core::topology::CellShape;
+    use junta_core::Model;
+    use junta_interface::{InterfaceElement, InterfaceRule};
+    let law = friction();
+    let el: Arc<dyn Element> =
+        Arc::new(InterfaceElement::new(CellShape::Inter8, InterfaceRule::Gauss, law).unwrap());
+    let face = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ];
+    let coords: Vec<[f64; 3]> = face.iter().chain(face.iter()).copied().collect();
+    // top face slid (x, a little y) and pressed, more at one corner
+    let mut disp = vec![0.0; 24];
+    for a in 0..4 {
+        let s = 1.0 + 0.2 * a as f64;
+        disp[3 * (4 + a)] = 3e-5 * s;
+        disp[3 * (4 + a) + 1] = 1e-5;
+        disp[3 * (4 + a) + 2] = -2e-5 * s;
+    }
+    let mut state = vec![0.0; el.state_len()];
+    el.init_state(&mut state);
+    let compute = |u: &[f64], k: Option<&mut [f64]>| -> Vec<f64> {
+        let mut trial = vec![0.0; state.len()];
+        let mut f = vec![0.0; 24];
+        el.compute(
+            &ElementContext {
+                coords: &coords,
+                disp: u,
+                state_committed: &state,
+                step: StepInfo::default(),
+            },
+            &mut trial,
+            &mut f,
+            k,
+        )
+        .unwrap();
+        f
+    };
+    let mut ke = vec![0.0; 24 * 24];
+    compute(&disp, Some(&mut ke));
+    let kmax = ke.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut asym = 0.0f64;
+    for i in 0..24 {
+        for j in 0..24 {
+            asym = asym.max((ke[i * 24 + j] - ke[j * 24 + i]).abs());
+        }
+    }
+    assert!(
+        asym > 0.05 * kmax,
+        "element matrix symmetric: {asym} vs {kmax}"
+    );
+    let h = 1e-10;
+    for j in 0..24 {
+        let (mut a, mut b) = (disp.clone(), disp.clone());
+        a[j] += h;
+        b[j] -= h;
+        let (fa, fb) = (compute(&a, None), compute(&b, None));
+        for i in 0..24 {
+            let fd = (fa[i] - fb[i]) / (2.0 * h);
+            assert!(
+                (fd - ke[i * 24 + j]).abs() < 1e-5 * kmax,
+                "K[{i}][{j}] = {}, finite difference {fd}",
+                ke[i * 24 + j]
+            );
+        }
+    }
+    // the same element in a model: bottom face held, top free
+    let mesh = Mesh {
+        nodes: coords.clone(),
+        node_labels: Vec::new(),
+        blocks: vec![ElementBlock {
+            name: "contact".into(),
+            shape: CellShape::Inter8,
+            connectivity: (0..8).collect(),
+            element_type: "inter8".into(),
+            material: "friction".into(),
+        }],
+        node_sets: Default::default(),
+        element_sets: Default::default(),
+        face_sets: Default::default(),
+    };
+    let constraints: Vec<(usize, f64)> = (0..12).map(|d| (d, 0.0)).collect();
+    let model = Model::new(
+        mesh,
+        vec![el.clone()],
+        &constraints,
+        vec![0.0; 24],
+        Vec::new(),
+    )
+    .unwrap();
+    assert_eq!(model.matrix_kind(), MatrixKind::General);
+    let asm = model.assembler();
+    for general in [true, false] {
+        let mut k = asm.pattern.clone();
+        k.set_general(general);
+        let mut st = model.initial_state();
+        let mut f = vec![0.0; 24];
+        asm.assemble(
+            &model.mesh,
+            &model.elements,
+            &model.dofs,
+            &disp,
+            &mut st,
+            StepInfo::default(),
+            Some(&mut k),
+            &mut f,
+        )
+        .unwrap();
+        // column q of the assembled matrix by a product with e_q
+        for q in 0..k.n {
+            let mut e = vec![0.0; k.n];
+            e[q] = 1.0;
+            let mut col = vec![0.0; k.n];
+            k.mul_vec(&e, &mut col);
+            let dq = (0..24).find(|&d| model.dofs.eq[d] == q).unwrap();
+            for (p, &v) in col.iter().enumerate() {
+                let dp = (0..24).find(|&d| model.dofs.eq[d] == p).unwrap();
+                let expect = if general {
+                    ke[dp * 24 + dq]
+                } else {
+                    0.5 * (ke[dp * 24 + dq] + ke[dq * 24 + dp])
+                };
+                assert!(
+                    (v - expect).abs() <= 1e-12 * kmax,
+                    "general = {general}: A[{p}][{q}] = {v}, element {expect}"
+                );
+            }
+        }
+    }
 }

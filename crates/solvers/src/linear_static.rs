@@ -129,6 +129,12 @@ pub fn solve_linear_static_cases(
     // at the first case's prescribed state (all cases share it: linear
     // elements), together with that case's f_int(u0).
     let mut k = std::mem::take(&mut asm.pattern);
+    // a nonsymmetric tangent in full for a back end that solves it (else
+    // its symmetric part, see `newton`)
+    k.set_general(
+        model.matrix_kind() == junta_core::MatrixKind::General
+            && solver.accepts(junta_core::MatrixKind::General),
+    );
     let mut f_int = vec![0.0; ndof];
     let step = StepInfo {
         increment: 0,

@@ -33,6 +33,10 @@
 //!   above `refine_tol`, at most `max_refinements` times. A non-finite
 //!   solution (a singular matrix: zero pivot) is an error with its numbers.
 //!
+//! The report's `factor_nonzeros` is the bound `2 nnz(L_c) - n` on the
+//! entries of `L + U` from that symbolic analysis (`L_c` the Cholesky
+//! factor of `Q^T A^T A Q`), not the count of the factor computed.
+//!
 //! A symmetric matrix ([`SymmetricCsc::is_general`] false) is accepted too
 //! (mirrored), so `lu` solves every [`MatrixKind`].
 
@@ -217,8 +221,7 @@ impl LuSolver {
     /// Solve with the factors in place (no refinement).
     fn apply_inverse(&mut self, x: &mut [f64]) {
         let n = x.len();
-        let symbolic_ok = self.symbolic.is_some();
-        debug_assert!(symbolic_ok);
+        debug_assert!(self.symbolic.is_some());
         let par = self.par();
         let mem = self.mem.as_mut().expect("analysed");
         let stack = MemStack::new(&mut mem.0);
@@ -326,6 +329,10 @@ impl LinearSolver for LuSolver {
         .map_err(|e| SolverError::OutOfMemory {
             detail: format!("lu: symbolic analysis: {e:?}"),
         })?;
+        // the structure of L + U is bounded by the Cholesky factor of
+        // Q^T A^T A Q (George and Ng) whatever the row pivoting
+        let chol_nnz: usize = col_counts.iter().sum();
+        self.report.factor_nonzeros = (2 * chol_nnz).saturating_sub(n);
         let par = self.par();
         let params: Spec<PartialPivLuParams, f64> = Default::default();
         let numeric_req = StackReq::all_of(&[
@@ -334,7 +341,6 @@ impl LinearSolver for LuSolver {
             StackReq::new::<usize>(nnz),
         ])
         .or(solve_in_place_scratch::<usize, f64>(n, 1, par));
-        let _ = par;
         self.mem = Some(Workspace(MemBuffer::try_new(numeric_req).map_err(
             |_| SolverError::OutOfMemory {
                 detail: format!("lu: factorisation workspace for n = {n}"),

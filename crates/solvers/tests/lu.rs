@@ -195,3 +195,42 @@ fn lu_is_registered() {
     let bad: toml::Table = toml::from_str("pivot = 1").unwrap();
     assert!((e.build)(&bad).is_err());
 }
+
+/// Cost of `lu` against `ldlt` and `cholesky` on one SPD 3D grid matrix
+/// (27-point stencil, 3 dofs per node), all three back ends on the same
+/// ordering. Not a timed test: prints the seconds for the benchmark note
+/// in README.md (`cargo test -p junta-solvers --test lu -- --ignored
+/// --nocapture`).
+#[test]
+#[ignore = "benchmark, prints timings"]
+fn lu_against_ldlt_cost() {
+    for m in [10, 14] {
+        let (a, coords) = grid_3d(m, m, m, 3, Stencil::Point27);
+        let xs = exact(a.n);
+        let mut solvers: Vec<Box<dyn LinearSolver>> = vec![
+            Box::new(CholeskySolver::new(Default::default())),
+            Box::new(LdltSolver::new(Default::default())),
+            Box::new(LuSolver::default()),
+        ];
+        for s in &mut solvers {
+            let mut b = rhs(&a, &xs);
+            let t = std::time::Instant::now();
+            s.analyze(&a, Some(&coords)).unwrap();
+            let t_an = t.elapsed().as_secs_f64();
+            let t = std::time::Instant::now();
+            for _ in 0..3 {
+                s.factorize(&a).unwrap();
+            }
+            let t_f = t.elapsed().as_secs_f64() / 3.0;
+            let t = std::time::Instant::now();
+            s.solve_in_place(&a, &mut b).unwrap();
+            let t_s = t.elapsed().as_secs_f64();
+            println!(
+                "n = {:6} {:9}: analyze {t_an:.4} s, factorize {t_f:.4} s, solve {t_s:.4} s, error {:.1e}",
+                a.n,
+                s.key(),
+                max_rel_error(&b, &xs)
+            );
+        }
+    }
+}

@@ -96,14 +96,19 @@ impl BilinearFriction {
     /// From a TOML table: `mu` and the parameters of `bilinear`.
     pub fn from_table(t: &toml::Table) -> Result<Self, CoreError> {
         const KEY: &str = "bilinear_friction";
-        let mu = friction_coefficient(
-            KEY,
-            t.get("mu").and_then(toml::Value::as_float).or_else(|| {
-                t.get("mu")
-                    .and_then(toml::Value::as_integer)
-                    .map(|i| i as f64)
-            }),
-        )?;
+        let mu = match t.get("mu") {
+            None => None,
+            Some(toml::Value::Float(v)) => Some(*v),
+            Some(toml::Value::Integer(i)) => Some(*i as f64),
+            Some(other) => {
+                return Err(CoreError::InvalidParameters {
+                    kind: "law",
+                    key: KEY.into(),
+                    message: format!("`mu` = {other}: the friction coefficient is a number >= 0"),
+                })
+            }
+        };
+        let mu = friction_coefficient(KEY, mu)?;
         let mut rest = t.clone();
         rest.remove("mu");
         let cohesive = bilinear_from_table(&rest).map_err(|e| match e {

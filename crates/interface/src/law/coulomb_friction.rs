@@ -9,9 +9,14 @@
 //! friction coefficient `mu`:
 //!
 //! ```text
-//! sigma = K_n min(delta_n, 0)                         (no tension)
+//! sigma = K_n min(delta_n - g_0, 0)                   (no tension)
 //! tau   = K_s (delta_s - s_p)                         stick:  |tau| + mu sigma <= 0
 //! ```
+//!
+//! `g_0 >= 0` is an optional interference (Abaqus' interference fit): the
+//! faces overlap by `g_0` at zero jump, so a constrained joint keeps the
+//! contact pressure `K_n g_0` whatever the load factor (a preload, e.g. a
+//! clamp or a shrink fit, under a proportional load program).
 //!
 //! # Return mapping (backward Euler, closed form)
 //!
@@ -135,6 +140,8 @@ pub struct CoulombFriction {
     pub k_s: f64,
     /// Friction coefficient `mu`.
     pub mu: f64,
+    /// Interference `g_0 >= 0` (overlap of the faces at zero jump).
+    pub interference: f64,
 }
 
 #[derive(Deserialize)]
@@ -145,6 +152,7 @@ struct Params {
     #[serde(rename = "K_s")]
     k_s: Option<f64>,
     mu: Option<f64>,
+    interference: Option<f64>,
 }
 
 /// Parameters of `coulomb_friction`.
@@ -160,6 +168,10 @@ pub const PARAMS: &[ParamDoc] = &[
     ParamDoc {
         name: "mu",
         doc: "friction coefficient >= 0",
+    },
+    ParamDoc {
+        name: "interference",
+        doc: "overlap g_0 >= 0 of the faces at zero jump [length] (default 0): a contact preload K g_0 that does not scale with the load factor",
     },
 ];
 
@@ -216,7 +228,22 @@ impl CoulombFriction {
             "stick penalty, force/length^3",
         )?;
         let mu = friction_coefficient(KEY, p.mu)?;
-        Ok(CoulombFriction { k_n, k_s, mu })
+        let interference = p.interference.unwrap_or(0.0);
+        if !(interference >= 0.0 && interference.is_finite()) {
+            return Err(CoreError::InvalidParameters {
+                kind: "law",
+                key: KEY.into(),
+                message: format!(
+                    "`interference` = {interference} must be >= 0 and finite (length)"
+                ),
+            });
+        }
+        Ok(CoulombFriction {
+            k_n,
+            k_s,
+            mu,
+            interference,
+        })
     }
 }
 
@@ -262,7 +289,7 @@ impl InterfaceLaw for CoulombFriction {
         let c = ctx.state_committed;
         trial.copy_from_slice(c);
         let dj = Dual3::seeds(ctx.jump);
-        let sigma = dj[2].min(Dual3::cst(0.0)) * self.k_n;
+        let sigma = (dj[2] - self.interference).min(Dual3::cst(0.0)) * self.k_n;
         let r = coulomb_return(
             [dj[0], dj[1]],
             sigma,
