@@ -582,6 +582,7 @@ fn element_and_assembly_keep_the_nonsymmetric_friction_tangent() {
         node_sets: Default::default(),
         element_sets: Default::default(),
         face_sets: Default::default(),
+        ..Default::default()
     };
     let constraints: Vec<(usize, f64)> = (0..12).map(|d| (d, 0.0)).collect();
     let model = Model::new(
