@@ -122,36 +122,7 @@ impl Csr {
     /// Both triangles of `m`, and for each entry its index in `m.values`.
     pub fn from_symmetric(m: &SymmetricCsc) -> (Csr, Vec<usize>) {
         let n = m.n;
-        let mut count = vec![0usize; n + 1];
-        for j in 0..n {
-            for &i in &m.row_idx[m.col_ptr[j]..m.col_ptr[j + 1]] {
-                count[i + 1] += 1;
-                if i != j {
-                    count[j + 1] += 1;
-                }
-            }
-        }
-        for i in 0..n {
-            count[i + 1] += count[i];
-        }
-        let row_ptr = count.clone();
-        let mut next = count;
-        let nnz = row_ptr[n];
-        let mut col = vec![0u32; nnz];
-        let mut src = vec![0usize; nnz];
-        for j in 0..n {
-            for p in m.col_ptr[j]..m.col_ptr[j + 1] {
-                let i = m.row_idx[p];
-                col[next[i]] = j as u32;
-                src[next[i]] = p;
-                next[i] += 1;
-                if i != j {
-                    col[next[j]] = i as u32;
-                    src[next[j]] = p;
-                    next[j] += 1;
-                }
-            }
-        }
+        let (row_ptr, col, src) = crate::common::symmetric_to_full_pattern(m);
         let val = src.iter().map(|&p| m.values[p]).collect();
         (
             Csr {

@@ -172,6 +172,50 @@ pub(crate) fn residual(a: &SymmetricCsc, x: &[f64], b: &[f64], r: &mut [f64]) ->
     norm2(r)
 }
 
+/// Both triangles of the symmetric matrix `m` (upper triangle stored) in
+/// CSR: row starts, columns (increasing within a row) and, for each
+/// entry, its index in `m.values`.
+pub(crate) fn symmetric_to_full_pattern(m: &SymmetricCsc) -> (Vec<usize>, Vec<u32>, Vec<usize>) {
+    let n = m.n;
+    let mut count = vec![0usize; n + 1];
+    for j in 0..n {
+        for &i in &m.row_idx[m.col_ptr[j]..m.col_ptr[j + 1]] {
+            count[i + 1] += 1;
+            if i != j {
+                count[j + 1] += 1;
+            }
+        }
+    }
+    for i in 0..n {
+        count[i + 1] += count[i];
+    }
+    let row_ptr = count.clone();
+    let mut next = count;
+    let total = row_ptr[n];
+    let mut col_idx = vec![0u32; total];
+    let mut src = vec![0usize; total];
+    // Column j of the upper triangle gives, in increasing i, entries
+    // (i, j) of rows i <= j; visiting columns in increasing j fills every
+    // row's columns in increasing order for the strictly-upper part. The
+    // lower part (row j, columns i < j) is filled by the same sweep.
+    for j in 0..n {
+        for p in m.col_ptr[j]..m.col_ptr[j + 1] {
+            let i = m.row_idx[p];
+            // entry (i, j) in row i
+            col_idx[next[i]] = j as u32;
+            src[next[i]] = p;
+            next[i] += 1;
+            if i != j {
+                // entry (j, i) in row j
+                col_idx[next[j]] = i as u32;
+                src[next[j]] = p;
+                next[j] += 1;
+            }
+        }
+    }
+    (row_ptr, col_idx, src)
+}
+
 /// Both triangles of a [`SymmetricCsc`] in compressed sparse row form, for
 /// a symmetric product `y = A x` computed row by row in parallel (no
 /// scatter, no write conflicts). Built once per pattern; [`FullCsr::fill`]
@@ -188,43 +232,8 @@ pub(crate) struct FullCsr {
 impl FullCsr {
     /// Pattern of `A` (values left zero until [`FullCsr::fill`]).
     pub(crate) fn new(m: &SymmetricCsc) -> Self {
-        let n = m.n;
-        let mut count = vec![0usize; n + 1];
-        for j in 0..n {
-            for &i in &m.row_idx[m.col_ptr[j]..m.col_ptr[j + 1]] {
-                count[i + 1] += 1;
-                if i != j {
-                    count[j + 1] += 1;
-                }
-            }
-        }
-        for i in 0..n {
-            count[i + 1] += count[i];
-        }
-        let row_ptr = count.clone();
-        let mut next = count;
-        let total = row_ptr[n];
-        let mut col_idx = vec![0u32; total];
-        let mut src = vec![0usize; total];
-        // Column j of the upper triangle gives, in increasing i, entries
-        // (i, j) of rows i <= j; visiting columns in increasing j fills every
-        // row's columns in increasing order for the strictly-upper part. The
-        // lower part (row j, columns i < j) is filled by the same sweep.
-        for j in 0..n {
-            for p in m.col_ptr[j]..m.col_ptr[j + 1] {
-                let i = m.row_idx[p];
-                // entry (i, j) in row i
-                col_idx[next[i]] = j as u32;
-                src[next[i]] = p;
-                next[i] += 1;
-                if i != j {
-                    // entry (j, i) in row j
-                    col_idx[next[j]] = i as u32;
-                    src[next[j]] = p;
-                    next[j] += 1;
-                }
-            }
-        }
+        let (row_ptr, col_idx, src) = symmetric_to_full_pattern(m);
+        let total = col_idx.len();
         FullCsr {
             row_ptr,
             col_idx,
