@@ -66,9 +66,32 @@ struct LinearCache {
     linear_colors: Vec<Vec<(ElementRef, usize)>>,
     /// Nonlinear elements by colour.
     nonlinear_colors: Vec<Vec<ElementRef>>,
+    /// Where the entries of each nonlinear element's matrix go in the
+    /// pattern (`ScatterMap`), when they fit in [`SCATTER_MAP_ENTRIES`].
+    nonlinear_map: Option<ScatterMap>,
     /// Element matrices.
     mats: Vec<f64>,
 }
+
+/// Largest number of element-matrix entries whose pattern positions
+/// [`LinearCache`] keeps (4 bytes each): the nonlinear elements of an
+/// interface model fit many times over; a model of nonlinear solids that
+/// does not falls back to searching the pattern.
+const SCATTER_MAP_ENTRIES: usize = 1 << 25;
+
+/// Pattern position of every entry `(a, b)` of the element matrices of a
+/// list of elements (row-major, `u32::MAX` for an entry that is not stored:
+/// a constrained dof or the lower triangle), so that an assembly adds each
+/// entry without a search.
+#[derive(Debug, Clone)]
+struct ScatterMap {
+    /// Offset of each element's block in `pos`, by colour then element.
+    offsets: Vec<Vec<usize>>,
+    pos: Vec<u32>,
+}
+
+/// Not stored (`ScatterMap::pos`).
+const NO_ENTRY: u32 = u32::MAX;
 
 /// Scratch buffers of one assembly task.
 struct Scratch {
@@ -194,6 +217,7 @@ impl Assembler {
         let cache = self.linear.as_ref().expect("built above");
         self.assemble_colors(
             &cache.nonlinear_colors,
+            cache.nonlinear_map.as_ref(),
             mesh,
             elements,
             dofs,
@@ -304,12 +328,66 @@ impl Assembler {
             let (cp, ri) = (&self.pattern.col_ptr, &self.pattern.row_idx);
             scatter_upper(cp, ri, dofs, &s.dofs[..nd], ke, |p, v, _| values[p] += v);
         }
+        let nonlinear_map = self.scatter_map(mesh, dofs, &nonlinear_colors);
         Ok(LinearCache {
             values,
             linear_colors,
             nonlinear_colors,
+            nonlinear_map,
             mats,
         })
+    }
+
+    /// The [`ScatterMap`] of the elements of `colors`, or `None` past
+    /// [`SCATTER_MAP_ENTRIES`] entries (or a pattern too large for `u32`).
+    fn scatter_map(
+        &self,
+        mesh: &Mesh,
+        dofs: &DofMap,
+        colors: &[Vec<ElementRef>],
+    ) -> Option<ScatterMap> {
+        let size = |er: &ElementRef| {
+            let nd = 3 * mesh.blocks[er.block].nodes_per_element();
+            nd * nd
+        };
+        let total: usize = colors.iter().flatten().map(size).sum();
+        if total > SCATTER_MAP_ENTRIES || self.pattern.row_idx.len() >= NO_ENTRY as usize {
+            return None;
+        }
+        let mut offsets = Vec::with_capacity(colors.len());
+        let mut pos = vec![NO_ENTRY; total];
+        let mut off = 0;
+        let mut edofs = Vec::new();
+        let (cp, ri) = (&self.pattern.col_ptr, &self.pattern.row_idx);
+        for color in colors {
+            let mut offs = Vec::with_capacity(color.len());
+            for er in color {
+                let conn = mesh.blocks[er.block].element(er.element);
+                let nd = 3 * conn.len();
+                edofs.clear();
+                edofs.extend(conn.iter().flat_map(|&node| (0..3).map(move |c| 3 * node + c)));
+                let block = &mut pos[off..off + nd * nd];
+                for b in 0..nd {
+                    let j = dofs.eq[edofs[b]];
+                    if j == CONSTRAINED {
+                        continue;
+                    }
+                    let rows = &ri[cp[j]..cp[j + 1]];
+                    for a in 0..nd {
+                        let i = dofs.eq[edofs[a]];
+                        if i == CONSTRAINED || i > j {
+                            continue;
+                        }
+                        let p = cp[j] + rows.binary_search(&i).ok()?;
+                        block[a * nd + b] = p as u32;
+                    }
+                }
+                offs.push(off);
+                off += nd * nd;
+            }
+            offsets.push(offs);
+        }
+        Some(ScatterMap { offsets, pos })
     }
 
     /// Assemble the internal force `f_int` (full length, all dofs, so that
@@ -328,14 +406,16 @@ impl Assembler {
         k: Option<&mut SymmetricCsc>,
         f_int: &mut [f64],
     ) -> Result<(), CoreError> {
-        self.assemble_colors(&self.colors, mesh, elements, dofs, u, state, step, k, f_int)
+        self.assemble_colors(&self.colors, None, mesh, elements, dofs, u, state, step, k, f_int)
     }
 
-    /// Zero `f_int` and `k`, then assemble the elements of `colors`.
+    /// Zero `f_int` and `k`, then assemble the elements of `colors` (with
+    /// `map`, its pattern positions, built for `colors`).
     #[allow(clippy::too_many_arguments)]
     fn assemble_colors(
         &self,
         colors: &[Vec<ElementRef>],
+        map: Option<&ScatterMap>,
         mesh: &Mesh,
         elements: &[Arc<dyn Element>],
         dofs: &DofMap,
@@ -386,10 +466,10 @@ impl Assembler {
         let ranges: Vec<Vec<std::ops::Range<usize>>> = (0..mesh.blocks.len())
             .map(|b| (0..mesh.blocks[b].len()).map(|e| st.range(b, e)).collect())
             .collect();
-        for color in colors {
-            color.par_iter().try_for_each_init(
+        for (ci, color) in colors.iter().enumerate() {
+            color.par_iter().enumerate().try_for_each_init(
                 || Scratch::new(max_nodes),
-                |s, er| -> Result<(), CoreError> {
+                |s, (ei, er)| -> Result<(), CoreError> {
                     let block = &mesh.blocks[er.block];
                     let el = &elements[er.block];
                     let conn = block.element(er.element);
@@ -426,9 +506,29 @@ impl Assembler {
                         // SAFETY: elements of one colour share no node.
                         unsafe { fv.add(s.dofs[a], s.f[a]) };
                     }
-                    if let Some((cp, ri)) = kp {
-                        // SAFETY: entry (i, j) belongs to nodes of this element only
-                        // among the elements of this colour.
+                    // SAFETY (both scatters): entry (i, j) belongs to nodes of
+                    // this element only among the elements of this colour.
+                    if let (Some(_), Some(map)) = (kp, map) {
+                        let off = map.offsets[ci][ei];
+                        let pos = &map.pos[off..off + nd * nd];
+                        let ke = &s.k[..nd * nd];
+                        for a in 0..nd {
+                            for b in 0..nd {
+                                let p = pos[a * nd + b];
+                                if p == NO_ENTRY {
+                                    continue;
+                                }
+                                let (p, upper, lower) = (p as usize, ke[a * nd + b], ke[b * nd + a]);
+                                match kl {
+                                    Some(kl) => unsafe {
+                                        kv.add(p, upper);
+                                        kl.add(p, lower);
+                                    },
+                                    None => unsafe { kv.add(p, 0.5 * (upper + lower)) },
+                                }
+                            }
+                        }
+                    } else if let Some((cp, ri)) = kp {
                         scatter_upper(
                             cp,
                             ri,

@@ -631,5 +631,43 @@ fn element_and_assembly_keep_the_nonsymmetric_friction_tangent() {
                 );
             }
         }
+    }    // the cached assembly of an incremental analysis, which keeps the
+    // pattern positions of the nonlinear elements' entries, gives the same
+    // matrix and force, twice over (the second call reuses the positions)
+    for general in [true, false] {
+        let mut k_plain = asm.pattern.clone();
+        k_plain.set_general(general);
+        let mut k_cached = k_plain.clone();
+        let (mut f_plain, mut f_cached) = (vec![0.0; 24], vec![0.0; 24]);
+        let mut st = model.initial_state();
+        asm.assemble(
+            &model.mesh,
+            &model.elements,
+            &model.dofs,
+            &disp,
+            &mut st,
+            StepInfo::default(),
+            Some(&mut k_plain),
+            &mut f_plain,
+        )
+        .unwrap();
+        let mut cached = model.assembler();
+        for _ in 0..2 {
+            cached
+                .assemble_cached(
+                    &model.mesh,
+                    &model.elements,
+                    &model.dofs,
+                    &disp,
+                    &mut st,
+                    StepInfo::default(),
+                    Some(&mut k_cached),
+                    &mut f_cached,
+                )
+                .unwrap();
+            assert_eq!(k_cached.values, k_plain.values, "general = {general}");
+            assert_eq!(k_cached.lower, k_plain.lower, "general = {general}");
+            assert_eq!(f_cached, f_plain);
+        }
     }
 }
