@@ -67,6 +67,9 @@ pub(crate) fn symmetric_only(m: &SymmetricCsc, key: &str) -> Result<(), SolverEr
 /// `row_idx`) rather than a copy: a copy of the indices of a 100k-equation
 /// 3D matrix is 66 MB, the fingerprint 24 bytes. Hashing costs about as
 /// much as comparing the indices (a few milliseconds per call).
+/// One row index in this many enters [`pattern_hash`].
+const HASH_STRIDE: usize = 16;
+
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Pattern {
     n: usize,
@@ -74,8 +77,12 @@ pub(crate) struct Pattern {
     hash: u64,
 }
 
-/// Order-dependent 64-bit hash of the pattern of `m` (columns hashed in
-/// parallel, then combined in order).
+/// Order-dependent 64-bit hash of the pattern of `m`: every column start
+/// and every [`HASH_STRIDE`]-th row index (a factorisation or solve checks
+/// the pattern each call, so the hash reads a fraction of it; a pattern
+/// that differs only in unsampled row indices while keeping every column
+/// length is not a mistake a caller makes). Columns are hashed in
+/// parallel, then combined in order.
 fn pattern_hash(m: &SymmetricCsc) -> u64 {
     #[inline]
     fn mix(h: u64, v: u64) -> u64 {
@@ -92,7 +99,12 @@ fn pattern_hash(m: &SymmetricCsc) -> u64 {
             for j in j0..j1 {
                 let (s, e) = (m.col_ptr[j], m.col_ptr[j + 1]);
                 h = mix(h, (e - s) as u64 ^ ((j as u64) << 32));
-                for &i in &m.row_idx[s..e] {
+                // first and last row of the column, and a sample between
+                if e > s {
+                    h = mix(h, m.row_idx[s] as u64 ^ ((m.row_idx[e - 1] as u64) << 32));
+                }
+                let first = s.next_multiple_of(HASH_STRIDE);
+                for &i in m.row_idx[first.min(e)..e].iter().step_by(HASH_STRIDE) {
                     h = mix(h, i as u64);
                 }
             }
@@ -271,15 +283,35 @@ impl FullCsr {
 /// `||A||_inf` (largest absolute row sum) of a symmetric matrix stored as
 /// its upper triangle.
 pub(crate) fn symmetric_norm_inf(a: &SymmetricCsc) -> f64 {
-    let mut rows = vec![0.0f64; a.n];
-    for j in 0..a.n {
-        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
-            let (i, v) = (a.row_idx[p], a.values[p].abs());
-            rows[i] += v;
-            if i != j {
-                rows[j] += v;
+    // row sums over column chunks in parallel (one vector per chunk)
+    let chunks = if a.row_idx.len() > 200_000 {
+        rayon::current_num_threads().clamp(1, 8)
+    } else {
+        1
+    };
+    let per = a.n.div_ceil(chunks.max(1)).max(1);
+    let sums: Vec<Vec<f64>> = (0..chunks)
+        .into_par_iter()
+        .map(|c| {
+            let mut rows = vec![0.0f64; a.n];
+            for j in (c * per).min(a.n)..((c + 1) * per).min(a.n) {
+                for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+                    let (i, v) = (a.row_idx[p], a.values[p].abs());
+                    rows[i] += v;
+                    if i != j {
+                        rows[j] += v;
+                    }
+                }
             }
-        }
+            rows
+        })
+        .collect();
+    let mut it = sums.into_iter();
+    let Some(mut rows) = it.next() else {
+        return 0.0;
+    };
+    for other in it {
+        rows.iter_mut().zip(&other).for_each(|(r, o)| *r += o);
     }
     inf_norm(&rows)
 }
