@@ -720,8 +720,15 @@ pub fn run_static(
         "ordering": report.ordering,
         "predicted_factor_nonzeros": output::ordering_candidates(&report),
         "precision": report.precision,
-        "ordering": report.ordering,
         "factor_nonzeros": report.factor_nonzeros,
+        "factorizations": report.factorizations,
+        "partial_factorizations": report.partial_factorizations,
+        // mean share of a complete factorisation's work a partial one redid
+        "partial_work_mean": if report.partial_factorizations > 0 {
+            json!(report.refactored_work / report.partial_factorizations as f64)
+        } else {
+            json!(null)
+        },
         "negative_pivots_max": rows.iter().filter_map(|r| r.negative_pivots).max(),
         "matrix_kind": model.matrix_kind().name(),
         // a general tangent is assembled in full only for a back end that

@@ -61,6 +61,17 @@ pub struct SolveReport {
     pub precision: String,
     /// Iterative-refinement steps of the last solve (direct back ends).
     pub refinement_steps: usize,
+    /// Numeric factorisations so far (cumulative).
+    pub factorizations: usize,
+    /// Of those, partial refactorisations: only the part of the factor
+    /// that depends on the matrix entries changed since the previous
+    /// factorisation was recomputed (a softening interface changes a few
+    /// columns; the elastic solids around it keep theirs).
+    pub partial_factorizations: usize,
+    /// Share of the full factorisation's floating-point work that the
+    /// partial refactorisations did, summed over them (divide by
+    /// `partial_factorizations` for the mean).
+    pub refactored_work: f64,
     /// Warnings the caller should show (e.g. loss of digits).
     pub warnings: Vec<String>,
     /// Information on what the back end decided on its own (e.g. that it
@@ -133,6 +144,28 @@ pub trait LinearSolver: Send + std::fmt::Debug {
     /// Solve `A x = b` for the last factorised `A` (passed again: iterative
     /// back ends multiply by it), overwriting `b` with `x`.
     fn solve_in_place(&mut self, matrix: &SymmetricCsc, b: &mut [f64]) -> Result<(), SolverError>;
+    /// Solve for several right-hand sides stored one after another in `b`
+    /// (`b.len()` a multiple of `matrix.n`), overwriting each with its
+    /// solution. A direct back end reads its factor once for all of them;
+    /// the default solves them one by one.
+    fn solve_many_in_place(
+        &mut self,
+        matrix: &SymmetricCsc,
+        b: &mut [f64],
+    ) -> Result<(), SolverError> {
+        let n = matrix.n.max(1);
+        if b.len() % n != 0 {
+            return Err(SolverError::Usage(format!(
+                "solve_many_in_place: {} right-hand-side entries are not a multiple of the {} equations",
+                b.len(),
+                matrix.n
+            )));
+        }
+        for col in b.chunks_mut(n) {
+            self.solve_in_place(matrix, col)?;
+        }
+        Ok(())
+    }
     /// Node, component and body of each equation, given by the driver
     /// before `analyze` (used by AMG for the rigid-body modes; ignored by
     /// default).

@@ -481,6 +481,8 @@ struct PathWork {
     q: Vec<f64>,
     g: Vec<f64>,
     du2: Vec<f64>,
+    /// `du` and `du2` side by side for one two-column solve.
+    pair: Vec<f64>,
     /// Δu of the current attempt (by equation).
     delta: Vec<f64>,
     /// Δu of the previous converged increment (by equation).
@@ -591,6 +593,7 @@ where
         q: vec![0.0; nf],
         g: vec![0.0; nf],
         du2: vec![0.0; nf],
+        pair: vec![0.0; 2 * nf],
         delta: vec![0.0; nf],
         delta_prev: vec![0.0; nf],
         delta_lambda_prev: cur.lambda - path.previous_lambda,
@@ -1123,13 +1126,21 @@ fn attempt(
         }
         let t = Instant::now();
         let factor_before = solver.report().factor_seconds;
-        let mut r = solver.solve_in_place(&w.k, &mut w.du);
-        w.solves += 1;
-        if r.is_ok() && !matches!(constraint, Constraint::Load(_)) {
-            pw.du2.copy_from_slice(&pw.q);
-            r = solver.solve_in_place(&w.k, &mut pw.du2);
+        let r = if matches!(constraint, Constraint::Load(_)) {
             w.solves += 1;
-        }
+            solver.solve_in_place(&w.k, &mut w.du)
+        } else {
+            // both right-hand sides in one pass over the factor
+            let (p1, p2) = pw.pair.split_at_mut(nf);
+            p1.copy_from_slice(&w.du);
+            p2.copy_from_slice(&pw.q);
+            w.solves += 2;
+            let r = solver.solve_many_in_place(&w.k, &mut pw.pair);
+            let (p1, p2) = pw.pair.split_at(nf);
+            w.du.copy_from_slice(p1);
+            pw.du2.copy_from_slice(p2);
+            r
+        };
         let refactor = (solver.report().factor_seconds - factor_before).max(0.0);
         w.timings.factor += refactor;
         w.timings.solve += t.elapsed().as_secs_f64() - refactor;

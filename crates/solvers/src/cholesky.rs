@@ -691,7 +691,7 @@ impl LinearSolver for CholeskySolver {
             kind,
             candidates,
             ordering_note,
-        } = crate::supernodal::analyze(self.settings.ordering, matrix, coords)?;
+        } = crate::supernodal::analyze(self.settings.ordering, matrix, coords, 1.0)?;
         self.stats.supernodal = true;
         self.stats.factor_nonzeros = factor.nonzeros();
         self.factor = Some(factor);

@@ -73,6 +73,20 @@
 //! the report says so). Continuation and arc-length drivers use it to
 //! detect limit and bifurcation points.
 //!
+//! # Partial refactorisation
+//!
+//! Panel `s` of the factor depends on the entries of `A` in its own columns
+//! and, through the updates, on those of its descendants in the panel
+//! elimination tree only. When a Newton iteration changes a few entries (a
+//! softening interface between elastic solids: only the integration points
+//! in the process zone change their tangent), the panels holding a changed
+//! entry and their ancestors are refactorised and the others kept, with
+//! their pivots: the factor is the one a complete factorisation gives, bit
+//! for bit. Changes are found by comparing the values with those of the
+//! last factorisation; the report counts the partial factorisations and
+//! the share of the complete work they did (`partial_refactor = false`
+//! turns this off).
+//!
 //! # Solve
 //!
 //! `x = P^T (L Q)^-T D^-1 (L Q)^-1 P b`, the relative residual
@@ -86,9 +100,10 @@ use crate::ordering::OrderingKind;
 use crate::supernodal::{PanelFactor, SharedPtr};
 use faer::linalg::triangular_solve as tri;
 use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::{Accum, MatMut, MatRef, Par};
+use faer::{MatMut, MatRef, Par};
 use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
 use junta_core::{LinearSolver, MatrixKind, SolveReport, SolverError, SymmetricCsc};
+use rayon::prelude::*;
 use serde::Deserialize;
 use std::time::Instant;
 
@@ -120,7 +135,17 @@ pub struct LdltSettings {
     pub pivot_warn: f64,
     /// Threads for the numeric factorisation (0: rayon's pool).
     pub threads: usize,
+    /// Refactorise only the panels whose entries changed since the last
+    /// factorisation, and their ancestors (default true; see the module
+    /// docs, "Partial refactorisation").
+    pub partial_refactor: bool,
 }
+
+/// Weight of nested dissection's predicted flops when `"auto"` compares it
+/// with minimum degree and partial refactorisation is on
+/// ([`crate::ordering::choose_weighted`]): dissection is kept unless
+/// minimum degree needs less than a quarter of its flops.
+const ND_WEIGHT_PARTIAL: f64 = 0.25;
 
 /// Bunch-Kaufman's `alpha = (1 + sqrt(17)) / 8`.
 pub const BUNCH_KAUFMAN_ALPHA: f64 = 0.640_388_203_202_207_6;
@@ -137,6 +162,7 @@ impl Default for LdltSettings {
             warn_tol: 1e-6,
             pivot_warn: 1e-12,
             threads: 0,
+            partial_refactor: true,
         }
     }
 }
@@ -178,6 +204,10 @@ pub const LDLT_PARAMS: &[ParamDoc] = &[
     ParamDoc {
         name: "threads",
         doc: "threads for the factorisation, 0 = all of rayon's pool (default 0)",
+    },
+    ParamDoc {
+        name: "partial_refactor",
+        doc: "refactorise only the part of the factor that depends on the entries changed since the last factorisation (a softening interface in elastic solids; default true, the result is the same to the last bit)",
     },
 ];
 
@@ -254,7 +284,7 @@ struct Scratch {
 }
 
 /// Pivoting constants of one factorisation.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, PartialEq)]
 struct PivotRule {
     alpha: f64,
     tiny: f64,
@@ -272,6 +302,17 @@ pub struct LdltSolver {
     values: Vec<f64>,
     pivots: Pivots,
     factored: bool,
+    /// Where each matrix entry goes in `values` (built at the first
+    /// factorisation after an analysis).
+    scatter_map: Option<(Vec<usize>, Vec<u32>)>,
+    /// Matrix values and pivoting constants of the last successful
+    /// factorisation (empty when the next one must be complete).
+    factored_matrix: Vec<f64>,
+    factored_rule: Option<PivotRule>,
+    /// Panels to refactorise (scratch of a partial refactorisation).
+    dirty: Vec<bool>,
+    /// Total work of a complete factorisation (multiply-adds).
+    total_work: f64,
     stats: LdltStats,
     report: SolveReport,
 }
@@ -305,6 +346,11 @@ impl LdltSolver {
             values: Vec::new(),
             pivots: Pivots::default(),
             factored: false,
+            scatter_map: None,
+            factored_matrix: Vec::new(),
+            factored_rule: None,
+            dirty: Vec::new(),
+            total_work: 0.0,
             stats: LdltStats::default(),
             report: SolveReport {
                 solver: "ldlt".into(),
@@ -358,90 +404,188 @@ impl LdltSolver {
         }
     }
 
-    /// `x <- (L D L^T)^-1 x` through the permutations (`work`: scratch).
+    /// `x <- (L D L^T)^-1 x` through the permutations for the `x.len() / n`
+    /// right-hand sides stored one after another in `x` (`work`, `tmp`:
+    /// scratch).
     fn apply_inverse(&self, x: &mut [f64], work: &mut Vec<f64>, tmp: &mut Vec<f64>) {
+        let n = self.perm.len();
         work.clear();
-        work.extend(self.perm.iter().map(|&old| x[old]));
+        for col in x.chunks(n) {
+            work.extend(self.perm.iter().map(|&old| col[old]));
+        }
         self.solve_permuted(work, tmp);
-        for (i, xi) in x.iter_mut().enumerate() {
-            *xi = work[self.perm_inv[i]];
+        for (col, w) in x.chunks_mut(n).zip(work.chunks(n)) {
+            for (i, xi) in col.iter_mut().enumerate() {
+                *xi = w[self.perm_inv[i]];
+            }
         }
     }
 
-    /// `x <- (Q L D L^T Q^T)^-1 x` in the symbolic (permuted) numbering.
+    /// `x <- (Q L D L^T Q^T)^-1 x` in the symbolic (permuted) numbering, for
+    /// the right-hand sides stored one after another in `x`. Each panel is
+    /// read once for all of them (a solve is memory-bound: two right-hand
+    /// sides cost little more than one). Hand-written loops over the
+    /// panel's columns: most panels of a finite-element factor are a few
+    /// columns wide, where a call into a dense kernel costs more than its
+    /// arithmetic.
     fn solve_permuted(&self, x: &mut [f64], tmp: &mut Vec<f64>) {
         let f = self.factor.as_ref().expect("analysed");
+        let n = f.n;
+        if n == 0 {
+            return;
+        }
         let piv = &self.pivots;
         let values = &self.values;
         let np = f.n_panels();
         let panel = |s: usize| {
             let (b, e) = (f.begin[s], f.begin[s + 1]);
-            let w = e - b;
-            let m = w + f.pattern(s).len();
-            let v = &values[f.val_ptr[s]..f.val_ptr[s] + m * w];
-            (
-                b,
-                e,
-                MatRef::from_column_major_slice(v, m, w).split_at_row(w),
-            )
+            let m = (e - b) + f.pattern(s).len();
+            (b, e, m, &values[f.val_ptr[s]..f.val_ptr[s] + m * (e - b)])
         };
         // forward: y_J = L_JJ^-1 Q_s x_J, x_R -= L_RJ y_J
         for s in 0..np {
-            let (b, e, (top, bot)) = panel(s);
-            let pat = f.pattern(s);
-            tmp.clear();
-            tmp.extend(piv.lperm[b..e].iter().map(|&i| x[b + i as usize]));
-            x[b..e].copy_from_slice(tmp);
+            let (b, e, m, v) = panel(s);
             let w = e - b;
-            let xj = MatMut::from_column_major_slice_mut(&mut x[b..e], w, 1);
-            tri::solve_unit_lower_triangular_in_place(top, xj, Par::Seq);
-            if pat.is_empty() {
-                continue;
-            }
-            tmp.clear();
-            tmp.resize(pat.len(), 0.0);
-            let t = MatMut::from_column_major_slice_mut(&mut tmp[..], pat.len(), 1);
-            let xj = MatRef::from_column_major_slice(&x[b..e], w, 1);
-            faer::linalg::matmul::matmul(t, Accum::Replace, bot, xj, 1.0, Par::Seq);
-            for (&g, &t) in pat.iter().zip(tmp.iter()) {
-                x[g as usize] -= t;
+            let pat = f.pattern(s);
+            for x in x.chunks_mut(n) {
+                tmp.clear();
+                tmp.extend(piv.lperm[b..e].iter().map(|&i| x[b + i as usize]));
+                let xj = &mut x[b..e];
+                xj.copy_from_slice(tmp);
+                for c in 0..w {
+                    let xc = xj[c];
+                    if xc != 0.0 {
+                        let col = &v[c * m + c + 1..c * m + w];
+                        for (xi, l) in xj[c + 1..].iter_mut().zip(col) {
+                            *xi -= l * xc;
+                        }
+                    }
+                }
+                if pat.is_empty() {
+                    continue;
+                }
+                tmp.clear();
+                tmp.resize(pat.len(), 0.0);
+                gemv_below(v, m, w, &x[b..e], tmp);
+                for (&g, &t) in pat.iter().zip(tmp.iter()) {
+                    x[g as usize] -= t;
+                }
             }
         }
         // y <- D^-1 y
-        let mut k = 0;
-        while k < x.len() {
-            if piv.kind[k] == FIRST {
-                let (a, b, c) = (piv.diag[k], piv.sub[k], piv.diag[k + 1]);
-                let det = a * c - b * b;
-                let (u, v) = (x[k], x[k + 1]);
-                x[k] = (c * u - b * v) / det;
-                x[k + 1] = (a * v - b * u) / det;
-                k += 2;
-            } else {
-                x[k] /= piv.diag[k];
-                k += 1;
+        for x in x.chunks_mut(n) {
+            let mut k = 0;
+            while k < n {
+                if piv.kind[k] == FIRST {
+                    let (a, b, c) = (piv.diag[k], piv.sub[k], piv.diag[k + 1]);
+                    let det = a * c - b * b;
+                    let (u, v) = (x[k], x[k + 1]);
+                    x[k] = (c * u - b * v) / det;
+                    x[k + 1] = (a * v - b * u) / det;
+                    k += 2;
+                } else {
+                    x[k] /= piv.diag[k];
+                    k += 1;
+                }
             }
         }
         // backward: x_J = Q_s^T L_JJ^-T (y_J - L_RJ^T x_R)
         for s in (0..np).rev() {
-            let (b, e, (top, bot)) = panel(s);
+            let (b, e, m, v) = panel(s);
             let pat = f.pattern(s);
             let w = e - b;
-            if !pat.is_empty() {
+            for x in x.chunks_mut(n) {
+                if !pat.is_empty() {
+                    tmp.clear();
+                    tmp.extend(pat.iter().map(|&g| x[g as usize]));
+                    gemv_below_transposed(v, m, w, tmp, &mut x[b..e]);
+                }
+                let xj = &mut x[b..e];
+                for c in (0..w).rev() {
+                    let col = &v[c * m + c + 1..c * m + w];
+                    xj[c] -= dot_lanes(col, &xj[c + 1..]);
+                }
                 tmp.clear();
-                tmp.extend(pat.iter().map(|&g| x[g as usize]));
-                let t = MatRef::from_column_major_slice(&tmp[..], pat.len(), 1);
-                let xj = MatMut::from_column_major_slice_mut(&mut x[b..e], w, 1);
-                faer::linalg::matmul::matmul(xj, Accum::Add, bot.transpose(), t, -1.0, Par::Seq);
-            }
-            let xj = MatMut::from_column_major_slice_mut(&mut x[b..e], w, 1);
-            tri::solve_unit_upper_triangular_in_place(top.transpose(), xj, Par::Seq);
-            tmp.clear();
-            tmp.extend_from_slice(&x[b..e]);
-            for (i, &li) in piv.lperm[b..e].iter().enumerate() {
-                x[b + li as usize] = tmp[i];
+                tmp.extend_from_slice(xj);
+                for (i, &li) in piv.lperm[b..e].iter().enumerate() {
+                    xj[li as usize] = tmp[i];
+                }
             }
         }
+    }
+
+    /// Residual check and iterative refinement of one solution `x` of `A x
+    /// = rhs` (see the module docs), with the warnings and errors of a
+    /// solve; on error `x` is left as `rhs`.
+    fn refine(
+        &mut self,
+        matrix: &SymmetricCsc,
+        x: &mut [f64],
+        rhs: &[f64],
+        work: &mut Vec<f64>,
+        tmp: &mut Vec<f64>,
+    ) -> Result<(), SolverError> {
+        let n = x.len();
+        let bnorm = norm2(rhs);
+        if bnorm == 0.0 {
+            x.fill(0.0);
+            self.report.residual = 0.0;
+            self.report.refinement_steps = 0;
+            return Ok(());
+        }
+        let mut r = vec![0.0; n];
+        let mut rel = residual(matrix, x, rhs, &mut r) / bnorm;
+        let perturbed = self.stats.perturbed_pivots;
+        let max_steps = if perturbed > 0 {
+            self.settings.max_refinements.max(10)
+        } else {
+            self.settings.max_refinements
+        };
+        let mut steps = 0;
+        if rel.is_finite() && rel > self.settings.refine_tol && max_steps > 0 {
+            let (mut trial, mut r2) = (vec![0.0; n], vec![0.0; n]);
+            while rel.is_finite() && rel > self.settings.refine_tol && steps < max_steps {
+                self.apply_inverse(&mut r, work, tmp);
+                for ((t, bi), d) in trial.iter_mut().zip(x.iter()).zip(&r) {
+                    *t = bi + d;
+                }
+                let rel2 = residual(matrix, &trial, rhs, &mut r2) / bnorm;
+                steps += 1;
+                if rel2.is_nan() || rel2 >= rel {
+                    break;
+                }
+                x.copy_from_slice(&trial);
+                std::mem::swap(&mut r, &mut r2);
+                rel = rel2;
+            }
+        }
+        self.stats.refinement_steps = steps;
+        self.report.refinement_steps = steps;
+        self.report.residual = rel;
+        if !rel.is_finite() || x.iter().any(|v| !v.is_finite()) {
+            x.copy_from_slice(rhs);
+            return Err(SolverError::NonFinite {
+                method: "ldlt solve".into(),
+            });
+        }
+        if rel > self.settings.warn_tol {
+            let st = &self.stats;
+            if perturbed > 0 || st.min_pivot_ratio < self.settings.pivot_warn {
+                x.copy_from_slice(rhs);
+                return Err(SolverError::NotPositiveDefinite {
+                    detail: format!(
+                        ": ldlt: the matrix is numerically singular: {perturbed} pivot(s) below {:.1e} * ||A||_inf were perturbed, smallest other pivot |eigenvalue| / ||A||_inf = {:.3e} (||A||_inf = {:.3e}), and iterative refinement stalled at relative residual {rel:.3e} after {steps} steps (warn_tol {:.1e})",
+                        self.settings.tiny_pivot, st.min_pivot_ratio, st.matrix_norm_inf, self.settings.warn_tol
+                    ),
+                });
+            }
+            let w = format!(
+                "ldlt: direct solve lost digits: residual {rel:.3e} after {steps} refinement steps (warn_tol {:.1e}); smallest pivot |eigenvalue| / ||A||_inf = {:.3e}: the matrix is ill-conditioned or nearly singular",
+                self.settings.warn_tol, st.min_pivot_ratio
+            );
+            self.push_warning(w);
+        }
+        Ok(())
     }
 
     /// Inertia and pivot statistics of the current `D`.
@@ -689,6 +833,113 @@ fn scale_by_d(piv: PivotPtrs, col0: usize, rhs: MatRef<'_, f64>, mut out: MatMut
     }
 }
 
+/// `t += L_RJ x_J` for the panel `v` (`m x w`, column-major, `L_RJ` its
+/// rows `w..m`): four columns at a time, so that `t` is loaded and stored
+/// once per four columns.
+#[inline]
+fn gemv_below(v: &[f64], m: usize, w: usize, xj: &[f64], t: &mut [f64]) {
+    let r = m - w;
+    let col = |c: usize| &v[c * m + w..c * m + m];
+    let mut c = 0;
+    while c + 4 <= w {
+        let (a0, a1, a2, a3) = (col(c), col(c + 1), col(c + 2), col(c + 3));
+        let (x0, x1, x2, x3) = (xj[c], xj[c + 1], xj[c + 2], xj[c + 3]);
+        for i in 0..r {
+            t[i] += (a0[i] * x0 + a1[i] * x1) + (a2[i] * x2 + a3[i] * x3);
+        }
+        c += 4;
+    }
+    for c in c..w {
+        let xc = xj[c];
+        for (ti, l) in t.iter_mut().zip(col(c)) {
+            *ti += l * xc;
+        }
+    }
+}
+
+/// `x_J -= L_RJ^T t` for the panel `v` (as in [`gemv_below`]): four
+/// columns at a time, each summed in four interleaved lanes (which the
+/// compiler vectorises).
+#[inline]
+fn gemv_below_transposed(v: &[f64], m: usize, w: usize, t: &[f64], xj: &mut [f64]) {
+    let r = m - w;
+    let col = |c: usize| &v[c * m + w..c * m + m];
+    let r4 = r - r % 4;
+    let mut c = 0;
+    while c + 4 <= w {
+        let cols = [col(c), col(c + 1), col(c + 2), col(c + 3)];
+        let mut acc = [[0.0f64; 4]; 4];
+        let mut i = 0;
+        while i < r4 {
+            for (k, a) in cols.iter().enumerate() {
+                for l in 0..4 {
+                    acc[k][l] += a[i + l] * t[i + l];
+                }
+            }
+            i += 4;
+        }
+        for (k, a) in cols.iter().enumerate() {
+            let mut sum = (acc[k][0] + acc[k][2]) + (acc[k][1] + acc[k][3]);
+            for i in r4..r {
+                sum += a[i] * t[i];
+            }
+            xj[c + k] -= sum;
+        }
+        c += 4;
+    }
+    for c in c..w {
+        xj[c] -= dot_lanes(col(c), t);
+    }
+}
+
+/// `sum_i a_i b_i` over the shorter length, in four interleaved partial
+/// sums (which the compiler vectorises; a single running sum it cannot).
+#[inline]
+fn dot_lanes(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0f64; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for l in 0..4 {
+            acc[l] += x[l] * y[l];
+        }
+    }
+    let mut tail = 0.0;
+    for (x, y) in ra.iter().zip(rb) {
+        tail += x * y;
+    }
+    (acc[0] + acc[2]) + (acc[1] + acc[3]) + tail
+}
+
+/// `dirty[s]` for the panels holding an entry of `new` that differs from
+/// `old` (bit for bit) and for all their ancestors: the panels whose
+/// factor depends on a changed entry.
+fn mark_dirty_panels(
+    f: &PanelFactor,
+    map: &(Vec<usize>, Vec<u32>),
+    old: &[f64],
+    new: &[f64],
+    dirty: &mut Vec<bool>,
+) {
+    let np = f.n_panels();
+    dirty.clear();
+    dirty.resize(np, false);
+    for ((&s, a), b) in map.1.iter().zip(old).zip(new) {
+        if a.to_bits() != b.to_bits() {
+            dirty[s as usize] = true;
+        }
+    }
+    // parents are numbered after their children: one pass upwards
+    for s in 0..np {
+        let p = f.parent[s];
+        if dirty[s] && p != u32::MAX {
+            dirty[p as usize] = true;
+        }
+    }
+}
+
 /// Update, Bunch-Kaufman and below-block solve of panel `s` (see the
 /// module docs).
 fn factor_panel(
@@ -794,7 +1045,13 @@ impl LinearSolver for LdltSolver {
             .check()
             .map_err(|m| SolverError::Usage(format!("ldlt: {m}")))?;
         self.factored = false;
-        let a = crate::supernodal::analyze(self.settings.ordering, matrix, coords)?;
+        // partial refactorisation redoes one path of a dissection tree
+        let nd_weight = if self.settings.partial_refactor {
+            ND_WEIGHT_PARTIAL
+        } else {
+            1.0
+        };
+        let a = crate::supernodal::analyze(self.settings.ordering, matrix, coords, nd_weight)?;
         self.stats.factor_nonzeros = a.factor.nonzeros();
         self.stats.ordering = a.kind.name();
         self.stats.analyze_count += 1;
@@ -805,19 +1062,25 @@ impl LinearSolver for LdltSolver {
             .iter()
             .map(|(k, e)| (k.name().to_string(), e.nonzeros))
             .collect();
+        self.total_work = a.factor.work.iter().sum();
         self.factor = Some(a.factor);
         self.perm = a.perm;
         self.perm_inv = a.perm_inv;
         self.values = Vec::new();
         self.pivots = Pivots::default();
+        self.scatter_map = None;
+        self.factored_matrix = Vec::new();
+        self.factored_rule = None;
         self.pattern = Some(Pattern::of(matrix));
         let secs = t0.elapsed().as_secs_f64();
         self.report.analyze_seconds += secs;
         self.report.factor_nonzeros = self.stats.factor_nonzeros;
         self.report.ordering = self.stats.ordering.into();
+        let f = self.factor.as_ref().expect("set above");
         tracing::info!(
             n = matrix.n,
             nnz = matrix.nnz(),
+            panels = f.n_panels(),
             ordering = self.stats.ordering,
             ordering_seconds = a.ordering_seconds,
             analyze_seconds = secs,
@@ -839,6 +1102,10 @@ impl LinearSolver for LdltSolver {
         self.factored = false;
         self.report.warnings.clear();
         self.report.negative_pivots = None;
+        // the previous factor is about to be overwritten: until this one
+        // succeeds, the next factorisation must be complete
+        let previous_matrix = std::mem::take(&mut self.factored_matrix);
+        let previous_rule = self.factored_rule.take();
         if let Some(p) = matrix.values.iter().position(|v| !v.is_finite()) {
             let col = matrix.col_ptr.partition_point(|&c| c <= p) - 1;
             return Err(SolverError::NonFinite {
@@ -849,6 +1116,7 @@ impl LinearSolver for LdltSolver {
             });
         }
         let norm = symmetric_norm_inf(matrix);
+        let previous_norm = self.stats.matrix_norm_inf;
         self.stats.matrix_norm_inf = norm;
         if norm == 0.0 && matrix.n > 0 {
             return Err(SolverError::NotPositiveDefinite {
@@ -862,8 +1130,30 @@ impl LinearSolver for LdltSolver {
         };
         let threads = self.threads();
         let f = self.factor.as_ref().expect("analysed");
+        if self.scatter_map.is_none() {
+            self.scatter_map = Some(f.scatter_map(matrix, &self.perm_inv));
+        }
+        let map = self.scatter_map.as_ref().expect("built above");
         let mut values = std::mem::take(&mut self.values);
-        f.scatter(&mut values, matrix, &self.perm_inv);
+        // Partial refactorisation: the pivots of an unchanged panel are the
+        // same under the new constants when no pivot was perturbed and the
+        // smallest one is far above the new perturbation threshold.
+        let same_rule = previous_rule.is_some_and(|r| {
+            r == rule
+                || (self.stats.perturbed_pivots == 0
+                    && self.stats.min_pivot_ratio * previous_norm > 4.0 * rule.tiny)
+        });
+        let partial = self.settings.partial_refactor
+            && same_rule
+            && previous_matrix.len() == matrix.values.len()
+            && values.len() == f.len_val();
+        let dirty = if partial {
+            mark_dirty_panels(f, map, &previous_matrix, &matrix.values, &mut self.dirty);
+            Some(&self.dirty[..])
+        } else {
+            None
+        };
+        f.scatter_with(&mut values, matrix, map, dirty);
         self.pivots.resize(matrix.n);
         let ptr = SharedPtr(values.as_mut_ptr());
         let piv = PivotPtrs {
@@ -874,10 +1164,18 @@ impl LinearSolver for LdltSolver {
         };
         let done: Result<(), std::convert::Infallible> =
             f.traverse(threads, |s, scratch: &mut Scratch| {
-                factor_panel(f, s, ptr, piv, threads, rule, scratch);
+                if dirty.is_none_or(|d| d[s]) {
+                    factor_panel(f, s, ptr, piv, threads, rule, scratch);
+                }
                 Ok(())
             });
         let Ok(()) = done;
+        if let Some(d) = dirty {
+            let redone: f64 = (0..d.len()).filter(|&s| d[s]).map(|s| f.work[s]).sum();
+            self.report.partial_factorizations += 1;
+            self.report.refactored_work += redone / self.total_work.max(1.0);
+        }
+        self.report.factorizations += 1;
         self.values = values;
         self.stats.factor_count += 1;
         self.report.factor_seconds += t0.elapsed().as_secs_f64();
@@ -890,7 +1188,16 @@ impl LinearSolver for LdltSolver {
                 ),
             });
         }
-        if self.values.iter().any(|v| !v.is_finite()) {
+        // the kept panels were finite at the previous factorisation
+        let overflowed = match dirty {
+            None => self.values.par_iter().any(|v| !v.is_finite()),
+            Some(d) => (0..f.n_panels()).filter(|&s| d[s]).any(|s| {
+                self.values[f.val_ptr[s]..f.val_ptr[s + 1]]
+                    .iter()
+                    .any(|v| !v.is_finite())
+            }),
+        };
+        if overflowed {
             return Err(SolverError::NonFinite {
                 method: "ldlt factorisation: the factor overflowed".into(),
             });
@@ -926,10 +1233,23 @@ impl LinearSolver for LdltSolver {
         }
         self.report.negative_pivots = Some(self.stats.negative_pivots);
         self.factored = true;
+        let mut keep = previous_matrix;
+        keep.clear();
+        keep.extend_from_slice(&matrix.values);
+        self.factored_matrix = keep;
+        self.factored_rule = Some(rule);
         Ok(())
     }
 
     fn solve_in_place(&mut self, matrix: &SymmetricCsc, b: &mut [f64]) -> Result<(), SolverError> {
+        self.solve_many_in_place(matrix, b)
+    }
+
+    fn solve_many_in_place(
+        &mut self,
+        matrix: &SymmetricCsc,
+        b: &mut [f64],
+    ) -> Result<(), SolverError> {
         let t0 = Instant::now();
         if !self.factored {
             return Err(SolverError::Usage(
@@ -937,9 +1257,12 @@ impl LinearSolver for LdltSolver {
             ));
         }
         let n = self.perm.len();
-        if b.len() != n {
+        if n == 0 && b.is_empty() {
+            return Ok(());
+        }
+        if n == 0 || b.len() % n != 0 || b.is_empty() {
             return Err(SolverError::Usage(format!(
-                "ldlt: right-hand side has {} entries, the matrix {n} equations",
+                "ldlt: right-hand side(s) of {} entries, the matrix {n} equations",
                 b.len()
             )));
         }
@@ -948,73 +1271,26 @@ impl LinearSolver for LdltSolver {
         }
         if let Some(i) = b.iter().position(|v| !v.is_finite()) {
             return Err(SolverError::NonFinite {
-                method: format!("ldlt: the right-hand side holds {} at equation {i}", b[i]),
+                method: format!(
+                    "ldlt: the right-hand side holds {} at equation {}",
+                    b[i],
+                    i % n
+                ),
             });
         }
-        self.stats.solve_count += 1;
-        let bnorm = norm2(b);
-        if bnorm == 0.0 {
-            b.fill(0.0);
-            self.report.residual = 0.0;
-            self.report.refinement_steps = 0;
-            self.report.solve_seconds += t0.elapsed().as_secs_f64();
-            return Ok(());
-        }
+        self.stats.solve_count += b.len() / n;
         let rhs = b.to_vec();
-        let (mut work, mut tmp) = (Vec::with_capacity(n), Vec::new());
+        let (mut work, mut tmp) = (Vec::with_capacity(b.len()), Vec::new());
         self.apply_inverse(b, &mut work, &mut tmp);
-        let mut r = vec![0.0; n];
-        let mut rel = residual(matrix, b, &rhs, &mut r) / bnorm;
-        let perturbed = self.stats.perturbed_pivots;
-        let max_steps = if perturbed > 0 {
-            self.settings.max_refinements.max(10)
-        } else {
-            self.settings.max_refinements
-        };
-        let (mut trial, mut r2) = (vec![0.0; n], vec![0.0; n]);
-        let mut steps = 0;
-        while rel.is_finite() && rel > self.settings.refine_tol && steps < max_steps {
-            self.apply_inverse(&mut r, &mut work, &mut tmp);
-            for ((t, bi), d) in trial.iter_mut().zip(b.iter()).zip(&r) {
-                *t = bi + d;
+        let mut result = Ok(());
+        for (x, rhs) in b.chunks_mut(n).zip(rhs.chunks(n)) {
+            let r = self.refine(matrix, x, rhs, &mut work, &mut tmp);
+            if r.is_err() && result.is_ok() {
+                result = r;
             }
-            let rel2 = residual(matrix, &trial, &rhs, &mut r2) / bnorm;
-            steps += 1;
-            if rel2.is_nan() || rel2 >= rel {
-                break;
-            }
-            b.copy_from_slice(&trial);
-            std::mem::swap(&mut r, &mut r2);
-            rel = rel2;
         }
-        self.stats.refinement_steps = steps;
-        self.report.refinement_steps = steps;
-        self.report.residual = rel;
         self.report.solve_seconds += t0.elapsed().as_secs_f64();
-        if !rel.is_finite() || b.iter().any(|v| !v.is_finite()) {
-            b.copy_from_slice(&rhs);
-            return Err(SolverError::NonFinite {
-                method: "ldlt solve".into(),
-            });
-        }
-        if rel > self.settings.warn_tol {
-            let st = &self.stats;
-            if perturbed > 0 || st.min_pivot_ratio < self.settings.pivot_warn {
-                b.copy_from_slice(&rhs);
-                return Err(SolverError::NotPositiveDefinite {
-                    detail: format!(
-                        ": ldlt: the matrix is numerically singular: {perturbed} pivot(s) below {:.1e} * ||A||_inf were perturbed, smallest other pivot |eigenvalue| / ||A||_inf = {:.3e} (||A||_inf = {:.3e}), and iterative refinement stalled at relative residual {rel:.3e} after {steps} steps (warn_tol {:.1e})",
-                        self.settings.tiny_pivot, st.min_pivot_ratio, st.matrix_norm_inf, self.settings.warn_tol
-                    ),
-                });
-            }
-            let w = format!(
-                "ldlt: direct solve lost digits: residual {rel:.3e} after {steps} refinement steps (warn_tol {:.1e}); smallest pivot |eigenvalue| / ||A||_inf = {:.3e}: the matrix is ill-conditioned or nearly singular",
-                self.settings.warn_tol, st.min_pivot_ratio
-            );
-            self.push_warning(w);
-        }
-        Ok(())
+        result
     }
 
     fn report(&self) -> SolveReport {

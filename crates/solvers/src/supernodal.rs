@@ -94,6 +94,13 @@ pub(crate) struct PanelFactor {
     pub(crate) val_ptr: Vec<usize>,
     /// Panel of each permuted column.
     pub(crate) panel_of: Vec<u32>,
+    /// Parent of each panel in the panel elimination tree (`u32::MAX`
+    /// for a root); a parent is numbered after its children.
+    pub(crate) parent: Vec<u32>,
+    /// Multiply-adds of each panel's numeric factorisation: the
+    /// left-looking updates it receives plus its dense block (the work a
+    /// partial refactorisation of the panel redoes).
+    pub(crate) work: Vec<f64>,
     /// Children in the panel elimination tree (CSR) and the roots.
     pub(crate) child_ptr: Vec<usize>,
     pub(crate) child: Vec<u32>,
@@ -188,10 +195,11 @@ pub(crate) fn analyze(
     kind: OrderingKind,
     matrix: &SymmetricCsc,
     coords: Option<&[[f64; 3]]>,
+    nd_weight: f64,
 ) -> Result<Analysis, SolverError> {
     let t0 = std::time::Instant::now();
     let n = matrix.n;
-    let choice = ordering::choose(kind, matrix, coords);
+    let choice = ordering::choose_weighted(kind, matrix, coords, nd_weight);
     let ordering_note = choice.note();
     let ordering::OrderingChoice {
         perm,
@@ -353,6 +361,23 @@ impl PanelFactor {
                 }
             }
         }
+        // work of each panel: updates received (rows of d from s on, times
+        // its rows within s, times its width) and the dense block
+        let mut work = vec![0.0f64; np];
+        for (s, ws) in work.iter_mut().enumerate() {
+            let (b, e) = (begin[s], begin[s + 1]);
+            let w = (e - b) as f64;
+            let m = w + (pat_ptr[s + 1] - pat_ptr[s]) as f64;
+            let mut acc = w * w * m;
+            for &d in &desc[desc_ptr[s]..desc_ptr[s + 1]] {
+                let d = d as usize;
+                let pd = &pat[pat_ptr[d]..pat_ptr[d + 1]];
+                let k0 = pd.partition_point(|&x| (x as usize) < b);
+                let k1 = k0 + pd[k0..].partition_point(|&x| (x as usize) < e);
+                acc += ((pd.len() - k0) * (k1 - k0) * (begin[d + 1] - begin[d])) as f64;
+            }
+            *ws = acc;
+        }
         PanelFactor {
             n,
             begin,
@@ -360,6 +385,8 @@ impl PanelFactor {
             pat,
             val_ptr,
             panel_of,
+            parent,
+            work,
             child_ptr,
             child,
             roots,
@@ -429,6 +456,76 @@ impl PanelFactor {
                 };
             }
         });
+    }
+
+    /// Position in the panel values of every stored entry of `a` (upper
+    /// CSC, `perm_inv[old] = new`), and the panel it belongs to: a scatter
+    /// is then one indexed copy (see [`Self::scatter_with`]).
+    pub(crate) fn scatter_map(&self, a: &SymmetricCsc, perm_inv: &[usize]) -> (Vec<usize>, Vec<u32>) {
+        let nnz = a.row_idx.len();
+        let mut pos = vec![0usize; nnz];
+        let mut panel = vec![0u32; nnz];
+        let this = self;
+        let (pp, pl) = (SharedPtr(pos.as_mut_ptr()), SharedPtr(panel.as_mut_ptr()));
+        (0..a.n).into_par_iter().with_min_len(256).for_each(|c| {
+            let jc = perm_inv[c];
+            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+                let ir = perm_inv[a.row_idx[p]];
+                let (i, j) = if ir >= jc { (ir, jc) } else { (jc, ir) };
+                let s = this.panel_of[j] as usize;
+                let (b, e) = (this.begin[s], this.begin[s + 1]);
+                let w = e - b;
+                let pat = this.pattern(s);
+                let m = w + pat.len();
+                let lr = if i < e {
+                    i - b
+                } else {
+                    w + pat.binary_search(&(i as u32)).expect("structure covers A")
+                };
+                // SAFETY: entry p is written by its column's task only.
+                unsafe {
+                    *pp.get().add(p) = this.val_ptr[s] + (j - b) * m + lr;
+                    *pl.get().add(p) = s as u32;
+                }
+            }
+        });
+        (pos, panel)
+    }
+
+    /// Scatter `a` into `values` through a [`Self::scatter_map`]: every
+    /// panel, or only those with `only[s]`, is zeroed and receives its
+    /// entries of `a`.
+    pub(crate) fn scatter_with<T: FactorScalar>(
+        &self,
+        values: &mut Vec<T>,
+        a: &SymmetricCsc,
+        map: &(Vec<usize>, Vec<u32>),
+        only: Option<&[bool]>,
+    ) {
+        let (pos, panel) = map;
+        match only {
+            None => {
+                if values.len() != self.len_val() {
+                    *values = Vec::new();
+                    *values = vec![T::default(); self.len_val()];
+                } else {
+                    values.par_iter_mut().for_each(|v| *v = T::default());
+                }
+                for (&q, &v) in pos.iter().zip(&a.values) {
+                    values[q] = T::of_f64(v);
+                }
+            }
+            Some(only) => {
+                for s in (0..self.n_panels()).filter(|&s| only[s]) {
+                    values[self.val_ptr[s]..self.val_ptr[s + 1]].fill(T::default());
+                }
+                for ((&q, &s), &v) in pos.iter().zip(panel).zip(&a.values) {
+                    if only[s as usize] {
+                        values[q] = T::of_f64(v);
+                    }
+                }
+            }
+        }
     }
 
     /// Run `panel(s, scratch)` on every panel, descendants before their

@@ -431,3 +431,100 @@ fn softening_springs_inertia_matches_dense_eigenvalues() {
         assert!(max_rel_error(&x, &xs) < 1e-9);
     }
 }
+
+/// Partial refactorisation: after a factorisation, soften springs at one
+/// end of a long grid (as a process zone does), then factorise again. The
+/// second factorisation redoes only the panels that depend on the changed
+/// entries, and its solution and inertia are those of a complete
+/// factorisation of the new matrix, bit for bit. A change everywhere redoes
+/// all the work; an unchanged matrix redoes none of it.
+#[test]
+fn partial_refactorisation_equals_complete_factorisation() {
+    let (a0, coords) = grid_3d(3, 3, 60, 3, Stencil::Point27);
+    let n = a0.n;
+    let soften = |a: &mut SymmetricCsc, k: f64| {
+        // springs in z between the first nodes along z (one end of the bar)
+        for node in 0..12 {
+            let (p, q) = (3 * node + 2, 3 * (node + 9) + 2);
+            for (i, j, v) in [(p, p, -k), (q, q, -k), (p, q, k)] {
+                let pos = a.position(i, j).expect("in the pattern");
+                a.values[pos] += v;
+            }
+        }
+    };
+    let mut a1 = a0.clone();
+    soften(&mut a1, 40.0);
+    let xs = exact(n);
+    for ordering in [OrderingKind::NestedDissection, OrderingKind::Amd] {
+        let mut partial = ldlt(ordering, 2);
+        partial.analyze(&a0, Some(&coords)).unwrap();
+        partial.factorize(&a0).unwrap();
+        partial.factorize(&a1).unwrap();
+        let mut complete = LdltSolver::new(LdltSettings {
+            ordering,
+            threads: 2,
+            partial_refactor: false,
+            ..Default::default()
+        });
+        complete.analyze(&a1, Some(&coords)).unwrap();
+        complete.factorize(&a1).unwrap();
+        let b = rhs(&a1, &xs);
+        let (mut x_p, mut x_c) = (b.clone(), b.clone());
+        partial.solve_in_place(&a1, &mut x_p).unwrap();
+        complete.solve_in_place(&a1, &mut x_c).unwrap();
+        assert_eq!(x_p, x_c, "{ordering:?}: partial and complete differ");
+        assert!(max_rel_error(&x_p, &xs) < 1e-9);
+        let (rp, rc) = (partial.report(), complete.report());
+        assert_eq!(rp.negative_pivots, rc.negative_pivots);
+        assert!(rp.negative_pivots.unwrap() > 0, "the springs make it indefinite");
+        assert_eq!((rp.factorizations, rp.partial_factorizations), (2, 1));
+        assert_eq!(rc.partial_factorizations, 0);
+        let share = rp.refactored_work;
+        eprintln!("{ordering:?}: partial refactorisation did {:.1} % of the work", 100.0 * share);
+        assert!(share > 0.0 && share < 1.0, "{ordering:?}: share {share}");
+        if ordering == OrderingKind::NestedDissection {
+            // changes at one end of a bar: a branch of the dissection tree
+            assert!(share < 0.5, "share {share}");
+        }
+        // the same matrix again: nothing to redo
+        partial.factorize(&a1).unwrap();
+        assert_eq!(partial.report().refactored_work, share);
+        // every diagonal changed: all the work
+        let mut a2 = a1.clone();
+        for j in 0..n {
+            let pos = a2.position(j, j).unwrap();
+            a2.values[pos] *= 1.0 + 1e-3;
+        }
+        partial.factorize(&a2).unwrap();
+        let all = partial.report().refactored_work - share;
+        assert!((all - 1.0).abs() < 1e-12, "{ordering:?}: {all}");
+    }
+}
+
+/// Two right-hand sides in one call (`solve_many_in_place`, one pass over
+/// the factor) give the solutions of two separate solves, bit for bit.
+#[test]
+fn two_right_hand_sides_in_one_pass_equal_two_solves() {
+    let (a, coords) = grid_3d(5, 5, 5, 3, Stencil::Point27);
+    let n = a.n;
+    let mut s = ldlt(OrderingKind::Auto, 2);
+    s.analyze(&a, Some(&coords)).unwrap();
+    s.factorize(&a).unwrap();
+    let x1 = exact(n);
+    let x2: Vec<f64> = (0..n).map(|i| (0.37 * i as f64).cos()).collect();
+    let (b1, b2) = (rhs(&a, &x1), rhs(&a, &x2));
+    let mut both: Vec<f64> = b1.iter().chain(&b2).copied().collect();
+    s.solve_many_in_place(&a, &mut both).unwrap();
+    let (mut y1, mut y2) = (b1.clone(), b2.clone());
+    s.solve_in_place(&a, &mut y1).unwrap();
+    s.solve_in_place(&a, &mut y2).unwrap();
+    assert_eq!(&both[..n], &y1[..]);
+    assert_eq!(&both[n..], &y2[..]);
+    assert!(max_rel_error(&y2, &x2) < 1e-10);
+    // a length that is not a multiple of n is a usage error, not a panic
+    let mut bad = vec![1.0; n + 1];
+    assert!(matches!(
+        s.solve_many_in_place(&a, &mut bad),
+        Err(SolverError::Usage(_))
+    ));
+}
