@@ -466,7 +466,15 @@ impl LdltSolver {
                 }
                 tmp.clear();
                 tmp.resize(pat.len(), 0.0);
-                gemv_below(v, m, w, &x[b..e], tmp);
+                for c in 0..w {
+                    let xc = x[b + c];
+                    if xc != 0.0 {
+                        let col = &v[c * m + w..c * m + m];
+                        for (t, l) in tmp.iter_mut().zip(col) {
+                            *t += l * xc;
+                        }
+                    }
+                }
                 for (&g, &t) in pat.iter().zip(tmp.iter()) {
                     x[g as usize] -= t;
                 }
@@ -498,7 +506,9 @@ impl LdltSolver {
                 if !pat.is_empty() {
                     tmp.clear();
                     tmp.extend(pat.iter().map(|&g| x[g as usize]));
-                    gemv_below_transposed(v, m, w, tmp, &mut x[b..e]);
+                    for c in 0..w {
+                        x[b + c] -= dot_lanes(&v[c * m + w..c * m + m], tmp);
+                    }
                 }
                 let xj = &mut x[b..e];
                 for c in (0..w).rev() {
@@ -830,65 +840,6 @@ fn scale_by_d(piv: PivotPtrs, col0: usize, rhs: MatRef<'_, f64>, mut out: MatMut
             }
             c += 1;
         }
-    }
-}
-
-/// `t += L_RJ x_J` for the panel `v` (`m x w`, column-major, `L_RJ` its
-/// rows `w..m`): four columns at a time, so that `t` is loaded and stored
-/// once per four columns.
-#[inline]
-fn gemv_below(v: &[f64], m: usize, w: usize, xj: &[f64], t: &mut [f64]) {
-    let r = m - w;
-    let col = |c: usize| &v[c * m + w..c * m + m];
-    let mut c = 0;
-    while c + 4 <= w {
-        let (a0, a1, a2, a3) = (col(c), col(c + 1), col(c + 2), col(c + 3));
-        let (x0, x1, x2, x3) = (xj[c], xj[c + 1], xj[c + 2], xj[c + 3]);
-        for i in 0..r {
-            t[i] += (a0[i] * x0 + a1[i] * x1) + (a2[i] * x2 + a3[i] * x3);
-        }
-        c += 4;
-    }
-    for c in c..w {
-        let xc = xj[c];
-        for (ti, l) in t.iter_mut().zip(col(c)) {
-            *ti += l * xc;
-        }
-    }
-}
-
-/// `x_J -= L_RJ^T t` for the panel `v` (as in [`gemv_below`]): four
-/// columns at a time, each summed in four interleaved lanes (which the
-/// compiler vectorises).
-#[inline]
-fn gemv_below_transposed(v: &[f64], m: usize, w: usize, t: &[f64], xj: &mut [f64]) {
-    let r = m - w;
-    let col = |c: usize| &v[c * m + w..c * m + m];
-    let r4 = r - r % 4;
-    let mut c = 0;
-    while c + 4 <= w {
-        let cols = [col(c), col(c + 1), col(c + 2), col(c + 3)];
-        let mut acc = [[0.0f64; 4]; 4];
-        let mut i = 0;
-        while i < r4 {
-            for (k, a) in cols.iter().enumerate() {
-                for l in 0..4 {
-                    acc[k][l] += a[i + l] * t[i + l];
-                }
-            }
-            i += 4;
-        }
-        for (k, a) in cols.iter().enumerate() {
-            let mut sum = (acc[k][0] + acc[k][2]) + (acc[k][1] + acc[k][3]);
-            for i in r4..r {
-                sum += a[i] * t[i];
-            }
-            xj[c + k] -= sum;
-        }
-        c += 4;
-    }
-    for c in c..w {
-        xj[c] -= dot_lanes(col(c), t);
     }
 }
 
