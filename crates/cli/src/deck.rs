@@ -77,7 +77,7 @@
 use crate::scene::{AnalysisSpec, CurveSpec};
 use anyhow::{anyhow, bail, Result};
 use junta_core::mesh::inp::{
-    parse_inp, InpDeck, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening,
+    read_inp, InpDeck, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening,
 };
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
 use junta_core::Model;
@@ -287,10 +287,9 @@ fn period(deck: &InpDeck, k: usize) -> f64 {
 /// of its first step), every step's load case, and for a deck with a
 /// softening law its incremental program.
 pub fn build_model(path: &Path) -> Result<DeckModel> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| anyhow!("cannot read deck {}: {e}", path.display()))?;
     let file = path.display().to_string();
-    let mut deck = parse_inp(&text, &file).map_err(|e| anyhow!("{e}"))?;
+    // *INCLUDE files are read in place, errors name the file they are in
+    let mut deck = read_inp(path).map_err(|e| anyhow!("{e}"))?;
     if deck.mesh.nodes.is_empty() && deck.mesh.blocks.is_empty() {
         bail!("{file}: the deck is empty: no *NODE and no *ELEMENT");
     }

@@ -12,8 +12,8 @@
 //! the request's own step, or the last solved step for a request written
 //! outside any step.
 
-use anyhow::{anyhow, Context, Result};
-use junta_core::mesh::inp::{parse_inp, InpNodePrint};
+use anyhow::{anyhow, Result};
+use junta_core::mesh::inp::{read_inp, InpNodePrint};
 use junta_core::Model;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -23,9 +23,7 @@ pub fn node_prints(input: &Path) -> Result<Vec<InpNodePrint>> {
     if input.extension().and_then(|e| e.to_str()) != Some("inp") {
         return Ok(Vec::new());
     }
-    let text = std::fs::read_to_string(input)
-        .with_context(|| format!("cannot read deck {}", input.display()))?;
-    let deck = parse_inp(&text, &input.display().to_string()).map_err(|e| anyhow!("{e}"))?;
+    let deck = read_inp(input).map_err(|e| anyhow!("{e}"))?;
     Ok(deck.node_prints)
 }
 

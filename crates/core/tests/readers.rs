@@ -841,3 +841,65 @@ fn gmsh_errors() {
     .unwrap_err();
     assert!(e.to_string().contains("undefined node tag 9"), "{e}");
 }
+
+/// A fresh directory under the system temporary directory.
+fn scratch_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("junta-readers-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// `*INCLUDE, INPUT=`: the cube deck split the way users split decks (the
+/// mesh in a file of a subdirectory, itself including the sets; the
+/// material next to the deck, the name quoted) reads as the single file
+/// does; a mistake inside an included file is reported with that file's
+/// name and its own line number.
+#[test]
+fn include_reads_files_in_place_and_errors_name_the_included_file() {
+    let whole = std::fs::read_to_string(data("cube_h8_n2.inp")).unwrap();
+    let lines: Vec<&str> = whole.lines().collect();
+    // lines 4-40: nodes and elements; 41-46: node sets; 47-49: material
+    let dir = scratch_dir("include");
+    std::fs::create_dir_all(dir.join("parts")).unwrap();
+    let mesh = format!("{}\n*include, input=sets.inp\n", lines[3..40].join("\n"));
+    std::fs::write(dir.join("parts/mesh.inp"), mesh).unwrap();
+    std::fs::write(dir.join("parts/sets.inp"), lines[40..46].join("\n")).unwrap();
+    std::fs::write(dir.join("steel.inp"), lines[46..49].join("\n")).unwrap();
+    let main = format!(
+        "{}\n*INCLUDE, INPUT=parts/mesh.inp\n*Include, Input=\"steel.inp\"\n{}\n",
+        lines[..3].join("\n"),
+        lines[49..].join("\n")
+    );
+    std::fs::write(dir.join("main.inp"), &main).unwrap();
+    let split = read_inp(dir.join("main.inp")).unwrap();
+    let single = read_inp(data("cube_h8_n2.inp")).unwrap();
+    assert_eq!(split.mesh.nodes, single.mesh.nodes);
+    assert_eq!(split.mesh.blocks, single.mesh.blocks);
+    assert_eq!(split.mesh.node_sets, single.mesh.node_sets);
+    assert_eq!(split.materials, single.materials);
+    assert_eq!(split.steps.len(), single.steps.len());
+    // a bad number on line 3 of sets.inp
+    let bad = lines[40..46].join("\n").replacen("\n", "\n1, 2, x3\n", 1);
+    std::fs::write(dir.join("parts/sets.inp"), bad).unwrap();
+    let e = read_inp(dir.join("main.inp")).unwrap_err().to_string();
+    assert!(e.contains("sets.inp:2:"), "{e}");
+    assert!(e.contains("x3"), "{e}");
+    // a missing file: the including file and line, and where it looked
+    std::fs::remove_file(dir.join("steel.inp")).unwrap();
+    let e = read_inp(dir.join("main.inp")).unwrap_err().to_string();
+    assert!(e.contains("main.inp:5: *INCLUDE"), "{e}");
+    assert!(e.contains("steel.inp"), "{e}");
+    // a cycle and a missing INPUT are errors, not a stack overflow
+    std::fs::write(dir.join("a.inp"), "*HEADING\nx\n*INCLUDE, INPUT=b.inp\n").unwrap();
+    std::fs::write(dir.join("b.inp"), "*INCLUDE, INPUT=a.inp\n").unwrap();
+    let e = read_inp(dir.join("a.inp")).unwrap_err().to_string();
+    assert!(e.contains("b.inp:1: *INCLUDE") && e.contains("includes itself"), "{e}");
+    std::fs::write(dir.join("c.inp"), "*HEADING\nx\n*INCLUDE\n").unwrap();
+    let e = read_inp(dir.join("c.inp")).unwrap_err().to_string();
+    assert!(e.contains("c.inp:3: *INCLUDE: needs INPUT="), "{e}");
+    // given as text, without a file to resolve it against
+    let e = err("*INCLUDE, INPUT=mesh.inp\n").to_string();
+    assert!(e.contains("test.inp:1: *INCLUDE"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

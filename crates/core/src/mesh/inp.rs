@@ -25,8 +25,10 @@
 //! AT START, ALLSDTOL, CONTINUE, FACTOR noted and skipped; RIKS,
 //! STABILIZE, FULLY PLASTIC, LONG TERM refused), `*END STEP`; the output requests `*NODE PRINT` (kept in [`InpDeck::node_prints`]: the CLI writes its `U` and `RF` as CSV), `*NODE FILE`,
 //! `*EL PRINT`, `*EL FILE`, `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*OUTPUT` are
-//! skipped with a note (Junta's outputs are chosen in the scene). Anything
-//! else is an error that lists these keywords.
+//! skipped with a note (Junta's outputs are chosen in the scene);
+//! `*INCLUDE, INPUT=file` ([`read_inp`] puts the file's text in its place,
+//! see [`expand_includes`]; errors then name the included file and its
+//! line). Anything else is an error that lists these keywords.
 //!
 //! # Cohesive damage
 //!
@@ -118,7 +120,7 @@ pub const SUPPORTED_KEYWORDS: &str =
     "*HEADING, *NODE, *ELEMENT, *NSET, *ELSET, *MATERIAL, *ELASTIC, *DENSITY, \
 *DAMAGE INITIATION, *DAMAGE EVOLUTION, *DAMAGE STABILIZATION, \
 *SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *STEP, *STATIC, *END STEP, \
-*NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT";
+*NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT, *INCLUDE";
 
 /// Element types the reader understands (for messages).
 pub const SUPPORTED_ELEMENT_TYPES: &str = "C3D8, C3D8I, C3D20, C3D20R, C3D27, C3D6, C3D15, COH3D8";
@@ -530,15 +532,171 @@ impl InpDeck {
     }
 }
 
-/// Read a deck from a file.
+/// Read a deck from a file, with its `*INCLUDE, INPUT=` files in place
+/// ([`expand_includes`]); an error names the file and line it comes from,
+/// included files too.
 pub fn read_inp(path: impl AsRef<Path>) -> Result<InpDeck, InpError> {
-    let path = path.as_ref();
-    let file = path.display().to_string();
+    let expanded = expand_includes(path.as_ref())?;
+    let main = expanded.files[0].clone();
+    parse_inp(&expanded.text, &main).map_err(|e| expanded.relocate(e))
+}
+
+/// Deepest chain of `*INCLUDE`s followed.
+pub const MAX_INCLUDE_DEPTH: usize = 16;
+/// Largest expanded deck in bytes (1 GiB): a deck that includes the same
+/// file many times over at several levels grows exponentially.
+pub const MAX_EXPANDED_BYTES: usize = 1 << 30;
+
+/// A deck with its `*INCLUDE` lines replaced by the included files' text,
+/// and for every line of that text the file and line it came from.
+#[derive(Debug, Clone)]
+pub struct ExpandedDeck {
+    /// The text, includes in place.
+    pub text: String,
+    /// The files read: the deck first, then each included file once.
+    pub files: Vec<String>,
+    /// `(file index, 1-based line)` of each line of `text`.
+    origin: Vec<(u32, u32)>,
+}
+
+impl ExpandedDeck {
+    /// `err` (located in `text`, named after `files[0]`) with the file and
+    /// line of the deck or included file the line came from.
+    pub fn relocate(&self, mut err: InpError) -> InpError {
+        use InpError::*;
+        let loc = match &mut err {
+            Io { .. } => None,
+            UnknownKeyword { file, line, .. }
+            | Parameter { file, line, .. }
+            | MissingParameter { file, line, .. }
+            | ElementType { file, line, .. }
+            | BadNumber { file, line, .. }
+            | UndefinedLabel { file, line, .. }
+            | UnknownName { file, line, .. }
+            | Invalid { file, line, .. } => Some((file, line)),
+        };
+        if let Some((file, line)) = loc {
+            if let Some(&(f, l)) = line.checked_sub(1).and_then(|i| self.origin.get(i)) {
+                *file = self.files[f as usize].clone();
+                *line = l as usize;
+            }
+        }
+        err
+    }
+}
+
+/// The `INPUT=` file of an `*INCLUDE` keyword line (`None` if `line` is
+/// not one; `Some(Err(..))` without an `INPUT`).
+fn include_target(line: &str) -> Option<Result<String, ()>> {
+    let rest = line.trim().strip_prefix('*')?;
+    let mut parts = rest.split(',');
+    if norm_key(parts.next()?) != "INCLUDE" {
+        return None;
+    }
+    for p in parts {
+        if let Some((k, v)) = p.split_once('=') {
+            if norm_key(k) == "INPUT" {
+                let v = v.trim().trim_matches('"').trim_matches('\'').trim();
+                return Some(if v.is_empty() { Err(()) } else { Ok(v.to_string()) });
+            }
+        }
+    }
+    Some(Err(()))
+}
+
+/// Read `path` and, recursively, every file an `*INCLUDE, INPUT=name`
+/// line names (CalculiX and Abaqus), in place of that line. A relative
+/// name is looked for next to the file that includes it, then in the
+/// working directory. Errors, naming the including file and line: a
+/// missing `INPUT`, a file that cannot be read, an include cycle, more
+/// than [`MAX_INCLUDE_DEPTH`] levels, or an expanded deck over
+/// [`MAX_EXPANDED_BYTES`].
+pub fn expand_includes(path: &Path) -> Result<ExpandedDeck, InpError> {
+    let mut out = ExpandedDeck {
+        text: String::new(),
+        files: Vec::new(),
+        origin: Vec::new(),
+    };
     let text = std::fs::read_to_string(path).map_err(|source| InpError::Io {
-        file: file.clone(),
+        file: path.display().to_string(),
         source,
     })?;
-    parse_inp(&text, &file)
+    let mut stack = Vec::new();
+    expand_into(path, text, &mut out, &mut stack)?;
+    Ok(out)
+}
+
+fn expand_into(
+    path: &Path,
+    text: String,
+    out: &mut ExpandedDeck,
+    stack: &mut Vec<std::path::PathBuf>,
+) -> Result<(), InpError> {
+    let name = path.display().to_string();
+    let fi = match out.files.iter().position(|f| *f == name) {
+        Some(i) => i,
+        None => {
+            out.files.push(name.clone());
+            out.files.len() - 1
+        }
+    };
+    stack.push(std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf()));
+    let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
+    let invalid = |line: usize, message: String| InpError::Invalid {
+        file: name.clone(),
+        line,
+        keyword: "INCLUDE".into(),
+        message,
+    };
+    for (i, raw) in text.lines().enumerate() {
+        let line = i + 1;
+        match include_target(raw) {
+            None => {
+                if out.text.len() + raw.len() + 1 > MAX_EXPANDED_BYTES {
+                    return Err(invalid(
+                        line,
+                        format!("the deck with its included files exceeds {} MiB", MAX_EXPANDED_BYTES >> 20),
+                    ));
+                }
+                out.text.push_str(raw);
+                out.text.push('\n');
+                out.origin.push((fi as u32, line as u32));
+            }
+            Some(Err(())) => {
+                return Err(invalid(line, "needs INPUT=<file name>".into()));
+            }
+            Some(Ok(target)) => {
+                let beside = dir.join(&target);
+                let found = if beside.exists() {
+                    beside
+                } else {
+                    std::path::PathBuf::from(&target)
+                };
+                let canon = std::fs::canonicalize(&found).unwrap_or_else(|_| found.clone());
+                if stack.contains(&canon) {
+                    return Err(invalid(
+                        line,
+                        format!("INPUT={target} includes itself (through {} level(s))", stack.len()),
+                    ));
+                }
+                if stack.len() >= MAX_INCLUDE_DEPTH {
+                    return Err(invalid(
+                        line,
+                        format!("INPUT={target}: more than {MAX_INCLUDE_DEPTH} nested *INCLUDE levels"),
+                    ));
+                }
+                let inner = std::fs::read_to_string(&found).map_err(|e| {
+                    invalid(
+                        line,
+                        format!("cannot read INPUT={target} (looked for {}): {e}", dir.join(&target).display()),
+                    )
+                })?;
+                expand_into(&found, inner, out, stack)?;
+            }
+        }
+    }
+    stack.pop();
+    Ok(())
 }
 
 // ---------------------------------------------------------------- lexing
@@ -1367,6 +1525,13 @@ impl<'a> Parser<'a> {
                         step: self.step_open.map(|_| self.deck.steps.len() - 1),
                         line,
                     });
+                }
+                "INCLUDE" => {
+                    return Err(self.invalid(
+                        line,
+                        "INCLUDE",
+                        "an included file is read in place only when the deck is read from a file (read_inp); this text was given without one",
+                    ))
                 }
                 k if OUTPUT_KEYWORDS.contains(&k) => {
                     self.deck.notes.push(format!(
