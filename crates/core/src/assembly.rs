@@ -365,7 +365,10 @@ impl Assembler {
                 let conn = mesh.blocks[er.block].element(er.element);
                 let nd = 3 * conn.len();
                 edofs.clear();
-                edofs.extend(conn.iter().flat_map(|&node| (0..3).map(move |c| 3 * node + c)));
+                edofs.extend(
+                    conn.iter()
+                        .flat_map(|&node| (0..3).map(move |c| 3 * node + c)),
+                );
                 let block = &mut pos[off..off + nd * nd];
                 for b in 0..nd {
                     let j = dofs.eq[edofs[b]];
@@ -406,7 +409,18 @@ impl Assembler {
         k: Option<&mut SymmetricCsc>,
         f_int: &mut [f64],
     ) -> Result<(), CoreError> {
-        self.assemble_colors(&self.colors, None, mesh, elements, dofs, u, state, step, k, f_int)
+        self.assemble_colors(
+            &self.colors,
+            None,
+            mesh,
+            elements,
+            dofs,
+            u,
+            state,
+            step,
+            k,
+            f_int,
+        )
     }
 
     /// Zero `f_int` and `k`, then assemble the elements of `colors` (with
@@ -518,7 +532,8 @@ impl Assembler {
                                 if p == NO_ENTRY {
                                     continue;
                                 }
-                                let (p, upper, lower) = (p as usize, ke[a * nd + b], ke[b * nd + a]);
+                                let (p, upper, lower) =
+                                    (p as usize, ke[a * nd + b], ke[b * nd + a]);
                                 match kl {
                                     Some(kl) => unsafe {
                                         kv.add(p, upper);

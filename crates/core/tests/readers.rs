@@ -894,7 +894,10 @@ fn include_reads_files_in_place_and_errors_name_the_included_file() {
     std::fs::write(dir.join("a.inp"), "*HEADING\nx\n*INCLUDE, INPUT=b.inp\n").unwrap();
     std::fs::write(dir.join("b.inp"), "*INCLUDE, INPUT=a.inp\n").unwrap();
     let e = read_inp(dir.join("a.inp")).unwrap_err().to_string();
-    assert!(e.contains("b.inp:1: *INCLUDE") && e.contains("includes itself"), "{e}");
+    assert!(
+        e.contains("b.inp:1: *INCLUDE") && e.contains("includes itself"),
+        "{e}"
+    );
     std::fs::write(dir.join("c.inp"), "*HEADING\nx\n*INCLUDE\n").unwrap();
     let e = read_inp(dir.join("c.inp")).unwrap_err().to_string();
     assert!(e.contains("c.inp:3: *INCLUDE: needs INPUT="), "{e}");

@@ -631,9 +631,9 @@ fn element_and_assembly_keep_the_nonsymmetric_friction_tangent() {
                 );
             }
         }
-    }    // the cached assembly of an incremental analysis, which keeps the
-    // pattern positions of the nonlinear elements' entries, gives the same
-    // matrix and force, twice over (the second call reuses the positions)
+    } // the cached assembly of an incremental analysis, which keeps the
+      // pattern positions of the nonlinear elements' entries, gives the same
+      // matrix and force, twice over (the second call reuses the positions)
     for general in [true, false] {
         let mut k_plain = asm.pattern.clone();
         k_plain.set_general(general);

@@ -461,7 +461,11 @@ impl PanelFactor {
     /// Position in the panel values of every stored entry of `a` (upper
     /// CSC, `perm_inv[old] = new`), and the panel it belongs to: a scatter
     /// is then one indexed copy (see [`Self::scatter_with`]).
-    pub(crate) fn scatter_map(&self, a: &SymmetricCsc, perm_inv: &[usize]) -> (Vec<usize>, Vec<u32>) {
+    pub(crate) fn scatter_map(
+        &self,
+        a: &SymmetricCsc,
+        perm_inv: &[usize],
+    ) -> (Vec<usize>, Vec<u32>) {
         let nnz = a.row_idx.len();
         let mut pos = vec![0usize; nnz];
         let mut panel = vec![0u32; nnz];

@@ -476,11 +476,17 @@ fn partial_refactorisation_equals_complete_factorisation() {
         assert!(max_rel_error(&x_p, &xs) < 1e-9);
         let (rp, rc) = (partial.report(), complete.report());
         assert_eq!(rp.negative_pivots, rc.negative_pivots);
-        assert!(rp.negative_pivots.unwrap() > 0, "the springs make it indefinite");
+        assert!(
+            rp.negative_pivots.unwrap() > 0,
+            "the springs make it indefinite"
+        );
         assert_eq!((rp.factorizations, rp.partial_factorizations), (2, 1));
         assert_eq!(rc.partial_factorizations, 0);
         let share = rp.refactored_work;
-        eprintln!("{ordering:?}: partial refactorisation did {:.1} % of the work", 100.0 * share);
+        eprintln!(
+            "{ordering:?}: partial refactorisation did {:.1} % of the work",
+            100.0 * share
+        );
         assert!(share > 0.0 && share < 1.0, "{ordering:?}: share {share}");
         if ordering == OrderingKind::NestedDissection {
             // changes at one end of a bar: a branch of the dissection tree

@@ -597,7 +597,11 @@ fn include_target(line: &str) -> Option<Result<String, ()>> {
         if let Some((k, v)) = p.split_once('=') {
             if norm_key(k) == "INPUT" {
                 let v = v.trim().trim_matches('"').trim_matches('\'').trim();
-                return Some(if v.is_empty() { Err(()) } else { Ok(v.to_string()) });
+                return Some(if v.is_empty() {
+                    Err(())
+                } else {
+                    Ok(v.to_string())
+                });
             }
         }
     }
@@ -655,7 +659,10 @@ fn expand_into(
                 if out.text.len() + raw.len() + 1 > MAX_EXPANDED_BYTES {
                     return Err(invalid(
                         line,
-                        format!("the deck with its included files exceeds {} MiB", MAX_EXPANDED_BYTES >> 20),
+                        format!(
+                            "the deck with its included files exceeds {} MiB",
+                            MAX_EXPANDED_BYTES >> 20
+                        ),
                     ));
                 }
                 out.text.push_str(raw);
@@ -676,19 +683,27 @@ fn expand_into(
                 if stack.contains(&canon) {
                     return Err(invalid(
                         line,
-                        format!("INPUT={target} includes itself (through {} level(s))", stack.len()),
+                        format!(
+                            "INPUT={target} includes itself (through {} level(s))",
+                            stack.len()
+                        ),
                     ));
                 }
                 if stack.len() >= MAX_INCLUDE_DEPTH {
                     return Err(invalid(
                         line,
-                        format!("INPUT={target}: more than {MAX_INCLUDE_DEPTH} nested *INCLUDE levels"),
+                        format!(
+                            "INPUT={target}: more than {MAX_INCLUDE_DEPTH} nested *INCLUDE levels"
+                        ),
                     ));
                 }
                 let inner = std::fs::read_to_string(&found).map_err(|e| {
                     invalid(
                         line,
-                        format!("cannot read INPUT={target} (looked for {}): {e}", dir.join(&target).display()),
+                        format!(
+                            "cannot read INPUT={target} (looked for {}): {e}",
+                            dir.join(&target).display()
+                        ),
                     )
                 })?;
                 expand_into(&found, inner, out, stack)?;
