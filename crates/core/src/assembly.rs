@@ -370,21 +370,7 @@ impl Assembler {
                         .flat_map(|&node| (0..3).map(move |c| 3 * node + c)),
                 );
                 let block = &mut pos[off..off + nd * nd];
-                for b in 0..nd {
-                    let j = dofs.eq[edofs[b]];
-                    if j == CONSTRAINED {
-                        continue;
-                    }
-                    let rows = &ri[cp[j]..cp[j + 1]];
-                    for a in 0..nd {
-                        let i = dofs.eq[edofs[a]];
-                        if i == CONSTRAINED || i > j {
-                            continue;
-                        }
-                        let p = cp[j] + rows.binary_search(&i).ok()?;
-                        block[a * nd + b] = p as u32;
-                    }
-                }
+                upper_positions(cp, ri, dofs, &edofs, |a, b, p| block[a * nd + b] = p as u32);
                 offs.push(off);
                 off += nd * nd;
             }
@@ -520,46 +506,30 @@ impl Assembler {
                         // SAFETY: elements of one colour share no node.
                         unsafe { fv.add(s.dofs[a], s.f[a]) };
                     }
-                    // SAFETY (both scatters): entry (i, j) belongs to nodes of
-                    // this element only among the elements of this colour.
+                    // SAFETY: entry (i, j) belongs to nodes of this element
+                    // only among the elements of this colour.
+                    let store = |p: usize, upper: f64, lower: f64| match kl {
+                        // nonsymmetric storage: both triangles
+                        Some(kl) => unsafe {
+                            kv.add(p, upper);
+                            kl.add(p, lower);
+                        },
+                        // symmetric storage: the symmetric part
+                        None => unsafe { kv.add(p, 0.5 * (upper + lower)) },
+                    };
+                    let ke = &s.k[..nd * nd];
                     if let (Some(_), Some(map)) = (kp, map) {
+                        // positions kept: no search
                         let off = map.offsets[ci][ei];
                         let pos = &map.pos[off..off + nd * nd];
-                        let ke = &s.k[..nd * nd];
-                        for a in 0..nd {
-                            for b in 0..nd {
-                                let p = pos[a * nd + b];
-                                if p == NO_ENTRY {
-                                    continue;
-                                }
-                                let (p, upper, lower) =
-                                    (p as usize, ke[a * nd + b], ke[b * nd + a]);
-                                match kl {
-                                    Some(kl) => unsafe {
-                                        kv.add(p, upper);
-                                        kl.add(p, lower);
-                                    },
-                                    None => unsafe { kv.add(p, 0.5 * (upper + lower)) },
-                                }
+                        for (ab, &p) in pos.iter().enumerate() {
+                            if p != NO_ENTRY {
+                                let (a, b) = (ab / nd, ab % nd);
+                                store(p as usize, ke[ab], ke[b * nd + a]);
                             }
                         }
                     } else if let Some((cp, ri)) = kp {
-                        scatter_upper(
-                            cp,
-                            ri,
-                            dofs,
-                            &s.dofs[..nd],
-                            &s.k[..nd * nd],
-                            |p, upper, lower| match kl {
-                                // nonsymmetric storage: both triangles
-                                Some(kl) => unsafe {
-                                    kv.add(p, upper);
-                                    kl.add(p, lower);
-                                },
-                                // symmetric storage: the symmetric part
-                                None => unsafe { kv.add(p, 0.5 * (upper + lower)) },
-                            },
-                        );
+                        scatter_upper(cp, ri, dofs, &s.dofs[..nd], ke, store);
                     }
                     Ok(())
                 },
@@ -584,6 +554,23 @@ fn scatter_upper(
     mut add: impl FnMut(usize, f64, f64),
 ) {
     let nd = edofs.len();
+    upper_positions(cp, ri, dofs, edofs, |a, b, p| {
+        add(p, ke[a * nd + b], ke[b * nd + a])
+    });
+}
+
+/// For every pair `(a, b)` of element dofs `edofs` whose global entry `(i,
+/// j)` is a stored upper-triangle entry of free dofs (`i <= j`),
+/// `at(a, b, position)` with its position in the pattern `(cp, ri)`.
+#[inline]
+fn upper_positions(
+    cp: &[usize],
+    ri: &[usize],
+    dofs: &DofMap,
+    edofs: &[usize],
+    mut at: impl FnMut(usize, usize, usize),
+) {
+    let nd = edofs.len();
     for b in 0..nd {
         let j = dofs.eq[edofs[b]];
         if j == CONSTRAINED {
@@ -596,7 +583,7 @@ fn scatter_upper(
                 continue;
             }
             let p = cp[j] + rows.binary_search(&i).expect("pattern covers element");
-            add(p, ke[a * nd + b], ke[b * nd + a]);
+            at(a, b, p);
         }
     }
 }

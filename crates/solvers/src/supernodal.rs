@@ -427,35 +427,45 @@ impl PanelFactor {
         a: &SymmetricCsc,
         perm_inv: &[usize],
     ) {
+        self.zeroed(values);
+        let ptr = SharedPtr(values.as_mut_ptr());
+        let this = self;
+        (0..a.n).into_par_iter().with_min_len(256).for_each(|c| {
+            let jc = perm_inv[c];
+            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+                let (_, q) = this.entry_position(perm_inv[a.row_idx[p]], jc);
+                // SAFETY: every entry of A maps to its own position.
+                unsafe { *ptr.get().add(q) = T::of_f64(a.values[p]) };
+            }
+        });
+    }
+
+    /// `values` resized to [`Self::len_val`] (the allocation reused when it
+    /// already has that length) and zeroed.
+    fn zeroed<T: FactorScalar>(&self, values: &mut Vec<T>) {
         if values.len() != self.len_val() {
             *values = Vec::new();
             *values = vec![T::default(); self.len_val()];
         } else {
             values.par_iter_mut().for_each(|v| *v = T::default());
         }
-        let ptr = SharedPtr(values.as_mut_ptr());
-        let this = self;
-        (0..a.n).into_par_iter().with_min_len(256).for_each(|c| {
-            let jc = perm_inv[c];
-            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
-                let ir = perm_inv[a.row_idx[p]];
-                let (i, j) = if ir >= jc { (ir, jc) } else { (jc, ir) };
-                let s = this.panel_of[j] as usize;
-                let (b, e) = (this.begin[s], this.begin[s + 1]);
-                let w = e - b;
-                let pat = this.pattern(s);
-                let m = w + pat.len();
-                let lr = if i < e {
-                    i - b
-                } else {
-                    w + pat.binary_search(&(i as u32)).expect("structure covers A")
-                };
-                // SAFETY: every entry of A maps to its own position.
-                unsafe {
-                    *ptr.get().add(this.val_ptr[s] + (j - b) * m + lr) = T::of_f64(a.values[p])
-                };
-            }
-        });
+    }
+
+    /// Panel and position in the panel values of the entry `(r, c)` of `P
+    /// A P^T` (permuted numbering, either triangle): it is stored in the
+    /// panel of column `min(r, c)`.
+    fn entry_position(&self, r: usize, c: usize) -> (usize, usize) {
+        let (i, j) = if r >= c { (r, c) } else { (c, r) };
+        let s = self.panel_of[j] as usize;
+        let (b, e) = (self.begin[s], self.begin[s + 1]);
+        let w = e - b;
+        let pat = self.pattern(s);
+        let lr = if i < e {
+            i - b
+        } else {
+            w + pat.binary_search(&(i as u32)).expect("structure covers A")
+        };
+        (s, self.val_ptr[s] + (j - b) * (w + pat.len()) + lr)
     }
 
     /// Position in the panel values of every stored entry of `a` (upper
@@ -474,21 +484,10 @@ impl PanelFactor {
         (0..a.n).into_par_iter().with_min_len(256).for_each(|c| {
             let jc = perm_inv[c];
             for p in a.col_ptr[c]..a.col_ptr[c + 1] {
-                let ir = perm_inv[a.row_idx[p]];
-                let (i, j) = if ir >= jc { (ir, jc) } else { (jc, ir) };
-                let s = this.panel_of[j] as usize;
-                let (b, e) = (this.begin[s], this.begin[s + 1]);
-                let w = e - b;
-                let pat = this.pattern(s);
-                let m = w + pat.len();
-                let lr = if i < e {
-                    i - b
-                } else {
-                    w + pat.binary_search(&(i as u32)).expect("structure covers A")
-                };
+                let (s, q) = this.entry_position(perm_inv[a.row_idx[p]], jc);
                 // SAFETY: entry p is written by its column's task only.
                 unsafe {
-                    *pp.get().add(p) = this.val_ptr[s] + (j - b) * m + lr;
+                    *pp.get().add(p) = q;
                     *pl.get().add(p) = s as u32;
                 }
             }
@@ -509,12 +508,7 @@ impl PanelFactor {
         let (pos, panel) = map;
         match only {
             None => {
-                if values.len() != self.len_val() {
-                    *values = Vec::new();
-                    *values = vec![T::default(); self.len_val()];
-                } else {
-                    values.par_iter_mut().for_each(|v| *v = T::default());
-                }
+                self.zeroed(values);
                 for (&q, &v) in pos.iter().zip(&a.values) {
                     values[q] = T::of_f64(v);
                 }
