@@ -436,7 +436,19 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         .map(|(&l, r)| ((r.block, r.element), l))
         .collect();
     let block_names: Vec<String> = deck.mesh.blocks.iter().map(|b| b.name.clone()).collect();
-    let model = Model::new(
+    let equations: Vec<junta_core::dof::LinearEquation> = deck
+        .equations
+        .iter()
+        .map(|e| junta_core::dof::LinearEquation {
+            terms: e
+                .terms
+                .iter()
+                .map(|&(node, dof, a)| (3 * node + dof - 1, a))
+                .collect(),
+            origin: format!("{file}:{}", e.line),
+        })
+        .collect();
+    let mut model = Model::new(
         deck.mesh,
         elements,
         &first.constraints,
@@ -465,6 +477,14 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         }
         e => anyhow!("{file}: {e}"),
     })?;
+    model.add_equations(&equations).map_err(|e| anyhow!("{e}"))?;
+    if !equations.is_empty() {
+        notes.push(format!(
+            "{} linear equations (*EQUATION) eliminated: {} dependent dofs",
+            equations.len(),
+            model.dofs.dependents.dofs.len()
+        ));
+    }
     Ok(DeckModel {
         model,
         notes,

@@ -63,8 +63,8 @@ pub fn export_matrix(model: &Model, dir: &Path) -> Result<()> {
     let kp = dir.join("K.mtx");
     sprs::io::write_matrix_market_sym(&kp, &csc, sprs::io::SymmetryMode::Symmetric)
         .with_context(|| format!("cannot write {}", kp.display()))?;
-    let fe = model.dofs.gather(&model.f_ext);
-    let fi = model.dofs.gather(&f_int);
+    let fe = model.dofs.reduce(&model.f_ext);
+    let fi = model.dofs.reduce(&f_int);
     let b: Vec<f64> = fe.iter().zip(&fi).map(|(e, i)| e - i).collect();
     write_array(&dir.join("b.mtx"), n, 1, &b)?;
     let coords = model.dofs.equation_coords(&model.mesh.nodes);

@@ -499,6 +499,10 @@ fn solve_deck_steps(
                 steps[k].f_ext.clone(),
                 m.reaction_sets.clone(),
             )
+            .and_then(|mut new| {
+                new.add_equations(&m.equations)?;
+                Ok(new)
+            })
             .map_err(|e| anyhow!("{file}: {} (line {}): {e}", steps[k].name, steps[k].line))?;
             p.solver = build_solver(&p.solver_key, &p.solver_table, &file)?;
         }

@@ -133,6 +133,9 @@ impl Assembler {
             a.sort_unstable();
             a.dedup();
         });
+        if dofs.has_equations() {
+            adj = adjacency_through_equations(adj, dofs);
+        }
         // columns of the upper triangle: eq(i) <= eq(j); equations are in node order
         let mut col_ptr = vec![0usize; dofs.num_free + 1];
         for (node, nbrs) in adj.iter().enumerate() {
@@ -186,9 +189,33 @@ impl Assembler {
             lower: Vec::new(),
         };
         drop(adj);
+        let mut colors = color_elements(mesh);
+        if dofs.has_equations() {
+            // An element with a dependent dof writes to the equations of
+            // its dependents' free dofs, which other elements of its colour
+            // may share: each such element gets a colour of its own.
+            let touches = |er: &ElementRef| {
+                mesh.blocks[er.block]
+                    .element(er.element)
+                    .iter()
+                    .any(|&n| (0..3).any(|c| dofs.dependents.contains(3 * n + c)))
+            };
+            let mut alone = Vec::new();
+            for color in &mut colors {
+                color.retain(|er| {
+                    let t = touches(er);
+                    if t {
+                        alone.push(vec![*er]);
+                    }
+                    !t
+                });
+            }
+            colors.retain(|c| !c.is_empty());
+            colors.extend(alone);
+        }
         Assembler {
             pattern,
-            colors: color_elements(mesh),
+            colors,
             linear: None,
         }
     }
@@ -351,7 +378,10 @@ impl Assembler {
             nd * nd
         };
         let total: usize = colors.iter().flatten().map(size).sum();
-        if total > SCATTER_MAP_ENTRIES || self.pattern.row_idx.len() >= NO_ENTRY as usize {
+        if total > SCATTER_MAP_ENTRIES
+            || self.pattern.row_idx.len() >= NO_ENTRY as usize
+            || dofs.has_equations()
+        {
             return None;
         }
         let mut offsets = Vec::with_capacity(colors.len());
@@ -554,9 +584,77 @@ fn scatter_upper(
     mut add: impl FnMut(usize, f64, f64),
 ) {
     let nd = edofs.len();
+    if dofs.has_equations() && edofs.iter().any(|&d| dofs.dependents.contains(d)) {
+        // K^ = T^T K T: entry (a, b) reaches every (i, j) behind a and b
+        for b in 0..nd {
+            for (j, cj) in dofs.targets(edofs[b]) {
+                let rows = &ri[cp[j]..cp[j + 1]];
+                for a in 0..nd {
+                    for (i, ci) in dofs.targets(edofs[a]) {
+                        if i > j {
+                            continue;
+                        }
+                        let p = cp[j] + rows.binary_search(&i).expect("pattern covers element");
+                        let c = ci * cj;
+                        add(p, c * ke[a * nd + b], c * ke[b * nd + a]);
+                    }
+                }
+            }
+        }
+        return;
+    }
     upper_positions(cp, ri, dofs, edofs, |a, b, p| {
         add(p, ke[a * nd + b], ke[b * nd + a])
     });
+}
+
+/// Node adjacency of the reduced system of a model with linear equations:
+/// nodes `p` and `q` are adjacent when an element joins nodes `x` and `y`
+/// with `p` among `x` and the nodes of `x`'s dependents' terms, and `q`
+/// likewise for `y`.
+fn adjacency_through_equations(adj: Vec<Vec<u32>>, dofs: &DofMap) -> Vec<Vec<u32>> {
+    let nn = adj.len();
+    // nodes behind each node: itself and the nodes of its dependents' terms
+    let behind = |x: usize| -> Vec<u32> {
+        let mut v = vec![x as u32];
+        for c in 0..3 {
+            if let Some(t) = dofs.dependents.terms(3 * x + c) {
+                v.extend(t.iter().map(|&(m, _)| (m / 3) as u32));
+            }
+        }
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let mut out: Vec<Vec<u32>> = adj
+        .par_iter()
+        .map(|nbrs| {
+            let mut v: Vec<u32> = nbrs
+                .iter()
+                .flat_map(|&y| behind(y as usize))
+                .collect();
+            v.sort_unstable();
+            v.dedup();
+            v
+        })
+        .collect();
+    for x in 0..nn {
+        let bx = behind(x);
+        if bx.len() == 1 {
+            continue;
+        }
+        let row = out[x].clone();
+        for &p in &bx {
+            if p as usize != x {
+                out[p as usize].extend_from_slice(&row);
+            }
+        }
+    }
+    out.par_iter_mut().for_each(|a| {
+        a.sort_unstable();
+        a.dedup();
+    });
+    out
 }
 
 /// For every pair `(a, b)` of element dofs `edofs` whose global entry `(i,

@@ -25,6 +25,8 @@ pub struct Model {
     pub f_ext: Vec<f64>,
     /// Named node sets whose reactions are reported.
     pub reaction_sets: Vec<String>,
+    /// Linear equations eliminated in `dofs` ([`Model::add_equations`]).
+    pub equations: Vec<crate::dof::LinearEquation>,
 }
 
 impl Model {
@@ -70,7 +72,19 @@ impl Model {
             dofs,
             f_ext,
             reaction_sets,
+            equations: Vec::new(),
         })
+    }
+
+    /// Add linear equations (`*EQUATION`; see [`DofMap::add_equations`]);
+    /// messages name the mesh's node labels.
+    pub fn add_equations(
+        &mut self,
+        equations: &[crate::dof::LinearEquation],
+    ) -> Result<(), CoreError> {
+        self.dofs.add_equations(equations, &self.mesh.node_labels)?;
+        self.equations.extend_from_slice(equations);
+        Ok(())
     }
 
     /// Body of each node: nodes connected through elements that are not

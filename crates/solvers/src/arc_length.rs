@@ -510,6 +510,7 @@ where
 {
     let t_run = Instant::now();
     arc.validate()?;
+    crate::newton::no_equations(model)?;
     if program.len() != 1 || !program[0].is_finite() || program[0] == 0.0 {
         return Err(CoreError::Invalid(format!(
             "path following needs a single step with a finite, non-zero end load factor \

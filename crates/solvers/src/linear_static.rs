@@ -143,12 +143,14 @@ pub fn solve_linear_static_cases(
         secant: false,
     };
     let initial = |case: &LoadCase<'_>| -> Vec<f64> {
-        (0..ndof)
+        let mut u: Vec<f64> = (0..ndof)
             .map(|d| match model.dofs.eq[d] {
-                CONSTRAINED => case.prescribed[d],
+                CONSTRAINED if !model.dofs.dependents.contains(d) => case.prescribed[d],
                 _ => 0.0,
             })
-            .collect()
+            .collect();
+        model.dofs.fill_dependents(&mut u);
+        u
     };
     let u0_first = cases.first().map_or_else(|| vec![0.0; ndof], initial);
     let t = Instant::now();
@@ -171,17 +173,8 @@ pub fn solve_linear_static_cases(
     let t = Instant::now();
     solver.factorize(&k)?;
     timings.factor = t.elapsed().as_secs_f64();
-    let free = |v: &[f64]| {
-        norm(
-            model
-                .dofs
-                .eq
-                .iter()
-                .enumerate()
-                .filter(|(_, &e)| e != CONSTRAINED)
-                .map(|(d, _)| v[d]),
-        )
-    };
+    // norm of the reduced (free-equation) part of a force vector
+    let free = |v: &[f64]| norm(model.dofs.reduce(v).into_iter());
     let mut results = Vec::with_capacity(cases.len());
     for (i, case) in cases.iter().enumerate() {
         let mut state = model.initial_state();
@@ -202,12 +195,8 @@ pub fn solve_linear_static_cases(
             )?;
             timings.assemble += t.elapsed().as_secs_f64();
         }
-        let mut rhs: Vec<f64> = vec![0.0; model.dofs.num_free];
-        for (d, &e) in model.dofs.eq.iter().enumerate() {
-            if e != CONSTRAINED {
-                rhs[e] = case.f_ext[d] - f_int[d];
-            }
-        }
+        let r: Vec<f64> = case.f_ext.iter().zip(&f_int).map(|(a, b)| a - b).collect();
+        let mut rhs = model.dofs.reduce(&r);
         let factor_before = solver.report().factor_seconds;
         let t = Instant::now();
         solver.solve_in_place(&k, &mut rhs)?;
@@ -222,6 +211,7 @@ pub fn solve_linear_static_cases(
                 u[d] = rhs[e];
             }
         }
+        model.dofs.fill_dependents(&mut u);
         let t = Instant::now();
         asm.assemble(
             &model.mesh,

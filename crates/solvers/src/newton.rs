@@ -939,6 +939,19 @@ pub(crate) fn any_wants_small(model: &Model, state: &StateStore) -> bool {
     })
 }
 
+/// Linear equations (`*EQUATION`) are eliminated in linear static
+/// analyses only: the incremental drivers refuse them.
+pub(crate) fn no_equations(model: &Model) -> Result<(), NonlinearError> {
+    if model.dofs.has_equations() {
+        return Err(CoreError::Invalid(format!(
+            "the model has {} linear equations (*EQUATION); they are supported in linear static analyses only, not in incremental (Newton or arc-length) runs",
+            model.dofs.dependents.dofs.len()
+        ))
+        .into());
+    }
+    Ok(())
+}
+
 /// Run the load program `program` (end load factor of each step) on `model`
 /// with full Newton-Raphson, from the unloaded state or from `restart`.
 ///
@@ -960,6 +973,7 @@ where
 {
     let t_run = Instant::now();
     settings.validate()?;
+    no_equations(model)?;
     if program.is_empty() || program.iter().any(|l| !l.is_finite()) {
         return Err(CoreError::Invalid(
             "load program: give at least one finite step end load factor".into(),

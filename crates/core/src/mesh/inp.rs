@@ -119,7 +119,7 @@ pub const C3D27_TO_OURS: [usize; 27] = [
 pub const SUPPORTED_KEYWORDS: &str =
     "*HEADING, *NODE, *ELEMENT, *NSET, *ELSET, *MATERIAL, *ELASTIC, *DENSITY, \
 *DAMAGE INITIATION, *DAMAGE EVOLUTION, *DAMAGE STABILIZATION, \
-*SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *STEP, *STATIC, *END STEP, \
+*SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *EQUATION, *STEP, *STATIC, *END STEP, \
 *NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT, *INCLUDE";
 
 /// Element types the reader understands (for messages).
@@ -507,6 +507,18 @@ pub struct InpDeck {
     pub every: Option<usize>,
     /// `*NODE PRINT` requests, in order.
     pub node_prints: Vec<InpNodePrint>,
+    /// `*EQUATION`s, node sets expanded (one equation per member).
+    pub equations: Vec<InpEquation>,
+}
+
+/// One linear equation `sum a_k u_k = 0` of an `*EQUATION` (the first term
+/// is the dependent one).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct InpEquation {
+    /// `(node id (0-based), dof (1..=3), coefficient)`.
+    pub terms: Vec<(usize, usize, f64)>,
+    /// Line of the equation's first data line.
+    pub line: usize,
 }
 
 /// A `*NODE PRINT, NSET= [, TOTALS=YES|ONLY|NO]` request: its data lines
@@ -854,6 +866,8 @@ struct Parser<'a> {
     step_open: Option<usize>,
     boundary_targets: Vec<PendingTarget>,
     cload_targets: Vec<PendingTarget>,
+    /// `*EQUATION`s as written: `(line, [(node or set, dof, a)])`.
+    equation_terms: Vec<(usize, Vec<(String, usize, f64)>)>,
     /// `** junta: curve` directive: line and `key=value` pairs.
     curve_directive: Option<(usize, Vec<(String, String)>)>,
 }
@@ -1361,6 +1375,7 @@ impl<'a> Parser<'a> {
                 }
                 "BOUNDARY" => self.boundary(line, params, &data)?,
                 "CLOAD" => self.cload(line, params, &data)?,
+                "EQUATION" => self.equation(line, params, &data)?,
                 "STEP" => {
                     self.check_params(line, kw, params, &["NAME", "NLGEOM", "INC"])?;
                     if let Some(s) = self.step_open {
@@ -2454,8 +2469,123 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// `*EQUATION`: per equation a line with the number of terms N, then N
+    /// `node (or node set), dof, coefficient` triples over as many lines as
+    /// needed (CalculiX and Abaqus put at most four per line).
+    fn equation(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "EQUATION";
+        self.check_params(line, kw, params, &[])?;
+        self.model_data_only(line, kw)?;
+        if data.is_empty() {
+            return Err(self.invalid(line, kw, "no equation follows (expected the number of terms)"));
+        }
+        let mut k = 0;
+        while k < data.len() {
+            let (dl, f, _) = data[k];
+            if f.len() != 1 {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    "expected the number of terms of the next equation alone on its line",
+                ));
+            }
+            let n = self.label(dl, kw, "number of terms", f[0])?;
+            if n < 2 {
+                return Err(self.invalid(dl, kw, format!("an equation needs at least 2 terms, not {n}")));
+            }
+            k += 1;
+            let mut fields: Vec<(usize, &str)> = Vec::with_capacity(3 * n);
+            while fields.len() < 3 * n {
+                let Some(&(tl, tf, _)) = data.get(k) else {
+                    return Err(self.invalid(
+                        dl,
+                        kw,
+                        format!(
+                            "the equation announces {n} terms but the data ends after {} fields (3 per term: node, dof, coefficient)",
+                            fields.len()
+                        ),
+                    ));
+                };
+                fields.extend(tf.iter().map(|t| (tl, *t)));
+                k += 1;
+            }
+            if fields.len() != 3 * n {
+                return Err(self.invalid(
+                    fields[3 * n].0,
+                    kw,
+                    format!("the equation has {n} terms, so {} fields, but its lines hold {}", 3 * n, fields.len()),
+                ));
+            }
+            let mut terms = Vec::with_capacity(n);
+            for t in fields.chunks(3) {
+                let (tl, target) = t[0];
+                if target.is_empty() {
+                    return Err(self.invalid(tl, kw, "expected `node or node set, dof, coefficient`"));
+                }
+                let dof = self.dof(t[1].0, kw, t[1].1)?;
+                let a = self.float(t[2].0, kw, "coefficient", t[2].1)?;
+                terms.push((target.to_string(), dof, a));
+            }
+            if terms[0].2 == 0.0 {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    "the first (dependent) term has coefficient 0; it must be non-zero",
+                ));
+            }
+            self.equation_terms.push((dl, terms));
+        }
+        Ok(())
+    }
+
+    /// Resolve the terms of the `*EQUATION`s: a node set stands for each of
+    /// its members in turn (every set of one equation must have as many).
+    fn resolve_equations(&mut self) -> Result<(), InpError> {
+        let kw = "EQUATION";
+        let written = std::mem::take(&mut self.equation_terms);
+        for (line, terms) in &written {
+            let mut nodes = Vec::with_capacity(terms.len());
+            let mut count = 1;
+            for (target, _, _) in terms {
+                let ns = self.node_target(*line, kw, target)?;
+                if ns.is_empty() {
+                    return Err(self.invalid(*line, kw, format!("node set `{target}` is empty")));
+                }
+                if ns.len() != 1 {
+                    if count != 1 && ns.len() != count {
+                        return Err(self.invalid(
+                            *line,
+                            kw,
+                            format!(
+                                "node set `{target}` has {} nodes but another set of the equation has {count}; sets of one equation must have as many nodes",
+                                ns.len()
+                            ),
+                        ));
+                    }
+                    count = ns.len();
+                }
+                nodes.push(ns);
+            }
+            for i in 0..count {
+                let terms = terms
+                    .iter()
+                    .zip(&nodes)
+                    .map(|((_, dof, a), ns)| (if ns.len() == 1 { ns[0] } else { ns[i] }, *dof, *a))
+                    .collect();
+                self.deck.equations.push(InpEquation { terms, line: *line });
+            }
+        }
+        Ok(())
+    }
+
     /// Resolve targets, assign sections, build the mesh.
     fn finish(mut self) -> Result<InpDeck, InpError> {
+        self.resolve_equations()?;
         for (k, p) in self.boundary_targets.iter().enumerate() {
             self.deck.boundaries[k].nodes = self.node_target(p.line, p.keyword, &p.target)?;
         }
@@ -2723,6 +2853,7 @@ pub fn parse_inp(text: &str, file_name: &str) -> Result<InpDeck, InpError> {
         step_open: None,
         boundary_targets: Vec::new(),
         cload_targets: Vec::new(),
+        equation_terms: Vec::new(),
         curve_directive: None,
     };
     p.directives(text)?;
