@@ -705,6 +705,96 @@ pub struct DeckStep {
     pub f_ext: Vec<f64>,
 }
 
+/// Add the consistent nodal forces of the `*DLOAD` / `*DSLOAD` loads
+/// active in step `k` to `f_ext`. A load on an element with the same label
+/// (`P3`, `GRAV`, ...) as an earlier one replaces it (in the same step or a
+/// later one, as CalculiX and Abaqus do); `OP=NEW` removes every earlier
+/// distributed load. `GRAV` and `CENTRIF` use the density of the element's
+/// material (`*DENSITY`, an error naming the material when missing).
+fn add_distributed_loads(deck: &InpDeck, file: &str, k: usize, f_ext: &mut [f64]) -> Result<()> {
+    use junta_core::mesh::{ElementRef, FaceRef};
+    use junta_elements::body_load::{add_body_load, BodyLoad};
+    use junta_elements::face_load::{add_face_load, FaceLoad};
+    use junta_core::mesh::inp::InpDloadKind;
+    // (element, label) -> (load index, face)
+    let mut active: std::collections::BTreeMap<(ElementRef, &str), (usize, usize)> =
+        std::collections::BTreeMap::new();
+    let mut cleared_at = None;
+    for (i, d) in deck.dloads.iter().enumerate() {
+        if d.step.is_some_and(|s| s > k) {
+            continue;
+        }
+        if d.op_new && cleared_at != Some(d.keyword_line) {
+            active.clear();
+            cleared_at = Some(d.keyword_line);
+        }
+        for &(e, face) in &d.elements {
+            // a *DSLOAD pressure is keyed by its face, as a *DLOAD Pn
+            let label: &str = match d.kind {
+                InpDloadKind::Pressure(_) => ["P1", "P2", "P3", "P4", "P5", "P6"][face],
+                _ => &d.label,
+            };
+            active.insert((e, label), (i, face));
+        }
+    }
+    for ((e, _), (i, face)) in active {
+        let d = &deck.dloads[i];
+        let at = |err: junta_core::CoreError| {
+            let kw = if d.label == "P" { "DSLOAD" } else { "DLOAD" };
+            anyhow!("{file}:{}: *{kw}: {err}", d.line)
+        };
+        let density = || -> Result<f64> {
+            let block = &deck.mesh.blocks[e.block];
+            match deck.material(&block.material).and_then(|m| m.density) {
+                Some(rho) => Ok(rho),
+                None => Err(anyhow!(
+                    "{file}:{}: *DLOAD: {} needs the density of material `{}` (element {}): add *DENSITY to it",
+                    d.line,
+                    d.label,
+                    block.material,
+                    deck.mesh.element_label(e.block, e.element)
+                )),
+            }
+        };
+        match d.kind {
+            InpDloadKind::Pressure(p) => add_face_load(
+                &deck.mesh,
+                &[FaceRef {
+                    block: e.block,
+                    element: e.element,
+                    face,
+                }],
+                FaceLoad::Pressure(p),
+                f_ext,
+            )
+            .map_err(at)?,
+            InpDloadKind::Gravity(g) => {
+                add_body_load(&deck.mesh, &[e], density()?, BodyLoad::Gravity(g), f_ext).map_err(at)?
+            }
+            InpDloadKind::Centrifugal {
+                omega2,
+                point,
+                axis,
+            } => add_body_load(
+                &deck.mesh,
+                &[e],
+                density()?,
+                BodyLoad::Centrifugal {
+                    omega2,
+                    point,
+                    axis,
+                },
+                f_ext,
+            )
+            .map_err(at)?,
+            InpDloadKind::BodyForce(b) => {
+                add_body_load(&deck.mesh, &[e], 1.0, BodyLoad::Gravity(b), f_ext).map_err(at)?
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The load cases of a deck: one per `*STEP` (one in all for a deck
 /// without steps), by the rules of the module docs.
 pub fn deck_steps(deck: &InpDeck, file: &str) -> Result<Vec<DeckStep>> {
@@ -764,6 +854,7 @@ pub fn deck_steps(deck: &InpDeck, file: &str) -> Result<Vec<DeckStep>> {
         for (d, (v, _)) in loads {
             f_ext[d] = v;
         }
+        add_distributed_loads(deck, file, k, &mut f_ext)?;
         let step = deck.steps.get(k);
         out.push(DeckStep {
             name: step

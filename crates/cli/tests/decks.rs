@@ -156,3 +156,113 @@ fn elastic_ortho_matches_calculix() {
     assert!(rel(fx, 4.169381e1) < 2e-6, "{fx}");
     assert!(rel(fz, -8.090795e2) < 2e-6, "{fz}");
 }
+
+/// `node_print.csv` rows of `(set, variable)`: node -> [x, y, z].
+fn printed(dir: &std::path::Path, set: &str, var: &str) -> Vec<(String, [f64; 3])> {
+    let csv = std::fs::read_to_string(dir.join("node_print.csv")).unwrap();
+    csv.lines()
+        .skip(1)
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .filter(|r| r[1] == set && r[2] == var)
+        .map(|r| {
+            let v = |i: usize| r[i].parse::<f64>().unwrap();
+            (r[3].to_string(), [v(4), v(5), v(6)])
+        })
+        .collect()
+}
+
+/// `*EQUATION` (tests/data/equation_cube.inp: 2- and 3-term equations, a
+/// cascade, loads on the constrained face) against CalculiX 2.20 on the
+/// same deck (`ccx -i equation_cube`, equation_cube.dat): displacements of
+/// TOP and the BOTTOM total force, 7 printed digits.
+#[test]
+fn equation_matches_calculix() {
+    const CCX_TOP_U: [(usize, [f64; 3]); 9] = [
+        (19, [1.312892E-03, -6.236153E-04, -4.479507E-03]),
+        (20, [3.685192E-04, -5.306496E-04, -4.479507E-03]),
+        (21, [2.257265E-03, 3.685192E-04, -4.479507E-03]),
+        (22, [3.342346E-04, 1.400270E-04, -4.479507E-03]),
+        (23, [1.509031E-03, -9.014559E-04, -4.479507E-03]),
+        (24, [1.954907E-03, 7.844389E-06, -4.479507E-03]),
+        (25, [8.308703E-04, 9.090289E-04, -4.479507E-03]),
+        (26, [3.634812E-04, 6.693411E-04, -4.479507E-03]),
+        (27, [1.856337E-03, 1.055066E-03, -4.479507E-03]),
+    ];
+    const CCX_BOTTOM_RF: [f64; 3] = [-8.737777E+01, -1.262223E+01, 1.000000E+03];
+    let dir = tempfile::tempdir().unwrap();
+    let deck = repo().join("crates/cli/tests/data/equation_cube.inp");
+    let s = run_ok(&deck, dir.path());
+    assert!(s["notes"].to_string().contains("*EQUATION"), "{}", s["notes"]);
+    let u = printed(dir.path(), "TOP", "U");
+    assert_eq!(u.len(), 9);
+    for ((node, got), (label, want)) in u.iter().zip(CCX_TOP_U) {
+        assert_eq!(node, &label.to_string());
+        for c in 0..3 {
+            assert!(
+                (got[c] - want[c]).abs() < 1e-6 * 4.5e-3,
+                "node {node} u{}: {} vs CalculiX {}",
+                c + 1,
+                got[c],
+                want[c]
+            );
+        }
+    }
+    let rf = printed(dir.path(), "BOTTOM", "RF");
+    for c in 0..3 {
+        assert!((rf[0].1[c] - CCX_BOTTOM_RF[c]).abs() < 1e-5, "{rf:?}");
+    }
+
+    // Abaqus' node-set form: one equation per member, the single node
+    // repeated; same answer as the eight explicit equations
+    let text = std::fs::read_to_string(&deck).unwrap();
+    let explicit: String = (19..27)
+        .map(|n| format!("2\n{n}, 3, 1.0, 27, 3, -1.0\n"))
+        .collect();
+    assert!(text.contains(&explicit));
+    let sets = text.replace(
+        &explicit,
+        "2\nTOPZ, 3, 1.0, 27, 3, -1.0\n",
+    );
+    let sets = sets.replacen(
+        "\n*EQUATION\n",
+        "\n*NSET, NSET=TOPZ\n19, 20, 21, 22, 23, 24, 25, 26\n*EQUATION\n",
+        1,
+    );
+    let sets_deck = write(dir.path(), "sets.inp", &sets);
+    run_ok(&sets_deck, &dir.path().join("sets"));
+    let u2 = printed(&dir.path().join("sets"), "TOP", "U");
+    for (a, b) in u.iter().zip(&u2) {
+        for c in 0..3 {
+            assert!((a.1[c] - b.1[c]).abs() < 1e-15, "{a:?} {b:?}");
+        }
+    }
+}
+
+/// Mistakes in `*EQUATION` name the line and what is wrong.
+#[test]
+fn equation_errors_name_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(repo().join("crates/cli/tests/data/equation_cube.inp"))
+        .unwrap();
+    let line_of = |t: &str, pat: &str| t.lines().position(|l| l == pat).unwrap() + 1;
+    // a dependent with a boundary condition
+    let bad = text.replace("2\n19, 3, 1.0, 27, 3, -1.0", "2\n1, 3, 1.0, 27, 3, -1.0");
+    let l = line_of(&bad, "1, 3, 1.0, 27, 3, -1.0");
+    let err = run_err(&write(dir.path(), "a.inp", &bad));
+    assert!(
+        err.contains(&format!("a.inp:{}", l - 1)) && err.contains("boundary condition"),
+        "{err}"
+    );
+    // a cycle: 21 y defined through 20 x, which is defined through 21 y
+    let bad = text.replace("*STEP", "*EQUATION\n2\n21, 2, 1.0, 20, 1, -1.0\n*STEP");
+    let err = run_err(&write(dir.path(), "b.inp", &bad));
+    assert!(err.contains("cycle") || err.contains("already the dependent"), "{err}");
+    // fewer terms than announced
+    let bad = text.replace("3\n19, 1, 2.0", "4\n19, 1, 2.0");
+    let err = run_err(&write(dir.path(), "c.inp", &bad));
+    assert!(err.contains("4 terms"), "{err}");
+    // rotational dof
+    let bad = text.replace("20, 1, -3.0, 21, 2, 3.0", "20, 1, -3.0, 21, 5, 3.0");
+    let err = run_err(&write(dir.path(), "d.inp", &bad));
+    assert!(err.contains("degree of freedom 5"), "{err}");
+}

@@ -38,6 +38,7 @@
 //! assert_eq!(h20.num_points(), 27);
 //! ```
 
+pub mod body_load;
 pub mod face_load;
 pub mod h8i;
 pub mod material;

@@ -119,7 +119,7 @@ pub const C3D27_TO_OURS: [usize; 27] = [
 pub const SUPPORTED_KEYWORDS: &str =
     "*HEADING, *NODE, *ELEMENT, *NSET, *ELSET, *MATERIAL, *ELASTIC, *DENSITY, \
 *DAMAGE INITIATION, *DAMAGE EVOLUTION, *DAMAGE STABILIZATION, \
-*SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *EQUATION, *STEP, *STATIC, *END STEP, \
+*SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *DLOAD, *DSLOAD, *SURFACE, *EQUATION, *STEP, *STATIC, *END STEP, \
 *NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT, *INCLUDE";
 
 /// Element types the reader understands (for messages).
@@ -509,6 +509,48 @@ pub struct InpDeck {
     pub node_prints: Vec<InpNodePrint>,
     /// `*EQUATION`s, node sets expanded (one equation per member).
     pub equations: Vec<InpEquation>,
+    /// `*DLOAD` and `*DSLOAD` distributed loads, in input order.
+    pub dloads: Vec<InpDload>,
+    /// Node surfaces (`*SURFACE, TYPE=NODE`): name (upper case) -> nodes.
+    pub node_surfaces: BTreeMap<String, Vec<usize>>,
+}
+
+/// What a distributed load does.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum InpDloadKind {
+    /// Pressure on one face of each element (positive into the solid).
+    Pressure(f64),
+    /// `GRAV`: acceleration vector (magnitude times the normalised
+    /// direction); the force is density times it.
+    Gravity([f64; 3]),
+    /// `CENTRIF`: `omega^2`, a point of the axis, the axis direction.
+    Centrifugal {
+        omega2: f64,
+        point: [f64; 3],
+        axis: [f64; 3],
+    },
+    /// `BX`, `BY`, `BZ`: body force per unit volume (no density).
+    BodyForce([f64; 3]),
+}
+
+/// A `*DLOAD` or `*DSLOAD` data line, targets resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpDload {
+    /// Load label as written, upper case (`P3`, `GRAV`, `CENTRIF`, `BZ`;
+    /// `P` for a `*DSLOAD` surface pressure).
+    pub label: String,
+    pub kind: InpDloadKind,
+    /// `(element, face)`: the face (0-based, S1..S6 order) for pressures,
+    /// 0 for body loads.
+    pub elements: Vec<(ElementRef, usize)>,
+    /// Index of the enclosing step (`None`: model data).
+    pub step: Option<usize>,
+    /// `OP=NEW`: distributed loads given before are removed.
+    pub op_new: bool,
+    /// Line of the keyword.
+    pub keyword_line: usize,
+    /// Line of the data line.
+    pub line: usize,
 }
 
 /// One linear equation `sum a_k u_k = 0` of an `*EQUATION` (the first term
@@ -840,6 +882,11 @@ struct PendingMaterial {
     stabilization: Option<InpDamageStabilization>,
 }
 
+enum DloadTarget {
+    Elements { target: String, face: usize },
+    Surface(String),
+}
+
 struct PendingTarget {
     target: String,
     line: usize,
@@ -868,6 +915,12 @@ struct Parser<'a> {
     cload_targets: Vec<PendingTarget>,
     /// `*EQUATION`s as written: `(line, [(node or set, dof, a)])`.
     equation_terms: Vec<(usize, Vec<(String, usize, f64)>)>,
+    /// Element surfaces: name (upper case) -> `(line, [(element or
+    /// elset, face 0-based)])`.
+    surfaces: HashMap<String, (usize, Vec<(String, usize)>)>,
+    /// Distributed loads with their targets as written: `(element or
+    /// elset, face)` for `*DLOAD`, the surface name for `*DSLOAD`.
+    dload_targets: Vec<DloadTarget>,
     /// `** junta: curve` directive: line and `key=value` pairs.
     curve_directive: Option<(usize, Vec<(String, String)>)>,
 }
@@ -1376,6 +1429,9 @@ impl<'a> Parser<'a> {
                 "BOUNDARY" => self.boundary(line, params, &data)?,
                 "CLOAD" => self.cload(line, params, &data)?,
                 "EQUATION" => self.equation(line, params, &data)?,
+                "SURFACE" => self.surface(line, params, &data)?,
+                "DLOAD" => self.dload(line, params, &data)?,
+                "DSLOAD" => self.dsload(line, params, &data)?,
                 "STEP" => {
                     self.check_params(line, kw, params, &["NAME", "NLGEOM", "INC"])?;
                     if let Some(s) = self.step_open {
@@ -2543,6 +2599,309 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// `*SURFACE, NAME= [, TYPE=ELEMENT|NODE]`: element faces
+    /// (`element or elset, S1..S6`) or nodes (`node or nset [, weight]`).
+    fn surface(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "SURFACE";
+        self.check_params(line, kw, params, &["NAME", "TYPE"])?;
+        let name = self.required(line, kw, params, "NAME")?;
+        let node = match Self::param(params, "TYPE") {
+            None => false,
+            Some((_, Some(t))) if t.eq_ignore_ascii_case("ELEMENT") => false,
+            Some((_, Some(t))) if t.eq_ignore_ascii_case("NODE") => true,
+            Some((_, v)) => {
+                return Err(InpError::Parameter {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    parameter: format!("TYPE={}", v.clone().unwrap_or_default()),
+                    valid: "TYPE=ELEMENT (faces S1..S6, the default), TYPE=NODE".into(),
+                })
+            }
+        };
+        if data.is_empty() {
+            return Err(self.invalid(line, kw, format!("surface `{name}` has no data lines")));
+        }
+        let key = name.to_uppercase();
+        if node {
+            let mut nodes = Vec::new();
+            for &(dl, f, _) in data {
+                if f.is_empty() || f[0].is_empty() || f.len() > 2 {
+                    return Err(self.invalid(dl, kw, "expected `node or node set [, weight]`"));
+                }
+                nodes.extend(self.node_target(dl, kw, f[0])?);
+            }
+            nodes.sort_unstable();
+            nodes.dedup();
+            self.deck.node_surfaces.entry(key).or_default().extend(nodes);
+            return Ok(());
+        }
+        let mut faces = Vec::with_capacity(data.len());
+        for &(dl, f, _) in data {
+            if f.len() != 2 || f[0].is_empty() {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    "expected `element or element set, face` with the face S1..S6",
+                ));
+            }
+            let face = self.face_label(dl, kw, f[1], 'S')?;
+            faces.push((f[0].to_string(), face));
+        }
+        self.surfaces
+            .entry(key)
+            .or_insert_with(|| (line, Vec::new()))
+            .1
+            .extend(faces);
+        Ok(())
+    }
+
+    /// Face `S1`..`S6` (or `P1`..`P6` with `letter = 'P'`), 0-based.
+    fn face_label(&self, line: usize, kw: &str, text: &str, letter: char) -> Result<usize, InpError> {
+        let t = text.trim().to_uppercase();
+        match t.strip_prefix(letter).and_then(|n| n.parse::<usize>().ok()) {
+            Some(n @ 1..=6) => Ok(n - 1),
+            _ => Err(self.invalid(
+                line,
+                kw,
+                format!("face `{text}`: valid faces are {letter}1..{letter}6 (solid element faces)"),
+            )),
+        }
+    }
+
+    /// Three finite numbers from `f[i..i + 3]`.
+    fn vector3(&self, line: usize, kw: &str, what: &str, f: &[&str]) -> Result<[f64; 3], InpError> {
+        let mut v = [0.0; 3];
+        for (k, x) in v.iter_mut().enumerate() {
+            *x = self.float(line, kw, what, f[k])?;
+        }
+        Ok(v)
+    }
+
+    /// `*DLOAD [, OP=]`: `element or elset, label, values`: `P1`..`P6`
+    /// pressure, `GRAV, g, nx, ny, nz`, `CENTRIF, omega^2, point, axis`,
+    /// `BX|BY|BZ, force per volume`.
+    fn dload(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "DLOAD";
+        self.check_params(line, kw, params, &["OP"])?;
+        let op_new = self.op_new(line, kw, params)?;
+        for &(dl, f, _) in data {
+            if f.len() < 3 || f[0].is_empty() {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    "expected `element or element set, load label, magnitude [, ...]`",
+                ));
+            }
+            let label = f[1].trim().to_uppercase();
+            let want = |n: usize| -> Result<(), InpError> {
+                if f.len() != n {
+                    return Err(self.invalid(
+                        dl,
+                        kw,
+                        format!("load {label} takes {} values after the label, not {}", n - 2, f.len() - 2),
+                    ));
+                }
+                Ok(())
+            };
+            let (kind, face) = match label.as_str() {
+                "GRAV" => {
+                    want(6)?;
+                    let g = self.float(dl, kw, "GRAV magnitude", f[2])?;
+                    let d = self.vector3(dl, kw, "GRAV direction", &f[3..6])?;
+                    let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    if !(l > 0.0 && l.is_finite()) {
+                        return Err(self.invalid(dl, kw, "GRAV direction (values 4-6) has no length"));
+                    }
+                    (InpDloadKind::Gravity([g * d[0] / l, g * d[1] / l, g * d[2] / l]), 0)
+                }
+                "CENTRIF" => {
+                    want(9)?;
+                    let omega2 = self.float(dl, kw, "CENTRIF omega^2", f[2])?;
+                    let point = self.vector3(dl, kw, "CENTRIF axis point", &f[3..6])?;
+                    let axis = self.vector3(dl, kw, "CENTRIF axis direction", &f[6..9])?;
+                    if axis.iter().all(|&a| a == 0.0) {
+                        return Err(self.invalid(dl, kw, "CENTRIF axis direction (values 7-9) is zero"));
+                    }
+                    (InpDloadKind::Centrifugal { omega2, point, axis }, 0)
+                }
+                "BX" | "BY" | "BZ" => {
+                    want(3)?;
+                    let b = self.float(dl, kw, "body force", f[2])?;
+                    let mut v = [0.0; 3];
+                    v[(label.as_bytes()[1] - b'X') as usize] = b;
+                    (InpDloadKind::BodyForce(v), 0)
+                }
+                l if l.starts_with('P') && l.len() == 2 => {
+                    want(3)?;
+                    let face = self.face_label(dl, kw, l, 'P')?;
+                    (InpDloadKind::Pressure(self.float(dl, kw, "pressure", f[2])?), face)
+                }
+                _ => {
+                    return Err(self.invalid(
+                        dl,
+                        kw,
+                        format!("load label `{}` is not supported; valid: P1..P6 (pressure on a face), GRAV, CENTRIF, BX, BY, BZ", f[1]),
+                    ))
+                }
+            };
+            self.dload_targets.push(DloadTarget::Elements {
+                target: f[0].to_string(),
+                face,
+            });
+            self.deck.dloads.push(InpDload {
+                label,
+                kind,
+                elements: Vec::new(),
+                step: self.step_open.map(|_| self.deck.steps.len() - 1),
+                op_new,
+                keyword_line: line,
+                line: dl,
+            });
+        }
+        Ok(())
+    }
+
+    /// `*DSLOAD [, OP=]`: `surface, P, pressure` on an element surface.
+    fn dsload(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "DSLOAD";
+        self.check_params(line, kw, params, &["OP"])?;
+        let op_new = self.op_new(line, kw, params)?;
+        for &(dl, f, _) in data {
+            if f.len() != 3 || f[0].is_empty() {
+                return Err(self.invalid(dl, kw, "expected `surface, P, pressure`"));
+            }
+            if !f[1].trim().eq_ignore_ascii_case("P") {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    format!("load label `{}` is not supported; valid: P (uniform pressure)", f[1]),
+                ));
+            }
+            let p = self.float(dl, kw, "pressure", f[2])?;
+            self.dload_targets.push(DloadTarget::Surface(f[0].to_string()));
+            self.deck.dloads.push(InpDload {
+                label: "P".into(),
+                kind: InpDloadKind::Pressure(p),
+                elements: Vec::new(),
+                step: self.step_open.map(|_| self.deck.steps.len() - 1),
+                op_new,
+                keyword_line: line,
+                line: dl,
+            });
+        }
+        Ok(())
+    }
+
+    /// Flat element ids of an element label or element set.
+    fn element_target(&self, line: usize, kw: &str, target: &str) -> Result<Vec<usize>, InpError> {
+        if target.chars().all(|c| c.is_ascii_digit()) {
+            let l = self.label(line, kw, "element label", target)?;
+            let id = self
+                .elem_id
+                .get(&l)
+                .copied()
+                .ok_or_else(|| InpError::UndefinedLabel {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    kind: "element",
+                    label: l,
+                })?;
+            Ok(vec![id])
+        } else {
+            match self.elset_index.get(&target.to_uppercase()) {
+                Some(&s) => Ok(self.elsets[s].members.clone()),
+                None => Err(self.unknown_set(line, kw, "element set", target)),
+            }
+        }
+    }
+
+    /// Resolve the targets of the distributed loads to `(flat element id,
+    /// face)` lists (the flat ids become element references in `finish`),
+    /// checking that a pressure's face exists on the element.
+    fn resolve_dloads(&mut self) -> Result<Vec<Vec<(usize, usize)>>, InpError> {
+        let targets = std::mem::take(&mut self.dload_targets);
+        let mut out = Vec::with_capacity(targets.len());
+        for (k, t) in targets.iter().enumerate() {
+            let (line, pressure) = (
+                self.deck.dloads[k].line,
+                matches!(self.deck.dloads[k].kind, InpDloadKind::Pressure(_)),
+            );
+            let kw = if matches!(t, DloadTarget::Surface(_)) {
+                "DSLOAD"
+            } else {
+                "DLOAD"
+            };
+            let mut list = Vec::new();
+            match t {
+                DloadTarget::Elements { target, face } => {
+                    for e in self.element_target(line, kw, target)? {
+                        list.push((e, *face));
+                    }
+                }
+                DloadTarget::Surface(name) => {
+                    let key = name.to_uppercase();
+                    let Some((_, faces)) = self.surfaces.get(&key) else {
+                        let what = if self.deck.node_surfaces.contains_key(&key) {
+                            format!("`{name}` is a node surface (TYPE=NODE); a pressure needs an element surface (TYPE=ELEMENT, faces S1..S6)")
+                        } else {
+                            let mut names: Vec<&String> = self.surfaces.keys().collect();
+                            names.sort();
+                            format!("element surface `{name}` is not defined; defined: {names:?}")
+                        };
+                        return Err(self.invalid(line, kw, what));
+                    };
+                    for (target, face) in faces {
+                        for e in self.element_target(line, kw, target)? {
+                            list.push((e, *face));
+                        }
+                    }
+                }
+            }
+            for &(e, face) in &list {
+                let el = &self.elems[e];
+                let shape = self.pre_blocks[el.pre_block].shape;
+                if !shape.is_solid() {
+                    return Err(self.invalid(
+                        line,
+                        kw,
+                        format!("element {} is a {} element; distributed loads act on solids", el.label, shape.name()),
+                    ));
+                }
+                if pressure && shape.face_shape().is_none() {
+                    return Err(self.invalid(
+                        line,
+                        kw,
+                        format!(
+                            "element {} is a {} element: pressure on wedge faces is not supported yet (hexahedra only)",
+                            el.label,
+                            shape.name()
+                        ),
+                    ));
+                }
+                let _ = face;
+            }
+            out.push(list);
+        }
+        Ok(out)
+    }
+
     /// Resolve the terms of the `*EQUATION`s: a node set stands for each of
     /// its members in turn (every set of one equation must have as many).
     fn resolve_equations(&mut self) -> Result<(), InpError> {
@@ -2586,6 +2945,7 @@ impl<'a> Parser<'a> {
     /// Resolve targets, assign sections, build the mesh.
     fn finish(mut self) -> Result<InpDeck, InpError> {
         self.resolve_equations()?;
+        let dload_ids = self.resolve_dloads()?;
         for (k, p) in self.boundary_targets.iter().enumerate() {
             self.deck.boundaries[k].nodes = self.node_target(p.line, p.keyword, &p.target)?;
         }
@@ -2820,6 +3180,9 @@ impl<'a> Parser<'a> {
             self.deck.element_labels.insert(e.label, refs[id]);
             mesh.element_labels[refs[id].block][refs[id].element] = e.label;
         }
+        for (d, ids) in self.deck.dloads.iter_mut().zip(dload_ids) {
+            d.elements = ids.into_iter().map(|(e, face)| (refs[e], face)).collect();
+        }
         mesh.validate().map_err(|e| InpError::Invalid {
             file: self.file.into(),
             line: 0,
@@ -2854,6 +3217,8 @@ pub fn parse_inp(text: &str, file_name: &str) -> Result<InpDeck, InpError> {
         boundary_targets: Vec::new(),
         cload_targets: Vec::new(),
         equation_terms: Vec::new(),
+        surfaces: HashMap::new(),
+        dload_targets: Vec::new(),
         curve_directive: None,
     };
     p.directives(text)?;
