@@ -4,13 +4,16 @@
 //!
 //! One row per node of the named set, in ascending node label as CalculiX
 //! prints them: `step,set,variable,node,1,2,3` where `variable` is `U`
-//! (displacements) or `RF` (reaction forces, the assembled residual
-//! `f_int - f_ext` at the node, CalculiX's sign). With `TOTALS=YES` a row
-//! `node = total` follows the nodes of each set; with `TOTALS=ONLY` it is
-//! the only row. Other variables (`NT`, `PU`, ...) have no meaning in a
-//! Junta run: noted, not written. Only the steps Junta solves get rows:
-//! the request's own step, or the last solved step for a request written
-//! outside any step.
+//! (displacements) or `RF` (forces as CalculiX's `.dat` prints them: the
+//! elements' internal force `f_int` at the node, so a load applied on a
+//! constrained node itself, e.g. the share of a gravity load, is not in it;
+//! the summary's `reactions` are the equilibrium reactions `f_int - f_ext`).
+//! With `TOTALS=YES` a row `node = total` follows the nodes of each set;
+//! with `TOTALS=ONLY` it is the only row. Other variables (`NT`, `PU`, ...)
+//! have no meaning in a Junta run: noted, not written. Every solved step
+//! gets rows: its own requests, or, for a step without any, those of the
+//! nearest earlier step that has some (requests stay active, as in
+//! CalculiX); a request outside any step applies to every step.
 
 use anyhow::{anyhow, Result};
 use junta_core::mesh::inp::{read_inp, InpNodePrint};
@@ -39,7 +42,16 @@ pub fn rows(
     out: &mut String,
     notes: &mut Vec<String>,
 ) -> Result<()> {
-    for p in prints.iter().filter(|p| p.step.unwrap_or(step) == step) {
+    // the requests of this step, or of the nearest earlier step with some
+    let owner = prints
+        .iter()
+        .filter_map(|p| p.step)
+        .filter(|&s| s <= step)
+        .max();
+    for p in prints
+        .iter()
+        .filter(|p| p.step.is_none() || p.step == owner)
+    {
         let Some((name, nodes)) = model
             .mesh
             .node_sets
@@ -98,6 +110,12 @@ pub fn rows(
         }
     }
     Ok(())
+}
+
+/// The internal force `f_int = r + f_ext` from the residual `r = f_int -
+/// f_ext` (the `RF` of CalculiX's `.dat`).
+pub fn internal_force(residual: &[f64], f_ext: &[f64]) -> Vec<f64> {
+    residual.iter().zip(f_ext).map(|(r, f)| r + f).collect()
 }
 
 /// Header of `node_print.csv`.

@@ -322,12 +322,35 @@ pub fn run(
         p.model.mesh.num_elements(),
         p.solver.key()
     ));
+    let prints = crate::deck_print::node_prints(input)?;
+    let mut print_csv = crate::deck_print::HEADER.to_string();
+    let mut print_notes = Vec::new();
     let (res, steps_summary) = if p.deck_steps.len() > 1 {
-        let (res, steps) = solve_deck_steps(&mut p, &dir, &pb, input)?;
+        let (res, steps) = solve_deck_steps(
+            &mut p,
+            &dir,
+            &pb,
+            input,
+            &prints,
+            &mut print_csv,
+            &mut print_notes,
+        )?;
         (res, Some(steps))
     } else {
         let res = solve_linear_static(&p.model, p.solver.as_mut())
             .with_context(|| format!("solving {}", input.display()))?;
+        if !prints.is_empty() {
+            let f_int = crate::deck_print::internal_force(&res.residual, &p.model.f_ext);
+            crate::deck_print::rows(
+                &p.model,
+                &prints,
+                0,
+                &res.u,
+                &f_int,
+                &mut print_csv,
+                &mut print_notes,
+            )?;
+        }
         (res, None)
     };
     for w in &res.report.warnings {
@@ -355,25 +378,12 @@ pub fn run(
             output::write_fractions(&dir, &p.model, &res.u, &res.state, &p.fractions)?;
         }
     }
-    let prints = crate::deck_print::node_prints(input)?;
     if !prints.is_empty() {
-        // a multi-step deck: the rows of its last step (the result at hand)
-        let last = p.deck_steps.len().max(1) - 1;
-        let mut csv = crate::deck_print::HEADER.to_string();
-        let mut notes = Vec::new();
-        crate::deck_print::rows(
-            &p.model,
-            &prints,
-            last,
-            &res.u,
-            &res.residual,
-            &mut csv,
-            &mut notes,
-        )?;
-        for n in notes {
+        print_notes.dedup();
+        for n in print_notes {
             pb.suspend(|| eprintln!("note: {n}"));
         }
-        std::fs::write(dir.join("node_print.csv"), csv)
+        std::fs::write(dir.join("node_print.csv"), print_csv)
             .with_context(|| format!("writing {}", dir.join("node_print.csv").display()))?;
     }
     let (advice, advice_lines) =
@@ -466,11 +476,15 @@ pub fn run(
 /// `results.pvd`; returns the last step's result (with the timings of all
 /// steps) and one summary object per step. On return `p.model` is the model
 /// of the last step.
+#[allow(clippy::too_many_arguments)]
 fn solve_deck_steps(
     p: &mut Prepared,
     dir: &Path,
     pb: &ProgressBar,
     input: &Path,
+    prints: &[junta_core::mesh::inp::InpNodePrint],
+    print_csv: &mut String,
+    print_notes: &mut Vec<String>,
 ) -> Result<(
     junta_solvers::linear_static::LinearStaticResult,
     Vec<serde_json::Value>,
@@ -547,6 +561,18 @@ fn solve_deck_steps(
             total.total += t.total;
             // the step's own load vector, for its reactions
             p.model.f_ext.clone_from(&s.f_ext);
+            if !prints.is_empty() {
+                let f_int = crate::deck_print::internal_force(&res.residual, &s.f_ext);
+                crate::deck_print::rows(
+                    &p.model,
+                    prints,
+                    k + i,
+                    &res.u,
+                    &f_int,
+                    print_csv,
+                    print_notes,
+                )?;
+            }
             if p.vtu {
                 let name = format!("results_step{}.vtu", k + i + 1);
                 let cells = output::cell_results(&p.model, &res.u, &res.state)?;

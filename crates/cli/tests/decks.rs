@@ -266,3 +266,108 @@ fn equation_errors_name_the_line() {
     let err = run_err(&write(dir.path(), "d.inp", &bad));
     assert!(err.contains("degree of freedom 5"), "{err}");
 }
+
+/// `*DLOAD` (GRAV, P4, CENTRIF with OP=NEW), `*SURFACE` and `*DSLOAD` on
+/// tests/data/dload_cube.inp against CalculiX 2.20 on the same deck
+/// (`ccx -i dload_cube`, dload_cube.dat, both steps): TOP displacements and
+/// the BOTTOM total force as CalculiX prints it (the elements' force, which
+/// leaves out the loads applied on the fixed nodes themselves), while the
+/// summary's reactions balance every applied load (closed form: gravity
+/// 100 (0, 0.6, -0.8), pressure 10 on the unit top, 5 on two quarter x+
+/// faces; centrifugal 1000 x volume 1 x centroid distance 0.5 in y).
+#[test]
+fn distributed_loads_match_calculix() {
+    // (step, node, [ux, uy, uz]) for nodes 19, 21, 25, 27
+    const CCX_U: [(usize, usize, [f64; 3]); 8] = [
+        (1, 19, [-4.355548E-05, 6.907770E-04, 3.546387E-05]),
+        (1, 21, [-2.972263E-05, 7.145958E-04, -2.245874E-04]),
+        (1, 25, [-1.760065E-05, 7.345194E-04, -4.861789E-04]),
+        (1, 27, [1.293786E-05, 7.073717E-04, -4.555528E-04]),
+        (2, 19, [-4.483310E-05, 5.682460E-03, 1.937350E-03]),
+        (2, 21, [-1.969378E-18, 5.931570E-03, -1.808630E-04]),
+        (2, 25, [-1.883801E-18, 6.074448E-03, -2.411323E-03]),
+        (2, 27, [2.357430E-04, 5.963036E-03, -2.316877E-03]),
+    ];
+    const CCX_RF: [[f64; 3]; 2] = [[1.875, -45.0, 70.0], [0.0, -375.0, 0.0]];
+    let dir = tempfile::tempdir().unwrap();
+    let deck = repo().join("crates/cli/tests/data/dload_cube.inp");
+    let s = run_ok(&deck, dir.path());
+    let csv = std::fs::read_to_string(dir.path().join("node_print.csv")).unwrap();
+    let row = |step: usize, set: &str, var: &str, node: &str| -> [f64; 3] {
+        let line = csv
+            .lines()
+            .find(|l| {
+                let r: Vec<&str> = l.split(',').collect();
+                r[0] == step.to_string() && r[1] == set && r[2] == var && r[3] == node
+            })
+            .unwrap_or_else(|| panic!("no row {step} {set} {var} {node} in\n{csv}"));
+        let v: Vec<f64> = line
+            .split(',')
+            .skip(4)
+            .map(|v| v.parse::<f64>().unwrap())
+            .collect();
+        [v[0], v[1], v[2]]
+    };
+    for (step, node, want) in CCX_U {
+        let got = row(step, "TOP", "U", &node.to_string());
+        let scale = if step == 1 { 7e-4 } else { 6e-3 };
+        for c in 0..3 {
+            assert!(
+                (got[c] - want[c]).abs() < 2e-6 * scale,
+                "step {step} node {node} u{}: {} vs CalculiX {}",
+                c + 1,
+                got[c],
+                want[c]
+            );
+        }
+    }
+    for (k, want) in CCX_RF.iter().enumerate() {
+        let got = row(k + 1, "BOTTOM", "RF", "total");
+        for c in 0..3 {
+            assert!((got[c] - want[c]).abs() < 1e-5 * 375.0, "step {}: {got:?}", k + 1);
+        }
+    }
+    // equilibrium reactions: minus the applied totals
+    let steps = s["steps"].as_array().expect("two steps");
+    let r1 = &steps[0]["reactions"]["BOTTOM"];
+    let r2 = &steps[1]["reactions"]["BOTTOM"];
+    let applied1 = [-2.5, 60.0, -80.0 - 10.0];
+    let applied2 = [0.0, 500.0, 0.0];
+    for c in 0..3 {
+        assert!((r1[c].as_f64().unwrap() + applied1[c]).abs() < 1e-9, "{r1}");
+        assert!((r2[c].as_f64().unwrap() + applied2[c]).abs() < 1e-9, "{r2}");
+    }
+}
+
+/// Mistakes in distributed loads name the line and what would be valid.
+#[test]
+fn distributed_load_errors_name_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let text =
+        std::fs::read_to_string(repo().join("crates/cli/tests/data/dload_cube.inp")).unwrap();
+    let line_of = |t: &str, pat: &str| t.lines().position(|l| l == pat).unwrap() + 1;
+    for (from, to, expect) in [
+        ("2, P4, 5.", "2, P7, 5.", "P1..P6"),
+        ("2, P4, 5.", "2, HP, 5.", "not supported"),
+        ("TOPS, P, 10.", "NOPE, P, 10.", "element surface `NOPE` is not defined"),
+        ("TOPEL, S2", "TOPEL, S9", "S1..S6"),
+        (
+            "EALL, GRAV, 100., 0., 0.6, -0.8",
+            "EALL, GRAV, 100., 0., 0., 0.",
+            "no length",
+        ),
+        ("EALL, GRAV, 100., 0., 0.6, -0.8", "EALL, GRAV, 100.", "takes 4 values"),
+    ] {
+        let bad = text.replacen(from, to, 1);
+        let l = line_of(&bad, to);
+        let err = run_err(&write(dir.path(), "bad.inp", &bad));
+        assert!(
+            err.contains(&format!("bad.inp:{l}:")) && err.contains(expect),
+            "{to}: {err}"
+        );
+    }
+    // GRAV without a density names the material
+    let bad = text.replacen("*DENSITY\n1.0\n", "", 1);
+    let err = run_err(&write(dir.path(), "bad.inp", &bad));
+    assert!(err.contains("*DENSITY") && err.contains("STEEL"), "{err}");
+}
