@@ -302,7 +302,25 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     let mut notes = deck.notes.clone();
     let mut elements = Vec::new();
     let mut softening = false;
-    for b in &deck.mesh.blocks {
+    for (bi, b) in deck.mesh.blocks.iter().enumerate() {
+        // `*SOLID SECTION, ORIENTATION=`: the material axes `a`, `b`
+        let axes: Vec<(&str, toml::Value)> =
+            match deck.block_orientations.get(bi).copied().flatten() {
+                Some(o) => {
+                    let o = &deck.orientations[o];
+                    let arr = |v: [f64; 3]| {
+                        toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
+                    };
+                    vec![("a", arr(o.a)), ("b", arr(o.b))]
+                }
+                None => Vec::new(),
+            };
+        let with_axes = |mut t: toml::Table| {
+            for (k, v) in &axes {
+                t.insert((*k).into(), v.clone());
+            }
+            t
+        };
         let mat = deck.material(&b.material).ok_or_else(|| {
             anyhow!(
                 "{file}: elements of block `{}` have no material: add a *SOLID SECTION (or *COHESIVE SECTION) for their ELSET",
@@ -326,7 +344,19 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
                 let names = ["E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23"];
                 let pairs: Vec<(&str, f64)> = names.iter().copied().zip(c.iter().copied()).collect();
                 let m = registry::find::<MaterialEntry>("orthotropic")?;
-                build.material = Some((m.build)(&table(&pairs)).map_err(|e| anyhow!("{at}: {e}"))?);
+                build.material = Some(
+                    (m.build)(&with_axes(table(&pairs))).map_err(|e| anyhow!("{at}: {e}"))?,
+                );
+            }
+            (InpMaterialKind::Anisotropic(d), false) => {
+                let mut t = toml::Table::new();
+                t.insert(
+                    "D".into(),
+                    toml::Value::Array(d.iter().map(|&x| toml::Value::Float(x)).collect()),
+                );
+                let m = registry::find::<MaterialEntry>("anisotropic")?;
+                build.material =
+                    Some((m.build)(&with_axes(t)).map_err(|e| anyhow!("{at}: {e}"))?);
             }
             (InpMaterialKind::Traction(_), true) => {
                 let thickness = section_thickness(&deck, mat, &file)?;
@@ -345,7 +375,7 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
             }
             (_, false) => {
                 return Err(anyhow!(
-                    "{at}: solid elements of block `{}` need *ELASTIC (ISOTROPIC or ENGINEERING CONSTANTS)",
+                    "{at}: solid elements of block `{}` need *ELASTIC (ISOTROPIC, ENGINEERING CONSTANTS, ORTHO or ANISO)",
                     b.name
                 ))
             }
@@ -477,7 +507,9 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         }
         e => anyhow!("{file}: {e}"),
     })?;
-    model.add_equations(&equations).map_err(|e| anyhow!("{e}"))?;
+    model
+        .add_equations(&equations)
+        .map_err(|e| anyhow!("{e}"))?;
     if !equations.is_empty() {
         notes.push(format!(
             "{} linear equations (*EQUATION) eliminated: {} dependent dofs",
@@ -712,10 +744,10 @@ pub struct DeckStep {
 /// distributed load. `GRAV` and `CENTRIF` use the density of the element's
 /// material (`*DENSITY`, an error naming the material when missing).
 fn add_distributed_loads(deck: &InpDeck, file: &str, k: usize, f_ext: &mut [f64]) -> Result<()> {
+    use junta_core::mesh::inp::InpDloadKind;
     use junta_core::mesh::{ElementRef, FaceRef};
     use junta_elements::body_load::{add_body_load, BodyLoad};
     use junta_elements::face_load::{add_face_load, FaceLoad};
-    use junta_core::mesh::inp::InpDloadKind;
     // (element, label) -> (load index, face)
     let mut active: std::collections::BTreeMap<(ElementRef, &str), (usize, usize)> =
         std::collections::BTreeMap::new();
@@ -769,7 +801,8 @@ fn add_distributed_loads(deck: &InpDeck, file: &str, k: usize, f_ext: &mut [f64]
             )
             .map_err(at)?,
             InpDloadKind::Gravity(g) => {
-                add_body_load(&deck.mesh, &[e], density()?, BodyLoad::Gravity(g), f_ext).map_err(at)?
+                add_body_load(&deck.mesh, &[e], density()?, BodyLoad::Gravity(g), f_ext)
+                    .map_err(at)?
             }
             InpDloadKind::Centrifugal {
                 omega2,

@@ -192,7 +192,11 @@ fn equation_matches_calculix() {
     let dir = tempfile::tempdir().unwrap();
     let deck = repo().join("crates/cli/tests/data/equation_cube.inp");
     let s = run_ok(&deck, dir.path());
-    assert!(s["notes"].to_string().contains("*EQUATION"), "{}", s["notes"]);
+    assert!(
+        s["notes"].to_string().contains("*EQUATION"),
+        "{}",
+        s["notes"]
+    );
     let u = printed(dir.path(), "TOP", "U");
     assert_eq!(u.len(), 9);
     for ((node, got), (label, want)) in u.iter().zip(CCX_TOP_U) {
@@ -219,10 +223,7 @@ fn equation_matches_calculix() {
         .map(|n| format!("2\n{n}, 3, 1.0, 27, 3, -1.0\n"))
         .collect();
     assert!(text.contains(&explicit));
-    let sets = text.replace(
-        &explicit,
-        "2\nTOPZ, 3, 1.0, 27, 3, -1.0\n",
-    );
+    let sets = text.replace(&explicit, "2\nTOPZ, 3, 1.0, 27, 3, -1.0\n");
     let sets = sets.replacen(
         "\n*EQUATION\n",
         "\n*NSET, NSET=TOPZ\n19, 20, 21, 22, 23, 24, 25, 26\n*EQUATION\n",
@@ -242,8 +243,8 @@ fn equation_matches_calculix() {
 #[test]
 fn equation_errors_name_the_line() {
     let dir = tempfile::tempdir().unwrap();
-    let text = std::fs::read_to_string(repo().join("crates/cli/tests/data/equation_cube.inp"))
-        .unwrap();
+    let text =
+        std::fs::read_to_string(repo().join("crates/cli/tests/data/equation_cube.inp")).unwrap();
     let line_of = |t: &str, pat: &str| t.lines().position(|l| l == pat).unwrap() + 1;
     // a dependent with a boundary condition
     let bad = text.replace("2\n19, 3, 1.0, 27, 3, -1.0", "2\n1, 3, 1.0, 27, 3, -1.0");
@@ -256,7 +257,10 @@ fn equation_errors_name_the_line() {
     // a cycle: 21 y defined through 20 x, which is defined through 21 y
     let bad = text.replace("*STEP", "*EQUATION\n2\n21, 2, 1.0, 20, 1, -1.0\n*STEP");
     let err = run_err(&write(dir.path(), "b.inp", &bad));
-    assert!(err.contains("cycle") || err.contains("already the dependent"), "{err}");
+    assert!(
+        err.contains("cycle") || err.contains("already the dependent"),
+        "{err}"
+    );
     // fewer terms than announced
     let bad = text.replace("3\n19, 1, 2.0", "4\n19, 1, 2.0");
     let err = run_err(&write(dir.path(), "c.inp", &bad));
@@ -324,7 +328,11 @@ fn distributed_loads_match_calculix() {
     for (k, want) in CCX_RF.iter().enumerate() {
         let got = row(k + 1, "BOTTOM", "RF", "total");
         for c in 0..3 {
-            assert!((got[c] - want[c]).abs() < 1e-5 * 375.0, "step {}: {got:?}", k + 1);
+            assert!(
+                (got[c] - want[c]).abs() < 1e-5 * 375.0,
+                "step {}: {got:?}",
+                k + 1
+            );
         }
     }
     // equilibrium reactions: minus the applied totals
@@ -349,14 +357,22 @@ fn distributed_load_errors_name_the_line() {
     for (from, to, expect) in [
         ("2, P4, 5.", "2, P7, 5.", "P1..P6"),
         ("2, P4, 5.", "2, HP, 5.", "not supported"),
-        ("TOPS, P, 10.", "NOPE, P, 10.", "element surface `NOPE` is not defined"),
+        (
+            "TOPS, P, 10.",
+            "NOPE, P, 10.",
+            "element surface `NOPE` is not defined",
+        ),
         ("TOPEL, S2", "TOPEL, S9", "S1..S6"),
         (
             "EALL, GRAV, 100., 0., 0.6, -0.8",
             "EALL, GRAV, 100., 0., 0., 0.",
             "no length",
         ),
-        ("EALL, GRAV, 100., 0., 0.6, -0.8", "EALL, GRAV, 100.", "takes 4 values"),
+        (
+            "EALL, GRAV, 100., 0., 0.6, -0.8",
+            "EALL, GRAV, 100.",
+            "takes 4 values",
+        ),
     ] {
         let bad = text.replacen(from, to, 1);
         let l = line_of(&bad, to);
@@ -370,4 +386,101 @@ fn distributed_load_errors_name_the_line() {
     let bad = text.replacen("*DENSITY\n1.0\n", "", 1);
     let err = run_err(&write(dir.path(), "bad.inp", &bad));
     assert!(err.contains("*DENSITY") && err.contains("STEEL"), "{err}");
+}
+
+/// `*ORIENTATION` (rectangular) on `*SOLID SECTION, ORIENTATION=` with
+/// `*ELASTIC, TYPE=ORTHO` (bottom layer) and `TYPE=ANISO` with couplings
+/// (top layer), tests/data/orient_cube.inp, against CalculiX 2.20 on the
+/// same deck (`ccx -i orient_cube`, orient_cube.dat): TOP total force and
+/// the mid-plane displacements.
+#[test]
+fn orientation_and_aniso_match_calculix() {
+    const CCX_RF: [f64; 3] = [-9.521915E-01, -2.559927E+01, -8.998045E+02];
+    const CCX_U: [(&str, [f64; 3]); 4] = [
+        ("5", [-6.652058E-04, -2.814890E-03, -5.535535E-03]),
+        ("11", [2.732443E-03, -3.013099E-03, -5.750389E-03]),
+        ("16", [-6.031371E-04, 2.510572E-05, -5.653035E-03]),
+        ("18", [2.478011E-03, 1.619381E-04, -5.778593E-03]),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let deck = repo().join("crates/cli/tests/data/orient_cube.inp");
+    run_ok(&deck, dir.path());
+    let rf = printed(dir.path(), "TOP", "RF");
+    for c in 0..3 {
+        assert!((rf[0].1[c] - CCX_RF[c]).abs() < 1e-6 * 900.0, "{rf:?}");
+    }
+    let u = printed(dir.path(), "MIDPLANE", "U");
+    for (node, want) in CCX_U {
+        let got = u.iter().find(|r| r.0 == node).unwrap().1;
+        for c in 0..3 {
+            assert!(
+                (got[c] - want[c]).abs() < 1e-6 * 6e-3,
+                "node {node}: {got:?} vs CalculiX {want:?}"
+            );
+        }
+    }
+
+    // Abaqus' origin c (values 7-9): axes along a - c and b - c, so the
+    // shifted points give the same answer, with a note
+    let text = std::fs::read_to_string(&deck).unwrap();
+    let shifted = text.replace(
+        "1., 2., 3.5, 0., 3., 3.",
+        "2., 3., 5.5, 1., 4., 5., 1., 1., 2.",
+    );
+    assert_ne!(shifted, text);
+    let s = run_ok(&write(dir.path(), "c.inp", &shifted), &dir.path().join("c"));
+    assert!(
+        s["notes"].to_string().contains("origin c"),
+        "{}",
+        s["notes"]
+    );
+    let rf2 = printed(&dir.path().join("c"), "TOP", "RF");
+    for c in 0..3 {
+        assert!(
+            (rf2[0].1[c] - rf[0].1[c]).abs() < 1e-9 * 900.0,
+            "{rf2:?} {rf:?}"
+        );
+    }
+
+    // errors name the line: a cylindrical system, an unknown name, a
+    // degenerate system, a non-positive-definite ANISO stiffness
+    let line_of = |t: &str, pat: &str| t.lines().position(|l| l.starts_with(pat)).unwrap() + 1;
+    for (from, to, at, expect) in [
+        (
+            "*ORIENTATION, NAME=R2, SYSTEM=RECTANGULAR",
+            "*ORIENTATION, NAME=R2, SYSTEM=CYLINDRICAL",
+            "*ORIENTATION, NAME=R2",
+            "CYLINDRICAL",
+        ),
+        (
+            "MATERIAL=ORTHO, ORIENTATION=R1",
+            "MATERIAL=ORTHO, ORIENTATION=R9",
+            "*SOLID SECTION, ELSET=LOW",
+            "orientation `R9` is not defined",
+        ),
+        (
+            "1., 1., 0., -1., 1., 0.3",
+            "1., 1., 0., 2., 2., 0.",
+            "1., 1., 0.,",
+            "must not lie",
+        ),
+    ] {
+        let bad = text.replacen(from, to, 1);
+        let l = line_of(&bad, at);
+        let err = run_err(&write(dir.path(), "bad.inp", &bad));
+        assert!(
+            err.contains(&format!("bad.inp:{l}")) && err.contains(expect),
+            "{to}: {err}"
+        );
+    }
+    let bad = text.replacen(
+        "*ELASTIC, TYPE=ANISO\n200000.",
+        "*ELASTIC, TYPE=ANISO\n-200000.",
+        1,
+    );
+    let err = run_err(&write(dir.path(), "bad.inp", &bad));
+    assert!(
+        err.contains("ANISO") || err.contains("positive definite"),
+        "{err}"
+    );
 }

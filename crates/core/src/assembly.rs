@@ -629,10 +629,7 @@ fn adjacency_through_equations(adj: Vec<Vec<u32>>, dofs: &DofMap) -> Vec<Vec<u32
     let mut out: Vec<Vec<u32>> = adj
         .par_iter()
         .map(|nbrs| {
-            let mut v: Vec<u32> = nbrs
-                .iter()
-                .flat_map(|&y| behind(y as usize))
-                .collect();
+            let mut v: Vec<u32> = nbrs.iter().flat_map(|&y| behind(y as usize)).collect();
             v.sort_unstable();
             v.dedup();
             v

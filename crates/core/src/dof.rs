@@ -452,7 +452,11 @@ mod tests {
                 origin: "y".into(),
             },
         ];
-        assert!(c.add_equations(&cyc, &[]).unwrap_err().to_string().contains("cycle"));
+        assert!(c
+            .add_equations(&cyc, &[])
+            .unwrap_err()
+            .to_string()
+            .contains("cycle"));
         let fixed = [LinearEquation {
             terms: vec![(0, 1.0), (3, -1.0)],
             origin: "z".into(),

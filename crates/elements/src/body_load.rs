@@ -149,7 +149,10 @@ mod tests {
             spec.origin = [1.0, 0.0, 0.0];
             let mesh = box_mesh(&spec, "b", "solid", "m").unwrap();
             let els: Vec<ElementRef> = (0..mesh.blocks[0].len())
-                .map(|e| ElementRef { block: 0, element: e })
+                .map(|e| ElementRef {
+                    block: 0,
+                    element: e,
+                })
                 .collect();
             let total = |load| {
                 let mut f = vec![0.0; 3 * mesh.nodes.len()];
@@ -169,8 +172,14 @@ mod tests {
                 point: [0.0; 3],
                 axis: [0.0, 0.0, 3.0],
             });
-            assert!((c[0] - 7.0 * 4.0 * v * 2.0).abs() < 1e-11, "{shape:?} {c:?}");
-            assert!((c[1] - 7.0 * 4.0 * v * 0.5).abs() < 1e-11, "{shape:?} {c:?}");
+            assert!(
+                (c[0] - 7.0 * 4.0 * v * 2.0).abs() < 1e-11,
+                "{shape:?} {c:?}"
+            );
+            assert!(
+                (c[1] - 7.0 * 4.0 * v * 0.5).abs() < 1e-11,
+                "{shape:?} {c:?}"
+            );
             assert!(c[2].abs() < 1e-12);
         }
     }

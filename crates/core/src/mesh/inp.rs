@@ -228,6 +228,9 @@ pub enum InpMaterialKind {
     EngineeringConstants([f64; 9]),
     /// `*ELASTIC, TYPE=TRACTION` (cohesive): `[K_nn, K_ss, K_tt]`.
     Traction([f64; 3]),
+    /// `*ELASTIC, TYPE=ANISO`: the 21 constants `D1111, D1122, D2222, ...,
+    /// D2323` in the Abaqus order.
+    Anisotropic(Box<[f64; 21]>),
 }
 
 /// A `*MATERIAL` with its `*ELASTIC` data and, for cohesive elements, its
@@ -350,6 +353,8 @@ pub struct InpSolidSection {
     pub elset: String,
     /// Material name as written in `*MATERIAL`.
     pub material: String,
+    /// `ORIENTATION=` name as written.
+    pub orientation: Option<String>,
     /// Line of the keyword.
     pub line: usize,
 }
@@ -513,6 +518,25 @@ pub struct InpDeck {
     pub dloads: Vec<InpDload>,
     /// Node surfaces (`*SURFACE, TYPE=NODE`): name (upper case) -> nodes.
     pub node_surfaces: BTreeMap<String, Vec<usize>>,
+    /// `*ORIENTATION`s (rectangular systems).
+    pub orientations: Vec<InpOrientation>,
+    /// Orientation of each mesh block (index-aligned with `mesh.blocks`):
+    /// its index in `orientations`, from `*SOLID SECTION, ORIENTATION=`.
+    pub block_orientations: Vec<Option<usize>>,
+}
+
+/// A rectangular `*ORIENTATION`: material axis 1 along `a - c`, `b - c` in
+/// the 1-2 plane (`c` the origin, default 0).
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpOrientation {
+    /// Name as written.
+    pub name: String,
+    /// Material axis 1 direction (`a - c`).
+    pub a: [f64; 3],
+    /// A direction in the material 1-2 plane (`b - c`).
+    pub b: [f64; 3],
+    /// Line of the keyword.
+    pub line: usize,
 }
 
 /// What a distributed load does.
@@ -858,6 +882,8 @@ struct Elem {
     conn: Vec<usize>,
     label: usize,
     material: Option<(String, usize)>,
+    /// `*SOLID SECTION, ORIENTATION=` name (upper case).
+    orientation: Option<String>,
 }
 
 struct PreBlock {
@@ -1343,22 +1369,20 @@ impl<'a> Parser<'a> {
                 }
                 "SOLID SECTION" => {
                     self.model_data_only(line, kw)?;
-                    if Self::param(params, "ORIENTATION").is_some() {
-                        return Err(self.invalid(
-                            line,
-                            kw,
-                            "ORIENTATION= is not supported yet; give the material axes in the scene",
-                        ));
-                    }
-                    self.check_params(line, kw, params, &["ELSET", "MATERIAL"])?;
+                    self.check_params(line, kw, params, &["ELSET", "MATERIAL", "ORIENTATION"])?;
                     let elset = self.required(line, kw, params, "ELSET")?;
                     let material = self.required(line, kw, params, "MATERIAL")?;
+                    let orientation = match Self::param(params, "ORIENTATION") {
+                        None => None,
+                        Some(_) => Some(self.required(line, kw, params, "ORIENTATION")?),
+                    };
                     if data.len() > 1 {
                         return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
                     }
                     self.deck.solid_sections.push(InpSolidSection {
                         elset,
                         material,
+                        orientation,
                         line,
                     });
                 }
@@ -1419,13 +1443,7 @@ impl<'a> Parser<'a> {
                         line,
                     });
                 }
-                "ORIENTATION" => {
-                    return Err(self.invalid(
-                        line,
-                        kw,
-                        "not supported yet; give the material axes in the scene instead",
-                    ))
-                }
+                "ORIENTATION" => self.orientation(line, params, &data)?,
                 "BOUNDARY" => self.boundary(line, params, &data)?,
                 "CLOAD" => self.cload(line, params, &data)?,
                 "EQUATION" => self.equation(line, params, &data)?,
@@ -1780,6 +1798,7 @@ impl<'a> Parser<'a> {
                 conn,
                 label,
                 material: None,
+                orientation: None,
             });
             if let Some(s) = set {
                 self.elsets[s].members.push(id);
@@ -1937,6 +1956,14 @@ impl<'a> Parser<'a> {
                 ],
             ),
             "TRACTION" => (3, &["K_nn", "K_ss", "K_tt"]),
+            "ANISOTROPIC" | "ANISO" => (
+                21,
+                &[
+                    "D1111", "D1122", "D2222", "D1133", "D2233", "D3333", "D1112", "D2212",
+                    "D3312", "D1212", "D1113", "D2213", "D3313", "D1213", "D1313", "D1123",
+                    "D2223", "D3323", "D1223", "D1323", "D2323",
+                ],
+            ),
             "ORTHOTROPIC" | "ORTHO" => (
                 9,
                 &[
@@ -1949,13 +1976,14 @@ impl<'a> Parser<'a> {
                     line,
                     keyword: kw.into(),
                     parameter: format!("TYPE={ty}"),
-                    valid: "TYPE=ISOTROPIC, TYPE=ENGINEERING CONSTANTS, TYPE=ORTHO, TYPE=TRACTION"
+                    valid: "TYPE=ISOTROPIC, TYPE=ENGINEERING CONSTANTS, TYPE=ORTHO, TYPE=ANISO, TYPE=TRACTION"
                         .into(),
                 })
             }
         };
-        // ENGINEERING CONSTANTS: 8 values on the first line, 1 on the second
-        let lines_needed = if count == 9 { 2 } else { 1 };
+        // 8 values per line: ENGINEERING CONSTANTS and ORTHO on 2 lines,
+        // ANISO on 3
+        let lines_needed = count.div_ceil(8);
         if data.len() < lines_needed {
             return Err(self.invalid(
                 line,
@@ -2039,6 +2067,11 @@ impl<'a> Parser<'a> {
         let kind = match count {
             2 => InpMaterialKind::Isotropic { e: v[0], nu: v[1] },
             3 => InpMaterialKind::Traction([v[0], v[1], v[2]]),
+            21 => {
+                let mut a = [0.0; 21];
+                a.copy_from_slice(&v);
+                InpMaterialKind::Anisotropic(Box::new(a))
+            }
             _ => {
                 let mut a = [0.0; 9];
                 a.copy_from_slice(&v);
@@ -2538,7 +2571,11 @@ impl<'a> Parser<'a> {
         self.check_params(line, kw, params, &[])?;
         self.model_data_only(line, kw)?;
         if data.is_empty() {
-            return Err(self.invalid(line, kw, "no equation follows (expected the number of terms)"));
+            return Err(self.invalid(
+                line,
+                kw,
+                "no equation follows (expected the number of terms)",
+            ));
         }
         let mut k = 0;
         while k < data.len() {
@@ -2552,7 +2589,11 @@ impl<'a> Parser<'a> {
             }
             let n = self.label(dl, kw, "number of terms", f[0])?;
             if n < 2 {
-                return Err(self.invalid(dl, kw, format!("an equation needs at least 2 terms, not {n}")));
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    format!("an equation needs at least 2 terms, not {n}"),
+                ));
             }
             k += 1;
             let mut fields: Vec<(usize, &str)> = Vec::with_capacity(3 * n);
@@ -2574,14 +2615,22 @@ impl<'a> Parser<'a> {
                 return Err(self.invalid(
                     fields[3 * n].0,
                     kw,
-                    format!("the equation has {n} terms, so {} fields, but its lines hold {}", 3 * n, fields.len()),
+                    format!(
+                        "the equation has {n} terms, so {} fields, but its lines hold {}",
+                        3 * n,
+                        fields.len()
+                    ),
                 ));
             }
             let mut terms = Vec::with_capacity(n);
             for t in fields.chunks(3) {
                 let (tl, target) = t[0];
                 if target.is_empty() {
-                    return Err(self.invalid(tl, kw, "expected `node or node set, dof, coefficient`"));
+                    return Err(self.invalid(
+                        tl,
+                        kw,
+                        "expected `node or node set, dof, coefficient`",
+                    ));
                 }
                 let dof = self.dof(t[1].0, kw, t[1].1)?;
                 let a = self.float(t[2].0, kw, "coefficient", t[2].1)?;
@@ -2596,6 +2645,125 @@ impl<'a> Parser<'a> {
             }
             self.equation_terms.push((dl, terms));
         }
+        Ok(())
+    }
+
+    /// `*ORIENTATION, NAME= [, SYSTEM=RECTANGULAR] [, DEFINITION=COORDINATES]`:
+    /// `a, b [, c]` (points: a on material axis 1, b in the 1-2 plane, c the
+    /// origin); an optional second line `axis, angle` must have angle 0.
+    fn orientation(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "ORIENTATION";
+        self.model_data_only(line, kw)?;
+        self.check_params(line, kw, params, &["NAME", "SYSTEM", "DEFINITION"])?;
+        let name = self.required(line, kw, params, "NAME")?;
+        let value = |k: &str| {
+            Self::param(params, k)
+                .and_then(|(_, v)| v.as_deref())
+                .map(norm_key)
+        };
+        match value("SYSTEM").as_deref() {
+            None | Some("RECTANGULAR") | Some("R") => {}
+            Some(sys @ ("CYLINDRICAL" | "C")) => {
+                return Err(InpError::Parameter {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    parameter: format!("SYSTEM={sys}"),
+                    valid: "SYSTEM=RECTANGULAR (cylindrical material axes vary inside an element and are not supported yet)".into(),
+                })
+            }
+            Some(sys) => {
+                return Err(InpError::Parameter {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    parameter: format!("SYSTEM={sys}"),
+                    valid: "SYSTEM=RECTANGULAR".into(),
+                })
+            }
+        }
+        if let Some(d) = value("DEFINITION").filter(|d| d != "COORDINATES") {
+            return Err(InpError::Parameter {
+                file: self.file.into(),
+                line,
+                keyword: kw.into(),
+                parameter: format!("DEFINITION={d}"),
+                valid: "DEFINITION=COORDINATES".into(),
+            });
+        }
+        let Some(&(dl, f, _)) = data.first() else {
+            return Err(self.invalid(
+                line,
+                kw,
+                "expected a data line `ax, ay, az, bx, by, bz [, cx, cy, cz]`",
+            ));
+        };
+        let f: Vec<&str> = f.iter().copied().filter(|t| !t.is_empty()).collect();
+        if f.len() != 6 && f.len() != 9 {
+            return Err(self.invalid(
+                dl,
+                kw,
+                format!(
+                    "expected 6 or 9 values `ax, ay, az, bx, by, bz [, cx, cy, cz]`, found {}",
+                    f.len()
+                ),
+            ));
+        }
+        let a = self.vector3(dl, kw, "point a", &f[0..3])?;
+        let b = self.vector3(dl, kw, "point b", &f[3..6])?;
+        let c = if f.len() == 9 {
+            self.deck.notes.push(format!(
+                "{}:{dl}: *ORIENTATION {name}: origin c (values 7-9) used as in Abaqus, material axis 1 along a - c; CalculiX 2.20 ignores these values",
+                self.file
+            ));
+            self.vector3(dl, kw, "origin c", &f[6..9])?
+        } else {
+            [0.0; 3]
+        };
+        if let Some(&(l2, f2, _)) = data.get(1) {
+            let angle = match f2.get(1) {
+                Some(t) => self.float(l2, kw, "rotation angle", t)?,
+                None => 0.0,
+            };
+            if angle != 0.0 || data.len() > 2 {
+                return Err(self.invalid(
+                    l2,
+                    kw,
+                    "an additional rotation about a local axis (second data line with a non-zero angle) is not supported",
+                ));
+            }
+        }
+        let sub = |p: [f64; 3]| [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
+        let (a, b) = (sub(a), sub(b));
+        let cross = [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ];
+        let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        if norm(a) == 0.0 || norm(cross) <= 1e-10 * norm(a) * norm(b) {
+            return Err(self.invalid(
+                dl,
+                kw,
+                "point a must differ from the origin and point b must not lie on the line through the origin and a",
+            ));
+        }
+        if self
+            .deck
+            .orientations
+            .iter()
+            .any(|o| o.name.eq_ignore_ascii_case(&name))
+        {
+            return Err(self.invalid(line, kw, format!("orientation `{name}` is defined twice")));
+        }
+        self.deck
+            .orientations
+            .push(InpOrientation { name, a, b, line });
         Ok(())
     }
 
@@ -2638,7 +2806,11 @@ impl<'a> Parser<'a> {
             }
             nodes.sort_unstable();
             nodes.dedup();
-            self.deck.node_surfaces.entry(key).or_default().extend(nodes);
+            self.deck
+                .node_surfaces
+                .entry(key)
+                .or_default()
+                .extend(nodes);
             return Ok(());
         }
         let mut faces = Vec::with_capacity(data.len());
@@ -2662,14 +2834,22 @@ impl<'a> Parser<'a> {
     }
 
     /// Face `S1`..`S6` (or `P1`..`P6` with `letter = 'P'`), 0-based.
-    fn face_label(&self, line: usize, kw: &str, text: &str, letter: char) -> Result<usize, InpError> {
+    fn face_label(
+        &self,
+        line: usize,
+        kw: &str,
+        text: &str,
+        letter: char,
+    ) -> Result<usize, InpError> {
         let t = text.trim().to_uppercase();
         match t.strip_prefix(letter).and_then(|n| n.parse::<usize>().ok()) {
             Some(n @ 1..=6) => Ok(n - 1),
             _ => Err(self.invalid(
                 line,
                 kw,
-                format!("face `{text}`: valid faces are {letter}1..{letter}6 (solid element faces)"),
+                format!(
+                    "face `{text}`: valid faces are {letter}1..{letter}6 (solid element faces)"
+                ),
             )),
         }
     }
@@ -2709,7 +2889,11 @@ impl<'a> Parser<'a> {
                     return Err(self.invalid(
                         dl,
                         kw,
-                        format!("load {label} takes {} values after the label, not {}", n - 2, f.len() - 2),
+                        format!(
+                            "load {label} takes {} values after the label, not {}",
+                            n - 2,
+                            f.len() - 2
+                        ),
                     ));
                 }
                 Ok(())
@@ -2790,11 +2974,15 @@ impl<'a> Parser<'a> {
                 return Err(self.invalid(
                     dl,
                     kw,
-                    format!("load label `{}` is not supported; valid: P (uniform pressure)", f[1]),
+                    format!(
+                        "load label `{}` is not supported; valid: P (uniform pressure)",
+                        f[1]
+                    ),
                 ));
             }
             let p = self.float(dl, kw, "pressure", f[2])?;
-            self.dload_targets.push(DloadTarget::Surface(f[0].to_string()));
+            self.dload_targets
+                .push(DloadTarget::Surface(f[0].to_string()));
             self.deck.dloads.push(InpDload {
                 label: "P".into(),
                 kind: InpDloadKind::Pressure(p),
@@ -2881,7 +3069,11 @@ impl<'a> Parser<'a> {
                     return Err(self.invalid(
                         line,
                         kw,
-                        format!("element {} is a {} element; distributed loads act on solids", el.label, shape.name()),
+                        format!(
+                            "element {} is a {} element; distributed loads act on solids",
+                            el.label,
+                            shape.name()
+                        ),
                     ));
                 }
                 if pressure && shape.face_shape().is_none() {
@@ -2953,19 +3145,59 @@ impl<'a> Parser<'a> {
             self.deck.cloads[k].nodes = self.node_target(p.line, p.keyword, &p.target)?;
         }
         // sections -> element materials
-        let mut sections: Vec<(String, String, usize, bool)> = self
+        #[allow(clippy::type_complexity)]
+        let mut sections: Vec<(String, String, usize, bool, Option<String>)> = self
             .deck
             .solid_sections
             .iter()
-            .map(|s| (s.elset.clone(), s.material.clone(), s.line, false))
+            .map(|s| {
+                (
+                    s.elset.clone(),
+                    s.material.clone(),
+                    s.line,
+                    false,
+                    s.orientation.clone(),
+                )
+            })
             .collect();
         sections.extend(
             self.deck
                 .cohesive_sections
                 .iter()
-                .map(|s| (s.elset.clone(), s.material.clone(), s.line, true)),
+                .map(|s| (s.elset.clone(), s.material.clone(), s.line, true, None)),
         );
-        for (elset, material, line, cohesive) in sections {
+        for (elset, material, line, cohesive, orientation) in sections {
+            let orientation = match orientation {
+                None => None,
+                Some(o) => match self
+                    .deck
+                    .orientations
+                    .iter()
+                    .find(|x| x.name.eq_ignore_ascii_case(&o))
+                {
+                    Some(x) => Some(x.name.clone()),
+                    None => {
+                        let valid: Vec<&str> = self
+                            .deck
+                            .orientations
+                            .iter()
+                            .map(|x| x.name.as_str())
+                            .collect();
+                        return Err(InpError::UnknownName {
+                            file: self.file.into(),
+                            line,
+                            keyword: "SOLID SECTION".into(),
+                            kind: "orientation",
+                            name: o,
+                            valid: if valid.is_empty() {
+                                "(none)".into()
+                            } else {
+                                valid.join(", ")
+                            },
+                        });
+                    }
+                },
+            };
             let kw = if cohesive {
                 "COHESIVE SECTION"
             } else {
@@ -3036,7 +3268,10 @@ impl<'a> Parser<'a> {
                             ),
                         ))
                     }
-                    _ => self.elems[e].material = Some((mname.clone(), line)),
+                    _ => {
+                        self.elems[e].material = Some((mname.clone(), line));
+                        self.elems[e].orientation = orientation.clone();
+                    }
                 }
             }
         }
@@ -3110,22 +3345,34 @@ impl<'a> Parser<'a> {
             self.elems.len()
         ];
         let mut blocks: Vec<ElementBlock> = Vec::new();
+        let mut block_orientations = Vec::new();
         for (pb_i, pb) in self.pre_blocks.iter().enumerate() {
-            let mut mats: Vec<String> = Vec::new();
+            // one block per (material, orientation)
+            let mut mats: Vec<(String, Option<String>)> = Vec::new();
             for e in self.elems.iter().filter(|e| e.pre_block == pb_i) {
                 let m = e.material.as_ref().map(|m| m.0.clone()).unwrap_or_default();
-                if !mats.contains(&m) {
-                    mats.push(m);
+                let key = (m, e.orientation.clone());
+                if !mats.contains(&key) {
+                    mats.push(key);
                 }
             }
             let split = mats.len() > 1;
-            for m in &mats {
+            for (m, o) in &mats {
                 let bi = blocks.len();
                 let name = if split {
-                    format!("{}_{}", pb.name, if m.is_empty() { "nosection" } else { m })
+                    let mut n =
+                        format!("{}_{}", pb.name, if m.is_empty() { "nosection" } else { m });
+                    if let Some(o) = o {
+                        n = format!("{n}_{o}");
+                    }
+                    n
                 } else {
                     pb.name.clone()
                 };
+                block_orientations.push(
+                    o.as_ref()
+                        .and_then(|o| self.deck.orientations.iter().position(|x| &x.name == o)),
+                );
                 let mut b = ElementBlock {
                     name,
                     shape: pb.shape,
@@ -3135,7 +3382,7 @@ impl<'a> Parser<'a> {
                 };
                 for (id, e) in self.elems.iter().enumerate() {
                     let em = e.material.as_ref().map(|x| x.0.as_str()).unwrap_or("");
-                    if e.pre_block == pb_i && em == m {
+                    if e.pre_block == pb_i && em == m && &e.orientation == o {
                         refs[id] = ElementRef {
                             block: bi,
                             element: b.len(),
@@ -3190,6 +3437,7 @@ impl<'a> Parser<'a> {
             message: e.to_string(),
         })?;
         self.deck.mesh = mesh;
+        self.deck.block_orientations = block_orientations;
         Ok(self.deck)
     }
 }

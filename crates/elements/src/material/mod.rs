@@ -4,6 +4,8 @@
 //! * [`orthotropic`]: key `orthotropic`, engineering constants
 //!   `E1, E2, E3, nu12, nu13, nu23, G12, G13, G23` and an optional material
 //!   orientation given by two vectors `a`, `b` (as Abaqus `*ORIENTATION`).
+//! * [`anisotropic`]: key `anisotropic`, the 21 stiffness constants `D` in
+//!   the Abaqus `TYPE=ANISO` order and the same optional orientation.
 //!
 //! Voigt order everywhere: `[xx, yy, zz, xy, yz, zx]`, engineering shear
 //! strains `gamma_ij = 2 eps_ij`, so that `sigma = C eps` and the strain
@@ -31,9 +33,11 @@
 //! The engineering-shear factors of 2 are carried by `T^T` acting on
 //! engineering strains; no separate Reuter matrix is needed.
 
+pub mod anisotropic;
 pub mod isotropic;
 pub mod orthotropic;
 
+pub use anisotropic::Anisotropic;
 pub use isotropic::Isotropic;
 pub use orthotropic::{EngineeringConstants, Orientation, Orthotropic};
 
