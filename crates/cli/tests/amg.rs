@@ -222,7 +222,7 @@ fn export_matrix_reads_back_as_the_assembled_matrix() {
         .skip(1)
         .map(|l| l.trim().parse().unwrap())
         .collect();
-    let fi = model.dofs.gather(&f_int);
+    let fi = model.dofs.reduce(&f_int);
     assert_eq!(b.len(), k.n);
     assert!(b.iter().any(|v| v.abs() > 1.0));
     for (a, e) in b.iter().zip(&fi) {

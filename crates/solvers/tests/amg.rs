@@ -52,7 +52,7 @@ fn assemble(model: &Model) -> (SymmetricCsc, Vec<f64>) {
         &mut f,
     )
     .unwrap();
-    (k, model.dofs.gather(&model.f_ext))
+    (k, model.dofs.reduce(&model.f_ext))
 }
 
 fn amg_cg() -> CgSolver {
