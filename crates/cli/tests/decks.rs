@@ -382,6 +382,14 @@ fn distributed_load_errors_name_the_line() {
             "{to}: {err}"
         );
     }
+    // a surface face written P2 (CalculiX's *DLOAD face name) is S2
+    let p_faces = text.replacen("TOPEL, S2", "TOPEL, P2", 1);
+    run_ok(&write(dir.path(), "p.inp", &p_faces), &dir.path().join("p"));
+    run_ok(&write(dir.path(), "s.inp", &text), &dir.path().join("s"));
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("p/node_print.csv")).unwrap(),
+        std::fs::read_to_string(dir.path().join("s/node_print.csv")).unwrap()
+    );
     // GRAV without a density names the material
     let bad = text.replacen("*DENSITY\n1.0\n", "", 1);
     let err = run_err(&write(dir.path(), "bad.inp", &bad));

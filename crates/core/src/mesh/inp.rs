@@ -2768,7 +2768,7 @@ impl<'a> Parser<'a> {
     }
 
     /// `*SURFACE, NAME= [, TYPE=ELEMENT|NODE]`: element faces
-    /// (`element or elset, S1..S6`) or nodes (`node or nset [, weight]`).
+    /// (`element or elset, S1..S6` or `P1..P6`) or nodes (`node or nset [, weight]`).
     fn surface(
         &mut self,
         line: usize,
@@ -2822,7 +2822,13 @@ impl<'a> Parser<'a> {
                     "expected `element or element set, face` with the face S1..S6",
                 ));
             }
-            let face = self.face_label(dl, kw, f[1], 'S')?;
+            // S1..S6 (Abaqus) or P1..P6 (CalculiX's *DLOAD face names)
+            let letter = if f[1].trim().to_uppercase().starts_with('P') {
+                'P'
+            } else {
+                'S'
+            };
+            let face = self.face_label(dl, kw, f[1], letter)?;
             faces.push((f[0].to_string(), face));
         }
         self.surfaces
