@@ -110,16 +110,68 @@ pub fn element_points(
         .with_context(|| format!("output of element {e} of block `{}`", b.name))
 }
 
+/// Files with more points than this write their arrays in binary
+/// (VTK XML appended raw data: per array a UInt64 byte count and the
+/// little-endian values), smaller ones in ascii (readable as text).
+pub const VTU_BINARY_POINTS: usize = 50_000;
+
+/// A VTU file being written: the XML goes to `w`; in binary mode the
+/// arrays' bytes collect in `appended` and [`vtu_tail`] writes them after
+/// the XML (`<AppendedData encoding="raw">`).
+struct Vtu<W: Write> {
+    w: W,
+    binary: bool,
+    appended: Vec<u8>,
+}
+
+impl<W: Write> Vtu<W> {
+    /// Binary when the file has more than [`VTU_BINARY_POINTS`] points.
+    fn new(w: W, points: usize) -> Self {
+        Self::with_format(w, points > VTU_BINARY_POINTS)
+    }
+    fn with_format(w: W, binary: bool) -> Self {
+        Vtu {
+            w,
+            binary,
+            appended: Vec::new(),
+        }
+    }
+    /// Open a binary array (`<DataArray ... format="appended" offset=.../>`)
+    /// and queue its bytes.
+    fn appended_array(&mut self, attrs: &str, bytes: &[u8]) -> std::io::Result<()> {
+        writeln!(
+            self.w,
+            "        <DataArray {attrs} format=\"appended\" offset=\"{}\"/>",
+            self.appended.len()
+        )?;
+        self.appended
+            .extend_from_slice(&(bytes.len() as u64).to_le_bytes());
+        self.appended.extend_from_slice(bytes);
+        Ok(())
+    }
+}
+
+impl<W: Write> Write for Vtu<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.w.write(buf)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.w.flush()
+    }
+}
+
 fn write_array<W: Write>(
-    w: &mut W,
+    w: &mut Vtu<W>,
     name: &str,
     comps: usize,
     data: impl Iterator<Item = f64>,
 ) -> std::io::Result<()> {
-    writeln!(
-        w,
-        "        <DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"ascii\">"
-    )?;
+    let attrs = format!("type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{comps}\"");
+    if w.binary {
+        let bytes: Vec<u8> = data.flat_map(f64::to_le_bytes).collect();
+        return w.appended_array(&attrs, &bytes);
+    }
+    writeln!(w, "        <DataArray {attrs} format=\"ascii\">")?;
     let mut line = 0;
     for v in data {
         write!(w, "{v:.9e} ")?;
@@ -135,7 +187,7 @@ fn write_array<W: Write>(
 pub fn write_vtu(path: &Path, model: &Model, u: &[f64], cells: &CellResults) -> Result<()> {
     let f =
         std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
-    let mut w = std::io::BufWriter::new(f);
+    let mut w = Vtu::new(std::io::BufWriter::new(f), model.mesh.nodes.len());
     let mesh = &model.mesh;
     let solids: Vec<&junta_core::mesh::ElementBlock> =
         mesh.blocks.iter().filter(|b| b.shape.is_solid()).collect();
@@ -561,7 +613,7 @@ pub fn write_interface_vtu_named(
     let path = dir.join(format!("interfaces{suffix}.vtu"));
     let f = std::fs::File::create(&path)
         .with_context(|| format!("cannot create {}", path.display()))?;
-    let mut w = std::io::BufWriter::new(f);
+    let mut w = Vtu::new(std::io::BufWriter::new(f), points.len());
     (|| -> std::io::Result<()> {
         vtu_head(&mut w, points.len(), types.len())?;
         write_array(
@@ -621,7 +673,7 @@ pub fn write_interface_vtu_named(
     let path = dir.join(format!("interface_points{suffix}.vtu"));
     let f = std::fs::File::create(&path)
         .with_context(|| format!("cannot create {}", path.display()))?;
-    let mut w = std::io::BufWriter::new(f);
+    let mut w = Vtu::new(std::io::BufWriter::new(f), all.len());
     let get3 = |p: &junta_core::PointOutput, name: &str, from: usize| -> [f64; 3] {
         p.get(name)
             .map_or([0.0; 3], |v| [v[from], v[from + 1], v[from + 2]])
@@ -708,7 +760,7 @@ pub fn write_interface_vtu_named(
     .with_context(|| format!("cannot write {}", path.display()))
 }
 
-fn vtu_head<W: Write>(w: &mut W, points: usize, cells: usize) -> std::io::Result<()> {
+fn vtu_head<W: Write>(w: &mut Vtu<W>, points: usize, cells: usize) -> std::io::Result<()> {
     writeln!(w, "<?xml version=\"1.0\"?>")?;
     writeln!(w, "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">")?;
     writeln!(w, "  <UnstructuredGrid>")?;
@@ -719,17 +771,31 @@ fn vtu_head<W: Write>(w: &mut W, points: usize, cells: usize) -> std::io::Result
     writeln!(w, "      <Points>")
 }
 
-fn vtu_tail<W: Write>(w: &mut W) -> std::io::Result<()> {
-    writeln!(w, "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>")?;
+fn vtu_tail<W: Write>(w: &mut Vtu<W>) -> std::io::Result<()> {
+    writeln!(w, "    </Piece>\n  </UnstructuredGrid>")?;
+    if w.binary {
+        write!(w.w, "  <AppendedData encoding=\"raw\">\n   _")?;
+        w.w.write_all(&w.appended)?;
+        writeln!(w.w, "\n  </AppendedData>")?;
+    }
+    writeln!(w, "</VTKFile>")?;
     w.flush()
 }
 
 fn write_ints<W: Write>(
-    w: &mut W,
+    w: &mut Vtu<W>,
     name: &str,
     ty: &str,
     data: impl Iterator<Item = u64>,
 ) -> std::io::Result<()> {
+    if w.binary {
+        let bytes: Vec<u8> = match ty {
+            "UInt8" => data.map(|v| v as u8).collect(),
+            "Int64" => data.flat_map(|v| (v as i64).to_le_bytes()).collect(),
+            _ => data.flat_map(u64::to_le_bytes).collect(),
+        };
+        return w.appended_array(&format!("type=\"{ty}\" Name=\"{name}\""), &bytes);
+    }
     writeln!(
         w,
         "        <DataArray type=\"{ty}\" Name=\"{name}\" format=\"ascii\">"
@@ -881,4 +947,86 @@ pub fn cohesive_zone_advice(model: &Model) -> Result<(Value, Vec<String>, Vec<St
         );
     }
     Ok((Value::Object(m), lines, warnings))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The arrays of a small file written both ways: the binary file's
+    /// appended block (byte count, then little-endian values at each
+    /// array's offset) decodes to exactly the ascii file's values.
+    #[test]
+    fn binary_vtu_arrays_decode_to_the_ascii_values() {
+        let floats: Vec<f64> = (0..12).map(|i| (i as f64) * 0.1 - 1.0 / 3.0).collect();
+        let ints: Vec<u64> = vec![7, 0, 123456789012, 3];
+        let types: Vec<u64> = vec![12, 25, 13];
+        let write = |binary: bool| -> String {
+            let mut w = Vtu::with_format(Vec::new(), binary);
+            vtu_head(&mut w, 4, 1).unwrap();
+            write_array(&mut w, "f", 3, floats.iter().copied()).unwrap();
+            write_ints(&mut w, "i", "Int64", ints.iter().copied()).unwrap();
+            write_ints(&mut w, "t", "UInt8", types.iter().copied()).unwrap();
+            vtu_tail(&mut w).unwrap();
+            String::from_utf8_lossy(&w.w).into_owned()
+        };
+        let ascii = write(false);
+        assert!(!ascii.contains("appended"));
+        // ascii values
+        let body = |name: &str| -> Vec<String> {
+            let at = ascii.find(&format!("Name=\"{name}\"")).unwrap();
+            let b = &ascii[at..];
+            b[b.find('>').unwrap() + 1..b.find("</DataArray>").unwrap()]
+                .split_whitespace()
+                .map(str::to_string)
+                .collect()
+        };
+        // binary: the raw bytes after `_`
+        let mut w = Vtu::with_format(Vec::new(), true);
+        vtu_head(&mut w, 4, 1).unwrap();
+        write_array(&mut w, "f", 3, floats.iter().copied()).unwrap();
+        write_ints(&mut w, "i", "Int64", ints.iter().copied()).unwrap();
+        write_ints(&mut w, "t", "UInt8", types.iter().copied()).unwrap();
+        vtu_tail(&mut w).unwrap();
+        let bytes = w.w;
+        let text = String::from_utf8_lossy(&bytes).into_owned();
+        assert!(text.contains("<AppendedData encoding=\"raw\">"));
+        let marker: &[u8] = b"<AppendedData encoding=\"raw\">\n   _";
+        let start = bytes
+            .windows(marker.len())
+            .position(|p| p == marker)
+            .unwrap()
+            + marker.len();
+        let data = &bytes[start..];
+        let offset = |name: &str| -> usize {
+            let at = text.find(&format!("Name=\"{name}\"")).unwrap();
+            let b = &text[at..];
+            let o = &b[b.find("offset=\"").unwrap() + 8..];
+            o[..o.find('"').unwrap()].parse().unwrap()
+        };
+        let block = |name: &str| -> &[u8] {
+            let o = offset(name);
+            let n = u64::from_le_bytes(data[o..o + 8].try_into().unwrap()) as usize;
+            &data[o + 8..o + 8 + n]
+        };
+        let f: Vec<f64> = block("f")
+            .chunks(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+            .collect();
+        assert_eq!(f, floats);
+        // ascii keeps 10 significant digits
+        for (a, b) in body("f").iter().zip(&f) {
+            assert!((a.parse::<f64>().unwrap() - b).abs() < 1e-9);
+        }
+        let i: Vec<u64> = block("i")
+            .chunks(8)
+            .map(|c| i64::from_le_bytes(c.try_into().unwrap()) as u64)
+            .collect();
+        assert_eq!(i, ints);
+        assert_eq!(
+            body("i"),
+            ints.iter().map(|v| v.to_string()).collect::<Vec<_>>()
+        );
+        assert_eq!(block("t"), &[12u8, 25, 13]);
+    }
 }
