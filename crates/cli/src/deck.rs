@@ -769,48 +769,53 @@ fn add_distributed_loads(deck: &InpDeck, file: &str, k: usize, f_ext: &mut [f64]
             active.insert((e, label), (i, face));
         }
     }
+    // one call per load and block (a block has one material, one density)
+    let mut groups: std::collections::BTreeMap<(usize, usize), Vec<(ElementRef, usize)>> =
+        std::collections::BTreeMap::new();
     for ((e, _), (i, face)) in active {
+        groups.entry((i, e.block)).or_default().push((e, face));
+    }
+    for ((i, block), members) in groups {
         let d = &deck.dloads[i];
         let at = |err: junta_core::CoreError| {
             let kw = if d.label == "P" { "DSLOAD" } else { "DLOAD" };
             anyhow!("{file}:{}: *{kw}: {err}", d.line)
         };
+        let elements: Vec<ElementRef> = members.iter().map(|m| m.0).collect();
         let density = || -> Result<f64> {
-            let block = &deck.mesh.blocks[e.block];
-            match deck.material(&block.material).and_then(|m| m.density) {
+            let b = &deck.mesh.blocks[block];
+            match deck.material(&b.material).and_then(|m| m.density) {
                 Some(rho) => Ok(rho),
                 None => Err(anyhow!(
                     "{file}:{}: *DLOAD: {} needs the density of material `{}` (element {}): add *DENSITY to it",
                     d.line,
                     d.label,
-                    block.material,
-                    deck.mesh.element_label(e.block, e.element)
+                    b.material,
+                    deck.mesh.element_label(block, elements[0].element)
                 )),
             }
         };
+        let body = |rho: f64, load: BodyLoad, f: &mut [f64]| {
+            add_body_load(&deck.mesh, &elements, rho, load, f).map_err(at)
+        };
         match d.kind {
-            InpDloadKind::Pressure(p) => add_face_load(
-                &deck.mesh,
-                &[FaceRef {
-                    block: e.block,
-                    element: e.element,
-                    face,
-                }],
-                FaceLoad::Pressure(p),
-                f_ext,
-            )
-            .map_err(at)?,
-            InpDloadKind::Gravity(g) => {
-                add_body_load(&deck.mesh, &[e], density()?, BodyLoad::Gravity(g), f_ext)
-                    .map_err(at)?
+            InpDloadKind::Pressure(p) => {
+                let faces: Vec<FaceRef> = members
+                    .iter()
+                    .map(|&(e, face)| FaceRef {
+                        block: e.block,
+                        element: e.element,
+                        face,
+                    })
+                    .collect();
+                add_face_load(&deck.mesh, &faces, FaceLoad::Pressure(p), f_ext).map_err(at)?
             }
+            InpDloadKind::Gravity(g) => body(density()?, BodyLoad::Gravity(g), f_ext)?,
             InpDloadKind::Centrifugal {
                 omega2,
                 point,
                 axis,
-            } => add_body_load(
-                &deck.mesh,
-                &[e],
+            } => body(
                 density()?,
                 BodyLoad::Centrifugal {
                     omega2,
@@ -818,11 +823,8 @@ fn add_distributed_loads(deck: &InpDeck, file: &str, k: usize, f_ext: &mut [f64]
                     axis,
                 },
                 f_ext,
-            )
-            .map_err(at)?,
-            InpDloadKind::BodyForce(b) => {
-                add_body_load(&deck.mesh, &[e], 1.0, BodyLoad::Gravity(b), f_ext).map_err(at)?
-            }
+            )?,
+            InpDloadKind::BodyForce(b) => body(1.0, BodyLoad::Gravity(b), f_ext)?,
         }
     }
     Ok(())

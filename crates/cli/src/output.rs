@@ -961,16 +961,16 @@ mod tests {
         let floats: Vec<f64> = (0..12).map(|i| (i as f64) * 0.1 - 1.0 / 3.0).collect();
         let ints: Vec<u64> = vec![7, 0, 123456789012, 3];
         let types: Vec<u64> = vec![12, 25, 13];
-        let write = |binary: bool| -> String {
+        let write = |binary: bool| -> Vec<u8> {
             let mut w = Vtu::with_format(Vec::new(), binary);
             vtu_head(&mut w, 4, 1).unwrap();
             write_array(&mut w, "f", 3, floats.iter().copied()).unwrap();
             write_ints(&mut w, "i", "Int64", ints.iter().copied()).unwrap();
             write_ints(&mut w, "t", "UInt8", types.iter().copied()).unwrap();
             vtu_tail(&mut w).unwrap();
-            String::from_utf8_lossy(&w.w).into_owned()
+            w.w
         };
-        let ascii = write(false);
+        let ascii = String::from_utf8(write(false)).unwrap();
         assert!(!ascii.contains("appended"));
         // ascii values
         let body = |name: &str| -> Vec<String> {
@@ -982,13 +982,7 @@ mod tests {
                 .collect()
         };
         // binary: the raw bytes after `_`
-        let mut w = Vtu::with_format(Vec::new(), true);
-        vtu_head(&mut w, 4, 1).unwrap();
-        write_array(&mut w, "f", 3, floats.iter().copied()).unwrap();
-        write_ints(&mut w, "i", "Int64", ints.iter().copied()).unwrap();
-        write_ints(&mut w, "t", "UInt8", types.iter().copied()).unwrap();
-        vtu_tail(&mut w).unwrap();
-        let bytes = w.w;
+        let bytes = write(true);
         let text = String::from_utf8_lossy(&bytes).into_owned();
         assert!(text.contains("<AppendedData encoding=\"raw\">"));
         let marker: &[u8] = b"<AppendedData encoding=\"raw\">\n   _";

@@ -157,13 +157,18 @@ fn elastic_ortho_matches_calculix() {
     assert!(rel(fz, -8.090795e2) < 2e-6, "{fz}");
 }
 
-/// `node_print.csv` rows of `(set, variable)`: node -> [x, y, z].
+/// `node_print.csv` rows of `(set, variable)` of step 1: node -> [x, y, z].
 fn printed(dir: &std::path::Path, set: &str, var: &str) -> Vec<(String, [f64; 3])> {
+    printed_at(dir, 1, set, var)
+}
+
+/// `node_print.csv` rows of `(step, set, variable)`: node -> [x, y, z].
+fn printed_at(dir: &std::path::Path, step: usize, set: &str, var: &str) -> Vec<(String, [f64; 3])> {
     let csv = std::fs::read_to_string(dir.join("node_print.csv")).unwrap();
     csv.lines()
         .skip(1)
         .map(|l| l.split(',').collect::<Vec<_>>())
-        .filter(|r| r[1] == set && r[2] == var)
+        .filter(|r| r[0] == step.to_string() && r[1] == set && r[2] == var)
         .map(|r| {
             let v = |i: usize| r[i].parse::<f64>().unwrap();
             (r[3].to_string(), [v(4), v(5), v(6)])
@@ -296,21 +301,12 @@ fn distributed_loads_match_calculix() {
     let dir = tempfile::tempdir().unwrap();
     let deck = repo().join("crates/cli/tests/data/dload_cube.inp");
     let s = run_ok(&deck, dir.path());
-    let csv = std::fs::read_to_string(dir.path().join("node_print.csv")).unwrap();
     let row = |step: usize, set: &str, var: &str, node: &str| -> [f64; 3] {
-        let line = csv
-            .lines()
-            .find(|l| {
-                let r: Vec<&str> = l.split(',').collect();
-                r[0] == step.to_string() && r[1] == set && r[2] == var && r[3] == node
-            })
-            .unwrap_or_else(|| panic!("no row {step} {set} {var} {node} in\n{csv}"));
-        let v: Vec<f64> = line
-            .split(',')
-            .skip(4)
-            .map(|v| v.parse::<f64>().unwrap())
-            .collect();
-        [v[0], v[1], v[2]]
+        printed_at(dir.path(), step, set, var)
+            .into_iter()
+            .find(|r| r.0 == node)
+            .unwrap_or_else(|| panic!("no row {step} {set} {var} {node}"))
+            .1
     };
     for (step, node, want) in CCX_U {
         let got = row(step, "TOP", "U", &node.to_string());

@@ -77,6 +77,14 @@ impl Dependents {
         matches!(self.slot.get(d), Some(&s) if s != u32::MAX)
     }
 
+    /// Every dependent dof with its terms.
+    pub fn iter(&self) -> impl Iterator<Item = (usize, &[(usize, f64)])> + '_ {
+        self.dofs
+            .iter()
+            .enumerate()
+            .map(|(s, &d)| (d, &self.terms[self.ptr[s]..self.ptr[s + 1]]))
+    }
+
     /// Whether there are no dependent dofs.
     pub fn is_empty(&self) -> bool {
         self.dofs.is_empty()
@@ -280,8 +288,7 @@ impl DofMap {
 
     /// Set every dependent dof of a full vector from its terms.
     pub fn fill_dependents(&self, u: &mut [f64]) {
-        for &d in &self.dependents.dofs {
-            let terms = self.dependents.terms(d).expect("listed as dependent");
+        for (d, terms) in self.dependents.iter() {
             u[d] = terms.iter().map(|&(m, c)| c * u[m]).sum();
         }
     }
@@ -315,9 +322,11 @@ impl DofMap {
                 v[e] = full[d];
             }
         }
-        for &d in &self.dependents.dofs {
-            for (e, c) in self.targets(d) {
-                v[e] += c * full[d];
+        for (d, terms) in self.dependents.iter() {
+            for &(m, c) in terms {
+                if self.eq[m] != CONSTRAINED {
+                    v[self.eq[m]] += c * full[d];
+                }
             }
         }
         v

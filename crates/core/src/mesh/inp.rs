@@ -1872,48 +1872,11 @@ impl<'a> Parser<'a> {
                 }
             } else {
                 for t in f {
-                    if t.chars().all(|c| c.is_ascii_digit()) {
-                        let l = self.label(
-                            dl,
-                            kw,
-                            if is_node {
-                                "node label"
-                            } else {
-                                "element label"
-                            },
-                            t,
-                        )?;
-                        if is_node {
-                            members.push(self.node_of(dl, kw, l)?);
-                        } else {
-                            let id = self.elem_id.get(&l).copied().ok_or_else(|| {
-                                InpError::UndefinedLabel {
-                                    file: self.file.into(),
-                                    line: dl,
-                                    keyword: kw.into(),
-                                    kind: "element",
-                                    label: l,
-                                }
-                            })?;
-                            members.push(id);
-                        }
+                    // a label or a set name, as every other target
+                    if is_node {
+                        members.extend(self.node_target(dl, kw, t)?);
                     } else {
-                        let (sets, index) = if is_node {
-                            (&self.nsets, &self.nset_index)
-                        } else {
-                            (&self.elsets, &self.elset_index)
-                        };
-                        match index.get(&t.to_uppercase()) {
-                            Some(&s) => members.extend_from_slice(&sets[s].members),
-                            None => {
-                                return Err(self.unknown_set(
-                                    dl,
-                                    kw,
-                                    if is_node { "node set" } else { "element set" },
-                                    t,
-                                ))
-                            }
-                        }
+                        members.extend(self.element_target(dl, kw, t)?);
                     }
                 }
             }
@@ -3068,7 +3031,7 @@ impl<'a> Parser<'a> {
                     }
                 }
             }
-            for &(e, face) in &list {
+            for &(e, _) in &list {
                 let el = &self.elems[e];
                 let shape = self.pre_blocks[el.pre_block].shape;
                 if !shape.is_solid() {
@@ -3093,7 +3056,6 @@ impl<'a> Parser<'a> {
                         ),
                     ));
                 }
-                let _ = face;
             }
             out.push(list);
         }
