@@ -178,8 +178,7 @@ impl DofMap {
             CoreError::Invalid(format!("linear equation at {}: {why}", e.origin))
         };
         // raw definition of each dependent: (dof, -a_k / a_0)
-        let mut def: std::collections::HashMap<usize, (usize, Vec<(usize, f64)>)> =
-            std::collections::HashMap::with_capacity(equations.len());
+        let mut def: Definitions = std::collections::HashMap::with_capacity(equations.len());
         for (i, e) in equations.iter().enumerate() {
             if e.terms.len() < 2 {
                 return Err(bad(e, "it needs at least two terms".into()));
@@ -362,12 +361,16 @@ impl DofMap {
     }
 }
 
+/// Raw definition of each dependent: dof -> (equation index, `(dof,
+/// -a_k / a_0)` terms).
+type Definitions = std::collections::HashMap<usize, (usize, Vec<(usize, f64)>)>;
+
 /// Terms of dependent `d` over free and Dirichlet dofs only, substituting
 /// dependents among its terms recursively (`path`: the chain being
 /// resolved, for cycle detection).
 fn resolve(
     d: usize,
-    def: &std::collections::HashMap<usize, (usize, Vec<(usize, f64)>)>,
+    def: &Definitions,
     resolved: &mut std::collections::HashMap<usize, Vec<(usize, f64)>>,
     path: &mut Vec<usize>,
     equations: &[LinearEquation],

@@ -908,6 +908,9 @@ struct PendingMaterial {
     stabilization: Option<InpDamageStabilization>,
 }
 
+/// A term of an `*EQUATION` as written: node label or set, dof, coefficient.
+type WrittenTerm = (String, usize, f64);
+
 enum DloadTarget {
     Elements { target: String, face: usize },
     Surface(String),
@@ -940,7 +943,7 @@ struct Parser<'a> {
     boundary_targets: Vec<PendingTarget>,
     cload_targets: Vec<PendingTarget>,
     /// `*EQUATION`s as written: `(line, [(node or set, dof, a)])`.
-    equation_terms: Vec<(usize, Vec<(String, usize, f64)>)>,
+    equation_terms: Vec<(usize, Vec<WrittenTerm>)>,
     /// Element surfaces: name (upper case) -> `(line, [(element or
     /// elset, face 0-based)])`.
     surfaces: HashMap<String, (usize, Vec<(String, usize)>)>,
