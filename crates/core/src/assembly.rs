@@ -245,6 +245,7 @@ impl Assembler {
         self.assemble_colors(
             &cache.nonlinear_colors,
             cache.nonlinear_map.as_ref(),
+            Some(&cache.values),
             mesh,
             elements,
             dofs,
@@ -254,17 +255,6 @@ impl Assembler {
             k.as_deref_mut(),
             f_int,
         )?;
-        if let Some(k) = k {
-            k.values
-                .par_iter_mut()
-                .zip(cache.values.par_iter())
-                .for_each(|(a, b)| *a += b);
-            // linear elements are symmetric: the same values in the lower part
-            k.lower
-                .par_iter_mut()
-                .zip(cache.values.par_iter())
-                .for_each(|(a, b)| *a += b);
-        }
         let fv = SharedMut(f_int.as_mut_ptr());
         for color in &cache.linear_colors {
             color.par_iter().for_each(|&(er, off)| {
@@ -428,6 +418,7 @@ impl Assembler {
         self.assemble_colors(
             &self.colors,
             None,
+            None,
             mesh,
             elements,
             dofs,
@@ -439,13 +430,15 @@ impl Assembler {
         )
     }
 
-    /// Zero `f_int` and `k`, then assemble the elements of `colors` (with
+    /// Zero `f_int`, set `k` to `base` (both triangles: `base` is
+    /// symmetric) or zero, then assemble the elements of `colors` (with
     /// `map`, its pattern positions, built for `colors`).
     #[allow(clippy::too_many_arguments)]
     fn assemble_colors(
         &self,
         colors: &[Vec<ElementRef>],
         map: Option<&ScatterMap>,
+        base: Option<&[f64]>,
         mesh: &Mesh,
         elements: &[Arc<dyn Element>],
         dofs: &DofMap,
@@ -457,8 +450,15 @@ impl Assembler {
     ) -> Result<(), CoreError> {
         f_int.iter_mut().for_each(|v| *v = 0.0);
         if let Some(k) = k.as_deref_mut() {
-            k.values.iter_mut().for_each(|v| *v = 0.0);
-            k.lower.iter_mut().for_each(|v| *v = 0.0);
+            for part in [&mut k.values, &mut k.lower] {
+                match base {
+                    Some(b) if part.len() == b.len() => part
+                        .par_iter_mut()
+                        .zip(b.par_iter())
+                        .for_each(|(a, b)| *a = *b),
+                    _ => part.par_iter_mut().for_each(|v| *v = 0.0),
+                }
+            }
         }
         let max_nodes = mesh
             .blocks

@@ -182,6 +182,81 @@ impl SymmetricCsc {
     }
 }
 
+impl SymmetricCsc {
+    /// `y_r = A x_r` for the `x.len() / n` vectors stored one after another
+    /// in `x` (and `y`), in one pass over the matrix: each stored entry
+    /// `(i, j)` adds `a_ji x_r[i]` to `y_r[j]` (from `lower` for a
+    /// nonsymmetric matrix) and, off the diagonal, `a_ij x_r[j]` to
+    /// `y_r[i]`. Column ranges of equal entry counts run in parallel, each
+    /// into its own buffer, summed at the end.
+    pub fn mul_many(&self, x: &[f64], y: &mut [f64]) {
+        let n = self.n;
+        y.iter_mut().for_each(|v| *v = 0.0);
+        if n == 0 {
+            return;
+        }
+        let k = x.len() / n;
+        let low = if self.is_general() {
+            &self.lower
+        } else {
+            &self.values
+        };
+        let nnz = self.row_idx.len();
+        let chunks = if nnz > 100_000 {
+            rayon::current_num_threads().clamp(1, 8)
+        } else {
+            1
+        };
+        // column boundaries splitting the entries evenly
+        let bounds: Vec<usize> = (0..=chunks)
+            .map(|c| {
+                self.col_ptr
+                    .partition_point(|&p| p < c * nnz / chunks)
+                    .min(n)
+            })
+            .collect();
+        let columns = |j0: usize, j1: usize, out: &mut [f64]| {
+            for j in j0..j1 {
+                let (s, e) = (self.col_ptr[j], self.col_ptr[j + 1]);
+                for r in 0..k {
+                    let (xr, yr) = (&x[r * n..(r + 1) * n], r * n);
+                    let xj = xr[j];
+                    let mut acc = 0.0;
+                    for p in s..e {
+                        let i = self.row_idx[p];
+                        acc += low[p] * xr[i];
+                        if i != j {
+                            out[yr + i] += self.values[p] * xj;
+                        }
+                    }
+                    out[yr + j] += acc;
+                }
+            }
+        };
+        if chunks == 1 {
+            columns(0, n, y);
+            return;
+        }
+        let parts: Vec<Vec<f64>> = (0..chunks)
+            .into_par_iter()
+            .map(|c| {
+                let mut out = vec![0.0; k * n];
+                columns(bounds[c], bounds[c + 1], &mut out);
+                out
+            })
+            .collect();
+        y.par_chunks_mut(4096).enumerate().for_each(|(b, ys)| {
+            let off = b * 4096;
+            let len = ys.len();
+            for part in &parts {
+                for (yi, pi) in ys.iter_mut().zip(&part[off..off + len]) {
+                    *yi += pi;
+                }
+            }
+        });
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -214,5 +289,37 @@ mod tests {
         assert_eq!(cp, vec![0, 2, 5, 7]);
         assert_eq!(ri, vec![0, 1, 0, 1, 2, 1, 2]);
         assert_eq!(v, vec![4.0, 7.0, 1.0, 3.0, -1.0, 2.0, 5.0]);
+        // two vectors at once
+        let mut yy = [0.0; 6];
+        a.mul_many(&[1.0, -2.0, 3.0, 0.5, 1.0, -1.0], &mut yy);
+        assert_eq!(yy[..3], y);
+        let mut y2 = [0.0; 3];
+        a.mul_vec(&[0.5, 1.0, -1.0], &mut y2);
+        assert_eq!(yy[3..], y2);
+    }
+
+    #[test]
+    fn many_product_matches_mul_vec_on_a_large_band() {
+        // 20,000 columns of 9 entries: past the threshold of the parallel
+        // column ranges
+        let n = 20_000;
+        let cols = (0..n)
+            .map(|j: usize| (j.saturating_sub(8)..=j).collect())
+            .collect();
+        let mut a = SymmetricCsc::from_columns(cols);
+        for (p, v) in a.values.iter_mut().enumerate() {
+            *v = ((p * 7919) % 97) as f64 - 48.0;
+        }
+        let x: Vec<f64> = (0..2 * n).map(|i| ((i * 31) % 17) as f64 - 8.0).collect();
+        let mut y = vec![0.0; 2 * n];
+        a.mul_many(&x, &mut y);
+        for r in 0..2 {
+            let mut y1 = vec![0.0; n];
+            a.mul_vec(&x[r * n..(r + 1) * n], &mut y1);
+            for (p, q) in y1.iter().zip(&y[r * n..(r + 1) * n]) {
+                assert!((p - q).abs() <= 1e-12 * p.abs().max(1.0), "{p} vs {q}");
+            }
+        }
+        assert!(y.iter().any(|v| v.abs() > 100.0));
     }
 }

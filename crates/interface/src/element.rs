@@ -19,8 +19,10 @@
 //! ```
 //!
 //! Node blocks of K are `s_a s_b N_a N_b (theta D theta^T) dA` with
-//! `s = -1` on the bottom face and `+1` on the top face, which is how the
-//! kernel computes them (3x3 blocks, fixed-size arrays, no allocation).
+//! `s = -1` on the bottom face and `+1` on the top face: the kernel sums
+//! the `3m x 3m` block `B = sum_q N_a N_b (theta D theta^T) dA` over the
+//! points and writes `K = [[B, -B], [-B, B]]` once (fixed-size arrays, no
+//! allocation).
 //!
 //! Integration: `gauss` (2x2 for INTER8, 3x3 for INTER16/18: the paper's) or
 //! `lobatto` (2x2 / 3x3 Gauss-Lobatto points: nodal integration for INTER8
@@ -226,14 +228,16 @@ impl Element for InterfaceElement {
         ctx: &ElementContext<'_>,
         state_trial: &mut [f64],
         f_int: &mut [f64],
-        mut k: Option<&mut [f64]>,
+        k: Option<&mut [f64]>,
     ) -> Result<(), ElementError> {
         let m = self.m();
         let nd = 6 * m;
         f_int[..nd].iter_mut().for_each(|v| *v = 0.0);
-        if let Some(k) = k.as_deref_mut() {
-            k[..nd * nd].iter_mut().for_each(|v| *v = 0.0);
-        }
+        // K = [[B, -B], [-B, B]] over (bottom, top) nodes, with the 3m x 3m
+        // block B = sum_q N_a N_b G_q da accumulated first
+        const MAX: usize = 3 * 9;
+        let mut bk = [[0.0f64; MAX]; MAX];
+        let want_k = k.is_some();
         let sl = self.law.state_len();
         let symmetric = self.law.tangent_kind() != junta_core::MatrixKind::General;
         let mut n = [0.0; 9];
@@ -260,18 +264,15 @@ impl Element for InterfaceElement {
             let tg = [0, 1, 2].map(|c| {
                 e[0][c] * r.traction[0] + e[1][c] * r.traction[1] + e[2][c] * r.traction[2]
             });
-            // node weights s_a N_a over the 2m nodes
-            let mut sn = [0.0; 18];
+            // f = [-N t_g, N t_g] da over (bottom, top)
             for a in 0..m {
-                sn[a] = -n[a];
-                sn[m + a] = n[a];
-            }
-            for a in 0..2 * m {
                 for c in 0..3 {
-                    f_int[3 * a + c] += sn[a] * tg[c] * da;
+                    let v = n[a] * tg[c] * da;
+                    f_int[3 * a + c] -= v;
+                    f_int[3 * (m + a) + c] += v;
                 }
             }
-            if let Some(k) = k.as_deref_mut() {
+            if want_k {
                 // symmetric storage: assemble the symmetric part of the
                 // law's tangent (the tangent itself for symmetric laws)
                 let mut dt = r.tangent;
@@ -295,19 +296,32 @@ impl Element for InterfaceElement {
                         g[c][d] = s * da;
                     }
                 }
-                for a in 0..2 * m {
-                    for b in 0..2 * m {
-                        let w = sn[a] * sn[b];
-                        if w == 0.0 {
-                            continue;
-                        }
+                for a in 0..m {
+                    if n[a] == 0.0 {
+                        continue;
+                    }
+                    for b in 0..m {
+                        let w = n[a] * n[b];
                         for (c, gc) in g.iter().enumerate() {
-                            let row = (3 * a + c) * nd + 3 * b;
-                            for (d, gcd) in gc.iter().enumerate() {
-                                k[row + d] += w * gcd;
+                            let row = &mut bk[3 * a + c][3 * b..3 * b + 3];
+                            for (x, gcd) in row.iter_mut().zip(gc) {
+                                *x += w * gcd;
                             }
                         }
                     }
+                }
+            }
+        }
+        if let Some(k) = k {
+            let h = 3 * m;
+            for i in 0..h {
+                let src = &bk[i][..h];
+                let (top, bottom) = (i * nd, (h + i) * nd);
+                for (j, &v) in src.iter().enumerate() {
+                    k[top + j] = v;
+                    k[top + h + j] = -v;
+                    k[bottom + j] = -v;
+                    k[bottom + h + j] = v;
                 }
             }
         }

@@ -283,6 +283,12 @@ impl FullCsr {
 /// `||A||_inf` (largest absolute row sum) of a symmetric matrix stored as
 /// its upper triangle.
 pub(crate) fn symmetric_norm_inf(a: &SymmetricCsc) -> f64 {
+    inf_norm(&symmetric_row_sums(a))
+}
+
+/// Absolute row sums `sum_j |a_ij|` of a symmetric matrix stored as its
+/// upper triangle.
+pub(crate) fn symmetric_row_sums(a: &SymmetricCsc) -> Vec<f64> {
     // row sums over column chunks in parallel (one vector per chunk)
     let chunks = if a.row_idx.len() > 200_000 {
         rayon::current_num_threads().clamp(1, 8)
@@ -308,12 +314,12 @@ pub(crate) fn symmetric_norm_inf(a: &SymmetricCsc) -> f64 {
         .collect();
     let mut it = sums.into_iter();
     let Some(mut rows) = it.next() else {
-        return 0.0;
+        return Vec::new();
     };
     for other in it {
         rows.iter_mut().zip(&other).for_each(|(r, o)| *r += o);
     }
-    inf_norm(&rows)
+    rows
 }
 
 #[cfg(test)]

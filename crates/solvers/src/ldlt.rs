@@ -95,9 +95,11 @@
 //! steps, stopping when a step no longer lowers `rho`). Double precision
 //! only.
 
-use crate::common::{norm2, residual, symmetric_norm_inf, symmetric_only, validate, Pattern};
+use crate::common::{
+    inf_norm, norm2, residual, symmetric_only, symmetric_row_sums, validate, Pattern,
+};
 use crate::ordering::OrderingKind;
-use crate::supernodal::{PanelFactor, SharedPtr};
+use crate::supernodal::{PanelFactor, ScatterIndex, SharedPtr, SolvePlan};
 use faer::linalg::triangular_solve as tri;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{MatMut, MatRef, Par};
@@ -139,6 +141,10 @@ pub struct LdltSettings {
     /// factorisation, and their ancestors (default true; see the module
     /// docs, "Partial refactorisation").
     pub partial_refactor: bool,
+    /// Stored factor entries from which the triangular solves run the
+    /// independent subtrees of the elimination tree in parallel (default
+    /// 2^20; below it a solve is too short to split).
+    pub parallel_solve_entries: usize,
 }
 
 /// Weight of nested dissection's predicted flops when `"auto"` compares it
@@ -163,6 +169,7 @@ impl Default for LdltSettings {
             pivot_warn: 1e-12,
             threads: 0,
             partial_refactor: true,
+            parallel_solve_entries: PARALLEL_SOLVE_ENTRIES,
         }
     }
 }
@@ -206,6 +213,10 @@ pub const LDLT_PARAMS: &[ParamDoc] = &[
         doc: "threads for the factorisation, 0 = all of rayon's pool (default 0)",
     },
     ParamDoc {
+        name: "parallel_solve_entries",
+        doc: "stored factor entries from which the triangular solves run independent subtrees in parallel (default 1048576)",
+    },
+    ParamDoc {
         name: "partial_refactor",
         doc: "refactorise only the part of the factor that depends on the entries changed since the last factorisation (a softening interface in elastic solids; default true, the result is the same to the last bit)",
     },
@@ -235,6 +246,9 @@ pub struct LdltStats {
     pub matrix_norm_inf: f64,
     /// Refinement steps of the last solve.
     pub refinement_steps: usize,
+    /// Subtrees the last solve ran in parallel (0: one pass in panel
+    /// order).
+    pub solve_tasks: usize,
 }
 
 /// Kind of a pivot position (`Pivots::kind`).
@@ -304,13 +318,24 @@ pub struct LdltSolver {
     factored: bool,
     /// Where each matrix entry goes in `values` (built at the first
     /// factorisation after an analysis).
-    scatter_map: Option<(Vec<usize>, Vec<u32>)>,
+    scatter_index: Option<ScatterIndex>,
     /// Matrix values and pivoting constants of the last successful
     /// factorisation (empty when the next one must be complete).
     factored_matrix: Vec<f64>,
     factored_rule: Option<PivotRule>,
-    /// Panels to refactorise (scratch of a partial refactorisation).
+    /// Panels to refactorise (scratch of a partial refactorisation), as
+    /// flags and as a list.
     dirty: Vec<bool>,
+    dirty_list: Vec<u32>,
+    /// Absolute row sums of the last factorised matrix (`||A||_inf` is
+    /// their maximum), updated with the changed entries.
+    row_sums: Vec<f64>,
+    /// Independent parts of the triangular solves.
+    plan: Option<SolvePlan>,
+    /// Storage of the matrix of the last successful factorisation
+    /// ([`storage_id`]): a solve given the same storage skips the pattern
+    /// check.
+    factored_id: Option<(usize, usize, usize, usize)>,
     /// Total work of a complete factorisation (multiply-adds).
     total_work: f64,
     stats: LdltStats,
@@ -346,7 +371,11 @@ impl LdltSolver {
             values: Vec::new(),
             pivots: Pivots::default(),
             factored: false,
-            scatter_map: None,
+            scatter_index: None,
+            row_sums: Vec::new(),
+            dirty_list: Vec::new(),
+            plan: None,
+            factored_id: None,
             factored_matrix: Vec::new(),
             factored_rule: None,
             dirty: Vec::new(),
@@ -421,117 +450,136 @@ impl LdltSolver {
         }
     }
 
+    /// The plan of a parallel solve, when the factor is large enough
+    /// ([`LdltSettings::parallel_solve_entries`]) and there are threads.
+    fn parallel_plan(&self) -> Option<&SolvePlan> {
+        self.plan.as_ref().filter(|p| {
+            p.tasks.len() > 1
+                && self.threads() > 1
+                && self.values.len() >= self.settings.parallel_solve_entries
+        })
+    }
+
     /// `x <- (Q L D L^T Q^T)^-1 x` in the symbolic (permuted) numbering, for
-    /// the right-hand sides stored one after another in `x`. Each panel is
-    /// read once for all of them (a solve is memory-bound: two right-hand
-    /// sides cost little more than one). Hand-written loops over the
-    /// panel's columns: most panels of a finite-element factor are a few
-    /// columns wide, where a call into a dense kernel costs more than its
-    /// arithmetic.
+    /// the right-hand sides stored one after another in `x`. Each column of
+    /// a panel is read once for all of them (a solve is memory-bound: two
+    /// right-hand sides cost little more than one). On large factors with
+    /// more than one thread, the independent subtrees of the [`SolvePlan`]
+    /// run in parallel.
     fn solve_permuted(&self, x: &mut [f64], tmp: &mut Vec<f64>) {
         let f = self.factor.as_ref().expect("analysed");
         let n = f.n;
         if n == 0 {
             return;
         }
-        let piv = &self.pivots;
-        let values = &self.values;
-        let np = f.n_panels();
-        let panel = |s: usize| {
-            let (b, e) = (f.begin[s], f.begin[s + 1]);
-            let m = (e - b) + f.pattern(s).len();
-            (b, e, m, &values[f.val_ptr[s]..f.val_ptr[s] + m * (e - b)])
+        let rhs = Rhs {
+            ptr: SharedPtr(x.as_mut_ptr()),
+            n,
+            k: x.len() / n,
         };
+        let k = rhs.k;
+        let panels = PanelSolve {
+            f,
+            values: &self.values,
+            lperm: &self.pivots.lperm,
+        };
+        let plan = self.parallel_plan();
+        let top_cols = |plan: &SolvePlan, t: usize| {
+            let (lo, hi) = plan.tops[t];
+            (f.begin[lo], f.begin[hi + 1])
+        };
+        // SAFETY (all blocks below): the panel steps write only their own
+        // columns, the rows their plan lets them, or their own buffer.
         // forward: y_J = L_JJ^-1 Q_s x_J, x_R -= L_RJ y_J
-        for s in 0..np {
-            let (b, e, m, v) = panel(s);
-            let w = e - b;
-            let pat = f.pattern(s);
-            for x in x.chunks_mut(n) {
-                tmp.clear();
-                tmp.extend(piv.lperm[b..e].iter().map(|&i| x[b + i as usize]));
-                let xj = &mut x[b..e];
-                xj.copy_from_slice(tmp);
-                for c in 0..w {
-                    let xc = xj[c];
-                    if xc != 0.0 {
-                        let col = &v[c * m + c + 1..c * m + w];
-                        for (xi, l) in xj[c + 1..].iter_mut().zip(col) {
-                            *xi -= l * xc;
+        match plan {
+            Some(plan) => {
+                let accs: Vec<Vec<f64>> = plan
+                    .tasks
+                    .par_iter()
+                    .map(|t| {
+                        let (t0, t1) = top_cols(plan, t.top);
+                        let mut acc = vec![0.0; k * (t1 - t0)];
+                        let mut tmp = Vec::new();
+                        for s in t.lo..=t.hi {
+                            unsafe {
+                                panels.forward(s, rhs, f.begin[t.hi + 1], &mut acc, t0, &mut tmp)
+                            };
+                        }
+                        acc
+                    })
+                    .collect();
+                for (t, acc) in plan.tasks.iter().zip(&accs) {
+                    let (t0, t1) = top_cols(plan, t.top);
+                    for r in 0..k {
+                        let len = t1 - t0;
+                        for (i, a) in acc[r * len..(r + 1) * len].iter().enumerate() {
+                            unsafe { *rhs.at(r, t0 + i) -= a };
                         }
                     }
                 }
-                if pat.is_empty() {
-                    continue;
-                }
-                tmp.clear();
-                tmp.resize(pat.len(), 0.0);
-                for c in 0..w {
-                    let xc = x[b + c];
-                    if xc != 0.0 {
-                        let col = &v[c * m + w..c * m + m];
-                        for (t, l) in tmp.iter_mut().zip(col) {
-                            *t += l * xc;
-                        }
+                for &(lo, hi) in &plan.tops {
+                    for s in lo..=hi {
+                        unsafe { panels.forward(s, rhs, n, &mut [], 0, tmp) };
                     }
                 }
-                for (&g, &t) in pat.iter().zip(tmp.iter()) {
-                    x[g as usize] -= t;
+            }
+            None => {
+                for s in 0..f.n_panels() {
+                    unsafe { panels.forward(s, rhs, n, &mut [], 0, tmp) };
                 }
             }
         }
         // y <- D^-1 y
-        for x in x.chunks_mut(n) {
-            let mut k = 0;
-            while k < n {
-                if piv.kind[k] == FIRST {
-                    let (a, b, c) = (piv.diag[k], piv.sub[k], piv.diag[k + 1]);
+        let piv = &self.pivots;
+        for r in 0..k {
+            let x = unsafe { rhs.range(r, 0, n) };
+            let mut i = 0;
+            while i < n {
+                if piv.kind[i] == FIRST {
+                    let (a, b, c) = (piv.diag[i], piv.sub[i], piv.diag[i + 1]);
                     let det = a * c - b * b;
-                    let (u, v) = (x[k], x[k + 1]);
-                    x[k] = (c * u - b * v) / det;
-                    x[k + 1] = (a * v - b * u) / det;
-                    k += 2;
+                    let (u, v) = (x[i], x[i + 1]);
+                    x[i] = (c * u - b * v) / det;
+                    x[i + 1] = (a * v - b * u) / det;
+                    i += 2;
                 } else {
-                    x[k] /= piv.diag[k];
-                    k += 1;
+                    x[i] /= piv.diag[i];
+                    i += 1;
                 }
             }
         }
         // backward: x_J = Q_s^T L_JJ^-T (y_J - L_RJ^T x_R)
-        for s in (0..np).rev() {
-            let (b, e, m, v) = panel(s);
-            let pat = f.pattern(s);
-            let w = e - b;
-            for x in x.chunks_mut(n) {
-                if !pat.is_empty() {
-                    tmp.clear();
-                    tmp.extend(pat.iter().map(|&g| x[g as usize]));
-                    for c in 0..w {
-                        x[b + c] -= dot_lanes(&v[c * m + w..c * m + m], tmp);
+        match plan {
+            Some(plan) => {
+                for &(lo, hi) in plan.tops.iter().rev() {
+                    for s in (lo..=hi).rev() {
+                        unsafe { panels.backward(s, rhs, tmp) };
                     }
                 }
-                let xj = &mut x[b..e];
-                for c in (0..w).rev() {
-                    let col = &v[c * m + c + 1..c * m + w];
-                    xj[c] -= dot_lanes(col, &xj[c + 1..]);
-                }
-                tmp.clear();
-                tmp.extend_from_slice(xj);
-                for (i, &li) in piv.lperm[b..e].iter().enumerate() {
-                    xj[li as usize] = tmp[i];
+                plan.tasks.par_iter().for_each(|t| {
+                    let mut tmp = Vec::new();
+                    for s in (t.lo..=t.hi).rev() {
+                        unsafe { panels.backward(s, rhs, &mut tmp) };
+                    }
+                });
+            }
+            None => {
+                for s in (0..f.n_panels()).rev() {
+                    unsafe { panels.backward(s, rhs, tmp) };
                 }
             }
         }
     }
 
     /// Residual check and iterative refinement of one solution `x` of `A x
-    /// = rhs` (see the module docs), with the warnings and errors of a
-    /// solve; on error `x` is left as `rhs`.
+    /// = rhs`, whose residual `rhs - A x` is `r` (see the module docs), with
+    /// the warnings and errors of a solve; on error `x` is left as `rhs`.
     fn refine(
         &mut self,
         matrix: &SymmetricCsc,
         x: &mut [f64],
         rhs: &[f64],
+        mut r: Vec<f64>,
         work: &mut Vec<f64>,
         tmp: &mut Vec<f64>,
     ) -> Result<(), SolverError> {
@@ -543,8 +591,7 @@ impl LdltSolver {
             self.report.refinement_steps = 0;
             return Ok(());
         }
-        let mut r = vec![0.0; n];
-        let mut rel = residual(matrix, x, rhs, &mut r) / bnorm;
+        let mut rel = norm2(&r) / bnorm;
         let perturbed = self.stats.perturbed_pivots;
         let max_steps = if perturbed > 0 {
             self.settings.max_refinements.max(10)
@@ -843,6 +890,237 @@ fn scale_by_d(piv: PivotPtrs, col0: usize, rhs: MatRef<'_, f64>, mut out: MatMut
     }
 }
 
+/// Default [`LdltSettings::parallel_solve_entries`].
+const PARALLEL_SOLVE_ENTRIES: usize = 1 << 20;
+
+/// `k` right-hand sides of length `n` stored one after another, shared by
+/// the tasks of a solve (each writes its own rows).
+#[derive(Clone, Copy)]
+struct Rhs {
+    ptr: SharedPtr<f64>,
+    n: usize,
+    k: usize,
+}
+
+impl Rhs {
+    /// Entry `i` of right-hand side `r`.
+    #[inline]
+    unsafe fn at(self, r: usize, i: usize) -> *mut f64 {
+        self.ptr.get().add(r * self.n + i)
+    }
+
+    /// Entries `i0..i1` of right-hand side `r`; the caller guarantees that
+    /// no other task touches them meanwhile.
+    #[inline]
+    unsafe fn range<'a>(self, r: usize, i0: usize, i1: usize) -> &'a mut [f64] {
+        std::slice::from_raw_parts_mut(self.at(r, i0), i1 - i0)
+    }
+}
+
+/// The panel steps of the triangular solves with `L Q` (hand-written loops
+/// over a panel's columns: most panels of a finite-element factor are a
+/// few columns wide, where a call into a dense kernel costs more than its
+/// arithmetic).
+struct PanelSolve<'a> {
+    f: &'a PanelFactor,
+    values: &'a [f64],
+    lperm: &'a [u32],
+}
+
+impl PanelSolve<'_> {
+    /// Columns `b..e`, rows `m` (diagonal block and below), pattern and
+    /// values of panel `s`.
+    #[inline]
+    fn panel(&self, s: usize) -> (usize, usize, usize, &[u32], &[f64]) {
+        let f = self.f;
+        let (b, e) = (f.begin[s], f.begin[s + 1]);
+        let pat = f.pattern(s);
+        let m = (e - b) + pat.len();
+        let v = &self.values[f.val_ptr[s]..f.val_ptr[s] + m * (e - b)];
+        (b, e, m, pat, v)
+    }
+
+    /// Forward step of panel `s`: `y_J = L_JJ^-1 Q_s x_J`, then `x_R -= L_RJ
+    /// y_J`, where a row `>= own_end` is subtracted later: its update is
+    /// added to `acc` (rows from `acc_begin` on, `acc.len() / k` per
+    /// right-hand side) instead.
+    ///
+    /// # Safety
+    /// No other task may touch the columns of `s` or the rows below
+    /// `own_end` that it updates.
+    unsafe fn forward(
+        &self,
+        s: usize,
+        x: Rhs,
+        own_end: usize,
+        acc: &mut [f64],
+        acc_begin: usize,
+        tmp: &mut Vec<f64>,
+    ) {
+        let (b, e, m, pat, v) = self.panel(s);
+        let w = e - b;
+        let k = x.k;
+        let lp = &self.lperm[b..e];
+        for r in 0..k {
+            let xj = x.range(r, b, e);
+            tmp.clear();
+            tmp.extend(lp.iter().map(|&i| xj[i as usize]));
+            xj.copy_from_slice(tmp);
+        }
+        for c in 0..w {
+            let col = &v[c * m + c + 1..c * m + w];
+            for r in 0..k {
+                let xj = x.range(r, b, e);
+                let xc = xj[c];
+                if xc != 0.0 {
+                    for (xi, l) in xj[c + 1..].iter_mut().zip(col) {
+                        *xi -= l * xc;
+                    }
+                }
+            }
+        }
+        let plen = pat.len();
+        if plen == 0 {
+            return;
+        }
+        tmp.clear();
+        tmp.resize(k * plen, 0.0);
+        let below = |c: usize| &v[c * m + w..c * m + m];
+        // four columns at a time: the buffer is read and written once for
+        // four columns of L
+        let mut c = 0;
+        while c + 4 <= w {
+            let cols = [below(c), below(c + 1), below(c + 2), below(c + 3)];
+            for r in 0..k {
+                let a = [0, 1, 2, 3].map(|j| *x.at(r, b + c + j));
+                if a != [0.0; 4] {
+                    axpy4(&mut tmp[r * plen..(r + 1) * plen], cols, a);
+                }
+            }
+            c += 4;
+        }
+        for c in c..w {
+            let col = below(c);
+            for r in 0..k {
+                let xc = *x.at(r, b + c);
+                if xc != 0.0 {
+                    for (t, l) in tmp[r * plen..(r + 1) * plen].iter_mut().zip(col) {
+                        *t += l * xc;
+                    }
+                }
+            }
+        }
+        let alen = acc.len() / k.max(1);
+        for r in 0..k {
+            for (&g, &t) in pat.iter().zip(&tmp[r * plen..(r + 1) * plen]) {
+                let g = g as usize;
+                if g < own_end {
+                    *x.at(r, g) -= t;
+                } else {
+                    debug_assert!(g >= acc_begin && g - acc_begin < alen);
+                    acc[r * alen + g - acc_begin] += t;
+                }
+            }
+        }
+    }
+
+    /// Backward step of panel `s`: `x_J = Q_s^T L_JJ^-T (y_J - L_RJ^T x_R)`.
+    ///
+    /// # Safety
+    /// No other task may touch the columns of `s`, or write the rows of its
+    /// pattern, meanwhile.
+    unsafe fn backward(&self, s: usize, x: Rhs, tmp: &mut Vec<f64>) {
+        let (b, e, m, pat, v) = self.panel(s);
+        let w = e - b;
+        let k = x.k;
+        let plen = pat.len();
+        if plen > 0 {
+            tmp.clear();
+            for r in 0..k {
+                tmp.extend(pat.iter().map(|&g| *x.at(r, g as usize)));
+            }
+            let below = |c: usize| &v[c * m + w..c * m + m];
+            let mut c = 0;
+            while c + 4 <= w {
+                let cols = [below(c), below(c + 1), below(c + 2), below(c + 3)];
+                for r in 0..k {
+                    let d = dot4(cols, &tmp[r * plen..(r + 1) * plen]);
+                    for (j, dj) in d.iter().enumerate() {
+                        *x.at(r, b + c + j) -= dj;
+                    }
+                }
+                c += 4;
+            }
+            for c in c..w {
+                for r in 0..k {
+                    *x.at(r, b + c) -= dot_lanes(below(c), &tmp[r * plen..(r + 1) * plen]);
+                }
+            }
+        }
+        for c in (0..w).rev() {
+            let col = &v[c * m + c + 1..c * m + w];
+            for r in 0..k {
+                let xj = x.range(r, b, e);
+                xj[c] -= dot_lanes(col, &xj[c + 1..]);
+            }
+        }
+        let lp = &self.lperm[b..e];
+        for r in 0..k {
+            let xj = x.range(r, b, e);
+            tmp.clear();
+            tmp.extend_from_slice(xj);
+            for (i, &li) in lp.iter().enumerate() {
+                xj[li as usize] = tmp[i];
+            }
+        }
+    }
+}
+
+/// `t += sum_j a_j cols_j` over four columns (each at least as long as
+/// `t`).
+#[inline]
+fn axpy4(t: &mut [f64], cols: [&[f64]; 4], a: [f64; 4]) {
+    let n = t.len();
+    let [c0, c1, c2, c3] = cols.map(|c| &c[..n]);
+    for ((((ti, l0), l1), l2), l3) in t.iter_mut().zip(c0).zip(c1).zip(c2).zip(c3) {
+        *ti += l0 * a[0] + l1 * a[1] + l2 * a[2] + l3 * a[3];
+    }
+}
+
+/// The four dot products `cols_j . t` (each column at least as long as
+/// `t`), each in four interleaved partial sums as in [`dot_lanes`]: `t` is
+/// read once for the four.
+#[inline]
+fn dot4(cols: [&[f64]; 4], t: &[f64]) -> [f64; 4] {
+    let n = t.len();
+    let [c0, c1, c2, c3] = cols.map(|c| &c[..n]);
+    let mut acc = [[0.0f64; 4]; 4];
+    for ((((tc, x0), x1), x2), x3) in t
+        .chunks_exact(4)
+        .zip(c0.chunks_exact(4))
+        .zip(c1.chunks_exact(4))
+        .zip(c2.chunks_exact(4))
+        .zip(c3.chunks_exact(4))
+    {
+        for l in 0..4 {
+            acc[0][l] += x0[l] * tc[l];
+            acc[1][l] += x1[l] * tc[l];
+            acc[2][l] += x2[l] * tc[l];
+            acc[3][l] += x3[l] * tc[l];
+        }
+    }
+    let tail = n - n % 4;
+    let mut out = [0.0; 4];
+    for (j, c) in [c0, c1, c2, c3].iter().enumerate() {
+        let a = &acc[j];
+        out[j] = (a[0] + a[2]) + (a[1] + a[3]);
+        for i in tail..n {
+            out[j] += c[i] * t[i];
+        }
+    }
+    out
+}
+
 /// `sum_i a_i b_i` over the shorter length, in four interleaved partial
 /// sums (which the compiler vectorises; a single running sum it cannot).
 #[inline]
@@ -864,30 +1142,54 @@ fn dot_lanes(a: &[f64], b: &[f64]) -> f64 {
     (acc[0] + acc[2]) + (acc[1] + acc[3]) + tail
 }
 
-/// `dirty[s]` for the panels holding an entry of `new` that differs from
-/// `old` (bit for bit) and for all their ancestors: the panels whose
-/// factor depends on a changed entry.
-fn mark_dirty_panels(
-    f: &PanelFactor,
-    map: &(Vec<usize>, Vec<u32>),
-    old: &[f64],
-    new: &[f64],
-    dirty: &mut Vec<bool>,
-) {
-    let np = f.n_panels();
-    dirty.clear();
-    dirty.resize(np, false);
-    for ((&s, a), b) in map.1.iter().zip(old).zip(new) {
-        if a.to_bits() != b.to_bits() {
-            dirty[s as usize] = true;
-        }
-    }
-    // parents are numbered after their children: one pass upwards
-    for s in 0..np {
-        let p = f.parent[s];
-        if dirty[s] && p != u32::MAX {
-            dirty[p as usize] = true;
-        }
+/// The entries of `a` whose value differs (bit for bit) from `kept`, as
+/// `(entry, row, column, |new| - |old|)`; `kept` receives the new values.
+/// Columns in parallel.
+fn changed_entries(a: &SymmetricCsc, kept: &mut [f64]) -> Vec<(usize, usize, usize, f64)> {
+    let ptr = SharedPtr(kept.as_mut_ptr());
+    (0..a.n)
+        .into_par_iter()
+        .with_min_len(1024)
+        .fold(Vec::new, |mut out, j| {
+            for p in a.col_ptr[j]..a.col_ptr[j + 1] {
+                let v = a.values[p];
+                // SAFETY: entry p belongs to column j, visited by one task.
+                let old = unsafe { &mut *ptr.get().add(p) };
+                if v.to_bits() != old.to_bits() {
+                    out.push((p, a.row_idx[p], j, v.abs() - old.abs()));
+                    *old = v;
+                }
+            }
+            out
+        })
+        .reduce(Vec::new, |mut x, mut y| {
+            if x.len() < y.len() {
+                std::mem::swap(&mut x, &mut y);
+            }
+            x.extend_from_slice(&y);
+            x
+        })
+}
+
+/// Addresses and sizes of the pattern arrays of `a`: a matrix whose
+/// pattern was checked at a factorisation and that is passed again to
+/// the solves after it is known by them.
+fn storage_id(a: &SymmetricCsc) -> (usize, usize, usize, usize) {
+    (
+        a.col_ptr.as_ptr() as usize,
+        a.row_idx.as_ptr() as usize,
+        a.n,
+        a.row_idx.len(),
+    )
+}
+
+/// The error for a non-finite matrix entry `p` at `(i, j)`.
+fn non_finite_entry(a: &SymmetricCsc, p: usize, i: usize, j: usize) -> SolverError {
+    SolverError::NonFinite {
+        method: format!(
+            "ldlt factorisation: the matrix holds {} at entry ({i}, {j})",
+            a.values[p]
+        ),
     }
 }
 
@@ -1019,7 +1321,9 @@ impl LinearSolver for LdltSolver {
         self.perm_inv = a.perm_inv;
         self.values = Vec::new();
         self.pivots = Pivots::default();
-        self.scatter_map = None;
+        self.scatter_index = None;
+        self.row_sums = Vec::new();
+        self.plan = self.factor.as_ref().and_then(|f| f.solve_plan());
         self.factored_matrix = Vec::new();
         self.factored_rule = None;
         self.pattern = Some(Pattern::of(matrix));
@@ -1051,23 +1355,51 @@ impl LinearSolver for LdltSolver {
         };
         pattern.check(matrix, "ldlt factorize")?;
         self.factored = false;
+        self.factored_id = None;
         self.report.warnings.clear();
         self.report.negative_pivots = None;
         // the previous factor is about to be overwritten: until this one
         // succeeds, the next factorisation must be complete
-        let previous_matrix = std::mem::take(&mut self.factored_matrix);
+        let mut kept = std::mem::take(&mut self.factored_matrix);
         let previous_rule = self.factored_rule.take();
-        if let Some(p) = matrix.values.iter().position(|v| !v.is_finite()) {
-            let col = matrix.col_ptr.partition_point(|&c| c <= p) - 1;
-            return Err(SolverError::NonFinite {
-                method: format!(
-                    "ldlt factorisation: the matrix holds {} at entry ({}, {})",
-                    matrix.values[p], matrix.row_idx[p], col
-                ),
-            });
-        }
-        let norm = symmetric_norm_inf(matrix);
         let previous_norm = self.stats.matrix_norm_inf;
+        let threads = self.threads();
+        let f = self.factor.as_ref().expect("analysed");
+        if self.scatter_index.is_none() {
+            self.scatter_index = Some(f.scatter_index(matrix, &self.perm_inv));
+        }
+        let index = self.scatter_index.as_ref().expect("built above");
+        // One pass over the entries: the ones that changed since the last
+        // factorisation (checked for finiteness, copied into `kept`, their
+        // panels marked) and the row sums of |A| updated with them; without
+        // a previous factorisation, everything is new.
+        let incremental = kept.len() == matrix.values.len()
+            && self.row_sums.len() == matrix.n
+            && self.values.len() == f.len_val();
+        if incremental {
+            let changed = changed_entries(matrix, &mut kept);
+            self.dirty.clear();
+            self.dirty.resize(f.n_panels(), false);
+            for &(p, i, j, delta) in &changed {
+                if !matrix.values[p].is_finite() {
+                    return Err(non_finite_entry(matrix, p, i, j));
+                }
+                self.dirty[index.panel[p] as usize] = true;
+                self.row_sums[i] += delta;
+                if i != j {
+                    self.row_sums[j] += delta;
+                }
+            }
+        } else {
+            if let Some(p) = matrix.values.par_iter().position_first(|v| !v.is_finite()) {
+                let j = matrix.col_ptr.partition_point(|&c| c <= p) - 1;
+                return Err(non_finite_entry(matrix, p, matrix.row_idx[p], j));
+            }
+            self.row_sums = symmetric_row_sums(matrix);
+            kept.clear();
+            kept.extend_from_slice(&matrix.values);
+        }
+        let norm = inf_norm(&self.row_sums);
         self.stats.matrix_norm_inf = norm;
         if norm == 0.0 && matrix.n > 0 {
             return Err(SolverError::NotPositiveDefinite {
@@ -1079,12 +1411,6 @@ impl LinearSolver for LdltSolver {
             tiny: self.settings.tiny_pivot * norm,
             perturb: self.settings.perturbation * norm,
         };
-        let threads = self.threads();
-        let f = self.factor.as_ref().expect("analysed");
-        if self.scatter_map.is_none() {
-            self.scatter_map = Some(f.scatter_map(matrix, &self.perm_inv));
-        }
-        let map = self.scatter_map.as_ref().expect("built above");
         let mut values = std::mem::take(&mut self.values);
         // Partial refactorisation: the pivots of an unchanged panel are the
         // same under the new constants when no pivot was perturbed and the
@@ -1094,17 +1420,27 @@ impl LinearSolver for LdltSolver {
                 || (self.stats.perturbed_pivots == 0
                     && self.stats.min_pivot_ratio * previous_norm > 4.0 * rule.tiny)
         });
-        let partial = self.settings.partial_refactor
-            && same_rule
-            && previous_matrix.len() == matrix.values.len()
-            && values.len() == f.len_val();
+        let partial = self.settings.partial_refactor && same_rule && incremental;
         let dirty = if partial {
-            mark_dirty_panels(f, map, &previous_matrix, &matrix.values, &mut self.dirty);
+            // parents are numbered after their children: one pass upwards
+            for s in 0..f.n_panels() {
+                let p = f.parent[s];
+                if self.dirty[s] && p != u32::MAX {
+                    self.dirty[p as usize] = true;
+                }
+            }
+            self.dirty_list.clear();
+            self.dirty_list.extend(
+                (0..f.n_panels())
+                    .filter(|&s| self.dirty[s])
+                    .map(|s| s as u32),
+            );
             Some(&self.dirty[..])
         } else {
             None
         };
-        f.scatter_with(&mut values, matrix, map, dirty);
+        let list = dirty.map(|_| &self.dirty_list[..]);
+        f.scatter_with(&mut values, matrix, index, list);
         self.pivots.resize(matrix.n);
         let ptr = SharedPtr(values.as_mut_ptr());
         let piv = PivotPtrs {
@@ -1184,10 +1520,8 @@ impl LinearSolver for LdltSolver {
         }
         self.report.negative_pivots = Some(self.stats.negative_pivots);
         self.factored = true;
-        let mut keep = previous_matrix;
-        keep.clear();
-        keep.extend_from_slice(&matrix.values);
-        self.factored_matrix = keep;
+        self.factored_matrix = kept;
+        self.factored_id = Some(storage_id(matrix));
         self.factored_rule = Some(rule);
         Ok(())
     }
@@ -1217,8 +1551,11 @@ impl LinearSolver for LdltSolver {
                 b.len()
             )));
         }
-        if let Some(pattern) = &self.pattern {
-            pattern.check(matrix, "ldlt solve")?;
+        // the matrix of the factorisation (same storage) was checked then
+        if self.factored_id != Some(storage_id(matrix)) {
+            if let Some(pattern) = &self.pattern {
+                pattern.check(matrix, "ldlt solve")?;
+            }
         }
         if let Some(i) = b.iter().position(|v| !v.is_finite()) {
             return Err(SolverError::NonFinite {
@@ -1230,12 +1567,19 @@ impl LinearSolver for LdltSolver {
             });
         }
         self.stats.solve_count += b.len() / n;
+        self.stats.solve_tasks = self.parallel_plan().map_or(0, |p| p.tasks.len());
         let rhs = b.to_vec();
         let (mut work, mut tmp) = (Vec::with_capacity(b.len()), Vec::new());
         self.apply_inverse(b, &mut work, &mut tmp);
+        // the residuals of all right-hand sides in one pass over the matrix
+        let mut residuals = vec![0.0; b.len()];
+        matrix.mul_many(b, &mut residuals);
+        for (ri, bi) in residuals.iter_mut().zip(&rhs) {
+            *ri = bi - *ri;
+        }
         let mut result = Ok(());
-        for (x, rhs) in b.chunks_mut(n).zip(rhs.chunks(n)) {
-            let r = self.refine(matrix, x, rhs, &mut work, &mut tmp);
+        for ((x, rhs), r0) in b.chunks_mut(n).zip(rhs.chunks(n)).zip(residuals.chunks(n)) {
+            let r = self.refine(matrix, x, rhs, r0.to_vec(), &mut work, &mut tmp);
             if r.is_err() && result.is_ok() {
                 result = r;
             }

@@ -110,6 +110,42 @@ pub(crate) struct PanelFactor {
     pub(crate) desc: Vec<u32>,
 }
 
+/// Where the entries of a matrix go in the panel values, both ways
+/// ([`PanelFactor::scatter_index`]).
+#[derive(Debug, Default)]
+pub(crate) struct ScatterIndex {
+    /// Position in the panel values of each stored entry of `A`.
+    pub(crate) pos: Vec<usize>,
+    /// Panel of each stored entry.
+    pub(crate) panel: Vec<u32>,
+    /// Entries of each panel: `entries[entry_ptr[s]..entry_ptr[s + 1]]`.
+    entry_ptr: Vec<usize>,
+    entries: Vec<usize>,
+}
+
+/// The independent parts of a triangular solve with a [`PanelFactor`].
+/// Below the first branching of each root's chain, the subtrees (`tasks`,
+/// each a contiguous range of panels and so of columns) touch only their
+/// own columns and those of their root's chain (`tops`: the panels from
+/// the branching panel up to the root, also contiguous); so the forward
+/// solve runs the tasks in parallel, each adding its updates of the chain's
+/// rows into its own buffer, then the chains; the backward solve runs the
+/// chains, then the tasks in parallel (they read the chain's rows only).
+#[derive(Debug, Default, Clone)]
+pub(crate) struct SolvePlan {
+    pub(crate) tasks: Vec<SolveTask>,
+    /// `(first, last)` panel of each chain.
+    pub(crate) tops: Vec<(usize, usize)>,
+}
+
+/// One subtree of a [`SolvePlan`]: panels `lo..=hi`, below chain `top`.
+#[derive(Debug, Default, Clone, Copy)]
+pub(crate) struct SolveTask {
+    pub(crate) lo: usize,
+    pub(crate) hi: usize,
+    pub(crate) top: usize,
+}
+
 /// `dst (+)= alpha lhs rhs^T` where the top `mid x mid` block of the
 /// product (`mid` = rows of `rhs`) is symmetric: only its lower triangle is
 /// computed (the rest of `dst`'s top block is left alone), then the
@@ -468,14 +504,10 @@ impl PanelFactor {
         (s, self.val_ptr[s] + (j - b) * (w + pat.len()) + lr)
     }
 
-    /// Position in the panel values of every stored entry of `a` (upper
-    /// CSC, `perm_inv[old] = new`), and the panel it belongs to: a scatter
-    /// is then one indexed copy (see [`Self::scatter_with`]).
-    pub(crate) fn scatter_map(
-        &self,
-        a: &SymmetricCsc,
-        perm_inv: &[usize],
-    ) -> (Vec<usize>, Vec<u32>) {
+    /// Where every stored entry of `a` (upper CSC, `perm_inv[old] = new`)
+    /// goes in the panel values, and the entries of each panel: a scatter
+    /// is then one indexed copy per panel (see [`Self::scatter_with`]).
+    pub(crate) fn scatter_index(&self, a: &SymmetricCsc, perm_inv: &[usize]) -> ScatterIndex {
         let nnz = a.row_idx.len();
         let mut pos = vec![0usize; nnz];
         let mut panel = vec![0u32; nnz];
@@ -492,38 +524,107 @@ impl PanelFactor {
                 }
             }
         });
-        (pos, panel)
+        // entries by panel (counting sort)
+        let np = self.n_panels();
+        let mut entry_ptr = vec![0usize; np + 1];
+        for &s in &panel {
+            entry_ptr[s as usize + 1] += 1;
+        }
+        for s in 0..np {
+            entry_ptr[s + 1] += entry_ptr[s];
+        }
+        let mut next = entry_ptr.clone();
+        let mut entries = vec![0usize; nnz];
+        for (p, &s) in panel.iter().enumerate() {
+            entries[next[s as usize]] = p;
+            next[s as usize] += 1;
+        }
+        ScatterIndex {
+            pos,
+            panel,
+            entry_ptr,
+            entries,
+        }
     }
 
-    /// Scatter `a` into `values` through a [`Self::scatter_map`]: every
-    /// panel, or only those with `only[s]`, is zeroed and receives its
-    /// entries of `a`.
+    /// Scatter `a` into `values` through a [`ScatterIndex`]: every panel,
+    /// or only the panels listed in `only`, is zeroed and receives its
+    /// entries of `a` (panels in parallel).
     pub(crate) fn scatter_with<T: FactorScalar>(
         &self,
         values: &mut Vec<T>,
         a: &SymmetricCsc,
-        map: &(Vec<usize>, Vec<u32>),
-        only: Option<&[bool]>,
+        index: &ScatterIndex,
+        only: Option<&[u32]>,
     ) {
-        let (pos, panel) = map;
-        match only {
-            None => {
-                self.zeroed(values);
-                for (&q, &v) in pos.iter().zip(&a.values) {
-                    values[q] = T::of_f64(v);
+        if values.len() != self.len_val() {
+            *values = Vec::new();
+            *values = vec![T::default(); self.len_val()];
+        }
+        let ptr = SharedPtr(values.as_mut_ptr());
+        let one = |s: usize| {
+            let (v0, v1) = (self.val_ptr[s], self.val_ptr[s + 1]);
+            // SAFETY: panel s owns values[v0..v1], and its entries' positions
+            // lie there.
+            unsafe {
+                std::slice::from_raw_parts_mut(ptr.get().add(v0), v1 - v0).fill(T::default());
+                for &p in &index.entries[index.entry_ptr[s]..index.entry_ptr[s + 1]] {
+                    *ptr.get().add(index.pos[p]) = T::of_f64(a.values[p]);
                 }
             }
-            Some(only) => {
-                for s in (0..self.n_panels()).filter(|&s| only[s]) {
-                    values[self.val_ptr[s]..self.val_ptr[s + 1]].fill(T::default());
+        };
+        match only {
+            None => (0..self.n_panels())
+                .into_par_iter()
+                .with_min_len(64)
+                .for_each(one),
+            Some(list) => list
+                .par_iter()
+                .with_min_len(16)
+                .for_each(|&s| one(s as usize)),
+        }
+    }
+
+    /// The independent parts of a triangular solve ([`SolvePlan`]), or
+    /// `None` when the panel numbering is not a postorder of the panel
+    /// elimination tree (then the solve runs in panel order).
+    pub(crate) fn solve_plan(&self) -> Option<SolvePlan> {
+        let children = |x: usize| &self.child[self.child_ptr[x]..self.child_ptr[x + 1]];
+        let mut plan = SolvePlan::default();
+        let mut stack = Vec::new();
+        for &root in &self.roots {
+            let root = root as usize;
+            // chain of single-child ancestors, numbered consecutively
+            let mut cur = root;
+            while let [only] = children(cur) {
+                if *only as usize + 1 != cur {
+                    return None;
                 }
-                for ((&q, &s), &v) in pos.iter().zip(panel).zip(&a.values) {
-                    if only[s as usize] {
-                        values[q] = T::of_f64(v);
-                    }
+                cur = *only as usize;
+            }
+            let top = plan.tops.len();
+            plan.tops.push((cur, root));
+            for &c in children(cur) {
+                // the subtree of c must be the panels lo..=c
+                let (mut count, mut lo) = (0usize, c as usize);
+                stack.clear();
+                stack.push(c);
+                while let Some(x) = stack.pop() {
+                    count += 1;
+                    lo = lo.min(x as usize);
+                    stack.extend_from_slice(children(x as usize));
                 }
+                if count != c as usize - lo + 1 {
+                    return None;
+                }
+                plan.tasks.push(SolveTask {
+                    lo,
+                    hi: c as usize,
+                    top,
+                });
             }
         }
+        Some(plan)
     }
 
     /// Run `panel(s, scratch)` on every panel, descendants before their

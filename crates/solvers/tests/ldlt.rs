@@ -534,3 +534,48 @@ fn two_right_hand_sides_in_one_pass_equal_two_solves() {
         Err(SolverError::Usage(_))
     ));
 }
+
+/// The triangular solves split at the first branching of the elimination
+/// tree (`parallel_solve_entries`): the subtrees in parallel, each adding
+/// its updates of the separator's rows into its own buffer. On an
+/// indefinite shifted Laplacian (nested dissection: a real tree) the split
+/// solve gives the serial one's solution to round-off, for one and for two
+/// right-hand sides, and the exact solution to the factor's accuracy.
+#[test]
+fn parallel_triangular_solves_equal_the_serial_ones() {
+    let (a, coords) = shifted_laplacian(14, 1.0);
+    let n = a.n;
+    let make = |entries: usize| {
+        let mut s = LdltSolver::new(LdltSettings {
+            ordering: OrderingKind::NestedDissection,
+            threads: 2,
+            parallel_solve_entries: entries,
+            // the solves themselves, without refinement to mend them
+            max_refinements: 0,
+            ..Default::default()
+        });
+        s.analyze(&a, Some(&coords)).unwrap();
+        s.factorize(&a).unwrap();
+        s
+    };
+    let (mut serial, mut parallel) = (make(usize::MAX), make(0));
+    let x1 = exact(n);
+    let x2: Vec<f64> = (0..n).map(|i| (0.37 * i as f64).cos()).collect();
+    let b: Vec<f64> = rhs(&a, &x1).into_iter().chain(rhs(&a, &x2)).collect();
+    let (mut ys, mut yp) = (b.clone(), b.clone());
+    serial.solve_many_in_place(&a, &mut ys).unwrap();
+    parallel.solve_many_in_place(&a, &mut yp).unwrap();
+    assert_eq!(serial.stats().solve_tasks, 0);
+    assert!(
+        parallel.stats().solve_tasks >= 2,
+        "{} subtrees",
+        parallel.stats().solve_tasks
+    );
+    assert!(max_rel_error(&yp, &ys) < 1e-12);
+    assert!(max_rel_error(&yp[..n], &x1) < 1e-9);
+    assert!(max_rel_error(&yp[n..], &x2) < 1e-9);
+    assert!(parallel.report().negative_pivots.unwrap() > 0);
+    let mut one = rhs(&a, &x2);
+    parallel.solve_in_place(&a, &mut one).unwrap();
+    assert!(max_rel_error(&one, &ys[n..]) < 1e-12);
+}
