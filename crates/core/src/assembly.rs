@@ -53,11 +53,12 @@ pub struct Assembler {
 
 /// The constant part of an incremental analysis: the elements whose
 /// internal force is `K_e u_e` with a constant `K_e`
-/// ([`Element::is_linear`], e.g. linear elastic solids). Their matrices are
-/// kept (element-major, `nd x nd` each) and their sum in the pattern, so
-/// that a Newton iteration recomputes only the nonlinear elements (the
-/// interfaces) and adds the kept part: a copy of the matrix values and one
-/// small matrix-vector product per linear element.
+/// ([`Element::is_linear`], e.g. linear elastic solids) with a symmetric
+/// `K_e`. Their matrices are kept (element-major, each as its packed upper
+/// triangle, row by row: `nd (nd + 1) / 2` values) and their sum in the
+/// pattern, so that a Newton iteration recomputes only the nonlinear
+/// elements (the interfaces) and adds the kept part: a copy of the matrix
+/// values and one small symmetric matrix-vector product per linear element.
 #[derive(Debug, Clone)]
 struct LinearCache {
     /// Sum of the linear elements' matrices, in the pattern.
@@ -69,7 +70,7 @@ struct LinearCache {
     /// Where the entries of each nonlinear element's matrix go in the
     /// pattern (`ScatterMap`), when they fit in [`SCATTER_MAP_ENTRIES`].
     nonlinear_map: Option<ScatterMap>,
-    /// Element matrices.
+    /// Element matrices (packed upper triangles).
     mats: Vec<f64>,
 }
 
@@ -225,7 +226,7 @@ impl Assembler {
     /// matrices of the linear elements ([`Element::is_linear`] with no
     /// state; see `LinearCache`), later calls recompute only the other
     /// elements. Same results as `assemble` to round-off; memory: one
-    /// `nd x nd` matrix per linear element (28.8 kB for an H20).
+    /// packed upper triangle per linear element (14.6 kB for an H20).
     #[allow(clippy::too_many_arguments)]
     pub fn assemble_cached(
         &mut self,
@@ -235,7 +236,7 @@ impl Assembler {
         u: &[f64],
         state: &mut StateStore,
         step: StepInfo,
-        mut k: Option<&mut SymmetricCsc>,
+        k: Option<&mut SymmetricCsc>,
         f_int: &mut [f64],
     ) -> Result<(), CoreError> {
         if self.linear.is_none() {
@@ -252,25 +253,44 @@ impl Assembler {
             u,
             state,
             step,
-            k.as_deref_mut(),
+            k,
             f_int,
         )?;
         let fv = SharedMut(f_int.as_mut_ptr());
         for color in &cache.linear_colors {
-            color.par_iter().for_each(|&(er, off)| {
-                let conn = mesh.blocks[er.block].element(er.element);
-                let nd = 3 * conn.len();
-                let ke = &cache.mats[off..off + nd * nd];
-                for a in 0..nd {
-                    let row = &ke[a * nd..(a + 1) * nd];
-                    let mut f = 0.0;
-                    for (b, kab) in row.iter().enumerate() {
-                        f += kab * u[3 * conn[b / 3] + b % 3];
+            color.par_iter().for_each_init(
+                || (Vec::<f64>::new(), Vec::<f64>::new()),
+                |(ue, fe), &(er, off)| {
+                    let conn = mesh.blocks[er.block].element(er.element);
+                    let nd = 3 * conn.len();
+                    ue.clear();
+                    ue.extend(
+                        conn.iter()
+                            .flat_map(|&node| u[3 * node..3 * node + 3].iter()),
+                    );
+                    fe.clear();
+                    fe.resize(nd, 0.0);
+                    // packed upper triangle, row by row: the diagonal entry
+                    // and the rest of the row, used for row a and column a
+                    let mut p = off;
+                    for a in 0..nd {
+                        let row = &cache.mats[p..p + nd - a];
+                        p += nd - a;
+                        let ua = ue[a];
+                        let mut acc = row[0] * ua;
+                        for ((k, ub), fb) in row[1..].iter().zip(&ue[a + 1..]).zip(&mut fe[a + 1..])
+                        {
+                            acc += k * ub;
+                            *fb += k * ua;
+                        }
+                        fe[a] += acc;
                     }
-                    // SAFETY: elements of one colour share no node.
-                    unsafe { fv.add(3 * conn[a / 3] + a % 3, f) };
-                }
-            });
+                    for (a, &f) in fe.iter().enumerate() {
+                        // SAFETY: elements of one colour share no node.
+                        unsafe { fv.add(3 * conn[a / 3] + a % 3, f) };
+                    }
+                },
+            );
         }
         Ok(())
     }
@@ -285,30 +305,6 @@ impl Assembler {
             let el = &elements[er.block];
             el.is_linear() && el.state_len() == 0
         };
-        let mut linear_colors = Vec::new();
-        let mut nonlinear_colors = Vec::new();
-        let mut mats_len = 0;
-        for color in &self.colors {
-            let mut lin = Vec::new();
-            let mut non = Vec::new();
-            for er in color {
-                if is_lin(er) {
-                    let nd = 3 * mesh.blocks[er.block].nodes_per_element();
-                    lin.push((*er, mats_len));
-                    mats_len += nd * nd;
-                } else {
-                    non.push(*er);
-                }
-            }
-            if !lin.is_empty() {
-                linear_colors.push(lin);
-            }
-            if !non.is_empty() {
-                nonlinear_colors.push(non);
-            }
-        }
-        let mut mats = vec![0.0; mats_len];
-        let mut values = vec![0.0; self.pattern.values.len()];
         let max_nodes = mesh
             .blocks
             .iter()
@@ -316,34 +312,66 @@ impl Assembler {
             .max()
             .unwrap_or(0);
         let mut s = Scratch::new(max_nodes);
-        for &(er, off) in linear_colors.iter().flatten() {
-            let block = &mesh.blocks[er.block];
-            let conn = block.element(er.element);
-            let n = conn.len();
-            let nd = 3 * n;
-            for (a, &node) in conn.iter().enumerate() {
-                s.coords[a] = mesh.nodes[node];
-                for c in 0..3 {
-                    s.dofs[3 * a + c] = 3 * node + c;
+        let mut linear_colors = Vec::new();
+        let mut nonlinear_colors = Vec::new();
+        let mut mats = Vec::new();
+        let mut values = vec![0.0; self.pattern.values.len()];
+        for color in &self.colors {
+            let mut lin = Vec::new();
+            let mut non = Vec::new();
+            for er in color {
+                if !is_lin(er) {
+                    non.push(*er);
+                    continue;
                 }
+                let block = &mesh.blocks[er.block];
+                let conn = block.element(er.element);
+                let n = conn.len();
+                let nd = 3 * n;
+                for (a, &node) in conn.iter().enumerate() {
+                    s.coords[a] = mesh.nodes[node];
+                    for c in 0..3 {
+                        s.dofs[3 * a + c] = 3 * node + c;
+                    }
+                }
+                s.disp[..nd].iter_mut().for_each(|v| *v = 0.0);
+                let ctx = ElementContext {
+                    coords: &s.coords[..n],
+                    disp: &s.disp[..nd],
+                    state_committed: &[],
+                    step: StepInfo::default(),
+                };
+                let ke = &mut s.k[..nd * nd];
+                elements[er.block]
+                    .compute(&ctx, &mut [], &mut s.f[..nd], Some(&mut *ke))
+                    .map_err(|source| CoreError::Element {
+                        block: block.name.clone(),
+                        element: er.element,
+                        source,
+                    })?;
+                // a linear element with a nonsymmetric matrix is assembled
+                // with the others, each time
+                let scale = ke.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let symmetric = (0..nd).all(|a| {
+                    (a + 1..nd).all(|b| (ke[a * nd + b] - ke[b * nd + a]).abs() <= 1e-12 * scale)
+                });
+                if !symmetric {
+                    non.push(*er);
+                    continue;
+                }
+                lin.push((*er, mats.len()));
+                for a in 0..nd {
+                    mats.extend_from_slice(&ke[a * nd + a..(a + 1) * nd]);
+                }
+                let (cp, ri) = (&self.pattern.col_ptr, &self.pattern.row_idx);
+                scatter_upper(cp, ri, dofs, &s.dofs[..nd], ke, |p, v, _| values[p] += v);
             }
-            s.disp[..nd].iter_mut().for_each(|v| *v = 0.0);
-            let ctx = ElementContext {
-                coords: &s.coords[..n],
-                disp: &s.disp[..nd],
-                state_committed: &[],
-                step: StepInfo::default(),
-            };
-            let ke = &mut mats[off..off + nd * nd];
-            elements[er.block]
-                .compute(&ctx, &mut [], &mut s.f[..nd], Some(ke))
-                .map_err(|source| CoreError::Element {
-                    block: block.name.clone(),
-                    element: er.element,
-                    source,
-                })?;
-            let (cp, ri) = (&self.pattern.col_ptr, &self.pattern.row_idx);
-            scatter_upper(cp, ri, dofs, &s.dofs[..nd], ke, |p, v, _| values[p] += v);
+            if !lin.is_empty() {
+                linear_colors.push(lin);
+            }
+            if !non.is_empty() {
+                nonlinear_colors.push(non);
+            }
         }
         let nonlinear_map = self.scatter_map(mesh, dofs, &nonlinear_colors);
         Ok(LinearCache {

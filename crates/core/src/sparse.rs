@@ -222,11 +222,14 @@ impl SymmetricCsc {
                     let (xr, yr) = (&x[r * n..(r + 1) * n], r * n);
                     let xj = xr[j];
                     let mut acc = 0.0;
-                    for p in s..e {
-                        let i = self.row_idx[p];
-                        acc += low[p] * xr[i];
+                    let entries = self.row_idx[s..e]
+                        .iter()
+                        .zip(&low[s..e])
+                        .zip(&self.values[s..e]);
+                    for ((&i, l), v) in entries {
+                        acc += l * xr[i];
                         if i != j {
-                            out[yr + i] += self.values[p] * xj;
+                            out[yr + i] += v * xj;
                         }
                     }
                     out[yr + j] += acc;

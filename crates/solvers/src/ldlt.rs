@@ -454,7 +454,7 @@ impl LdltSolver {
     /// ([`LdltSettings::parallel_solve_entries`]) and there are threads.
     fn parallel_plan(&self) -> Option<&SolvePlan> {
         self.plan.as_ref().filter(|p| {
-            p.tasks.len() > 1
+            p.groups.len() > 1
                 && self.threads() > 1
                 && self.values.len() >= self.settings.parallel_solve_entries
         })
@@ -493,22 +493,30 @@ impl LdltSolver {
         // forward: y_J = L_JJ^-1 Q_s x_J, x_R -= L_RJ y_J
         match plan {
             Some(plan) => {
-                let accs: Vec<Vec<f64>> = plan
-                    .tasks
+                let accs: Vec<(usize, Vec<f64>)> = plan
+                    .groups
                     .par_iter()
-                    .map(|t| {
-                        let (t0, t1) = top_cols(plan, t.top);
-                        let mut acc = vec![0.0; k * (t1 - t0)];
+                    .flat_map_iter(|group| {
                         let mut tmp = Vec::new();
-                        for s in t.lo..=t.hi {
-                            unsafe {
-                                panels.forward(s, rhs, f.begin[t.hi + 1], &mut acc, t0, &mut tmp)
-                            };
-                        }
-                        acc
+                        group
+                            .iter()
+                            .map(|&ti| {
+                                let t = &plan.tasks[ti];
+                                let (t0, t1) = top_cols(plan, t.top);
+                                let mut acc = vec![0.0; k * (t1 - t0)];
+                                for s in t.lo..=t.hi {
+                                    let own_end = f.begin[t.hi + 1];
+                                    unsafe {
+                                        panels.forward(s, rhs, own_end, &mut acc, t0, &mut tmp)
+                                    };
+                                }
+                                (ti, acc)
+                            })
+                            .collect::<Vec<_>>()
                     })
                     .collect();
-                for (t, acc) in plan.tasks.iter().zip(&accs) {
+                for (ti, acc) in &accs {
+                    let t = &plan.tasks[*ti];
                     let (t0, t1) = top_cols(plan, t.top);
                     for r in 0..k {
                         let len = t1 - t0;
@@ -556,10 +564,13 @@ impl LdltSolver {
                         unsafe { panels.backward(s, rhs, tmp) };
                     }
                 }
-                plan.tasks.par_iter().for_each(|t| {
+                plan.groups.par_iter().for_each(|group| {
                     let mut tmp = Vec::new();
-                    for s in (t.lo..=t.hi).rev() {
-                        unsafe { panels.backward(s, rhs, &mut tmp) };
+                    for &ti in group {
+                        let t = &plan.tasks[ti];
+                        for s in (t.lo..=t.hi).rev() {
+                            unsafe { panels.backward(s, rhs, &mut tmp) };
+                        }
                     }
                 });
             }
@@ -1324,6 +1335,10 @@ impl LinearSolver for LdltSolver {
         self.scatter_index = None;
         self.row_sums = Vec::new();
         self.plan = self.factor.as_ref().and_then(|f| f.solve_plan());
+        let threads = self.threads();
+        if let Some(plan) = self.plan.as_mut() {
+            plan.balance(threads);
+        }
         self.factored_matrix = Vec::new();
         self.factored_rule = None;
         self.pattern = Some(Pattern::of(matrix));

@@ -136,6 +136,36 @@ pub(crate) struct SolvePlan {
     pub(crate) tasks: Vec<SolveTask>,
     /// `(first, last)` panel of each chain.
     pub(crate) tops: Vec<(usize, usize)>,
+    /// The tasks grouped for the threads ([`SolvePlan::balance`]): each
+    /// group runs its tasks in order, the groups in parallel.
+    pub(crate) groups: Vec<Vec<usize>>,
+}
+
+impl SolvePlan {
+    /// Group the tasks for `threads` threads, largest first into the
+    /// lightest group (a solve reads each stored entry once, so a task
+    /// weighs its entries).
+    pub(crate) fn balance(&mut self, threads: usize) {
+        let mut order: Vec<usize> = (0..self.tasks.len()).collect();
+        order.sort_by_key(|&t| std::cmp::Reverse(self.tasks[t].entries));
+        let mut groups = vec![(0usize, Vec::new()); threads.clamp(1, self.tasks.len().max(1))];
+        for t in order {
+            let g = groups
+                .iter_mut()
+                .min_by_key(|(w, _)| *w)
+                .expect("at least one group");
+            g.0 += self.tasks[t].entries;
+            g.1.push(t);
+        }
+        self.groups = groups
+            .into_iter()
+            .map(|(_, mut g)| {
+                g.sort_unstable();
+                g
+            })
+            .filter(|g| !g.is_empty())
+            .collect();
+    }
 }
 
 /// One subtree of a [`SolvePlan`]: panels `lo..=hi`, below chain `top`.
@@ -144,6 +174,8 @@ pub(crate) struct SolveTask {
     pub(crate) lo: usize,
     pub(crate) hi: usize,
     pub(crate) top: usize,
+    /// Stored factor entries of the panels.
+    pub(crate) entries: usize,
 }
 
 /// `dst (+)= alpha lhs rhs^T` where the top `mid x mid` block of the
@@ -621,6 +653,7 @@ impl PanelFactor {
                     lo,
                     hi: c as usize,
                     top,
+                    entries: self.val_ptr[c as usize + 1] - self.val_ptr[lo],
                 });
             }
         }
