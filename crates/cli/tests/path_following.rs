@@ -567,3 +567,64 @@ fn dcb_by_arc_length_follows_corrected_beam_theory_without_viscosity() {
     );
     assert!(w <= gic * area && w > 0.9 * gic * bond["damaged_area"].as_f64().unwrap());
 }
+
+/// `predictor = "secant"` (start each dissipation-controlled increment from
+/// the last one, extrapolated): every converged point still lies on the
+/// closed-form path of the snap-back bar, the whole fracture energy is
+/// dissipated, it takes no more iterations than the default start, and a
+/// restarted run (the last dissipation step is in the checkpoint) repeats
+/// the uninterrupted one.
+#[test]
+fn secant_predictor_stays_on_the_exact_path_and_restarts() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(scene()).unwrap();
+    let secant = dir.path().join("secant.toml");
+    std::fs::write(
+        &secant,
+        format!("{text}\n[analysis.arc_length]\npredictor = \"secant\"\n"),
+    )
+    .unwrap();
+    let full = dir.path().join("full");
+    let s = run_ok(&secant, &full);
+    let rs = rows(&full);
+    check_on_path(&rs);
+    let last = rs.last().unwrap();
+    assert!(
+        (last.dissipated - G).abs() < 1e-9,
+        "dissipated {}",
+        last.dissipated
+    );
+    let tangent = dir.path().join("tangent");
+    let t = run_ok(&scene(), &tangent);
+    let its = |s: &serde_json::Value| s["newton_iterations"]["total"].as_u64().unwrap();
+    assert!(
+        its(&s) <= its(&t),
+        "secant {} against tangent {}",
+        its(&s),
+        its(&t)
+    );
+    // restart from the middle of the softening branch
+    let part = dir.path().join("part");
+    run_ok_with(
+        &secant,
+        &part,
+        &["--max-increments", &(rs.len() / 2).to_string()],
+    );
+    let out = junta()
+        .arg("run")
+        .arg("--restart")
+        .arg(&part)
+        .arg("-q")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let rp = rows(&part);
+    assert_eq!(rs.len(), rp.len());
+    for (x, y) in rs.iter().zip(&rp) {
+        assert_eq!(x.raw, y.raw, "increment {}", x.increment);
+    }
+}

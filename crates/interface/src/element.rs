@@ -314,8 +314,8 @@ impl Element for InterfaceElement {
         }
         if let Some(k) = k {
             let h = 3 * m;
-            for i in 0..h {
-                let src = &bk[i][..h];
+            for (i, row) in bk.iter().enumerate().take(h) {
+                let src = &row[..h];
                 let (top, bottom) = (i * nd, (h + i) * nd);
                 for (j, &v) in src.iter().enumerate() {
                     k[top + j] = v;
