@@ -93,7 +93,16 @@
 //! `rho = ||b - A x|| / ||b||`, and iterative refinement `x <- x + (L D
 //! L^T)^-1 (b - A x)` while `rho > refine_tol` (at most `max_refinements`
 //! steps, stopping when a step no longer lowers `rho`). Double precision
-//! only.
+//! only. The residuals of all right-hand sides of a call come from one
+//! pass over the matrix. On factors of at least `parallel_solve_entries`
+//! stored entries, the solves split the panel elimination tree at its
+//! first branching (`SolvePlan` in `supernodal.rs`): the subtrees below it run in parallel
+//! (forward: each adds its updates of the separator's rows into its own
+//! buffer, summed before the separator's panels; backward: the separator
+//! first, then the subtrees, which only read its rows).
+//!
+//! The matrix norm `||A||_inf` behind the pivot thresholds is kept as the
+//! row sums of `|A|`, updated with the entries that changed.
 
 use crate::common::{
     inf_norm, norm2, residual, symmetric_only, symmetric_row_sums, validate, Pattern,
