@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{junta, repo, run_ok, run_ok_with};
+use common::{junta, repo, restart_ok, run_ok, run_ok_with, write};
 use std::path::{Path, PathBuf};
 
 // The scene's data (tests/data/snapback_bar.toml).
@@ -227,23 +227,18 @@ fn restarted_arc_length_run_equals_the_uninterrupted_one() {
     let dir = tempfile::tempdir().unwrap();
     let full = dir.path().join("full");
     run_ok(&scene(), &full);
-    let part = dir.path().join("part");
-    run_ok_with(&scene(), &part, &["--max-increments", "6"]);
-    let out = junta()
-        .arg("run")
-        .arg("--restart")
-        .arg(&part)
-        .arg("-q")
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let (a, b) = (rows(&full), rows(&part));
-    assert_eq!(a.len(), b.len());
-    for (x, y) in a.iter().zip(&b) {
+    restart_repeats(&scene(), &rows(&full), dir.path(), 6);
+}
+
+/// Stop `scene` after `stop` increments, restart it, and compare every
+/// row with `full` (the uninterrupted run), wall time excepted.
+fn restart_repeats(scene: &Path, full: &[Row], dir: &Path, stop: usize) {
+    let part = dir.join("part");
+    run_ok_with(scene, &part, &["--max-increments", &stop.to_string()]);
+    restart_ok(&part);
+    let b = rows(&part);
+    assert_eq!(full.len(), b.len());
+    for (x, y) in full.iter().zip(&b) {
         assert_eq!(x.raw, y.raw, "increment {}", x.increment);
     }
 }
@@ -578,12 +573,11 @@ fn dcb_by_arc_length_follows_corrected_beam_theory_without_viscosity() {
 fn secant_predictor_stays_on_the_exact_path_and_restarts() {
     let dir = tempfile::tempdir().unwrap();
     let text = std::fs::read_to_string(scene()).unwrap();
-    let secant = dir.path().join("secant.toml");
-    std::fs::write(
-        &secant,
-        format!("{text}\n[analysis.arc_length]\npredictor = \"secant\"\n"),
-    )
-    .unwrap();
+    let secant = write(
+        dir.path(),
+        "secant.toml",
+        &format!("{text}\n[analysis.arc_length]\npredictor = \"secant\"\n"),
+    );
     let full = dir.path().join("full");
     let s = run_ok(&secant, &full);
     let rs = rows(&full);
@@ -604,27 +598,5 @@ fn secant_predictor_stays_on_the_exact_path_and_restarts() {
         its(&t)
     );
     // restart from the middle of the softening branch
-    let part = dir.path().join("part");
-    run_ok_with(
-        &secant,
-        &part,
-        &["--max-increments", &(rs.len() / 2).to_string()],
-    );
-    let out = junta()
-        .arg("run")
-        .arg("--restart")
-        .arg(&part)
-        .arg("-q")
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let rp = rows(&part);
-    assert_eq!(rs.len(), rp.len());
-    for (x, y) in rs.iter().zip(&rp) {
-        assert_eq!(x.raw, y.raw, "increment {}", x.increment);
-    }
+    restart_repeats(&secant, &rs, dir.path(), rs.len() / 2);
 }

@@ -522,11 +522,10 @@ struct PathWork {
     /// Δu of the previous converged increment (by equation).
     delta_prev: Vec<f64>,
     delta_lambda_prev: f64,
-    /// Start the next attempt from the secant prediction (set per attempt
-    /// by the increment loop), with `last_tau` the dissipation step of
-    /// the previous increment.
-    extrapolate: bool,
-    last_tau: f64,
+    /// Start the next attempt from the secant prediction: the dissipation
+    /// step of the previous increment (set per attempt by the increment
+    /// loop from [`PathState::last_tau`]).
+    extrapolate_from: Option<f64>,
 }
 
 /// Run the single-step load program `program` (its end load factor) on
@@ -638,8 +637,7 @@ where
         delta: vec![0.0; nf],
         delta_prev: vec![0.0; nf],
         delta_lambda_prev: cur.lambda - path.previous_lambda,
-        extrapolate: false,
-        last_tau: path.last_tau,
+        extrapolate_from: None,
     };
     for (e, &d) in w.free_dofs.iter().enumerate() {
         pw.delta_prev[e] = w.u_conv[d] - path.previous_u[d];
@@ -699,7 +697,9 @@ where
                 PathMode::Arc => Constraint::Arc(size, (path.tau0 > 0.0).then_some(end.signum())),
                 PathMode::Dissipation => Constraint::Dissipation(size),
             };
-            pw.extrapolate = extrapolate && mode == PathMode::Dissipation && pw.last_tau > 0.0;
+            pw.extrapolate_from =
+                (extrapolate && mode == PathMode::Dissipation && path.last_tau > 0.0)
+                    .then_some(path.last_tau);
             let mut outcome = attempt(
                 &mut w,
                 &mut pw,
@@ -779,7 +779,7 @@ where
                 } => {
                     // a failed secant start: the same step again from the
                     // converged state before any cut-back
-                    if pw.extrapolate {
+                    if pw.extrapolate_from.is_some() {
                         tracing::info!(
                             lambda = cur.lambda,
                             size,
@@ -903,12 +903,11 @@ where
             + coupling.c * (lambda_new - cur.lambda).powi(2))
         .sqrt();
         pw.delta_lambda_prev = lambda_new - cur.lambda;
-        pw.last_tau = if control == PathMode::Dissipation {
+        path.last_tau = if control == PathMode::Dissipation {
             size
         } else {
             0.0
         };
-        path.last_tau = pw.last_tau;
         path.previous_u.copy_from_slice(&w.u_conv);
         path.previous_lambda = cur.lambda;
         w.u_conv.copy_from_slice(&w.u);
@@ -1112,9 +1111,9 @@ fn attempt(
     if !warm {
         w.u.copy_from_slice(&w.u_conv);
         if let Constraint::Dissipation(tau) = constraint {
-            if pw.extrapolate && pw.last_tau > 0.0 {
+            if let Some(last_tau) = pw.extrapolate_from {
                 // the last increment, scaled to this one's dissipation
-                let s = tau / pw.last_tau;
+                let s = tau / last_tau;
                 for (e, &d) in w.free_dofs.iter().enumerate() {
                     w.u[d] += s * pw.delta_prev[e];
                 }

@@ -39,6 +39,21 @@ pub fn run_ok_with(input: &Path, dir: &Path, args: &[&str]) -> Value {
     serde_json::from_str(&text).unwrap()
 }
 
+/// `junta run --restart dir -q`, which must succeed.
+pub fn restart_ok(dir: &Path) {
+    let out = junta()
+        .args(["run", "-q", "--restart"])
+        .arg(dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "junta run --restart {} failed:\n{}",
+        dir.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 /// Run and expect failure; return stderr.
 pub fn run_err(input: &Path) -> String {
     let dir = tempfile::tempdir().unwrap();
