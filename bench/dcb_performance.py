@@ -17,7 +17,14 @@ and the load at 6, 8 and 10 mm against corrected beam theory
 `--solver partial_refactor=false` for the complete refactorisation each
 iteration, `--solver ordering=amd`).
 
+`--sweep-target 5,8,12,16` charts speed against accuracy instead: the 50k
+scene with `[analysis.arc_length] target_iterations` set to each value
+(longer path steps for larger values), its wall time, increments and
+Newton iterations next to the load at 3, 4, ..., 10 mm against the run
+with the first value (the finest path steps) and against beam theory.
+
 Run: python3 bench/dcb_performance.py [--repeat 3] [--solver KEY=VALUE ...]
+     python3 bench/dcb_performance.py --sweep-target 5,8,12,16 [--repeat 3]
 """
 import argparse
 import csv
@@ -83,14 +90,63 @@ def run(junta, scene, extra, repeat):
     return statistics.median(walls), summary, curve
 
 
+def with_target(scene, target):
+    """A copy of `scene` (beside it, so that its relative paths hold) with
+    `target_iterations = target` in `[analysis.arc_length]`."""
+    lines, out, placed = open(scene).read().splitlines(), [], False
+    for line in lines:
+        if line.strip().startswith("target_iterations"):
+            continue
+        out.append(line)
+        if line.strip() == "[analysis.arc_length]":
+            out.append(f"target_iterations = {target}")
+            placed = True
+    if not placed:
+        out += ["[analysis.arc_length]", f"target_iterations = {target}"]
+    fd, path = tempfile.mkstemp(suffix=".toml", prefix="_target", dir=os.path.dirname(scene))
+    with os.fdopen(fd, "w") as f:
+        f.write("\n".join(out) + "\n")
+    return path
+
+
+def sweep_target(junta, targets, extra, repeat, beam):
+    scene = SCENES[1][1]
+    xs = [3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0]
+    print(f"# {os.path.relpath(scene, ROOT)}: path step target, {repeat} run(s) each, median wall time")
+    print("| target_iterations | wall s | increments | Newton it. | peak N | max |dP| vs finest, 3-10 mm "
+          "| max |dP| vs beam theory, 5-10 mm |")
+    print("|---|---|---|---|---|---|---|")
+    finest = None
+    for t in targets:
+        path = with_target(scene, t)
+        try:
+            wall, s, curve = run(junta, path, extra, repeat)
+        finally:
+            os.remove(path)
+        if finest is None:
+            finest = curve
+        d_fine = max(abs(at(curve, x) - at(finest, x)) / at(finest, x) for x in xs)
+        d_beam = max(abs(at(curve, x) - at(beam, x)) / at(beam, x) for x in xs if x >= 5.0)
+        print(f"| {t} | {wall:.1f} | {s['increments']} | {s['newton_iterations']['total']} | "
+              f"{max(p for _, p in curve):.1f} | {100 * d_fine:.3f} % | {100 * d_beam:.2f} % |")
+        if s.get("status") != "completed":
+            print(f"  status: {s.get('status')}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--solver", action="append", default=[])
+    ap.add_argument("--sweep-target", default=None,
+                    help="comma-separated target_iterations values for the 50k scene")
     args = ap.parse_args()
     junta = build()
     extra = [a for kv in args.solver for a in ("--solver", kv)]
     beam = read_beam()
+    if args.sweep_target:
+        targets = [int(v) for v in args.sweep_target.split(",")]
+        sweep_target(junta, targets, extra, args.repeat, beam)
+        return
     peak_bt = max(p for _, p in beam)
     print(f"# {args.repeat} run(s) each, median wall time; solver overrides: {args.solver or 'none'}")
     print("| scene | dofs | wall s | increments | Newton it. | assemble s | factor s | solve s "

@@ -580,10 +580,14 @@ impl Assembler {
                         // positions kept: no search
                         let off = map.offsets[ci][ei];
                         let pos = &map.pos[off..off + nd * nd];
-                        for (ab, &p) in pos.iter().enumerate() {
-                            if p != NO_ENTRY {
-                                let (a, b) = (ab / nd, ab % nd);
-                                store(p as usize, ke[ab], ke[b * nd + a]);
+                        // row by row: no division per entry
+                        for (a, (row, ke_row)) in
+                            pos.chunks_exact(nd).zip(ke.chunks_exact(nd)).enumerate()
+                        {
+                            for (b, (&p, &kab)) in row.iter().zip(ke_row).enumerate() {
+                                if p != NO_ENTRY {
+                                    store(p as usize, kab, ke[b * nd + a]);
+                                }
                             }
                         }
                     } else if let Some((cp, ri)) = kp {

@@ -217,22 +217,27 @@ impl SymmetricCsc {
             .collect();
         let columns = |j0: usize, j1: usize, out: &mut [f64]| {
             for j in j0..j1 {
-                let (s, e) = (self.col_ptr[j], self.col_ptr[j + 1]);
+                let (s, mut e) = (self.col_ptr[j], self.col_ptr[j + 1]);
+                // the diagonal, when stored, is the column's last entry
+                let diag = if e > s && self.row_idx[e - 1] == j {
+                    e -= 1;
+                    Some(low[e])
+                } else {
+                    None
+                };
+                let (rows, lows, ups) = (&self.row_idx[s..e], &low[s..e], &self.values[s..e]);
                 for r in 0..k {
-                    let (xr, yr) = (&x[r * n..(r + 1) * n], r * n);
+                    let (xr, out_r) = (&x[r * n..(r + 1) * n], &mut out[r * n..(r + 1) * n]);
                     let xj = xr[j];
                     let mut acc = 0.0;
-                    let entries = self.row_idx[s..e]
-                        .iter()
-                        .zip(&low[s..e])
-                        .zip(&self.values[s..e]);
-                    for ((&i, l), v) in entries {
+                    for ((&i, l), v) in rows.iter().zip(lows).zip(ups) {
                         acc += l * xr[i];
-                        if i != j {
-                            out[yr + i] += v * xj;
-                        }
+                        out_r[i] += v * xj;
                     }
-                    out[yr + j] += acc;
+                    if let Some(d) = diag {
+                        acc += d * xj;
+                    }
+                    out_r[j] += acc;
                 }
             }
         };
