@@ -73,6 +73,24 @@
 //!   result of a step is the response to its loads, not an increment).
 //!
 //! (The same rules give each step's loads in an incremental run.)
+//!
+//! # Amplitudes
+//!
+//! A load or prescribed displacement with `AMPLITUDE=` is multiplied by the
+//! amplitude ([`junta_core::mesh::inp::InpAmplitude`]) at the end of the
+//! step it is given in (step time, or total time: the sum of the periods
+//! up to that step's end); carried into a later step that does not give it
+//! again, it keeps that value (CalculiX 2.20 does the same). In an
+//! incremental run, a step whose loads name an amplitude contributes one
+//! program step per segment between the amplitude's points inside the
+//! step: load factors `c a(t_i)`, then `c a(T)`, with `c` the step's
+//! loads at amplitude 1 as a multiple of the pattern (segments that do not
+//! move the load factor are dropped). All loads and non-zero prescribed
+//! displacements given in such a step share the amplitude, and none may be
+//! carried from an earlier step (it would stay constant while the others
+//! vary: not one pattern); errors name the line otherwise. Newton's
+//! increment fractions apply to each segment; `INC=n` counts the
+//! increments of all segments of the step.
 
 use crate::scene::{AnalysisSpec, CurveSpec};
 use anyhow::{anyhow, bail, Result};
@@ -151,8 +169,14 @@ pub fn solver_of_deck(
 pub struct DeckIncremental {
     /// `type = "static"`, the load program and the Newton settings.
     pub analysis: AnalysisSpec,
-    /// Per program step: `*STEP, INC=n` and the line of that `*STEP`.
+    /// Per program step: `*STEP, INC=n` and the line of that `*STEP` (a
+    /// deck step with an amplitude makes one program step per segment
+    /// between its points, all with the deck step's limit: the limit counts
+    /// the increments of all of them).
     pub increment_limits: Vec<Option<(usize, usize)>>,
+    /// The load pattern the load factor scales (the first step's loads, at
+    /// amplitude 1 when it has one).
+    pub pattern: DeckStep,
 }
 
 /// The interface law of a cohesive material: registry key and parameters
@@ -436,7 +460,7 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
             reaction_sets.push(name);
         }
     }
-    let first = &steps[0];
+    let first = incremental.as_ref().map_or(&steps[0], |i| &i.pattern);
     let curve = deck.curve.as_ref().map(|c| CurveSpec {
         reaction_set: c.reaction_set.clone(),
         reaction_component: c.reaction_component.clone(),
@@ -569,6 +593,49 @@ fn proportional(pattern: &DeckStep, s: &DeckStep) -> Option<f64> {
         .then_some(c)
 }
 
+/// The amplitude of the loads and prescribed displacements given in step
+/// `k` of an incremental run (`None`: they ramp linearly): one for all of
+/// them (fixed supports, value 0, aside), or an error naming the line.
+fn step_amplitude(deck: &InpDeck, k: usize, file: &str) -> Result<Option<usize>> {
+    let given = deck
+        .boundaries
+        .iter()
+        .filter(|b| b.step == Some(k) && b.value != 0.0)
+        .map(|b| (b.amplitude, b.line))
+        .chain(
+            deck.cloads
+                .iter()
+                .filter(|c| c.step == Some(k) && c.value != 0.0)
+                .map(|c| (c.amplitude, c.line)),
+        )
+        .chain(
+            deck.dloads
+                .iter()
+                .filter(|d| d.step == Some(k))
+                .map(|d| (d.amplitude, d.line)),
+        );
+    let mut first: Option<(Option<usize>, usize)> = None;
+    for (a, line) in given {
+        match first {
+            None => first = Some((a, line)),
+            Some((b, l)) if a != b => {
+                let name = |x: Option<usize>| {
+                    x.map_or("none (a linear ramp)".to_string(), |i| {
+                        format!("`{}`", deck.amplitudes[i].name)
+                    })
+                };
+                bail!(
+                    "{file}:{line}: amplitude {} here, {} at line {l} of the same step: Junta's incremental runs scale one load pattern, so every load and prescribed displacement of a step must use the same AMPLITUDE= (or none)",
+                    name(a),
+                    name(b)
+                );
+            }
+            _ => {}
+        }
+    }
+    Ok(first.and_then(|f| f.0))
+}
+
 /// The load program and Newton settings of a deck with a softening law
 /// (module docs).
 fn incremental_program(
@@ -580,36 +647,117 @@ fn incremental_program(
     let mut program = Vec::with_capacity(steps.len());
     let mut limits = Vec::with_capacity(steps.len());
     let mut settings: Option<(NewtonSettings, usize)> = None;
-    for (k, s) in steps.iter().enumerate() {
-        let c = if k == 0 {
-            if steps[0].constraints.iter().all(|c| c.1 == 0.0)
-                && steps[0].f_ext.iter().all(|f| *f == 0.0)
-            {
-                bail!(
-                    "{file}:{}: {}: nothing loads the model (no *CLOAD, no non-zero *BOUNDARY): the incremental run of a softening deck scales the first step's loads",
-                    s.line,
-                    s.name
-                );
+    let amps = (0..steps.len())
+        .map(|k| step_amplitude(deck, k, file))
+        .collect::<Result<Vec<_>>>()?;
+    let ends = step_ends(deck);
+    // a step with an amplitude: its loads at amplitude 1 (those carried
+    // from earlier steps at their value)
+    let unit = |k: usize| -> Result<DeckStep> {
+        let carried = deck_steps_scaled(deck, file, k..k + 1, &|amp, st| {
+            if st == Some(k) {
+                0.0
+            } else {
+                amplitude_at_end(deck, &ends, amp, st)
             }
-            1.0
-        } else {
-            proportional(&steps[0], s).ok_or_else(|| {
-                anyhow!(
-                    "{file}:{}: {}: its loads and prescribed displacements are not a multiple of the first step's; Junta's incremental runs scale one load pattern over the steps (a proportional program), so multi-step softening decks must keep the same loaded dofs with proportional values (or be split into several decks)",
-                    s.line,
-                    s.name
-                )
-            })?
+        })?;
+        let c = &carried[0];
+        if c.constraints.iter().any(|c| c.1 != 0.0) || c.f_ext.iter().any(|f| *f != 0.0) {
+            bail!(
+                "{file}:{}: {}: loads or prescribed displacements carried over from earlier steps stay constant while this step's amplitude varies: not one load pattern; give them again in this step with the same AMPLITUDE=",
+                c.line,
+                c.name
+            );
+        }
+        let mut u = deck_steps_scaled(deck, file, k..k + 1, &|amp, st| {
+            if st == Some(k) {
+                1.0
+            } else {
+                amplitude_at_end(deck, &ends, amp, st)
+            }
+        })?;
+        Ok(u.remove(0))
+    };
+    let pattern = match amps.first().copied().flatten() {
+        Some(_) => unit(0)?,
+        None => steps[0].clone(),
+    };
+    if pattern.constraints.iter().all(|c| c.1 == 0.0) && pattern.f_ext.iter().all(|f| *f == 0.0) {
+        bail!(
+            "{file}:{}: {}: nothing loads the model (no *CLOAD, no non-zero *BOUNDARY): the incremental run of a softening deck scales the first step's loads",
+            pattern.line,
+            pattern.name
+        );
+    }
+    let mut lambda = 0.0;
+    for (k, s) in steps.iter().enumerate() {
+        let not_proportional = || {
+            anyhow!(
+                "{file}:{}: {}: its loads and prescribed displacements are not a multiple of the first step's; Junta's incremental runs scale one load pattern over the steps (a proportional program), so multi-step softening decks must keep the same loaded dofs with proportional values (or be split into several decks)",
+                s.line,
+                s.name
+            )
         };
-        program.push(c);
+        // the load factors this step passes through
+        let targets: Vec<f64> = match amps[k] {
+            None if k == 0 => vec![1.0],
+            None => vec![proportional(&pattern, s).ok_or_else(not_proportional)?],
+            Some(a) => {
+                let c = if k == 0 {
+                    1.0
+                } else {
+                    proportional(&pattern, &unit(k)?).ok_or_else(not_proportional)?
+                };
+                let amp = &deck.amplitudes[a];
+                let start = if amp.total_time {
+                    step_end_time(deck, &ends, k, true) - period(deck, k)
+                } else {
+                    0.0
+                };
+                let end = start + period(deck, k);
+                let mut t: Vec<f64> = amp
+                    .points
+                    .iter()
+                    .filter(|p| p.0 > start && p.0 < end)
+                    .map(|p| c * p.1)
+                    .collect();
+                t.push(c * amp.value(end));
+                if (c * amp.value(start) - lambda).abs() > 1e-12 * c.abs() {
+                    notes.push(format!(
+                        "{file}:{}: {}: amplitude `{}` starts at {} but the loads stand at {} of it: the jump is ramped over the step's first segment",
+                        s.line,
+                        s.name,
+                        amp.name,
+                        amp.value(start),
+                        lambda / c
+                    ));
+                }
+                t
+            }
+        };
         let step = deck.steps.get(k);
+        let limit = step.and_then(|st| st.max_increments.map(|n| (n, st.line)));
+        let before = program.len();
+        for t in targets {
+            // a segment that does not move the load is no step at all
+            if t != lambda {
+                program.push(t);
+                limits.push(limit);
+                lambda = t;
+            }
+        }
+        if program.len() == before {
+            notes.push(format!(
+                "{file}:{}: {}: the load factor does not change in this step: nothing to solve, skipped",
+                s.line, s.name
+            ));
+        }
         if step.is_some_and(|st| st.nlgeom) {
             notes.push(format!(
                 "{file}:{}: NLGEOM ignored: Junta's elements are small-strain",
                 s.line
             ));
         }
-        limits.push(step.and_then(|st| st.max_increments.map(|n| (n, st.line))));
         if step.is_some_and(|st| st.max_increments.is_none()) {
             notes.push(format!(
                 "{file}:{}: no INC= on *STEP: Abaqus would stop this step after 100 increments; Junta does not limit it",
@@ -662,6 +810,27 @@ fn incremental_program(
             .as_ref()
             .is_some_and(|s| s.viscosity > 0.0)
     });
+    if let Some(a) = amps.iter().flatten().next() {
+        let amp = &deck.amplitudes[*a];
+        if viscous {
+            bail!(
+                "{file}:{}: *AMPLITUDE {}: with *DAMAGE STABILIZATION: Junta's viscosity is in load-factor units (the load factor running linearly over the step), which an amplitude would make time-dependent; remove the amplitude or the stabilization",
+                amp.line,
+                amp.name
+            );
+        }
+        if deck.steps.iter().any(|st| {
+            st.static_procedure
+                .as_ref()
+                .is_some_and(|p| p.riks.is_some())
+        }) {
+            bail!(
+                "{file}:{}: *AMPLITUDE {}: with *STATIC, RIKS: the arc length finds the load factor itself (Abaqus ignores amplitudes in a Riks step); remove AMPLITUDE=",
+                amp.line,
+                amp.name
+            );
+        }
+    }
     if viscous && (1..steps.len()).any(|k| period(deck, k) != period(deck, 0)) {
         bail!(
             "{file}: *DAMAGE STABILIZATION with steps of different periods: Junta's viscosity is in load-factor units, one value per law; give the steps the same period"
@@ -721,6 +890,7 @@ fn incremental_program(
             arc_length,
         },
         increment_limits: limits,
+        pattern,
     })
 }
 
@@ -743,7 +913,13 @@ pub struct DeckStep {
 /// later one, as CalculiX and Abaqus do); `OP=NEW` removes every earlier
 /// distributed load. `GRAV` and `CENTRIF` use the density of the element's
 /// material (`*DENSITY`, an error naming the material when missing).
-fn add_distributed_loads(deck: &InpDeck, file: &str, k: usize, f_ext: &mut [f64]) -> Result<()> {
+fn add_distributed_loads(
+    deck: &InpDeck,
+    file: &str,
+    k: usize,
+    scale: &dyn Fn(Option<usize>, Option<usize>) -> f64,
+    f_ext: &mut [f64],
+) -> Result<()> {
     use junta_core::mesh::inp::InpDloadKind;
     use junta_core::mesh::{ElementRef, FaceRef};
     use junta_elements::body_load::{add_body_load, BodyLoad};
@@ -777,6 +953,7 @@ fn add_distributed_loads(deck: &InpDeck, file: &str, k: usize, f_ext: &mut [f64]
     }
     for ((i, block), members) in groups {
         let d = &deck.dloads[i];
+        let c = scale(d.amplitude, d.step);
         let at = |err: junta_core::CoreError| {
             let kw = if d.label == "P" { "DSLOAD" } else { "DLOAD" };
             anyhow!("{file}:{}: *{kw}: {err}", d.line)
@@ -808,9 +985,12 @@ fn add_distributed_loads(deck: &InpDeck, file: &str, k: usize, f_ext: &mut [f64]
                         face,
                     })
                     .collect();
-                add_face_load(&deck.mesh, &faces, FaceLoad::Pressure(p), f_ext).map_err(at)?
+                add_face_load(&deck.mesh, &faces, FaceLoad::Pressure(c * p), f_ext).map_err(at)?
             }
-            InpDloadKind::Gravity(g) => body(density()?, BodyLoad::Gravity(g), f_ext)?,
+            InpDloadKind::Gravity(g) => {
+                body(density()?, BodyLoad::Gravity(g.map(|x| c * x)), f_ext)?
+            }
+            // the amplitude scales the load's magnitude, omega^2
             InpDloadKind::Centrifugal {
                 omega2,
                 point,
@@ -818,13 +998,13 @@ fn add_distributed_loads(deck: &InpDeck, file: &str, k: usize, f_ext: &mut [f64]
             } => body(
                 density()?,
                 BodyLoad::Centrifugal {
-                    omega2,
+                    omega2: c * omega2,
                     point,
                     axis,
                 },
                 f_ext,
             )?,
-            InpDloadKind::BodyForce(b) => body(1.0, BodyLoad::Gravity(b), f_ext)?,
+            InpDloadKind::BodyForce(b) => body(1.0, BodyLoad::Gravity(b.map(|x| c * x)), f_ext)?,
         }
     }
     Ok(())
@@ -833,11 +1013,61 @@ fn add_distributed_loads(deck: &InpDeck, file: &str, k: usize, f_ext: &mut [f64]
 /// The load cases of a deck: one per `*STEP` (one in all for a deck
 /// without steps), by the rules of the module docs.
 pub fn deck_steps(deck: &InpDeck, file: &str) -> Result<Vec<DeckStep>> {
+    let all = 0..deck.steps.len().max(1);
+    let ends = step_ends(deck);
+    deck_steps_scaled(deck, file, all, &|amp, step| {
+        amplitude_at_end(deck, &ends, amp, step)
+    })
+}
+
+/// End of step `s` (0-based) in step time (its period) or total time (the
+/// periods of the steps up to it, `ends` from [`step_ends`]).
+fn step_end_time(deck: &InpDeck, ends: &[f64], s: usize, total: bool) -> f64 {
+    if total {
+        ends[s]
+    } else {
+        period(deck, s)
+    }
+}
+
+/// Total time at the end of each step.
+fn step_ends(deck: &InpDeck) -> Vec<f64> {
+    (0..deck.steps.len().max(1))
+        .scan(0.0, |t, k| {
+            *t += period(deck, k);
+            Some(*t)
+        })
+        .collect()
+}
+
+/// The factor of a load or prescribed displacement with amplitude `amp`
+/// given in step `step`: the amplitude at the end of that step (a load
+/// carried into later steps keeps that value, as in Abaqus and CalculiX
+/// (checked with ccx 2.20: a `*CLOAD, AMPLITUDE=` of step 1 stays at its
+/// step-1 end value through a step 2 that does not give it again); 1
+/// without an amplitude.
+fn amplitude_at_end(deck: &InpDeck, ends: &[f64], amp: Option<usize>, step: Option<usize>) -> f64 {
+    match (amp, step) {
+        (Some(a), Some(s)) => {
+            let a = &deck.amplitudes[a];
+            a.value(step_end_time(deck, ends, s, a.total_time))
+        }
+        _ => 1.0,
+    }
+}
+
+/// [`deck_steps`] with each value (force, pressure, body load, prescribed
+/// displacement) multiplied by `scale(amplitude, step it was given in)`.
+fn deck_steps_scaled(
+    deck: &InpDeck,
+    file: &str,
+    which: std::ops::Range<usize>,
+    scale: &dyn Fn(Option<usize>, Option<usize>) -> f64,
+) -> Result<Vec<DeckStep>> {
     use std::collections::BTreeMap;
     let ndof = 3 * deck.mesh.nodes.len();
-    let nsteps = deck.steps.len().max(1);
-    let mut out = Vec::with_capacity(nsteps);
-    for k in 0..nsteps {
+    let mut out = Vec::with_capacity(which.len());
+    for k in which {
         let upto = |s: Option<usize>| s.is_none_or(|s| s <= k);
         // dof -> (value, step it was set in, line)
         let mut bcs: BTreeMap<usize, (f64, Option<usize>, usize)> = BTreeMap::new();
@@ -850,18 +1080,19 @@ pub fn deck_steps(deck: &InpDeck, file: &str) -> Result<Vec<DeckStep>> {
             for &n in &bc.nodes {
                 for dof in bc.first_dof..=bc.last_dof {
                     let d = 3 * n + dof - 1;
+                    let value = bc.value * scale(bc.amplitude, bc.step);
                     if let Some(&(v, s, line)) = bcs.get(&d) {
-                        if s == bc.step && v != bc.value {
+                        if s == bc.step && v != value {
                             return Err(anyhow!(
                                 "{file}:{}: *BOUNDARY: node {} dof {dof} is given {} here and {v} at line {line} of the same {}",
                                 bc.line,
                                 deck.mesh.node_labels.get(n).copied().unwrap_or(n + 1),
-                                bc.value,
+                                value,
                                 if bc.step.is_some() { "step" } else { "model data" }
                             ));
                         }
                     }
-                    bcs.insert(d, (bc.value, bc.step, bc.line));
+                    bcs.insert(d, (value, bc.step, bc.line));
                 }
             }
         }
@@ -873,14 +1104,15 @@ pub fn deck_steps(deck: &InpDeck, file: &str) -> Result<Vec<DeckStep>> {
                 loads.clear();
                 cleared_at = Some(c.keyword_line);
             }
+            let value = c.value * scale(c.amplitude, c.step);
             for &n in &c.nodes {
                 let d = 3 * n + c.dof - 1;
                 match loads.get_mut(&d) {
                     // within one step (or the model data) loads add up
-                    Some((v, s)) if *s == c.step => *v += c.value,
+                    Some((v, s)) if *s == c.step => *v += value,
                     // a later step replaces the value
                     _ => {
-                        loads.insert(d, (c.value, c.step));
+                        loads.insert(d, (value, c.step));
                     }
                 }
             }
@@ -889,7 +1121,7 @@ pub fn deck_steps(deck: &InpDeck, file: &str) -> Result<Vec<DeckStep>> {
         for (d, (v, _)) in loads {
             f_ext[d] = v;
         }
-        add_distributed_loads(deck, file, k, &mut f_ext)?;
+        add_distributed_loads(deck, file, k, scale, &mut f_ext)?;
         let step = deck.steps.get(k);
         out.push(DeckStep {
             name: step
@@ -1105,5 +1337,59 @@ mod tests {
             ),
             (0.05, 0.05, 0.05, 1.0)
         );
+    }
+
+    /// `*AMPLITUDE` in an incremental run: the load factor passes through
+    /// the amplitude's points inside each step (step or total time), the
+    /// step's INC limit on each segment, and the errors of what one load
+    /// pattern cannot express.
+    #[test]
+    fn amplitudes_in_the_program() {
+        let deck_text = |steps: &str| {
+            glued(
+                &format!("{ELASTIC}*DAMAGE INITIATION, CRITERION=QUADS\n80, 100, 100\n*DAMAGE EVOLUTION, TYPE=ENERGY\n1.5\n"),
+                &format!("\n*NSET, NSET=TOP\n15, 16, 17, 18\n*AMPLITUDE, NAME=CYC\n0, 0, 1, 1, 2, 0.5\n3, 1.2\n*AMPLITUDE, NAME=TOT, TIME=TOTAL TIME\n0, 0, 3, 1.2, 4, 2.0, 5, 0.0\n*BOUNDARY\n1, 1, 3\n2, 1, 3\n3, 1, 3\n4, 1, 3\n{steps}"),
+            )
+        };
+        let program = |steps: &str| -> Result<DeckIncremental> {
+            let deck = parse_inp(&deck_text(steps), "t.inp").map_err(|e| anyhow!("{e}"))?;
+            let s = deck_steps(&deck, "t.inp")?;
+            incremental_program(&deck, &s, "t.inp", &mut Vec::new())
+        };
+        let one = "*STEP, INC=7\n*STATIC\n0.1, 3.0\n*BOUNDARY, AMPLITUDE=CYC\nTOP, 3, 3, 0.2\n*END STEP\n";
+        let p = program(one).unwrap();
+        // points at t = 1, 2 inside the step, then a(3)
+        assert_eq!(p.analysis.steps, vec![1.0, 0.5, 1.2]);
+        let line = deck_text(one)
+            .lines()
+            .position(|l| l.starts_with("*STEP"))
+            .unwrap()
+            + 1;
+        assert_eq!(p.increment_limits, vec![Some((7, line)); 3]);
+        // the pattern is the step's load at amplitude 1
+        assert!(p.pattern.constraints.iter().any(|c| c.1 == 0.2));
+        // a second step with a total-time amplitude (steps span 0-3, 3-6):
+        // its points at t = 4 and 5, then a(6) = 0 (no change: no segment);
+        // its value 0.1 is half the pattern's
+        let two = format!(
+            "{one}*STEP\n*STATIC\n0.1, 3.0\n*BOUNDARY, AMPLITUDE=TOT\nTOP, 3, 3, 0.1\n*END STEP\n"
+        );
+        let p = program(&two).unwrap();
+        assert_eq!(p.analysis.steps, vec![1.0, 0.5, 1.2, 1.0, 0.0]);
+        // a later step without an amplitude ramps from the last value to
+        // its own (a carried value keeps its amplitude's end value)
+        let three = format!("{one}*STEP\n*STATIC\n0.1, 3.0\n*END STEP\n");
+        let e = program(&three).unwrap();
+        assert_eq!(e.analysis.steps, vec![1.0, 0.5, 1.2]);
+        // two amplitudes in one step
+        let mixed = "*STEP\n*STATIC\n0.1, 3.0\n*BOUNDARY, AMPLITUDE=CYC\nTOP, 3, 3, 0.2\n*CLOAD, AMPLITUDE=TOT\n15, 1, 5.0\n*END STEP\n";
+        let e = program(mixed).unwrap_err().to_string();
+        assert!(e.contains("same AMPLITUDE=") && e.contains("`CYC`"), "{e}");
+        // a load carried into a step whose amplitude varies
+        let carried = format!(
+            "{one}*STEP\n*STATIC\n0.1, 3.0\n*CLOAD, AMPLITUDE=CYC\n15, 1, 5.0\n*END STEP\n"
+        );
+        let e = program(&carried).unwrap_err().to_string();
+        assert!(e.contains("carried over"), "{e}");
     }
 }

@@ -555,8 +555,12 @@ pub fn run_static(
             }
             // a deck's `*STEP, INC=n`: at most n increments in that step
             if let Some(&Some((n, line))) = increment_limits.get(r.step) {
-                let in_step = rows.iter().filter(|row| row.step == r.step).count();
-                if in_step >= n && r.step_fraction < 1.0 - 1e-12 {
+                // the deck step's program steps (one per amplitude segment)
+                // share its limit, identified by its line
+                let same = |k: usize| increment_limits.get(k) == Some(&Some((n, line)));
+                let in_step = rows.iter().filter(|row| same(row.step)).count();
+                let last_segment = !same(r.step + 1);
+                if in_step >= n && !(last_segment && r.step_fraction >= 1.0 - 1e-12) {
                     inc_reached = Some((r.step, n, line));
                     return Control::Stop;
                 }
@@ -598,10 +602,9 @@ pub fn run_static(
         Ok((run, path_end)) => {
             let status = if INTERRUPTED.load(Ordering::SeqCst) {
                 "interrupted (Ctrl-C)".to_string()
-            } else if let Some((step, n, line)) = inc_reached {
+            } else if let Some((_, n, line)) = inc_reached {
                 format!(
-                    "stopped: step {} reached its maximum number of increments INC={n} (*STEP at line {line}) before its end; raise INC",
-                    step + 1
+                    "stopped: the *STEP at line {line} reached its maximum number of increments INC={n} before its end; raise INC"
                 )
             } else if run.summary.stopped_by_observer && separated {
                 "stopped: every interface point has failed".to_string()

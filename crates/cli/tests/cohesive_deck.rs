@@ -184,3 +184,62 @@ fn riks_deck_runs_with_path_following() {
         "P({delta}) = {p} against {cbt}"
     );
 }
+
+/// `*AMPLITUDE` drives an incremental run (tests/data/amplitude_cohesive.inp:
+/// a glued pair of bricks opened past the cohesive peak, closed to 40 %,
+/// reopened to 150 % through one amplitude): the run equals the same deck
+/// written as three steps without an amplitude (the same load program),
+/// increment for increment, and its unloading and reloading points lie on
+/// the damaged secant through the origin (bilinear law: unloading at
+/// constant damage; brick elasticity in series is linear too), until the
+/// reloading passes the earlier maximum opening and softens again.
+#[test]
+fn amplitude_drives_an_incremental_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(repo().join("crates/cli/tests/data/amplitude_cohesive.inp"))
+        .unwrap();
+    let amp = write(dir.path(), "amp.inp", &text);
+    run_ok_with(&amp, &dir.path().join("a"), &["--solver", "type=ldlt"]);
+    let steps = "*STEP, INC=200\n*STATIC\n0.1, 1.0\n*BOUNDARY\nTOP, 3, 3, 0.02\n*END STEP\n\
+                 *STEP, INC=200\n*STATIC\n0.1, 1.0\n*BOUNDARY\nTOP, 3, 3, 0.008\n*END STEP\n\
+                 *STEP, INC=200\n*STATIC\n0.1, 1.0\n*BOUNDARY\nTOP, 3, 3, 0.03\n*END STEP\n";
+    let start = text.find("*STEP").unwrap();
+    let plain = write(
+        dir.path(),
+        "steps.inp",
+        &format!("{}{steps}", &text[..start]),
+    );
+    run_ok_with(&plain, &dir.path().join("s"), &["--solver", "type=ldlt"]);
+    let (a, s) = (curve(&dir.path().join("a")), curve(&dir.path().join("s")));
+    assert_eq!(a.len(), s.len());
+    for (x, y) in a.iter().zip(&s) {
+        for k in 0..3 {
+            assert!(
+                (x[k] - y[k]).abs() <= 1e-12 * y[k].abs().max(1e-12),
+                "{x:?} vs {y:?}"
+            );
+        }
+    }
+    // the load factor passes through 1, 0.4 and 1.5 (the amplitude's points)
+    for want in [1.0, 0.4, 1.5] {
+        assert!(
+            a.iter().any(|r| (r[0] - want).abs() < 1e-12),
+            "{want}: {a:?}"
+        );
+    }
+    // secant through the origin from the unloading start (lambda = 1) to
+    // the reloading back to it
+    let i1 = a.iter().position(|r| (r[0] - 1.0).abs() < 1e-12).unwrap();
+    let secant = a[i1][1] / a[i1][2];
+    let back = a[i1..].iter().take_while(|r| r[0] <= 1.0 + 1e-12).count();
+    assert!(back >= 4, "{a:?}");
+    for r in &a[i1..i1 + back] {
+        assert!(
+            (r[1] / r[2] - secant).abs() < 1e-9 * secant,
+            "{r:?} off the secant {secant}"
+        );
+    }
+    // beyond the earlier maximum the interface softens again
+    let last = a.last().unwrap();
+    assert!(last[1] / last[2] < 0.9 * secant, "{last:?}");
+}

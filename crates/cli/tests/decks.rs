@@ -488,3 +488,83 @@ fn orientation_and_aniso_match_calculix() {
         "{err}"
     );
 }
+
+/// `*AMPLITUDE` in a linear static deck against CalculiX 2.20 on the same
+/// deck (`tests/data/amplitude_cube.inp`; values from its `.dat`): a
+/// `*CLOAD` scaled by a step-time amplitude at the step's end (0.5), the
+/// same load carried unchanged into a step that does not give it again
+/// (CalculiX keeps its value, not the amplitude at the new time), a
+/// `TIME=TOTAL TIME` amplitude beyond its last point (constant 3), a
+/// `*DLOAD` pressure at A(1.5) = 0.75 and a prescribed `*BOUNDARY` at
+/// A(3) = 3 (uz = 0.03, total force 30 = E A u / h).
+#[test]
+fn amplitude_matches_calculix() {
+    const CCX_UZ: [f64; 5] = [2.0e-3, 2.0e-3, 1.2e-2, 7.5e-4, 3.0e-2];
+    let dir = tempfile::tempdir().unwrap();
+    let deck = repo().join("crates/cli/tests/data/amplitude_cube.inp");
+    run_ok(&deck, dir.path());
+    for (k, want) in CCX_UZ.iter().enumerate() {
+        let rows = printed_at(dir.path(), k + 1, "TOP", "U");
+        let got = rows.iter().find(|r| r.0 == "5").expect("node 5").1;
+        assert!(
+            (got[2] - want).abs() < 1e-6 * want,
+            "step {}: uz {} vs CalculiX {want}",
+            k + 1,
+            got[2]
+        );
+    }
+    let rf = printed_at(dir.path(), 5, "TOP", "RF");
+    let total = rf.iter().find(|r| r.0 == "total").expect("total").1;
+    assert!((total[2] - 30.0).abs() < 1e-6 * 30.0, "{total:?}");
+}
+
+/// Mistakes with amplitudes name the line and what would be valid.
+#[test]
+fn amplitude_errors_name_the_line() {
+    let base =
+        std::fs::read_to_string(repo().join("crates/cli/tests/data/amplitude_cube.inp")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &str, &str); 5] = [
+        (
+            "*CLOAD, AMPLITUDE=A1\n",
+            "*CLOAD, AMPLITUDE=NOPE\n",
+            "no *AMPLITUDE of that name",
+        ),
+        (
+            "*AMPLITUDE, NAME=A1\n",
+            "*AMPLITUDE, NAME=A1, DEFINITION=SMOOTH STEP\n",
+            "DEFINITION=TABULAR",
+        ),
+        (
+            "0., 0., 1., 0.5, 2., 1.0, 3., 3.\n*AMPLITUDE, NAME=A2",
+            "0., 0., 1., 0.5, 2., 1.0, 3.\n*AMPLITUDE, NAME=A2",
+            "pairs",
+        ),
+        (
+            "0., 0., 1., 0.5, 2., 1.0, 3., 3.\n*AMPLITUDE, NAME=A2",
+            "0., 0., 1., 0.5, 0.5, 1.0, 3., 3.\n*AMPLITUDE, NAME=A2",
+            "must not decrease",
+        ),
+        (
+            "*BOUNDARY\nBOT, 1, 3\n",
+            "*BOUNDARY, AMPLITUDE=A1\nBOT, 1, 3\n",
+            "only valid inside *STEP",
+        ),
+    ];
+    for (from, to, want) in cases {
+        assert!(base.contains(from), "{from}");
+        let text = base.replacen(from, to, 1);
+        let first = to.lines().next().unwrap();
+        let line = text.lines().position(|l| l == first).unwrap() + 1;
+        let path = dir.path().join("bad.inp");
+        std::fs::write(&path, &text).unwrap();
+        let out = junta()
+            .args(["check", path.to_str().unwrap()])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{to}: accepted");
+        assert!(err.contains(want), "{to}: {err}");
+        assert!(err.contains(&format!("bad.inp:{line}")), "{to}: {err}");
+    }
+}

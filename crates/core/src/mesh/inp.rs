@@ -19,7 +19,10 @@
 //! `*SOLID SECTION, ELSET=, MATERIAL=`, `*COHESIVE SECTION, ELSET=,
 //! MATERIAL=, RESPONSE=TRACTION SEPARATION [, THICKNESS=SPECIFIED]` (data
 //! line: the constitutive thickness, default 1), `*BOUNDARY [,
-//! OP=MOD|NEW]`, `*CLOAD [, OP=MOD|NEW]`, `*STEP [, NLGEOM, INC, NAME]` (any
+//! OP=MOD|NEW] [, AMPLITUDE=]`, `*CLOAD [, OP=MOD|NEW] [, AMPLITUDE=]`
+//! (also on `*DLOAD` and `*DSLOAD`; only inside a step), `*AMPLITUDE,
+//! NAME= [, TIME=STEP TIME|TOTAL TIME] [, DEFINITION=TABULAR] [,
+//! VALUE=RELATIVE] [, SHIFTX=, SHIFTY=]` ([`InpAmplitude`]), `*STEP [, NLGEOM, INC, NAME]` (any
 //! number of steps), `*STATIC [, DIRECT] [, SOLVER=]` (data line `dt0, T, dtmin,
 //! dtmax`; SOLVER is mapped to a back end by the CLI; TIME RESET, TOTAL TIME
 //! AT START, ALLSDTOL, CONTINUE, FACTOR noted and skipped; RIKS,
@@ -119,7 +122,7 @@ pub const C3D27_TO_OURS: [usize; 27] = [
 pub const SUPPORTED_KEYWORDS: &str =
     "*HEADING, *NODE, *ELEMENT, *NSET, *ELSET, *MATERIAL, *ELASTIC, *DENSITY, \
 *DAMAGE INITIATION, *DAMAGE EVOLUTION, *DAMAGE STABILIZATION, \
-*SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *DLOAD, *DSLOAD, *SURFACE, *EQUATION, *STEP, *STATIC, *END STEP, \
+*SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *AMPLITUDE, *DLOAD, *DSLOAD, *SURFACE, *EQUATION, *STEP, *STATIC, *END STEP, \
 *NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT, *INCLUDE";
 
 /// Element types the reader understands (for messages).
@@ -399,6 +402,8 @@ pub struct InpBoundary {
     pub keyword_line: usize,
     /// Line of the data line.
     pub line: usize,
+    /// `AMPLITUDE=`: index in [`InpDeck::amplitudes`].
+    pub amplitude: Option<usize>,
 }
 
 /// A `*CLOAD` data line: force `value` on dof `dof` of every target node.
@@ -423,6 +428,8 @@ pub struct InpCload {
     pub keyword_line: usize,
     /// Line of the data line.
     pub line: usize,
+    /// `AMPLITUDE=`: index in [`InpDeck::amplitudes`].
+    pub amplitude: Option<usize>,
 }
 
 /// The `*STATIC` procedure of a step (data line values, all optional).
@@ -523,6 +530,47 @@ pub struct InpDeck {
     /// Orientation of each mesh block (index-aligned with `mesh.blocks`):
     /// its index in `orientations`, from `*SOLID SECTION, ORIENTATION=`.
     pub block_orientations: Vec<Option<usize>>,
+    /// `*AMPLITUDE`s, in input order.
+    pub amplitudes: Vec<InpAmplitude>,
+}
+
+/// A tabular `*AMPLITUDE`: the factor `a(t)` by which the loads and
+/// prescribed displacements that name it (`AMPLITUDE=` on `*CLOAD`,
+/// `*BOUNDARY`, `*DLOAD`, `*DSLOAD`) are multiplied at time `t`.
+///
+/// `a(t)` is linear between the points `(t_i, a_i)` (times non-decreasing;
+/// two equal times make a jump, the later value holding from that time on)
+/// and constant outside them (the first value before `t_1`, the last after
+/// `t_n`), as in Abaqus and CalculiX. `t` is the step time, or the total
+/// time with `TIME=TOTAL TIME`. `SHIFTX` / `SHIFTY` (CalculiX) are added to
+/// the times / values when the deck is read.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpAmplitude {
+    /// `NAME=` as written.
+    pub name: String,
+    /// `(t_i, a_i)`, at least one.
+    pub points: Vec<(f64, f64)>,
+    /// `TIME=TOTAL TIME` (otherwise step time).
+    pub total_time: bool,
+    /// Line of the keyword.
+    pub line: usize,
+}
+
+impl InpAmplitude {
+    /// `a(t)` (see the type's docs).
+    pub fn value(&self, t: f64) -> f64 {
+        let p = &self.points;
+        // first point later than t: t lies in [p[k - 1], p[k])
+        let k = p.partition_point(|q| q.0 <= t);
+        if k == 0 {
+            return p[0].1;
+        }
+        if k == p.len() {
+            return p[k - 1].1;
+        }
+        let ((t0, a0), (t1, a1)) = (p[k - 1], p[k]);
+        a0 + (a1 - a0) * (t - t0) / (t1 - t0)
+    }
 }
 
 /// A rectangular `*ORIENTATION`: material axis 1 along `a - c`, `b - c` in
@@ -575,6 +623,8 @@ pub struct InpDload {
     pub keyword_line: usize,
     /// Line of the data line.
     pub line: usize,
+    /// `AMPLITUDE=`: index in [`InpDeck::amplitudes`].
+    pub amplitude: Option<usize>,
 }
 
 /// One linear equation `sum a_k u_k = 0` of an `*EQUATION` (the first term
@@ -952,6 +1002,17 @@ struct Parser<'a> {
     dload_targets: Vec<DloadTarget>,
     /// `** junta: curve` directive: line and `key=value` pairs.
     curve_directive: Option<(usize, Vec<(String, String)>)>,
+    /// `AMPLITUDE=` names as written: `(what, index in its list, name,
+    /// keyword line)`, resolved when the deck is read.
+    amplitude_refs: Vec<(AmplitudeUse, usize, String, usize)>,
+}
+
+/// Which list an `AMPLITUDE=` reference belongs to.
+#[derive(Debug, Clone, Copy)]
+enum AmplitudeUse {
+    Boundary,
+    Cload,
+    Dload,
 }
 
 type Params = [(String, Option<String>)];
@@ -1449,6 +1510,7 @@ impl<'a> Parser<'a> {
                 "ORIENTATION" => self.orientation(line, params, &data)?,
                 "BOUNDARY" => self.boundary(line, params, &data)?,
                 "CLOAD" => self.cload(line, params, &data)?,
+                "AMPLITUDE" => self.amplitude(line, params, &data)?,
                 "EQUATION" => self.equation(line, params, &data)?,
                 "SURFACE" => self.surface(line, params, &data)?,
                 "DLOAD" => self.dload(line, params, &data)?,
@@ -2403,8 +2465,9 @@ impl<'a> Parser<'a> {
         data: &[(usize, &[&str], bool)],
     ) -> Result<(), InpError> {
         let kw = "BOUNDARY";
-        self.check_params(line, kw, params, &["OP"])?;
+        self.check_params(line, kw, params, &["OP", "AMPLITUDE"])?;
         let op_new = self.op_new(line, kw, params)?;
+        let amplitude = self.amplitude_param(line, kw, params)?;
         for &(dl, f, _) in data {
             let f: Vec<&str> = f.to_vec();
             let target = f.first().copied().unwrap_or("");
@@ -2456,7 +2519,16 @@ impl<'a> Parser<'a> {
                 op_new,
                 keyword_line: line,
                 line: dl,
+                amplitude: None,
             });
+            if let Some(name) = &amplitude {
+                self.amplitude_refs.push((
+                    AmplitudeUse::Boundary,
+                    self.deck.boundaries.len() - 1,
+                    name.clone(),
+                    line,
+                ));
+            }
         }
         Ok(())
     }
@@ -2489,6 +2561,137 @@ impl<'a> Parser<'a> {
         }
     }
 
+    /// `*AMPLITUDE, NAME= [, TIME=STEP TIME | TOTAL TIME] [,
+    /// DEFINITION=TABULAR] [, VALUE=RELATIVE] [, SHIFTX=] [, SHIFTY=]`:
+    /// data lines of `time, value` pairs (any number per line).
+    fn amplitude(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "AMPLITUDE";
+        self.check_params(
+            line,
+            kw,
+            params,
+            &["NAME", "TIME", "DEFINITION", "VALUE", "SHIFTX", "SHIFTY"],
+        )?;
+        let name = self.required(line, kw, params, "NAME")?;
+        if self
+            .deck
+            .amplitudes
+            .iter()
+            .any(|a| a.name.eq_ignore_ascii_case(&name))
+        {
+            return Err(self.invalid(line, kw, format!("amplitude `{name}` is defined twice")));
+        }
+        let total_time = match Self::param(params, "TIME") {
+            None => false,
+            Some((_, Some(v))) if v.eq_ignore_ascii_case("STEP TIME") => false,
+            Some((_, Some(v))) if v.eq_ignore_ascii_case("TOTAL TIME") => true,
+            Some((_, v)) => {
+                return Err(InpError::Parameter {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    parameter: format!("TIME={}", v.as_deref().unwrap_or("")),
+                    valid: "TIME=STEP TIME, TIME=TOTAL TIME".into(),
+                })
+            }
+        };
+        for (key, valid) in [("DEFINITION", "TABULAR"), ("VALUE", "RELATIVE")] {
+            if let Some((_, v)) = Self::param(params, key) {
+                if !v.as_deref().is_some_and(|v| v.eq_ignore_ascii_case(valid)) {
+                    return Err(InpError::Parameter {
+                        file: self.file.into(),
+                        line,
+                        keyword: kw.into(),
+                        parameter: format!("{key}={}", v.as_deref().unwrap_or("")),
+                        valid: format!("{key}={valid} (the only form Junta reads)"),
+                    });
+                }
+            }
+        }
+        let shift = |key: &str| -> Result<f64, InpError> {
+            match Self::param(params, key) {
+                None => Ok(0.0),
+                Some((_, Some(v))) => {
+                    let x = self.float(line, kw, key, v)?;
+                    if x.is_finite() {
+                        Ok(x)
+                    } else {
+                        Err(self.invalid(line, kw, format!("{key}={v} is not finite")))
+                    }
+                }
+                Some((_, None)) => Err(self.invalid(line, kw, format!("{key}= needs a value"))),
+            }
+        };
+        let (dx, dy) = (shift("SHIFTX")?, shift("SHIFTY")?);
+        let mut points: Vec<(f64, f64)> = Vec::new();
+        for &(dl, f, _) in data {
+            let f: Vec<&str> = f.iter().copied().filter(|t| !t.trim().is_empty()).collect();
+            if f.len() % 2 != 0 {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    format!("{} values: expected `time, value` pairs", f.len()),
+                ));
+            }
+            for pair in f.chunks(2) {
+                let t = self.float(dl, kw, "time", pair[0])? + dx;
+                let a = self.float(dl, kw, "amplitude value", pair[1])? + dy;
+                if !(t.is_finite() && a.is_finite()) {
+                    return Err(self.invalid(dl, kw, "times and values must be finite"));
+                }
+                if let Some(&(t0, _)) = points.last() {
+                    if t < t0 {
+                        return Err(self.invalid(
+                            dl,
+                            kw,
+                            format!("time {t} is earlier than the point before it ({t0}): times must not decrease"),
+                        ));
+                    }
+                }
+                points.push((t, a));
+            }
+        }
+        if points.is_empty() {
+            return Err(self.invalid(line, kw, "no `time, value` pairs follow"));
+        }
+        self.deck.amplitudes.push(InpAmplitude {
+            name,
+            points,
+            total_time,
+            line,
+        });
+        Ok(())
+    }
+
+    /// The `AMPLITUDE=` parameter of a load keyword: the name, only inside
+    /// a step (an amplitude scales a load over the step time).
+    fn amplitude_param(
+        &self,
+        line: usize,
+        kw: &str,
+        params: &Params,
+    ) -> Result<Option<String>, InpError> {
+        match Self::param(params, "AMPLITUDE") {
+            None => Ok(None),
+            Some((_, Some(name))) if !name.is_empty() => {
+                if self.step_open.is_none() {
+                    return Err(self.invalid(
+                        line,
+                        kw,
+                        "AMPLITUDE= scales a load over a step's time; it is only valid inside *STEP",
+                    ));
+                }
+                Ok(Some(name.clone()))
+            }
+            Some(_) => Err(self.invalid(line, kw, "AMPLITUDE= needs the name of an *AMPLITUDE")),
+        }
+    }
+
     fn cload(
         &mut self,
         line: usize,
@@ -2496,8 +2699,9 @@ impl<'a> Parser<'a> {
         data: &[(usize, &[&str], bool)],
     ) -> Result<(), InpError> {
         let kw = "CLOAD";
-        self.check_params(line, kw, params, &["OP"])?;
+        self.check_params(line, kw, params, &["OP", "AMPLITUDE"])?;
         let op_new = self.op_new(line, kw, params)?;
+        let amplitude = self.amplitude_param(line, kw, params)?;
         for &(dl, f, _) in data {
             if f.len() != 3 || f[0].is_empty() {
                 return Err(self.invalid(dl, kw, "expected `node or node set, dof, value`"));
@@ -2519,7 +2723,16 @@ impl<'a> Parser<'a> {
                 op_new,
                 keyword_line: line,
                 line: dl,
+                amplitude: None,
             });
+            if let Some(name) = &amplitude {
+                self.amplitude_refs.push((
+                    AmplitudeUse::Cload,
+                    self.deck.cloads.len() - 1,
+                    name.clone(),
+                    line,
+                ));
+            }
         }
         Ok(())
     }
@@ -2845,8 +3058,9 @@ impl<'a> Parser<'a> {
         data: &[(usize, &[&str], bool)],
     ) -> Result<(), InpError> {
         let kw = "DLOAD";
-        self.check_params(line, kw, params, &["OP"])?;
+        self.check_params(line, kw, params, &["OP", "AMPLITUDE"])?;
         let op_new = self.op_new(line, kw, params)?;
+        let amplitude = self.amplitude_param(line, kw, params)?;
         for &(dl, f, _) in data {
             if f.len() < 3 || f[0].is_empty() {
                 return Err(self.invalid(
@@ -2923,7 +3137,16 @@ impl<'a> Parser<'a> {
                 op_new,
                 keyword_line: line,
                 line: dl,
+                amplitude: None,
             });
+            if let Some(name) = &amplitude {
+                self.amplitude_refs.push((
+                    AmplitudeUse::Dload,
+                    self.deck.dloads.len() - 1,
+                    name.clone(),
+                    line,
+                ));
+            }
         }
         Ok(())
     }
@@ -2936,8 +3159,9 @@ impl<'a> Parser<'a> {
         data: &[(usize, &[&str], bool)],
     ) -> Result<(), InpError> {
         let kw = "DSLOAD";
-        self.check_params(line, kw, params, &["OP"])?;
+        self.check_params(line, kw, params, &["OP", "AMPLITUDE"])?;
         let op_new = self.op_new(line, kw, params)?;
+        let amplitude = self.amplitude_param(line, kw, params)?;
         for &(dl, f, _) in data {
             if f.len() != 3 || f[0].is_empty() {
                 return Err(self.invalid(dl, kw, "expected `surface, P, pressure`"));
@@ -2963,7 +3187,16 @@ impl<'a> Parser<'a> {
                 op_new,
                 keyword_line: line,
                 line: dl,
+                amplitude: None,
             });
+            if let Some(name) = &amplitude {
+                self.amplitude_refs.push((
+                    AmplitudeUse::Dload,
+                    self.deck.dloads.len() - 1,
+                    name.clone(),
+                    line,
+                ));
+            }
         }
         Ok(())
     }
@@ -3108,6 +3341,43 @@ impl<'a> Parser<'a> {
     /// Resolve targets, assign sections, build the mesh.
     fn finish(mut self) -> Result<InpDeck, InpError> {
         self.resolve_equations()?;
+        for (what, k, name, line) in std::mem::take(&mut self.amplitude_refs) {
+            let Some(a) = self
+                .deck
+                .amplitudes
+                .iter()
+                .position(|a| a.name.eq_ignore_ascii_case(&name))
+            else {
+                let kw = match what {
+                    AmplitudeUse::Boundary => "BOUNDARY",
+                    AmplitudeUse::Cload => "CLOAD",
+                    AmplitudeUse::Dload => "DLOAD",
+                };
+                let known: Vec<&str> = self
+                    .deck
+                    .amplitudes
+                    .iter()
+                    .map(|a| a.name.as_str())
+                    .collect();
+                return Err(self.invalid(
+                    line,
+                    kw,
+                    format!(
+                        "AMPLITUDE={name}: no *AMPLITUDE of that name (defined: {})",
+                        if known.is_empty() {
+                            "none".to_string()
+                        } else {
+                            known.join(", ")
+                        }
+                    ),
+                ));
+            };
+            match what {
+                AmplitudeUse::Boundary => self.deck.boundaries[k].amplitude = Some(a),
+                AmplitudeUse::Cload => self.deck.cloads[k].amplitude = Some(a),
+                AmplitudeUse::Dload => self.deck.dloads[k].amplitude = Some(a),
+            }
+        }
         let dload_ids = self.resolve_dloads()?;
         for (k, p) in self.boundary_targets.iter().enumerate() {
             self.deck.boundaries[k].nodes = self.node_target(p.line, p.keyword, &p.target)?;
@@ -3435,6 +3705,7 @@ pub fn parse_inp(text: &str, file_name: &str) -> Result<InpDeck, InpError> {
         step_open: None,
         boundary_targets: Vec::new(),
         cload_targets: Vec::new(),
+        amplitude_refs: Vec::new(),
         equation_terms: Vec::new(),
         surfaces: HashMap::new(),
         dload_targets: Vec::new(),
@@ -3493,5 +3764,26 @@ mod tests {
             }
             _ => panic!(),
         }
+    }
+
+    /// `*AMPLITUDE`: pairs over several lines, SHIFTX/SHIFTY, linear
+    /// between points, a jump at a repeated time, constant outside.
+    #[test]
+    fn amplitude_table_and_values() {
+        let text = "*NODE\n1, 0, 0, 0\n*AMPLITUDE, NAME=Ramp, TIME=TOTAL TIME, SHIFTX=1, SHIFTY=0.5\n0, 0, 1, 2,\n1, 4, 3, 0\n";
+        let deck = parse_inp(text, "a.inp").unwrap();
+        let a = &deck.amplitudes[0];
+        assert_eq!(a.name, "Ramp");
+        assert!(a.total_time);
+        assert_eq!(
+            a.points,
+            vec![(1.0, 0.5), (2.0, 2.5), (2.0, 4.5), (4.0, 0.5)]
+        );
+        let v = |t: f64| a.value(t);
+        assert_eq!(v(0.0), 0.5); // before the first point
+        assert_eq!(v(1.5), 1.5); // linear
+        assert_eq!(v(2.0), 4.5); // the jump: the later value from t on
+        assert_eq!(v(3.0), 2.5);
+        assert_eq!(v(9.0), 0.5); // after the last point
     }
 }
