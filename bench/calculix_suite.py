@@ -7,10 +7,12 @@ C3D8R, C3D8I, C3D20, C3D20R, C3D6, C3D15) and no keyword outside linear
 elasticity (see classify_decks.py for the filter and the reasons). Each
 in-scope deck runs with `junta run`; the displacement ("displacements") and
 reaction ("forces", "total force") blocks of its .dat.ref are compared with
-Junta's node_print.csv (the deck's *NODE PRINT requests). The error of a
-block is max |junta - ref| / max |ref| over the block (the .dat prints 7
-significant digits, so 1e-5 is the tolerance). Stress blocks (*EL PRINT)
-are not compared (Junta does not print them yet).
+Junta's node_print.csv (the deck's *NODE PRINT requests), and the stress
+blocks ("stresses", per element and integration point) with its
+el_print.csv (*EL PRINT requests). The error of a block is max |junta -
+ref| / max |ref| over the block (the .dat prints 7 significant digits, so
+1e-5 is the tolerance); the table gives the worst nodal block and the worst
+stress block.
 
 Usage: bench/calculix_suite.py [--junta target/debug/junta] [--keep DIR]
 """
@@ -38,9 +40,10 @@ def ref_blocks(path):
     with opener(path, "rt", errors="replace") as f:
         for line in f:
             s = line.strip()
-            m = re.match(r"(displacements|forces|total force)\s*\(.*\)\s*for set\s+(\S+)", s)
+            m = re.match(r"(displacements|forces|total force|stresses)\s*\(.*\)\s*for set\s+(\S+)", s)
             if m:
-                kind = {"displacements": "U", "forces": "RF", "total force": "RFT"}[m.group(1)]
+                kind = {"displacements": "U", "forces": "RF", "total force": "RFT",
+                        "stresses": "S"}[m.group(1)]
                 cur = {}
                 blocks[(kind, m.group(2).upper())] = cur
                 continue
@@ -58,9 +61,22 @@ def ref_blocks(path):
                 cur["total"] = vals
             elif len(vals) == 4:
                 cur[int(vals[0])] = vals[1:]
+            elif len(vals) == 8:
+                cur[(int(vals[0]), int(vals[1]))] = vals[2:]
             else:
                 cur = None
     return blocks
+
+
+def junta_el_rows(path):
+    rows = {}
+    if not os.path.exists(path):
+        return rows
+    with open(path) as f:
+        for r in csv.DictReader(f):
+            key = (int(r["element"]), int(r["point"]))
+            rows.setdefault((r["variable"], r["set"].upper()), {})[key] = [float(r[c]) for c in "123456"]
+    return rows
 
 
 def junta_rows(path):
@@ -131,8 +147,17 @@ def main():
         if not os.path.exists(csvp):
             rows.append((deck, "ran", "", "no *NODE PRINT to compare"))
             continue
-        ref_b = {k: v for k, v in ref_blocks(ref).items()}
-        err, why = compare(ref_b, junta_rows(csvp))
+        blocks = ref_blocks(ref)
+        nodal = {k: v for k, v in blocks.items() if k[0] != "S"}
+        stress = {k: v for k, v in blocks.items() if k[0] == "S"}
+        err, why = compare(nodal, junta_rows(csvp))
+        if err is not None and stress:
+            serr, swhy = compare(stress, junta_el_rows(os.path.join(d, "el_print.csv")))
+            if serr is None:
+                err, why = None, swhy
+            else:
+                why = f"nodal {err:.1e} ({why}); stresses {serr:.1e} ({swhy.replace('values', 'point values')})"
+                err = max(err, serr)
         if err is None:
             rows.append((deck, "ran", "", why))
         else:

@@ -14,26 +14,204 @@
 //! gets rows: its own requests, or, for a step without any, those of the
 //! nearest earlier step that has some (requests stay active, as in
 //! CalculiX); a request outside any step applies to every step.
+//!
+//! `*EL PRINT, ELSET=` requests go to `el_print.csv`:
+//! `step,set,variable,element,point,1,...,6`, elements in ascending label,
+//! integration points in the element's rule order (for hexahedra `xi`
+//! fastest, `zeta` slowest, as CalculiX numbers them), components in
+//! CalculiX's order: `S` the stresses `xx, yy, zz, xy, xz, yz`, `E` the
+//! strains with tensor shear components (`e_xy = gamma_xy / 2`). Other
+//! variables, and interface elements in the set, are noted and not
+//! written. The same step rules as `*NODE PRINT` apply.
 
-use anyhow::{anyhow, Result};
-use junta_core::mesh::inp::{read_inp, InpNodePrint};
+use anyhow::{anyhow, Context, Result};
+use junta_core::mesh::inp::{read_inp, InpElPrint, InpNodePrint};
+use junta_core::state::StateStore;
 use junta_core::Model;
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// The `*NODE PRINT` requests of the deck `input`, or none for a scene.
-pub fn node_prints(input: &Path) -> Result<Vec<InpNodePrint>> {
-    if input.extension().and_then(|e| e.to_str()) != Some("inp") {
-        return Ok(Vec::new());
+/// The print requests of a deck and the tables they fill, step by step.
+#[derive(Debug, Default)]
+pub struct PrintTables {
+    nodes: Vec<InpNodePrint>,
+    elements: Vec<InpElPrint>,
+    node_csv: String,
+    el_csv: String,
+    notes: Vec<String>,
+}
+
+impl PrintTables {
+    /// The requests of the deck `input` (none for a scene).
+    pub fn new(input: &Path) -> Result<Self> {
+        if input.extension().and_then(|e| e.to_str()) != Some("inp") {
+            return Ok(Self::default());
+        }
+        let deck = read_inp(input).map_err(|e| anyhow!("{e}"))?;
+        Ok(PrintTables {
+            nodes: deck.node_prints,
+            elements: deck.el_prints,
+            node_csv: HEADER.to_string(),
+            el_csv: EL_HEADER.to_string(),
+            notes: Vec::new(),
+        })
     }
-    let deck = read_inp(input).map_err(|e| anyhow!("{e}"))?;
-    Ok(deck.node_prints)
+
+    /// Whether the deck asked for nothing.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty() && self.elements.is_empty()
+    }
+
+    /// Add the rows of step `step` (0-based): solution `u`, residual
+    /// `f_int - f_ext` with the step's `f_ext`, element state `state`.
+    pub fn add_step(
+        &mut self,
+        model: &Model,
+        step: usize,
+        u: &[f64],
+        residual: &[f64],
+        f_ext: &[f64],
+        state: &StateStore,
+    ) -> Result<()> {
+        if !self.nodes.is_empty() {
+            let f_int = internal_force(residual, f_ext);
+            rows(
+                model,
+                &self.nodes,
+                step,
+                u,
+                &f_int,
+                &mut self.node_csv,
+                &mut self.notes,
+            )?;
+        }
+        if !self.elements.is_empty() {
+            el_rows(
+                model,
+                &self.elements,
+                step,
+                u,
+                state,
+                &mut self.el_csv,
+                &mut self.notes,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Write `node_print.csv` / `el_print.csv` (those requested) to `dir`;
+    /// returns the notes (what was not written, once each).
+    pub fn write(mut self, dir: &Path) -> Result<Vec<String>> {
+        for (reqs, name, text) in [
+            (!self.nodes.is_empty(), "node_print.csv", &self.node_csv),
+            (!self.elements.is_empty(), "el_print.csv", &self.el_csv),
+        ] {
+            if reqs {
+                std::fs::write(dir.join(name), text)
+                    .with_context(|| format!("writing {}", dir.join(name).display()))?;
+            }
+        }
+        self.notes.dedup();
+        Ok(self.notes)
+    }
+}
+
+/// Header of `el_print.csv`.
+pub const EL_HEADER: &str = "step,set,variable,element,point,1,2,3,4,5,6\n";
+
+/// Append the `*EL PRINT` rows of step `step` (module docs).
+fn el_rows(
+    model: &Model,
+    prints: &[InpElPrint],
+    step: usize,
+    u: &[f64],
+    state: &StateStore,
+    out: &mut String,
+    notes: &mut Vec<String>,
+) -> Result<()> {
+    let owner = prints
+        .iter()
+        .filter_map(|p| p.step)
+        .filter(|&s| s <= step)
+        .max();
+    for p in prints
+        .iter()
+        .filter(|p| p.step.is_none() || p.step == owner)
+    {
+        let Some((name, members)) = model
+            .mesh
+            .element_sets
+            .iter()
+            .find(|(k, _)| k.eq_ignore_ascii_case(&p.elset))
+        else {
+            return Err(anyhow!(
+                "line {}: *EL PRINT, ELSET={}: no such element set",
+                p.line,
+                p.elset
+            ));
+        };
+        let mut members = members.clone();
+        members.sort_by_key(|r| model.mesh.element_label(r.block, r.element));
+        members.dedup();
+        for v in &p.variables {
+            // (our output, CalculiX's component order, factor of the shear
+            // components)
+            let (key, shear) = match v.as_str() {
+                "S" => ("stress", 1.0),
+                "E" => ("strain", 0.5),
+                other => {
+                    notes.push(format!(
+                        "line {}: *EL PRINT variable {other} is not written (Junta prints S and E)",
+                        p.line
+                    ));
+                    continue;
+                }
+            };
+            for r in &members {
+                if !model.mesh.blocks[r.block].shape.is_solid() {
+                    notes.push(format!(
+                        "line {}: *EL PRINT, ELSET={}: interface elements have no {v}; not written",
+                        p.line, p.elset
+                    ));
+                    continue;
+                }
+                let label = model.mesh.element_label(r.block, r.element);
+                let pts = crate::output::element_points(
+                    model,
+                    u,
+                    state,
+                    r.block,
+                    r.element,
+                    junta_core::element::StepInfo::default(),
+                )?;
+                for (q, pt) in pts.iter().enumerate() {
+                    let Some(x) = pt.get(key) else { continue };
+                    // ours: xx, yy, zz, xy, yz, zx (engineering shear for
+                    // strains); CalculiX: xx, yy, zz, xy, xz, yz
+                    let c = [x[0], x[1], x[2], shear * x[3], shear * x[5], shear * x[4]];
+                    let _ = writeln!(
+                        out,
+                        "{},{name},{v},{label},{},{:e},{:e},{:e},{:e},{:e},{:e}",
+                        step + 1,
+                        q + 1,
+                        c[0],
+                        c[1],
+                        c[2],
+                        c[3],
+                        c[4],
+                        c[5]
+                    );
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Append the rows of the requests of step `step` (0-based) for the
 /// solution `u` and the residual `r` (both `3 * node + component`) to
 /// `out`; `notes` gets what was skipped.
-pub fn rows(
+fn rows(
     model: &Model,
     prints: &[InpNodePrint],
     step: usize,
@@ -114,7 +292,7 @@ pub fn rows(
 
 /// The internal force `f_int = r + f_ext` from the residual `r = f_int -
 /// f_ext` (the `RF` of CalculiX's `.dat`).
-pub fn internal_force(residual: &[f64], f_ext: &[f64]) -> Vec<f64> {
+fn internal_force(residual: &[f64], f_ext: &[f64]) -> Vec<f64> {
     residual.iter().zip(f_ext).map(|(r, f)| r + f).collect()
 }
 

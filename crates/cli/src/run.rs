@@ -322,33 +322,21 @@ pub fn run(
         p.model.mesh.num_elements(),
         p.solver.key()
     ));
-    let prints = crate::deck_print::node_prints(input)?;
-    let mut print_csv = crate::deck_print::HEADER.to_string();
-    let mut print_notes = Vec::new();
+    let mut prints = crate::deck_print::PrintTables::new(input)?;
     let (res, steps_summary) = if p.deck_steps.len() > 1 {
-        let (res, steps) = solve_deck_steps(
-            &mut p,
-            &dir,
-            &pb,
-            input,
-            &prints,
-            &mut print_csv,
-            &mut print_notes,
-        )?;
+        let (res, steps) = solve_deck_steps(&mut p, &dir, &pb, input, &mut prints)?;
         (res, Some(steps))
     } else {
         let res = solve_linear_static(&p.model, p.solver.as_mut())
             .with_context(|| format!("solving {}", input.display()))?;
         if !prints.is_empty() {
-            let f_int = crate::deck_print::internal_force(&res.residual, &p.model.f_ext);
-            crate::deck_print::rows(
+            prints.add_step(
                 &p.model,
-                &prints,
                 0,
                 &res.u,
-                &f_int,
-                &mut print_csv,
-                &mut print_notes,
+                &res.residual,
+                &p.model.f_ext,
+                &res.state,
             )?;
         }
         (res, None)
@@ -378,13 +366,8 @@ pub fn run(
             output::write_fractions(&dir, &p.model, &res.u, &res.state, &p.fractions)?;
         }
     }
-    if !prints.is_empty() {
-        print_notes.dedup();
-        for n in print_notes {
-            pb.suspend(|| eprintln!("note: {n}"));
-        }
-        std::fs::write(dir.join("node_print.csv"), print_csv)
-            .with_context(|| format!("writing {}", dir.join("node_print.csv").display()))?;
+    for n in prints.write(&dir)? {
+        pb.suspend(|| eprintln!("note: {n}"));
     }
     let (advice, advice_lines) =
         output::penalty_advice(&p.model, &|b| p.thickness.get(b).copied())?;
@@ -482,9 +465,7 @@ fn solve_deck_steps(
     dir: &Path,
     pb: &ProgressBar,
     input: &Path,
-    prints: &[junta_core::mesh::inp::InpNodePrint],
-    print_csv: &mut String,
-    print_notes: &mut Vec<String>,
+    prints: &mut crate::deck_print::PrintTables,
 ) -> Result<(
     junta_solvers::linear_static::LinearStaticResult,
     Vec<serde_json::Value>,
@@ -562,16 +543,7 @@ fn solve_deck_steps(
             // the step's own load vector, for its reactions
             p.model.f_ext.clone_from(&s.f_ext);
             if !prints.is_empty() {
-                let f_int = crate::deck_print::internal_force(&res.residual, &s.f_ext);
-                crate::deck_print::rows(
-                    &p.model,
-                    prints,
-                    k + i,
-                    &res.u,
-                    &f_int,
-                    print_csv,
-                    print_notes,
-                )?;
+                prints.add_step(&p.model, k + i, &res.u, &res.residual, &s.f_ext, &res.state)?;
             }
             if p.vtu {
                 let name = format!("results_step{}.vtu", k + i + 1);

@@ -26,8 +26,8 @@
 //! number of steps), `*STATIC [, DIRECT] [, SOLVER=]` (data line `dt0, T, dtmin,
 //! dtmax`; SOLVER is mapped to a back end by the CLI; TIME RESET, TOTAL TIME
 //! AT START, ALLSDTOL, CONTINUE, FACTOR noted and skipped; RIKS,
-//! STABILIZE, FULLY PLASTIC, LONG TERM refused), `*END STEP`; the output requests `*NODE PRINT` (kept in [`InpDeck::node_prints`]: the CLI writes its `U` and `RF` as CSV), `*NODE FILE`,
-//! `*EL PRINT`, `*EL FILE`, `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*OUTPUT` are
+//! STABILIZE, FULLY PLASTIC, LONG TERM refused), `*END STEP`; the output requests `*NODE PRINT` (kept in [`InpDeck::node_prints`]: the CLI writes its `U` and `RF` as CSV) and `*EL PRINT` ([`InpDeck::el_prints`]: `S` and `E` as CSV), `*NODE FILE`,
+//! `*EL FILE`, `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*OUTPUT` are
 //! skipped with a note (Junta's outputs are chosen in the scene);
 //! `*INCLUDE, INPUT=file` ([`read_inp`] puts the file's text in its place,
 //! see [`expand_includes`]; errors then name the included file and its
@@ -519,6 +519,8 @@ pub struct InpDeck {
     pub every: Option<usize>,
     /// `*NODE PRINT` requests, in order.
     pub node_prints: Vec<InpNodePrint>,
+    /// `*EL PRINT` requests, in order.
+    pub el_prints: Vec<InpElPrint>,
     /// `*EQUATION`s, node sets expanded (one equation per member).
     pub equations: Vec<InpEquation>,
     /// `*DLOAD` and `*DSLOAD` distributed loads, in input order.
@@ -647,6 +649,17 @@ pub struct InpNodePrint {
     pub variables: Vec<String>,
     /// `TOTALS=`: `NO` (default), `YES` (rows and their sum) or `ONLY`.
     pub totals: String,
+    pub step: Option<usize>,
+    pub line: usize,
+}
+
+/// An `*EL PRINT, ELSET=` request: element variables (`S`, `E`, ...) of
+/// the set's elements at their integration points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpElPrint {
+    pub elset: String,
+    /// Upper case, as written (default `S`).
+    pub variables: Vec<String>,
     pub step: Option<usize>,
     pub line: usize,
 }
@@ -1695,6 +1708,24 @@ impl<'a> Parser<'a> {
                         line,
                     });
                 }
+                "EL PRINT" => {
+                    let elset = self.required(line, kw, params, "ELSET")?;
+                    let mut variables = data
+                        .iter()
+                        .flat_map(|(_, f, _)| f.iter())
+                        .filter(|t| !t.is_empty())
+                        .map(|t| t.to_uppercase())
+                        .collect::<Vec<_>>();
+                    if variables.is_empty() {
+                        variables.push("S".to_string());
+                    }
+                    self.deck.el_prints.push(InpElPrint {
+                        elset,
+                        variables,
+                        step: self.step_open.map(|_| self.deck.steps.len() - 1),
+                        line,
+                    });
+                }
                 "INCLUDE" => {
                     return Err(self.invalid(
                         line,
@@ -2631,7 +2662,7 @@ impl<'a> Parser<'a> {
         let mut points: Vec<(f64, f64)> = Vec::new();
         for &(dl, f, _) in data {
             let f: Vec<&str> = f.iter().copied().filter(|t| !t.trim().is_empty()).collect();
-            if f.len() % 2 != 0 {
+            if !f.len().is_multiple_of(2) {
                 return Err(self.invalid(
                     dl,
                     kw,
