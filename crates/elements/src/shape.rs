@@ -158,10 +158,8 @@ pub fn tri_shape(shape: CellShape, xi: [f64; 2], n: &mut [f64], dn: &mut [[f64; 
     const DL: [[f64; 2]; 3] = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
     match shape {
         CellShape::Tri3 => {
-            for i in 0..3 {
-                n[i] = l[i];
-                dn[i] = DL[i];
-            }
+            n[..3].copy_from_slice(&l);
+            dn[..3].copy_from_slice(&DL);
         }
         CellShape::Tri6 => {
             for i in 0..3 {
