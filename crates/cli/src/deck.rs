@@ -7,7 +7,7 @@
 //!
 //! # Cohesive materials
 //!
-//! A `COH3D8` block takes the material of its `*COHESIVE SECTION,
+//! A `COH3D8` or `COH3D6` block takes the material of its `*COHESIVE SECTION,
 //! RESPONSE=TRACTION SEPARATION`. Abaqus divides the separation by the
 //! section's constitutive thickness `T0` (data line; 1 when not given, the
 //! usual choice for zero-thickness elements) to get the nominal strain, so

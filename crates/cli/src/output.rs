@@ -4,7 +4,19 @@
 //!
 //! Our hexahedron node orders are VTK's (see `junta_core::topology`), so
 //! cells are written without permutation as VTK_HEXAHEDRON (12),
-//! VTK_QUADRATIC_HEXAHEDRON (25) and VTK_TRIQUADRATIC_HEXAHEDRON (29).
+//! VTK_QUADRATIC_HEXAHEDRON (25) and VTK_TRIQUADRATIC_HEXAHEDRON (29);
+//! wedges as VTK_WEDGE (13) / VTK_QUADRATIC_WEDGE (26) through
+//! `WEDGE15_TO_VTK`.
+//!
+//! Interfaces go to `interfaces.vtu` as their mid-surface: one point per
+//! (bottom, top) node pair, at the pair's mid-point, carrying the jump, and
+//! one cell per element of its side's shape and node order
+//! (`CellShape::vtk_type`): INTER8 / INTER16 / INTER18 as VTK_QUAD (9) /
+//! VTK_QUADRATIC_QUAD (23) / VTK_BIQUADRATIC_QUAD (28), INTER6 / INTER12 as
+//! VTK_TRIANGLE (5) / VTK_QUADRATIC_TRIANGLE (22; corners then mid-edges
+//! 0-1, 1-2, 2-0, our order). A zero-thickness VTK_WEDGE would have two
+//! coincident triangles and no volume; the mid-surface triangle is the
+//! analogue of the quadrilaterals written for INTER8..18.
 
 use anyhow::{Context, Result};
 use junta_core::element::{ElementContext, StepInfo};

@@ -544,7 +544,7 @@ fn generate_box(
         .map_err(|e| anyhow!("{}: key `{key}.element`: {e}", sf.at(element.span())))?;
     if !entry.shape.is_solid() {
         bail!(
-            "{}: key `{key}.element`: `{}` is not a solid element; the box generator makes h8, h8i, h20, h27, h20r, h27r",
+            "{}: key `{key}.element`: `{}` is not a solid element; the box generator makes h8, h8i, h20, h27, h20r, h27r, wedge6, wedge6r, wedge15",
             sf.at(element.span()),
             entry.key
         );

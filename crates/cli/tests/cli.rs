@@ -408,6 +408,8 @@ fn check_prints_summary_and_list_shows_registry() {
         "h27",
         "h20r",
         "h27r",
+        "inter6",
+        "inter12",
         "isotropic",
         "orthotropic",
         "cholesky",

@@ -243,3 +243,71 @@ fn amplitude_drives_an_incremental_run() {
     let last = a.last().unwrap();
     assert!(last[1] / last[2] < 0.9 * secant, "{last:?}");
 }
+
+/// `*ELEMENT, TYPE=COH3D6` with `*COHESIVE SECTION` and `*ELASTIC,
+/// TYPE=TRACTION` (tests/data/coh3d6_stack.inp, written by
+/// make_wedge_decks.py): two C3D6 layers (h = 0.5 each) bonded by two
+/// INTER6, every node held laterally. Closed forms of the bonded stack
+/// (series of the two layers and the penalty, BENCHMARKS.md section 3):
+/// tension in uniaxial strain `sigma = delta / (2 h / M + 1 / K_nn)`, `M =
+/// E (1 - nu) / ((1 + nu)(1 - 2 nu))`; simple shear (the deck edited: y, z
+/// held, the top slid 0.01 in x) `tau = delta / (2 h / G + 1 / K_ss)`; the
+/// interface opens / slides by `sigma / K`. The local frame of a triangle
+/// has e1 along its edge 0-1: x for element 5 (nodes 5-6-7), the diagonal
+/// (1, 1, 0) / sqrt 2 for element 6 (5-7-8), so in shear the local
+/// tractions are (tau, 0, 0) and (tau, -tau, 0) / sqrt 2. interfaces.vtu
+/// holds the two mid-surface triangles (VTK_TRIANGLE = 5).
+#[test]
+fn coh3d6_deck_matches_the_bonded_stack() {
+    let (e, nu, h, k, delta) = (210000.0f64, 0.3f64, 0.5, 1.0e5, 0.01);
+    let m = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let g = e / (2.0 * (1.0 + nu));
+    let text =
+        std::fs::read_to_string(repo().join("crates/cli/tests/data/coh3d6_stack.inp")).unwrap();
+    let shear = text
+        .replace("NALL, 1, 2", "NALL, 2, 3")
+        .replace("BOTTOM, 3, 3", "BOTTOM, 1, 1")
+        .replace("TOP, 3, 3, 0.01", "TOP, 1, 1, 0.01");
+    let dir = tempfile::tempdir().unwrap();
+    for (what, deck, c, modulus) in [("tension", &text, 2, m), ("shear", &shear, 0, g)] {
+        let out = dir.path().join(what);
+        let s = run_ok(&write(dir.path(), &format!("{what}.inp"), deck), &out);
+        assert_eq!(
+            s["elements"]["inter6"].as_u64(),
+            Some(2),
+            "{}",
+            s["elements"]
+        );
+        let t = delta / (2.0 * h / modulus + 1.0 / k);
+        let r = s["reactions"]["TOP"][c].as_f64().unwrap();
+        assert!(rel(r, t) < 1e-9, "{what}: reaction {r} vs closed form {t}");
+        // [min, max] of the local components 0, 1, 2
+        let r2 = std::f64::consts::FRAC_1_SQRT_2;
+        let want: [[f64; 2]; 3] = if c == 2 {
+            [[0.0, 0.0], [0.0, 0.0], [t, t]]
+        } else {
+            [[r2 * t, t], [-r2 * t, 0.0], [0.0, 0.0]]
+        };
+        let glue = &s["interfaces"]["GLUE"];
+        for (i, [lo, hi]) in want.iter().enumerate() {
+            for (key, scale) in [("traction", 1.0), ("jump", 1.0 / k)] {
+                let v = |m: &str| glue[format!("{key}_{m}")][i].as_f64().unwrap();
+                let tol = 1e-9 * t * scale;
+                assert!(
+                    (v("min") - lo * scale).abs() < tol && (v("max") - hi * scale).abs() < tol,
+                    "{what}: {key}[{i}] in [{}, {}], expected [{}, {}]",
+                    v("min"),
+                    v("max"),
+                    lo * scale,
+                    hi * scale
+                );
+            }
+        }
+        let vtu = std::fs::read_to_string(out.join("interfaces.vtu")).unwrap();
+        let at = vtu.find("Name=\"types\"").expect("types array");
+        let body = &vtu[at..];
+        let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+        let types: Vec<&str> = body.split_whitespace().collect();
+        assert_eq!(types, ["5", "5"], "{what}");
+    }
+}

@@ -619,3 +619,128 @@ fn el_print_matches_calculix() {
         }
     }
 }
+
+/// `*DLOAD P1..P5` and `*SURFACE S4` + `*DSLOAD` on wedges
+/// (tests/data/wedge_dload_c3d6.inp, wedge_dload_c3d15.inp, written by
+/// make_wedge_decks.py: pressures on the bottom and top triangles, on the
+/// three kinds of quadrilateral side and on internal cut faces) against
+/// CalculiX 2.20 on the same decks (`ccx -i wedge_dload_c3d6`, `ccx -i
+/// wedge_dload_c3d15`, their .dat files: U of TIP, the FIX total force as
+/// CalculiX prints it, 7 digits); the summary's reactions balance the
+/// applied totals (closed form: P1 5 on the unit bottom +z, P2 10 on the
+/// top -z, P3 3 on y = 0 +y, P4 4 on x = 1 -x, P5 1.5 on the two cut faces
+/// of area 0.5 sqrt 2 x 0.5 along (1, -1, 0) / sqrt 2, DSLOAD 2 on y = 1
+/// -y: total (-3.25, 0.25, -5)).
+#[test]
+fn wedge_pressures_match_calculix() {
+    const C3D6_U: [(&str, [f64; 3]); 9] = [
+        ("3", [-2.500308E-05, 5.401723E-06, -4.957964E-05]),
+        ("6", [-3.037164E-05, 6.934598E-06, -5.042938E-05]),
+        ("9", [-3.643927E-05, 1.096069E-05, -4.945901E-05]),
+        ("12", [-4.010856E-06, 4.922267E-06, -5.985071E-05]),
+        ("15", [-5.159735E-06, 6.238158E-06, -6.254579E-05]),
+        ("18", [-7.024604E-06, 8.888074E-06, -6.484147E-05]),
+        ("21", [1.847433E-05, 4.129196E-06, -7.659887E-05]),
+        ("24", [2.062577E-05, 5.708471E-06, -7.780528E-05]),
+        ("27", [2.027008E-05, 7.729208E-06, -7.649550E-05]),
+    ];
+    const C3D15_U: [(&str, [f64; 3]); 21] = [
+        ("5", [-2.566623E-05, 1.092045E-05, -5.851424E-05]),
+        ("10", [-2.915128E-05, 1.045743E-05, -5.807124E-05]),
+        ("15", [-3.117870E-05, 1.067862E-05, -5.757290E-05]),
+        ("20", [-3.362444E-05, 1.117415E-05, -5.759987E-05]),
+        ("25", [-3.556263E-05, 1.193784E-05, -5.752894E-05]),
+        ("28", [-1.199633E-05, 1.009325E-05, -6.192222E-05]),
+        ("31", [-1.754376E-05, 1.072439E-05, -6.178354E-05]),
+        ("34", [-2.248044E-05, 1.298606E-05, -6.250963E-05]),
+        ("39", [-7.402430E-07, 8.971934E-06, -6.705457E-05]),
+        ("44", [-3.261799E-06, 9.770121E-06, -6.670855E-05]),
+        ("49", [-5.729364E-06, 1.085499E-05, -6.707422E-05]),
+        ("54", [-8.350740E-06, 1.241752E-05, -6.706144E-05]),
+        ("59", [-1.137977E-05, 1.428368E-05, -6.801768E-05]),
+        ("62", [1.113660E-05, 7.933576E-06, -7.564894E-05]),
+        ("65", [6.894022E-06, 1.097775E-05, -7.576163E-05]),
+        ("68", [8.847462E-07, 1.548375E-05, -7.693653E-05]),
+        ("73", [2.556698E-05, 7.082345E-06, -8.544685E-05]),
+        ("78", [2.386741E-05, 9.020423E-06, -8.510178E-05]),
+        ("83", [2.143605E-05, 1.108588E-05, -8.496601E-05]),
+        ("88", [1.878989E-05, 1.385248E-05, -8.524271E-05]),
+        ("93", [1.448657E-05, 1.679849E-05, -8.531882E-05]),
+    ];
+    /// (deck, element key, CalculiX U of TIP, CalculiX total force of FIX)
+    type Case<'a> = (&'a str, &'a str, &'a [(&'a str, [f64; 3])], [f64; 3]);
+    let cases: [Case; 2] = [
+        (
+            "wedge_dload_c3d6.inp",
+            "wedge6r",
+            &C3D6_U,
+            [3.625000E+00, -3.750000E-01, 3.750000E+00],
+        ),
+        (
+            "wedge_dload_c3d15.inp",
+            "wedge15",
+            &C3D15_U,
+            [3.375000E+00, -2.916667E-01, 4.583333E+00],
+        ),
+    ];
+    for (deck, key, ccx_u, ccx_rf) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let s = run_ok(&repo().join("crates/cli/tests/data").join(deck), dir.path());
+        assert_eq!(s["elements"][key].as_u64(), Some(16), "{}", s["elements"]);
+        let u = printed(dir.path(), "TIP", "U");
+        assert_eq!(u.len(), ccx_u.len(), "{deck}");
+        let scale = 8.5e-5;
+        for (node, want) in ccx_u {
+            let got = u.iter().find(|r| r.0 == *node).unwrap().1;
+            for c in 0..3 {
+                assert!(
+                    (got[c] - want[c]).abs() < 1e-6 * scale,
+                    "{deck} node {node} u{}: {} vs CalculiX {}",
+                    c + 1,
+                    got[c],
+                    want[c]
+                );
+            }
+        }
+        let rf = printed(dir.path(), "FIX", "RF");
+        for (got, want) in rf[0].1.iter().zip(ccx_rf) {
+            assert!((got - want).abs() < 1e-6 * 5.0, "{deck}: {rf:?}");
+        }
+        let r = &s["reactions"]["FIX"];
+        let applied = [-3.25, 0.25, -5.0];
+        for c in 0..3 {
+            assert!(
+                (r[c].as_f64().unwrap() + applied[c]).abs() < 1e-9,
+                "{deck}: {r}"
+            );
+        }
+    }
+}
+
+/// A pressure on a face a wedge does not have (`P6`, or `S6` in a
+/// `*SURFACE`) is an error naming the line and the wedge's faces.
+#[test]
+fn wedge_pressure_on_a_missing_face_names_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let text =
+        std::fs::read_to_string(repo().join("crates/cli/tests/data/wedge_dload_c3d6.inp")).unwrap();
+    let line_of = |t: &str, pat: &str| t.lines().position(|l| l == pat).unwrap() + 1;
+    let bad = text.replacen("CUT, P5, 1.5", "CUT, P6, 1.5", 1);
+    let l = line_of(&bad, "CUT, P6, 1.5");
+    let err = run_err(&write(dir.path(), "bad.inp", &bad));
+    assert!(
+        err.contains(&format!("bad.inp:{l}:")) && err.contains("P6") && err.contains("P1..P5"),
+        "{err}"
+    );
+    let bad = text.replacen("YHI, S4", "YHI, S6", 1);
+    let l = line_of(&bad, "YHIS, P, 2.");
+    let s = line_of(&bad, "*SURFACE, NAME=YHIS, TYPE=ELEMENT");
+    let err = run_err(&write(dir.path(), "bad.inp", &bad));
+    assert!(
+        err.contains(&format!("bad.inp:{l}:"))
+            && err.contains(&format!("line {s}"))
+            && err.contains("S6")
+            && err.contains("S1..S5"),
+        "{err}"
+    );
+}

@@ -488,3 +488,112 @@ displacement = { z = 1.0e-4 }
         s["reactions"]["TOP"]
     );
 }
+
+/// The prisms of T3 / T4 with wedge layers: each layer 2 x 2 cells cut into
+/// 8 wedges (`wedge6` or `wedge15`), the interface inserted between the
+/// layers' triangles (8 INTER6 or INTER12; INTER6 also with its nodal
+/// vertex rule), d = 1e14 so that the penalty term matters. Closed forms of
+/// the bonded stack (BENCHMARKS.md section 3), exact for these meshes
+/// (the solution is linear in z in each layer, with every lateral node held
+/// as in the scene): tension sigma = Delta / (H / M + 1 / d) in uniaxial
+/// strain, shear tau = Delta / (H / G + 1 / d) in simple shear; uniform in
+/// every solid point, reaction = value x area, interface jump = value / d.
+///
+/// The local frame of a triangle has e1 along its edge 0-1: along x on the
+/// generator's wedges A (cell corners 0-1-2), along the cut (1, 1, 0) /
+/// sqrt 2 on the wedges B (0-2-3). So in shear the local traction is
+/// (tau, 0, 0) on A and (tau, -tau, 0) / sqrt 2 on B: the summary's
+/// component ranges are [tau / sqrt 2, tau] and [-tau / sqrt 2, 0], the
+/// jumps the same over d; in tension (0, 0, sigma) everywhere.
+#[test]
+fn wedge_prisms_with_inter6_and_inter12_match_the_closed_forms() {
+    let d = 1e14;
+    let r = std::f64::consts::FRAC_1_SQRT_2;
+    for (element, interface, rule) in [
+        ("wedge6", "inter6", "gauss"),
+        ("wedge6", "inter6", "lobatto"),
+        ("wedge15", "inter12", "gauss"),
+    ] {
+        for (file, k, voigt, modulus) in [
+            ("prism_tension.toml", 2, 2, p_modulus()),
+            ("prism_shear_x.toml", 0, 5, shear_modulus()),
+        ] {
+            let s = run_scene(file, |t| {
+                t.replace("element = \"h27\"", &format!("element = \"{element}\""))
+                    .replace("divisions = [1, 1, 1]", "divisions = [2, 2, 1]")
+                    .replace("d = 1.0e25", &format!("d = {d:e}"))
+                    .replace(
+                        "integration = \"gauss\"",
+                        &format!("integration = \"{rule}\""),
+                    )
+            });
+            let name = format!("{file} {element} {interface} {rule}");
+            assert_eq!(s["elements"][element].as_u64(), Some(16), "{name}");
+            assert_eq!(s["elements"][interface].as_u64(), Some(8), "{name}");
+            let value = DELTA / (H / modulus + 1.0 / d);
+            for solid in ["lower", "upper"] {
+                for key in ["stress_min", "stress_max"] {
+                    let v = f(&s["solids"][solid][key][voigt]);
+                    assert!(rel(v, value) < 1e-6, "{name}: {solid} {key} {v:e}");
+                }
+            }
+            let reaction = f(&s["reactions"]["upper.z1"][k]);
+            assert!(
+                rel(reaction, value * AREA) < 1e-6,
+                "{name}: {reaction:e} vs {:e}",
+                value * AREA
+            );
+            // [min, max] of the local components 0, 1, 2
+            let want: [[f64; 2]; 3] = if k == 2 {
+                [[0.0, 0.0], [0.0, 0.0], [value, value]]
+            } else {
+                [[r * value, value], [-r * value, 0.0], [0.0, 0.0]]
+            };
+            let b = &s["interfaces"]["bond"];
+            for (c, [lo, hi]) in want.iter().enumerate() {
+                for (key, scale) in [("traction", 1.0), ("jump", 1.0 / d)] {
+                    let (gmin, gmax) = (
+                        f(&b[format!("{key}_min")][c]),
+                        f(&b[format!("{key}_max")][c]),
+                    );
+                    let tol = 1e-6 * value * scale;
+                    assert!(
+                        (gmin - lo * scale).abs() < tol && (gmax - hi * scale).abs() < tol,
+                        "{name}: {key}[{c}] in [{gmin:e}, {gmax:e}], expected [{:e}, {:e}]",
+                        lo * scale,
+                        hi * scale
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// interfaces.vtu of a wedge15 prism: the 8 INTER12 as mid-surface
+/// VTK_QUADRATIC_TRIANGLE cells (type 22, 6 points each, our node order =
+/// VTK's), on the 25 node pairs of the surface ((2 x 2 + 1)^2 for the 2 x
+/// 2 cells); results.vtu holds the 16 wedges as VTK_QUADRATIC_WEDGE (26).
+#[test]
+fn wedge15_prism_writes_quadratic_triangles() {
+    let text = std::fs::read_to_string(repo().join("examples/paper/prism_tension.toml"))
+        .unwrap()
+        .replace("element = \"h27\"", "element = \"wedge15\"")
+        .replace("divisions = [1, 1, 1]", "divisions = [2, 2, 1]");
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(dir.path(), "w.toml", &text);
+    run_ok(&scene, &dir.path().join("out"));
+    let ints = |file: &str, name: &str| -> Vec<u64> {
+        let vtu = std::fs::read_to_string(dir.path().join("out").join(file)).unwrap();
+        let at = vtu.find(&format!("Name=\"{name}\"")).unwrap();
+        let body = &vtu[at..];
+        let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+        body.split_whitespace()
+            .map(|t| t.parse().unwrap())
+            .collect()
+    };
+    assert_eq!(ints("interfaces.vtu", "types"), vec![22; 8]);
+    let conn = ints("interfaces.vtu", "connectivity");
+    assert_eq!(conn.len(), 48);
+    assert_eq!(conn.iter().max(), Some(&24));
+    assert_eq!(ints("results.vtu", "types"), vec![26; 16]);
+}

@@ -25,12 +25,32 @@
 //! corners 0 (-1,-1), 1 (1,-1), 2 (1,1), 3 (-1,1); mid-sides 4: 0-1, 5: 1-2,
 //! 6: 2-3, 7: 3-0; centre 8. The face normal is V_xi x V_eta (right-hand rule).
 //!
+//! Triangles (Tri3 / Tri6), natural coordinates (r, s) with r, s >= 0,
+//! r + s <= 1 (the bottom triangle of [`WEDGE15_NODES`]): corners 0 (0,0),
+//! 1 (1,0), 2 (0,1); mid-edges 3: 0-1, 4: 1-2, 5: 2-0 ([`TRI6_NODES`]). The
+//! face normal is V_r x V_s (right-hand rule on 0-1-2).
+//!
+//! ```text
+//!   s
+//!   |
+//!   2
+//!   | \
+//!   5   4
+//!   |     \
+//!   0 --3-- 1 --- r
+//! ```
+//!
 //! Hexahedron faces are listed in Abaqus order S1..S6 (z-, z+, y-, x+, y+, x-),
 //! each as a quadrilateral whose right-hand normal points *out* of the cell.
+//! Wedge faces are listed in Abaqus / CalculiX order S1..S5 (bottom
+//! triangle, top triangle, then the sides 1-2-5-4, 2-3-6-5, 3-1-4-6 in the
+//! manuals' 1-based labels), each a triangle or quadrilateral whose
+//! right-hand normal points out of the cell ([`WEDGE_FACES`]).
 //!
-//! Interface cells (INTER8 / INTER16 / INTER18): the nodes of the bottom face
-//! then those of the top face, each in quadrilateral order; the normal points
-//! from bottom to top.
+//! Interface cells: the nodes of the bottom face then those of the top
+//! face, each in the face's order (quadrilateral for INTER8 / INTER16 /
+//! INTER18, triangle for INTER6 / INTER12); the normal points from bottom
+//! to top.
 
 /// Every cell shape Junta knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -44,6 +64,16 @@ pub enum CellShape {
     Inter8,
     Inter16,
     Inter18,
+    /// 3-node linear triangle (a wedge face, or a side of INTER6).
+    Tri3,
+    /// 6-node quadratic triangle (a Wedge15 face, or a side of INTER12).
+    Tri6,
+    /// 6-node interface (two Tri3 sides: bottom 0-2, top copies 3-5);
+    /// matches the triangular faces of Wedge6 (Abaqus COH3D6).
+    Inter6,
+    /// 12-node interface (two Tri6 sides: bottom 0-5, top copies 6-11);
+    /// matches the triangular faces of Wedge15.
+    Inter12,
     /// 6-node linear wedge (pentahedron), Abaqus / CalculiX C3D6 order.
     Wedge6,
     /// 15-node serendipity wedge, Abaqus / CalculiX C3D15 order.
@@ -81,6 +111,36 @@ pub const WEDGE15_NODES: [[f64; 3]; 15] = [
 /// pointing out of the cell, so nodes 1 and 2 (4 and 5) swap and the
 /// mid-edge nodes follow.
 pub const WEDGE15_TO_VTK: [usize; 15] = [0, 2, 1, 3, 5, 4, 8, 7, 6, 11, 10, 9, 12, 14, 13];
+
+/// Natural coordinates `(r, s)` of the 6 triangle nodes (the first 3 serve
+/// Tri3): the bottom triangle of [`WEDGE15_NODES`] (nodes 0, 1, 2, 6, 7, 8).
+pub const TRI6_NODES: [[f64; 2]; 6] = [
+    [0.0, 0.0],
+    [1.0, 0.0],
+    [0.0, 1.0],
+    [0.5, 0.0],
+    [0.5, 0.5],
+    [0.0, 0.5],
+];
+
+/// Wedge faces (Abaqus / CalculiX S1..S5), each as local node ids with
+/// outward right-hand normal: triangles in Tri6 order (take the first 3 for
+/// Wedge6), quadrilaterals in Q8 order (take the first 4 for Wedge6).
+///
+/// ```text
+/// S1 bottom  0-2-1  (Abaqus 1-2-3; reversed: its right-hand normal points in)
+/// S2 top     3-4-5  (4-5-6)
+/// S3 side    0-1-4-3  (1-2-5-4, the face s = 0)
+/// S4 side    1-2-5-4  (2-3-6-5, the face r + s = 1)
+/// S5 side    2-0-3-5  (3-1-4-6, the face r = 0)
+/// ```
+pub const WEDGE_FACES: [&[usize]; 5] = [
+    &[0, 2, 1, 8, 7, 6],
+    &[3, 4, 5, 9, 10, 11],
+    &[0, 1, 4, 3, 6, 13, 9, 12],
+    &[1, 2, 5, 4, 7, 14, 10, 13],
+    &[2, 0, 3, 5, 8, 12, 11, 14],
+];
 
 /// Natural coordinates of the 27 hexahedron nodes (the first 8 / 20 serve H8 / H20).
 pub const HEX27_NODES: [[f64; 3]; 27] = [
@@ -154,6 +214,10 @@ impl CellShape {
             CellShape::Inter8 => 8,
             CellShape::Inter16 => 16,
             CellShape::Inter18 => 18,
+            CellShape::Tri3 => 3,
+            CellShape::Tri6 => 6,
+            CellShape::Inter6 => 6,
+            CellShape::Inter12 => 12,
             CellShape::Wedge6 => 6,
             CellShape::Wedge15 => 15,
         }
@@ -175,55 +239,118 @@ impl CellShape {
     pub fn is_interface(self) -> bool {
         matches!(
             self,
-            CellShape::Inter8 | CellShape::Inter16 | CellShape::Inter18
+            CellShape::Inter8
+                | CellShape::Inter16
+                | CellShape::Inter18
+                | CellShape::Inter6
+                | CellShape::Inter12
         )
     }
 
-    /// The quadrilateral shape of a face (solids) or of each side (interfaces).
+    /// True for the surface shapes (quadrilaterals and triangles).
+    pub fn is_surface(self) -> bool {
+        matches!(
+            self,
+            CellShape::Quad4
+                | CellShape::Quad8
+                | CellShape::Quad9
+                | CellShape::Tri3
+                | CellShape::Tri6
+        )
+    }
+
+    /// The shape of every face of a hexahedron, or of each side of an
+    /// interface. `None` for wedges (whose faces have two shapes: see
+    /// [`CellShape::face_shape_of`]) and for surfaces.
     pub fn face_shape(self) -> Option<CellShape> {
         match self {
             CellShape::Hex8 | CellShape::Inter8 => Some(CellShape::Quad4),
             CellShape::Hex20 | CellShape::Inter16 => Some(CellShape::Quad8),
             CellShape::Hex27 | CellShape::Inter18 => Some(CellShape::Quad9),
+            CellShape::Inter6 => Some(CellShape::Tri3),
+            CellShape::Inter12 => Some(CellShape::Tri6),
             _ => None,
         }
     }
 
-    /// Number of faces (6 for hexahedra, 0 otherwise: wedge faces are not
-    /// yet matched for interface insertion).
-    pub fn num_faces(self) -> usize {
-        if self.face_shape().is_some() && self.is_solid() {
-            6
-        } else {
-            0
+    /// The shape of face `f` of a solid (`None` if `f >= num_faces()` or
+    /// the shape is not a solid): quadrilaterals for hexahedra; for wedges
+    /// triangles (S1, S2) and quadrilaterals (S3..S5).
+    pub fn face_shape_of(self, f: usize) -> Option<CellShape> {
+        if f >= self.num_faces() {
+            return None;
+        }
+        match self {
+            CellShape::Wedge6 if f < 2 => Some(CellShape::Tri3),
+            CellShape::Wedge6 => Some(CellShape::Quad4),
+            CellShape::Wedge15 if f < 2 => Some(CellShape::Tri6),
+            CellShape::Wedge15 => Some(CellShape::Quad8),
+            s => s.face_shape(),
         }
     }
 
-    /// Local node ids of face `f` (Q-order, outward normal). Empty for non-solids.
+    /// Number of faces of a solid: 6 for hexahedra, 5 for wedges, 0 for
+    /// other shapes.
+    pub fn num_faces(self) -> usize {
+        match self {
+            CellShape::Hex8 | CellShape::Hex20 | CellShape::Hex27 => 6,
+            CellShape::Wedge6 | CellShape::Wedge15 => 5,
+            _ => 0,
+        }
+    }
+
+    /// Local node ids of face `f` in its face shape's order, outward normal
+    /// ([`HEX_FACES`], [`WEDGE_FACES`]). Empty for non-solids and for
+    /// `f >= num_faces()`.
     pub fn face_nodes(self, f: usize) -> &'static [usize] {
-        match (self, self.face_shape()) {
-            (s, Some(q)) if s.is_solid() => &HEX_FACES[f][..q.num_nodes()],
+        match (self, self.face_shape_of(f)) {
+            (CellShape::Wedge6 | CellShape::Wedge15, Some(q)) => &WEDGE_FACES[f][..q.num_nodes()],
+            (_, Some(q)) => &HEX_FACES[f][..q.num_nodes()],
             _ => &[],
         }
     }
 
-    /// The interface shape that matches a solid shape face to face.
+    /// Number of corner nodes of a surface shape (3 or 4; 0 otherwise).
+    /// Corners come first in every node order.
+    pub fn num_corners(self) -> usize {
+        match self {
+            CellShape::Tri3 | CellShape::Tri6 => 3,
+            CellShape::Quad4 | CellShape::Quad8 | CellShape::Quad9 => 4,
+            _ => 0,
+        }
+    }
+
+    /// The interface shape that matches a face shape (`Quad4` -> `Inter8`,
+    /// `Quad8` -> `Inter16`, `Quad9` -> `Inter18`, `Tri3` -> `Inter6`,
+    /// `Tri6` -> `Inter12`), or a solid by its principal faces: hexahedra
+    /// by their quadrilaterals (`Hex8` -> `Inter8`, ...), wedges by their
+    /// triangles (`Wedge6` -> `Inter6`, `Wedge15` -> `Inter12`: the faces
+    /// between wedge layers; a wedge's quadrilateral sides match `Inter8` /
+    /// `Inter16`, see [`CellShape::face_shape_of`]).
     pub fn matching_interface(self) -> Option<CellShape> {
         match self {
-            CellShape::Hex8 => Some(CellShape::Inter8),
-            CellShape::Hex20 => Some(CellShape::Inter16),
-            CellShape::Hex27 => Some(CellShape::Inter18),
+            CellShape::Hex8 | CellShape::Quad4 => Some(CellShape::Inter8),
+            CellShape::Hex20 | CellShape::Quad8 => Some(CellShape::Inter16),
+            CellShape::Hex27 | CellShape::Quad9 => Some(CellShape::Inter18),
+            CellShape::Wedge6 | CellShape::Tri3 => Some(CellShape::Inter6),
+            CellShape::Wedge15 | CellShape::Tri6 => Some(CellShape::Inter12),
             _ => None,
         }
     }
 
     /// VTK cell type id (our node order equals VTK's for all shapes but the
-    /// wedges, see [`WEDGE15_TO_VTK`]).
+    /// wedges, see [`WEDGE15_TO_VTK`]). Interfaces are written as their
+    /// mid-surface (one point per node pair), so their type is that of
+    /// their side: VTK_QUAD (9), VTK_QUADRATIC_QUAD (23),
+    /// VTK_BIQUADRATIC_QUAD (28), VTK_TRIANGLE (5), VTK_QUADRATIC_TRIANGLE
+    /// (22; corners then mid-edges 0-1, 1-2, 2-0, as ours).
     pub fn vtk_type(self) -> u8 {
         match self {
             CellShape::Quad4 | CellShape::Inter8 => 9,
             CellShape::Quad8 | CellShape::Inter16 => 23,
             CellShape::Quad9 | CellShape::Inter18 => 28,
+            CellShape::Tri3 | CellShape::Inter6 => 5,
+            CellShape::Tri6 | CellShape::Inter12 => 22,
             CellShape::Hex8 => 12,
             CellShape::Hex20 => 25,
             CellShape::Hex27 => 29,
@@ -244,6 +371,10 @@ impl CellShape {
             CellShape::Inter8 => "inter8",
             CellShape::Inter16 => "inter16",
             CellShape::Inter18 => "inter18",
+            CellShape::Tri3 => "tri3",
+            CellShape::Tri6 => "tri6",
+            CellShape::Inter6 => "inter6",
+            CellShape::Inter12 => "inter12",
             CellShape::Wedge6 => "wedge6",
             CellShape::Wedge15 => "wedge15",
         }
@@ -263,6 +394,58 @@ mod tests {
     }
     fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
         [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    }
+
+    /// Wedge faces: outward normals (the face centre minus the cell centre
+    /// has a positive component along it), mid-edge nodes at midpoints,
+    /// face shapes and counts, and Tri6 = the wedge's bottom triangle.
+    #[test]
+    fn wedge_faces_point_outward_and_midnodes_are_midpoints() {
+        let centre = [1.0 / 3.0, 1.0 / 3.0, 0.0];
+        for s in [CellShape::Wedge6, CellShape::Wedge15] {
+            assert_eq!(s.num_faces(), 5);
+            assert_eq!(s.face_nodes(5), &[] as &[usize]);
+            assert_eq!(s.face_shape_of(5), None);
+        }
+        for (f, face) in WEDGE_FACES.iter().enumerate() {
+            let q = CellShape::Wedge15.face_shape_of(f).unwrap();
+            let k = q.num_corners();
+            assert_eq!(face.len(), 2 * k);
+            assert_eq!(CellShape::Wedge15.face_nodes(f), *face);
+            assert_eq!(CellShape::Wedge6.face_nodes(f), &face[..k]);
+            let p: Vec<[f64; 3]> = face.iter().map(|&i| WEDGE15_NODES[i]).collect();
+            let n = cross(sub(p[1], p[0]), sub(p[k - 1], p[0]));
+            let mut c = [0.0; 3];
+            for x in &p[..k] {
+                for d in 0..3 {
+                    c[d] += x[d] / k as f64;
+                }
+            }
+            let out = sub(c, centre);
+            let dot = n[0] * out[0] + n[1] * out[1] + n[2] * out[2];
+            assert!(dot > 0.0, "face {face:?} normal {n:?} not outward");
+            for j in 0..k {
+                let (a, b, m) = (p[j], p[(j + 1) % k], p[k + j]);
+                for d in 0..3 {
+                    assert_eq!(m[d], 0.5 * (a[d] + b[d]), "face {face:?} mid-edge {j}");
+                }
+            }
+        }
+        for (a, &w) in [0, 1, 2, 6, 7, 8].iter().enumerate() {
+            assert_eq!(TRI6_NODES[a], [WEDGE15_NODES[w][0], WEDGE15_NODES[w][1]]);
+        }
+        assert_eq!(
+            CellShape::Wedge6.matching_interface(),
+            Some(CellShape::Inter6)
+        );
+        assert_eq!(
+            CellShape::Wedge15.matching_interface(),
+            Some(CellShape::Inter12)
+        );
+        assert_eq!(CellShape::Inter6.face_shape(), Some(CellShape::Tri3));
+        assert_eq!(CellShape::Inter12.face_shape(), Some(CellShape::Tri6));
+        assert_eq!(CellShape::Inter12.num_nodes(), 12);
+        assert!(CellShape::Inter6.is_interface() && !CellShape::Tri3.is_interface());
     }
 
     #[test]

@@ -304,3 +304,144 @@ fn merge_of_larger_quadratic_boxes() {
     assert_eq!(ins.duplicated_nodes, 21 * 21);
     assert_eq!(m.nodes.len(), 21 * 21 * 22);
 }
+
+// ------------------------------------------------------------ wedges
+
+/// Two wedge layers (2 x 2 cells, 8 wedges each) stacked in z share 8
+/// triangles: INTER6 / INTER12 elements in
+/// the bottom wedges' S2 order (normal +z), the whole triangulated surface
+/// duplicated once ((n + 1)^2 nodes for Wedge6, (2n + 1)^2 for Wedge15: the
+/// cut's mid-nodes included), node sets by the usual rule.
+#[test]
+fn wedge_layers_get_triangular_interfaces() {
+    for (shape, ishape, surface) in [
+        (CellShape::Wedge6, CellShape::Inter6, 9),
+        (CellShape::Wedge15, CellShape::Inter12, 25),
+    ] {
+        let mut m = stacked(shape);
+        let before = m.nodes.len();
+        let ins = insert_interface(&mut m, "lower", "upper", "glue", "penalty").unwrap();
+        assert_eq!(ins.elements, 8, "{shape:?}");
+        let ib = &m.blocks[ins.block];
+        assert_eq!(ib.shape, ishape);
+        assert_eq!(Some(ishape), shape.matching_interface());
+        assert_eq!(ib.element_type, ishape.name());
+        assert_eq!(ins.duplicated_nodes, surface, "{shape:?}");
+        assert_eq!(m.nodes.len(), before + surface);
+        m.validate().unwrap();
+        let (lower, upper) = (nodes_of_set(&m, "lower"), nodes_of_set(&m, "upper"));
+        let half = ib.nodes_per_element() / 2;
+        for e in 0..ib.len() {
+            let c = ib.element(e);
+            for i in 0..half {
+                let (b, t) = (c[i], c[half + i]);
+                assert_ne!(b, t);
+                assert_eq!(m.nodes[b], m.nodes[t]);
+                assert_eq!(m.nodes[b][2], 0.5);
+                assert!(lower.contains(&b) && !upper.contains(&b));
+                assert!(upper.contains(&t) && !lower.contains(&t));
+            }
+            // triangle order: corners then mid-edges 0-1, 1-2, 2-0
+            if half == 6 {
+                for (k, (i, j)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+                    for d in 0..3 {
+                        let mid = 0.5 * (m.nodes[c[i]][d] + m.nodes[c[j]][d]);
+                        assert!((m.nodes[c[3 + k]][d] - mid).abs() < 1e-15);
+                    }
+                }
+            }
+            let n = normal(&m, ins.block, e);
+            assert!((n[2] - 1.0).abs() < 1e-12, "{shape:?} normal {n:?}");
+        }
+        assert_eq!(m.node_sets["upper.z0"], m.node_sets["glue.top"]);
+        assert_eq!(m.node_sets["lower.z1"], m.node_sets["glue.bottom"]);
+        assert_eq!(interface_pairs(&m, ins.block).len(), surface);
+    }
+}
+
+/// Solids side by side in x share quadrilaterals: a wedge's side against a
+/// wedge's side, or against a hexahedron's face of the same order, gets
+/// INTER8 (Quad4) / INTER16 (Quad8) with normal +x; a Wedge15 side (Q8)
+/// against a Hex27 face (Q9) is a mismatch of orders.
+#[test]
+fn wedge_sides_get_quadrilateral_interfaces() {
+    for (left, right, ishape) in [
+        (CellShape::Wedge6, CellShape::Wedge6, CellShape::Inter8),
+        (CellShape::Hex8, CellShape::Wedge6, CellShape::Inter8),
+        (CellShape::Wedge15, CellShape::Wedge15, CellShape::Inter16),
+        (CellShape::Wedge15, CellShape::Hex20, CellShape::Inter16),
+    ] {
+        let a = boxm([0.0; 3], [0.5, 1.0, 1.0], [1, 2, 2], left);
+        let b = boxm([0.5, 0.0, 0.0], [0.5, 1.0, 1.0], [1, 2, 2], right);
+        let mut m = merge(vec![("left".into(), a), ("right".into(), b)], 1e-8).unwrap();
+        let ins = insert_interface(&mut m, "left", "right", "i", "law").unwrap();
+        let name = format!("{left:?}/{right:?}");
+        assert_eq!(m.blocks[ins.block].shape, ishape, "{name}");
+        assert_eq!(ins.elements, 4, "{name}");
+        for e in 0..ins.elements {
+            let n = normal(&m, ins.block, e);
+            assert!((n[0] - 1.0).abs() < 1e-12, "{name}: normal {n:?}");
+        }
+        assert_eq!(m.node_sets["right.x0"], m.node_sets["i.top"], "{name}");
+    }
+    let a = boxm([0.0; 3], [0.5, 1.0, 1.0], [1, 2, 2], CellShape::Wedge15);
+    let b = boxm(
+        [0.5, 0.0, 0.0],
+        [0.5, 1.0, 1.0],
+        [1, 2, 2],
+        CellShape::Hex27,
+    );
+    let mut m = merge(vec![("a".into(), a), ("b".into(), b)], 1e-8).unwrap();
+    let err = insert_interface(&mut m, "a", "b", "i", "law")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("mismatched element orders") && err.contains("quad8 against quad9"),
+        "{err}"
+    );
+}
+
+/// A surface of triangles (wedges on wedges) and quadrilaterals (hexahedra
+/// on hexahedra) side by side is refused, naming both face shapes and both
+/// solids, and the mesh is left unchanged (module docs: one face shape per
+/// interface block).
+#[test]
+fn mixed_triangle_and_quadrilateral_surface_is_refused() {
+    let parts = vec![
+        (
+            "lw".to_string(),
+            boxm([0.0; 3], [1.0, 1.0, 0.5], [1, 1, 1], CellShape::Wedge6),
+        ),
+        (
+            "lh".to_string(),
+            boxm([1.0, 0.0, 0.0], [1.0, 1.0, 0.5], [1, 1, 1], CellShape::Hex8),
+        ),
+        (
+            "uw".to_string(),
+            boxm(
+                [0.0, 0.0, 0.5],
+                [1.0, 1.0, 0.5],
+                [1, 1, 1],
+                CellShape::Wedge6,
+            ),
+        ),
+        (
+            "uh".to_string(),
+            boxm([1.0, 0.0, 0.5], [1.0, 1.0, 0.5], [1, 1, 1], CellShape::Hex8),
+        ),
+    ];
+    let mut m = merge(parts, 1e-8).unwrap();
+    for (set, a, b) in [("lower", "lw", "lh"), ("upper", "uw", "uh")] {
+        let mut v = m.element_sets[a].clone();
+        v.extend(m.element_sets[b].iter().copied());
+        m.element_sets.insert(set.into(), v);
+    }
+    let before = m.clone();
+    let err = insert_interface(&mut m, "lower", "upper", "glue", "law")
+        .unwrap_err()
+        .to_string();
+    for want in ["tri3", "quad4", "wedge6", "hex8", "glue", "one face shape"] {
+        assert!(err.contains(want), "`{want}` missing from: {err}");
+    }
+    assert_eq!(m, before);
+}

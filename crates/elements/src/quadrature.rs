@@ -1,5 +1,6 @@
 //! Numerical integration on `[-1, 1]^d`: Gauss-Legendre and Gauss-Lobatto
-//! rules in 1D and their tensor products in 2D and 3D.
+//! rules in 1D and their tensor products in 2D and 3D; symmetric rules on
+//! the unit triangle and their products with a line rule on the wedge.
 //!
 //! * Gauss-Legendre with `n = 1..=5` points integrates polynomials of degree
 //!   `2n - 1` exactly: `∫_{-1}^{1} p(x) dx = Σ_i w_i p(x_i)`.
@@ -10,6 +11,11 @@
 //! f(x_i, x_j, x_k)`, integrates exactly every polynomial whose degree in
 //! *each* variable is at most the 1D degree. Points are ordered with the
 //! first coordinate varying fastest: index `(k n + j) n + i`.
+//!
+//! Triangle rules ([`triangle_rule`]) on `r, s >= 0, r + s <= 1` (weights
+//! summing to the area 1/2) integrate exactly every polynomial `r^i s^j`
+//! of total degree `i + j` at most their degree, whose integral is
+//! `i! j! / (i + j + 2)!`.
 //!
 //! Rules are built once (when an element is built) and then only read.
 
@@ -248,29 +254,91 @@ pub fn gauss_lobatto_3d(n: usize) -> Result<Rule<3>, QuadratureError> {
     Ok(tensor_3d(&gauss_lobatto(n)?))
 }
 
-/// Wedge rule: a triangle rule (`r, s >= 0, r + s <= 1`, weights summing to
-/// the area 1/2) times an `n_line`-point Gauss-Legendre rule in `zeta`.
+// Triangle rules: (point, weight) on the unit triangle, weights sum 1/2.
+const TRI1: [([f64; 2], f64); 1] = [([1.0 / 3.0, 1.0 / 3.0], 0.5)];
+const TRI3: [([f64; 2], f64); 3] = [
+    ([1.0 / 6.0, 1.0 / 6.0], 1.0 / 6.0),
+    ([2.0 / 3.0, 1.0 / 6.0], 1.0 / 6.0),
+    ([1.0 / 6.0, 2.0 / 3.0], 1.0 / 6.0),
+];
+// Strang-Fix / Dunavant degree 4: a = (8 - sqrt 10 + sqrt(38 - 44 sqrt(2/5)))
+// / 18, b = the same with - before the last sqrt; weights (620 +- sqrt(213125
+// - 53320 sqrt 10)) / 3720 times the area 1/2 (values to 30 digits with
+// mpmath, rounded to f64).
+const TRI6_A: f64 = 0.445_948_490_915_964_9;
+const TRI6_B: f64 = 0.091_576_213_509_770_74;
+const TRI6_WA: f64 = 0.111_690_794_839_005_74;
+const TRI6_WB: f64 = 0.054_975_871_827_660_935;
+const TRI6: [([f64; 2], f64); 6] = [
+    ([TRI6_A, TRI6_A], TRI6_WA),
+    ([1.0 - 2.0 * TRI6_A, TRI6_A], TRI6_WA),
+    ([TRI6_A, 1.0 - 2.0 * TRI6_A], TRI6_WA),
+    ([TRI6_B, TRI6_B], TRI6_WB),
+    ([1.0 - 2.0 * TRI6_B, TRI6_B], TRI6_WB),
+    ([TRI6_B, 1.0 - 2.0 * TRI6_B], TRI6_WB),
+];
+const TRI_VERTEX: [([f64; 2], f64); 3] = [
+    ([0.0, 0.0], 1.0 / 6.0),
+    ([1.0, 0.0], 1.0 / 6.0),
+    ([0.0, 1.0], 1.0 / 6.0),
+];
+
+fn tri_table(n: usize) -> Result<&'static [([f64; 2], f64)], QuadratureError> {
+    match n {
+        1 => Ok(&TRI1),
+        3 => Ok(&TRI3),
+        6 => Ok(&TRI6),
+        n => Err(QuadratureError::UnsupportedPoints {
+            family: "triangle",
+            n,
+            valid: "1, 3, 6",
+        }),
+    }
+}
+
+/// Degree of the `n`-point [`triangle_rule`] (the highest total degree it
+/// integrates exactly), `None` for an unsupported count.
+pub fn triangle_rule_degree(n: usize) -> Option<usize> {
+    match n {
+        1 => Some(1),
+        3 => Some(2),
+        6 => Some(4),
+        _ => None,
+    }
+}
+
+/// Symmetric Gauss rule on the unit triangle `r, s >= 0, r + s <= 1`
+/// (weights sum to the area 1/2), interior points only:
 ///
-/// Triangle rules: `n_tri = 1` the centroid (degree 1); `n_tri = 3` the
-/// points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3) with weights 1/6 (degree 2,
-/// Strang-Fix; the rule CalculiX uses for C3D15).
+/// * `n = 1`: the centroid, weight 1/2 (degree 1);
+/// * `n = 3`: (1/6, 1/6), (2/3, 1/6), (1/6, 2/3), weights 1/6 (degree 2,
+///   Strang-Fix; the rule CalculiX uses for C3D15);
+/// * `n = 6`: the orbits of (a, a) and (b, b), a = 0.44594849..., b =
+///   0.09157621..., weights 0.11169079... and 0.05497587... (degree 4,
+///   Strang-Fix / Dunavant 1985).
+pub fn triangle_rule(n: usize) -> Result<Rule<2>, QuadratureError> {
+    let t = tri_table(n)?;
+    Ok(Rule {
+        points: t.iter().map(|p| p.0).collect(),
+        weights: t.iter().map(|p| p.1).collect(),
+    })
+}
+
+/// Vertex (nodal, Newton-Cotes) rule on the unit triangle: the three
+/// corners, weights 1/6 (degree 1). The triangle's analogue of the 2x2
+/// Gauss-Lobatto rule: nodal integration of a linear triangle.
+pub fn triangle_vertex_rule() -> Rule<2> {
+    Rule {
+        points: TRI_VERTEX.iter().map(|p| p.0).collect(),
+        weights: TRI_VERTEX.iter().map(|p| p.1).collect(),
+    }
+}
+
+/// Wedge rule: a triangle rule ([`triangle_rule`]: `n_tri` = 1, 3 or 6
+/// points) times an `n_line`-point Gauss-Legendre rule in `zeta`.
 pub fn wedge_rule(n_tri: usize, n_line: usize) -> Result<Rule<3>, QuadratureError> {
     let line = gauss_legendre(n_line)?;
-    let tri: &[([f64; 2], f64)] = match n_tri {
-        1 => &[([1.0 / 3.0, 1.0 / 3.0], 0.5)],
-        3 => &[
-            ([1.0 / 6.0, 1.0 / 6.0], 1.0 / 6.0),
-            ([2.0 / 3.0, 1.0 / 6.0], 1.0 / 6.0),
-            ([1.0 / 6.0, 2.0 / 3.0], 1.0 / 6.0),
-        ],
-        n => {
-            return Err(QuadratureError::UnsupportedPoints {
-                family: "triangle",
-                n,
-                valid: "1, 3",
-            })
-        }
-    };
+    let tri = tri_table(n_tri)?;
     let mut points = Vec::with_capacity(tri.len() * line.len());
     let mut weights = Vec::with_capacity(tri.len() * line.len());
     for (&z, &wz) in line.points.iter().zip(line.weights) {
@@ -351,6 +419,59 @@ mod tests {
         assert!(gauss_legendre(6).is_err());
         let e = gauss_lobatto(1).unwrap_err();
         assert!(e.to_string().contains("2, 3, 4, 5"), "{e}");
+    }
+
+    /// `∫ r^i s^j` over the unit triangle: `i! j! / (i + j + 2)!`.
+    fn tri_exact(i: u32, j: u32) -> f64 {
+        let f = |k: u32| (1..=k).map(f64::from).product::<f64>();
+        f(i) * f(j) / f(i + j + 2)
+    }
+
+    /// Every triangle rule integrates the monomials of its degree exactly
+    /// (closed form above) and misses some monomial of the next degree; the
+    /// vertex rule is exact to degree 1; the wedge rule is the product.
+    #[test]
+    fn triangle_rules_are_exact_to_their_degree() {
+        let check = |r: &Rule<2>, deg: u32, name: &str| {
+            assert!(
+                (r.weights.iter().sum::<f64>() - 0.5).abs() < 1e-15,
+                "{name}"
+            );
+            for p in &r.points {
+                assert!(p[0] >= 0.0 && p[1] >= 0.0 && p[0] + p[1] <= 1.0, "{name}");
+            }
+            for i in 0..=deg {
+                for j in 0..=(deg - i) {
+                    let v = r.integrate(|p| p[0].powi(i as i32) * p[1].powi(j as i32));
+                    assert!(
+                        (v - tri_exact(i, j)).abs() < 1e-16,
+                        "{name} r^{i} s^{j}: {v} vs {}",
+                        tri_exact(i, j)
+                    );
+                }
+            }
+            let k = deg + 1;
+            let missed = (0..=k).any(|i| {
+                let v = r.integrate(|p| p[0].powi(i as i32) * p[1].powi((k - i) as i32));
+                (v - tri_exact(i, k - i)).abs() > 1e-8
+            });
+            assert!(missed, "{name} unexpectedly exact at degree {k}");
+        };
+        for n in [1, 3, 6] {
+            let r = triangle_rule(n).unwrap();
+            assert_eq!(r.len(), n);
+            let deg = triangle_rule_degree(n).unwrap() as u32;
+            check(&r, deg, &format!("triangle {n}"));
+        }
+        check(&triangle_vertex_rule(), 1, "vertex");
+        let e = triangle_rule(4).unwrap_err().to_string();
+        assert!(e.contains("1, 3, 6"), "{e}");
+        assert_eq!(triangle_rule_degree(7), None);
+        // wedge: triangle x line, r^2 s^2 z^4 with the 6 x 3 rule
+        let w = wedge_rule(6, 3).unwrap();
+        assert_eq!(w.len(), 18);
+        let v = w.integrate(|p| (p[0] * p[1]).powi(2) * p[2].powi(4));
+        assert!((v - tri_exact(2, 2) * exact(4)).abs() < 1e-16);
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! Lagrange and serendipity shape functions of quadrilaterals and hexahedra,
-//! with their derivatives in natural coordinates.
+//! Lagrange shape functions of triangles and wedges, with their derivatives
+//! in natural coordinates.
 //!
 //! Node orders are those of [`junta_core::topology`] (VTK order): the
 //! natural coordinates of node `a` are `QUAD9_NODES[a]` / `HEX27_NODES[a]`,
@@ -44,6 +45,12 @@
 //!   mid-edges with `xi_a = 0`: `N_a = (1 - xi^2)(1 + eta eta_a)(1 + zeta zeta_a) / 4`,
 //!   and symmetrically for `eta_a = 0`, `zeta_a = 0`.
 //!
+//! * **Tri3 / Tri6** ([`tri_shape`]; natural coordinates `(r, s)`, `r, s >=
+//!   0`, `r + s <= 1`, nodes [`junta_core::topology::TRI6_NODES`]) with the
+//!   area coordinates `L = (1 - r - s, r, s)`: Tri3 `N_i = L_i`; Tri6
+//!   corners `N_i = L_i (2 L_i - 1)`, mid-edge of edge `i-j`
+//!   `N = 4 L_i L_j`.
+//!
 //! All satisfy `N_a(x_b) = delta_ab` and `sum_a N_a = 1`, and reproduce
 //! linear fields exactly; Q8, Q9, H20, H27 also reproduce complete quadratic
 //! polynomials.
@@ -51,7 +58,7 @@
 //! The functions write into caller buffers (`n.len() >= num_nodes`,
 //! `dn.len() >= num_nodes`) and never allocate. `dn[a][j] = dN_a / d xi_j`.
 
-use junta_core::topology::{CellShape, HEX27_NODES, QUAD9_NODES};
+use junta_core::topology::{CellShape, HEX27_NODES, QUAD9_NODES, TRI6_NODES};
 
 /// 1D linear function of the node at `a = ±1` and its derivative.
 #[inline(always)]
@@ -122,6 +129,63 @@ pub fn quad_shape(shape: CellShape, xi: [f64; 2], n: &mut [f64], dn: &mut [[f64;
             }
         }
         s => panic!("quad_shape called with non-quadrilateral shape {s:?}"),
+    }
+}
+
+/// Shape functions of a triangle (Tri3 or Tri6) at `xi = [r, s]` (`r, s >=
+/// 0`, `r + s <= 1`), in the node order of
+/// [`junta_core::topology::TRI6_NODES`] (the bottom triangle of a wedge:
+/// corners 0, 1, 2 at (0,0), (1,0), (0,1); mid-edges 3: 0-1, 4: 1-2, 5: 2-0).
+///
+/// With the area coordinates `L = (1 - r - s, r, s)`:
+///
+/// ```text
+/// Tri3:  N_i = L_i
+/// Tri6:  corner i    N_i = L_i (2 L_i - 1),   dN_i = (4 L_i - 1) dL_i
+///        edge i-j    N   = 4 L_i L_j,         dN   = 4 (L_j dL_i + L_i dL_j)
+/// ```
+///
+/// `dn[a] = [dN_a/dr, dN_a/ds]`. This is the function the interface
+/// elements use on each side of INTER6 / INTER12.
+///
+/// # Panics
+/// If `shape` is not `Tri3` or `Tri6`, or a buffer is shorter than the node
+/// count (both are programming errors).
+pub fn tri_shape(shape: CellShape, xi: [f64; 2], n: &mut [f64], dn: &mut [[f64; 2]]) {
+    let [r, s] = xi;
+    let l = [1.0 - r - s, r, s];
+    // dL_i/d(r, s)
+    const DL: [[f64; 2]; 3] = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
+    match shape {
+        CellShape::Tri3 => {
+            n[..3].copy_from_slice(&l);
+            dn[..3].copy_from_slice(&DL);
+        }
+        CellShape::Tri6 => {
+            for i in 0..3 {
+                n[i] = l[i] * (2.0 * l[i] - 1.0);
+                let d = 4.0 * l[i] - 1.0;
+                dn[i] = [d * DL[i][0], d * DL[i][1]];
+            }
+            for (k, (i, j)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+                n[3 + k] = 4.0 * l[i] * l[j];
+                dn[3 + k] = [
+                    4.0 * (l[j] * DL[i][0] + l[i] * DL[j][0]),
+                    4.0 * (l[j] * DL[i][1] + l[i] * DL[j][1]),
+                ];
+            }
+        }
+        s => panic!("tri_shape called with non-triangular shape {s:?}"),
+    }
+}
+
+/// Shape functions of any surface (quadrilateral or triangle): dispatches
+/// to [`quad_shape`] or [`tri_shape`]. `xi` is `(xi, eta)` in `[-1, 1]^2`
+/// for quadrilaterals, `(r, s)` in the unit triangle for triangles.
+pub fn surface_shape(shape: CellShape, xi: [f64; 2], n: &mut [f64], dn: &mut [[f64; 2]]) {
+    match shape {
+        CellShape::Tri3 | CellShape::Tri6 => tri_shape(shape, xi, n, dn),
+        _ => quad_shape(shape, xi, n, dn),
     }
 }
 
@@ -272,13 +336,15 @@ pub fn solid_shape(shape: CellShape, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64
     }
 }
 
-/// Natural coordinates of node `a` of a quadrilateral or hexahedron, padded
+/// Natural coordinates of node `a` of a quadrilateral, triangle, hexahedron
+/// or wedge, padded
 /// with zeros to three components.
 pub fn natural_node(shape: CellShape, a: usize) -> [f64; 3] {
     match shape {
         CellShape::Quad4 | CellShape::Quad8 | CellShape::Quad9 => {
             [QUAD9_NODES[a][0], QUAD9_NODES[a][1], 0.0]
         }
+        CellShape::Tri3 | CellShape::Tri6 => [TRI6_NODES[a][0], TRI6_NODES[a][1], 0.0],
         CellShape::Wedge6 | CellShape::Wedge15 => junta_core::topology::WEDGE15_NODES[a],
         _ => HEX27_NODES[a],
     }
@@ -500,6 +566,111 @@ mod tests {
         let mut n = [0.0; 27];
         let mut dn = [[0.0; 3]; 27];
         hex_shape(CellShape::Quad4, [0.0; 3], &mut n, &mut dn);
+    }
+
+    fn eval_tri(s: CellShape, x: [f64; 2]) -> ([f64; 6], [[f64; 2]; 6]) {
+        let mut n = [0.0; 6];
+        let mut dn = [[0.0; 2]; 6];
+        tri_shape(s, x, &mut n, &mut dn);
+        (n, dn)
+    }
+
+    /// Triangles: Kronecker delta at the nodes, partition of unity (and
+    /// zero-sum derivatives), derivatives against central differences,
+    /// complete polynomials of the shape's degree reproduced with their
+    /// gradients, and the Tri6 functions equal to the Wedge15 bottom
+    /// triangle's at zeta = -1 (the interface and the solid interpolate a
+    /// wedge face alike).
+    #[test]
+    fn triangle_shapes() {
+        const TRIS: [(CellShape, u32); 2] = [(CellShape::Tri3, 1), (CellShape::Tri6, 2)];
+        const INSIDE: [[f64; 2]; 5] = [
+            [1.0 / 3.0, 1.0 / 3.0],
+            [0.1, 0.2],
+            [0.7, 0.25],
+            [0.05, 0.9],
+            [0.45, 0.0],
+        ];
+        for (s, deg) in TRIS {
+            let nn = s.num_nodes();
+            for (b, &xb) in TRI6_NODES[..nn].iter().enumerate() {
+                let (n, _) = eval_tri(s, xb);
+                for (a, v) in n[..nn].iter().enumerate() {
+                    let e = if a == b { 1.0 } else { 0.0 };
+                    assert!((v - e).abs() < 1e-15, "{s:?} N_{a}(x_{b}) = {v}");
+                }
+            }
+            for x in INSIDE {
+                let (n, dn) = eval_tri(s, x);
+                assert!((n[..nn].iter().sum::<f64>() - 1.0).abs() < 1e-14, "{s:?}");
+                for j in 0..2 {
+                    assert!(dn[..nn].iter().map(|d| d[j]).sum::<f64>().abs() < 1e-13);
+                }
+                let h = 1e-6;
+                for j in 0..2 {
+                    let (mut xp, mut xm) = (x, x);
+                    xp[j] += h;
+                    xm[j] -= h;
+                    let (np, _) = eval_tri(s, xp);
+                    let (nm, _) = eval_tri(s, xm);
+                    for a in 0..nn {
+                        let fd = (np[a] - nm[a]) / (2.0 * h);
+                        assert!((fd - dn[a][j]).abs() < 1e-8, "{s:?} dN_{a}/dx{j}");
+                    }
+                }
+                // r^i s^j, i + j <= degree, and its gradient
+                for i in 0..=deg {
+                    for j in 0..=(deg - i) {
+                        let f = |p: [f64; 2]| p[0].powi(i as i32) * p[1].powi(j as i32);
+                        let d = |e: u32, t: f64| {
+                            if e == 0 {
+                                0.0
+                            } else {
+                                e as f64 * t.powi(e as i32 - 1)
+                            }
+                        };
+                        let g = [
+                            d(i, x[0]) * x[1].powi(j as i32),
+                            x[0].powi(i as i32) * d(j, x[1]),
+                        ];
+                        let v: f64 = (0..nn).map(|a| n[a] * f(TRI6_NODES[a])).sum();
+                        assert!((v - f(x)).abs() < 1e-14, "{s:?} r^{i} s^{j}");
+                        for c in 0..2 {
+                            let gv: f64 = (0..nn).map(|a| dn[a][c] * f(TRI6_NODES[a])).sum();
+                            assert!((gv - g[c]).abs() < 1e-13, "{s:?} grad r^{i} s^{j}");
+                        }
+                    }
+                }
+                // the wedge's bottom triangle at zeta = -1
+                let wedge = if s == CellShape::Tri3 {
+                    CellShape::Wedge6
+                } else {
+                    CellShape::Wedge15
+                };
+                let mut nw = [0.0; 15];
+                let mut dw = [[0.0; 3]; 15];
+                wedge_shape(wedge, [x[0], x[1], -1.0], &mut nw, &mut dw);
+                for (a, w) in [0, 1, 2, 6, 7, 8][..nn].iter().enumerate() {
+                    assert!((nw[*w] - n[a]).abs() < 1e-14, "{s:?} node {a}");
+                    for c in 0..2 {
+                        assert!((dw[*w][c] - dn[a][c]).abs() < 1e-13, "{s:?} node {a}");
+                    }
+                }
+            }
+            // surface_shape dispatches
+            let mut n2 = [0.0; 6];
+            let mut d2 = [[0.0; 2]; 6];
+            surface_shape(s, [0.2, 0.3], &mut n2, &mut d2);
+            assert_eq!((n2, d2), eval_tri(s, [0.2, 0.3]));
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "non-triangular")]
+    fn tri_shape_rejects_quads() {
+        let mut n = [0.0; 9];
+        let mut dn = [[0.0; 2]; 9];
+        tri_shape(CellShape::Quad4, [0.0; 2], &mut n, &mut dn);
     }
 
     #[test]

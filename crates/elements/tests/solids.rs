@@ -1034,3 +1034,117 @@ fn wedge_uniaxial_force_equals_stress_times_area() {
         assert!((top - 15.0).abs() < 1e-12, "{key}: top force {top}");
     }
 }
+
+/// A one-element mesh of `shape` with `coords`.
+fn one_element_mesh(shape: CellShape, coords: Vec<[f64; 3]>) -> Mesh {
+    let n = coords.len();
+    Mesh {
+        nodes: coords,
+        blocks: vec![junta_core::mesh::ElementBlock {
+            name: "w".into(),
+            shape,
+            connectivity: (0..n).collect(),
+            element_type: shape.name().into(),
+            material: "m".into(),
+        }],
+        ..Default::default()
+    }
+}
+
+/// Pressure on wedge faces S1..S5 (face_load.rs). Closed forms on the
+/// right prism over the triangle (0,0), (2,0), (0,1.5), height 1: each
+/// face's resultant is `-p A n` (outward n: S1 -z, A 1.5; S2 +z, 1.5; S3
+/// -y, 2; S4 (0.6, 0.8, 0), 2.5; S5 -x, 1.5); the consistent nodal shares
+/// of a flat face (`int N_a dA`): Tri3 A/3 per corner; Tri6 0 per corner,
+/// A/3 per mid-edge; Q4 A/4 per corner; Q8 -A/12 per corner, A/3 per
+/// mid-side. On a distorted (curved-face) wedge the five faces close: the
+/// forces sum to zero (every face outward, integration exact). S6 does not
+/// exist on a wedge: an error naming it.
+#[test]
+fn pressure_on_wedge_faces() {
+    use junta_core::mesh::FaceRef;
+    use junta_elements::face_load::{add_face_load, FaceLoad};
+    let p = 7.0;
+    let normals: [([f64; 3], f64); 5] = [
+        ([0.0, 0.0, -1.0], 1.5),
+        ([0.0, 0.0, 1.0], 1.5),
+        ([0.0, -1.0, 0.0], 2.0),
+        ([0.6, 0.8, 0.0], 2.5),
+        ([-1.0, 0.0, 0.0], 1.5),
+    ];
+    for shape in [CellShape::Wedge6, CellShape::Wedge15] {
+        let coords: Vec<[f64; 3]> = junta_core::topology::WEDGE15_NODES[..shape.num_nodes()]
+            .iter()
+            .map(|x| [2.0 * x[0], 1.5 * x[1], 0.5 * (x[2] + 1.0)])
+            .collect();
+        let mesh = one_element_mesh(shape, coords);
+        for (face, &(n, area)) in normals.iter().enumerate() {
+            let mut f = vec![0.0; 3 * mesh.nodes.len()];
+            let r = FaceRef {
+                block: 0,
+                element: 0,
+                face,
+            };
+            add_face_load(&mesh, &[r], FaceLoad::Pressure(p), &mut f).unwrap();
+            let nodes = mesh.face_nodes(r);
+            let fshape = shape.face_shape_of(face).unwrap();
+            let corners = fshape.num_corners();
+            for (k, &a) in nodes.iter().enumerate() {
+                let share = match (fshape, k < corners) {
+                    (CellShape::Tri3, _) => 1.0 / 3.0,
+                    (CellShape::Tri6, true) => 0.0,
+                    (CellShape::Tri6, false) => 1.0 / 3.0,
+                    (CellShape::Quad4, _) => 0.25,
+                    (CellShape::Quad8, true) => -1.0 / 12.0,
+                    (CellShape::Quad8, false) => 1.0 / 3.0,
+                    s => panic!("{s:?}"),
+                };
+                for c in 0..3 {
+                    let want = -p * area * share * n[c];
+                    assert!(
+                        (f[3 * a + c] - want).abs() < 1e-13,
+                        "{shape:?} S{} node {a}: {} vs {want}",
+                        face + 1,
+                        f[3 * a + c]
+                    );
+                }
+            }
+            // nothing on the other nodes
+            for a in (0..mesh.nodes.len()).filter(|a| !nodes.contains(a)) {
+                assert!(f[3 * a..3 * a + 3].iter().all(|v| *v == 0.0));
+            }
+        }
+        // distorted wedge: a closed surface
+        let mesh = one_element_mesh(shape, distorted_wedge(shape, 11));
+        let all: Vec<FaceRef> = (0..5)
+            .map(|face| FaceRef {
+                block: 0,
+                element: 0,
+                face,
+            })
+            .collect();
+        let mut f = vec![0.0; 3 * mesh.nodes.len()];
+        add_face_load(&mesh, &all, FaceLoad::Pressure(p), &mut f).unwrap();
+        let mut one = vec![0.0; 3 * mesh.nodes.len()];
+        add_face_load(&mesh, &all[1..2], FaceLoad::Pressure(p), &mut one).unwrap();
+        let scale = one.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for c in 0..3 {
+            let s: f64 = f.iter().skip(c).step_by(3).sum();
+            assert!(s.abs() < 1e-13 * scale, "{shape:?}: sum {s}");
+        }
+        // a face the wedge does not have
+        let e = add_face_load(
+            &mesh,
+            &[FaceRef {
+                block: 0,
+                element: 0,
+                face: 5,
+            }],
+            FaceLoad::Pressure(p),
+            &mut f,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("S1..S5") && e.contains("S6"), "{e}");
+    }
+}

@@ -25,7 +25,10 @@
 //! `N_e = l_cz / l_e` with `l_e` the length of the interface elements. The
 //! crack direction is not known beforehand: `l_e` is each element's shorter
 //! in-plane side (for the long thin elements of a beam model meshed with
-//! one element across its width, the side along the beam), and the verdict
+//! one element across its width, the side along the beam; for a triangle
+//! (INTER6 / INTER12) `sqrt(2 A)`, the side of a right isosceles triangle
+//! of the same area A, i.e. the side of the square that two such triangles
+//! split, with the direction of its shortest edge), and the verdict
 //! uses the coarsest element of the interface. Fewer than 3 elements: too
 //! coarse (peak loads overshoot and the load-displacement curve saw-tooths);
 //! 3 to 5: adequate; 5 or more: fine.
@@ -229,6 +232,25 @@ pub fn cohesive_zone_advice(
     for e in 0..b.len() {
         let nodes = b.element(e);
         let x = |a: usize| mesh.nodes[nodes[a]];
+        if b.shape.face_shape().is_some_and(|f| f.num_corners() == 3) {
+            // triangle: corners 0..2 of the bottom face
+            let (e01, e02, e12) = (sub(x(1), x(0)), sub(x(2), x(0)), sub(x(2), x(1)));
+            let n = cross(e01, e02);
+            let short = norm(n).sqrt();
+            l_min = l_min.min(short);
+            if short > l_max {
+                l_max = short;
+                normal = unit(n);
+                let edges = [e01, e02, e12];
+                along = unit(
+                    *edges
+                        .iter()
+                        .min_by(|a, b| norm(**a).total_cmp(&norm(**b)))
+                        .expect("three edges"),
+                );
+            }
+            continue;
+        }
         // corners 0..3 of the bottom face
         let e01 = sub(x(1), x(0));
         let e32 = sub(x(2), x(3));

@@ -1,10 +1,15 @@
-//! INTER8 / INTER16 / INTER18: zero-thickness isoparametric interface
-//! elements (paper section 3, eqs. 15-39), one kernel generic over the face
-//! shape (Q4 / Q8 / Q9).
+//! INTER8 / INTER16 / INTER18 and INTER6 / INTER12: zero-thickness
+//! isoparametric interface elements (paper section 3, eqs. 15-39), one
+//! kernel generic over the face shape (Q4 / Q8 / Q9 quadrilaterals, Tri3 /
+//! Tri6 triangles).
 //!
 //! Nodes: the `m` nodes of the bottom face, then the `m` nodes of the top
-//! face, each in quadrilateral order (`junta_core::topology`). At each
-//! integration point (xi, eta), with face shape functions N_a:
+//! face, each in the face shape's order (`junta_core::topology`:
+//! quadrilaterals with natural coordinates (xi, eta) in [-1, 1]^2,
+//! triangles with (xi, eta) = (r, s), r, s >= 0, r + s <= 1, corners then
+//! mid-edges 0-1, 1-2, 2-0 as a wedge's bottom triangle). At each
+//! integration point (xi, eta), with face shape functions N_a
+//! (`junta_elements::shape::surface_shape`):
 //!
 //! ```text
 //! mid-surface     x(xi, eta) = sum_a N_a (x_bot,a + x_top,a) / 2
@@ -18,16 +23,34 @@
 //!                 dA = |V_xi x V_eta| dxi deta.
 //! ```
 //!
+//! On a triangle the same formulas hold with the tangents along the
+//! natural edges 0-1 (V_r) and 0-2 (V_s): e1 follows edge 0-1, the normal
+//! points to the side from which 0-1-2 turns counter-clockwise, and the
+//! reference area is `int dA = sum_q w_q |V_r x V_s|` with weights summing
+//! to 1/2.
+//!
 //! Node blocks of K are `s_a s_b N_a N_b (theta D theta^T) dA` with
 //! `s = -1` on the bottom face and `+1` on the top face: the kernel sums
 //! the `3m x 3m` block `B = sum_q N_a N_b (theta D theta^T) dA` over the
 //! points and writes `K = [[B, -B], [-B, B]]` once (fixed-size arrays, no
 //! allocation).
 //!
-//! Integration: `gauss` (2x2 for INTER8, 3x3 for INTER16/18: the paper's) or
-//! `lobatto` (2x2 / 3x3 Gauss-Lobatto points: nodal integration for INTER8
-//! and INTER18, which decouples the node pairs and removes the traction
-//! oscillations of Schellekens & de Borst 1993).
+//! Integration (`integration` option):
+//!
+//! * `gauss` (default): 2x2 for INTER8, 3x3 for INTER16/18 (the paper's);
+//!   INTER6 the 3-point rule (degree 2) and INTER12 the 6-point rule
+//!   (degree 4) of `junta_elements::quadrature::triangle_rule`. On a flat
+//!   face `dA` is constant, so the integrand of K, `N_a N_b`, has the
+//!   degree of the face's mass matrix: 2 for Tri3, 4 for Tri6; both rules
+//!   integrate the consistent stiffness (and, for a linear law, the forces)
+//!   exactly, as the 2x2 / 3x3 Gauss rules do on Q4 / Q9.
+//! * `lobatto` (nodal): 2x2 / 3x3 Gauss-Lobatto points for quadrilaterals
+//!   (nodal integration for INTER8 and INTER18, which decouples the node
+//!   pairs and removes the traction oscillations of Schellekens & de Borst
+//!   1993); for INTER6 the vertex rule (corners, weights 1/6: nodal, the
+//!   same decoupling). INTER12 refuses it: the nodal rule of the quadratic
+//!   triangle (mid-edges, weights 1/6) gives the corners zero weight, so
+//!   the corner node pairs would carry no stiffness at all.
 //!
 //! Small displacements: the frame is built on the reference geometry.
 //!
@@ -45,8 +68,10 @@ use junta_core::law::{InterfaceLaw, LawContext};
 use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
 use junta_core::topology::CellShape;
 use junta_core::CoreError;
-use junta_elements::quadrature::{gauss_legendre_2d, gauss_lobatto_2d};
-use junta_elements::shape::quad_shape;
+use junta_elements::quadrature::{
+    gauss_legendre_2d, gauss_lobatto_2d, triangle_rule, triangle_vertex_rule,
+};
+use junta_elements::shape::surface_shape;
 use serde::Deserialize;
 use std::sync::Arc;
 
@@ -54,9 +79,10 @@ use std::sync::Arc;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum InterfaceRule {
-    /// Gauss-Legendre points (2x2 INTER8, 3x3 INTER16/18).
+    /// Gauss points (2x2 INTER8, 3x3 INTER16/18, 3 INTER6, 6 INTER12).
     Gauss,
-    /// Gauss-Lobatto (nodal) points, same counts.
+    /// Nodal points: Gauss-Lobatto 2x2 / 3x3 on quadrilaterals, the
+    /// vertices on INTER6 (none on INTER12: an error).
     Lobatto,
 }
 
@@ -95,7 +121,10 @@ fn norm(a: [f64; 3]) -> f64 {
 }
 
 impl InterfaceElement {
-    /// Element of `shape` (Inter8/16/18) with `rule` and `law`.
+    /// Element of `shape` (Inter8/16/18, Inter6/12) with `rule` and `law`.
+    ///
+    /// Errors: a shape that is not an interface, or `Lobatto` on INTER12
+    /// (no nodal rule: see the [module docs](self)).
     pub fn new(
         shape: CellShape,
         rule: InterfaceRule,
@@ -105,6 +134,8 @@ impl InterfaceElement {
             CellShape::Inter8 => (CellShape::Quad4, 2, "inter8"),
             CellShape::Inter16 => (CellShape::Quad8, 3, "inter16"),
             CellShape::Inter18 => (CellShape::Quad9, 3, "inter18"),
+            CellShape::Inter6 => (CellShape::Tri3, 3, "inter6"),
+            CellShape::Inter12 => (CellShape::Tri6, 6, "inter12"),
             s => {
                 return Err(CoreError::Invalid(format!(
                     "{} is not an interface shape",
@@ -112,9 +143,19 @@ impl InterfaceElement {
                 )))
             }
         };
-        let r = match rule {
-            InterfaceRule::Gauss => gauss_legendre_2d(n),
-            InterfaceRule::Lobatto => gauss_lobatto_2d(n),
+        let triangle = matches!(face, CellShape::Tri3 | CellShape::Tri6);
+        let r = match (rule, triangle) {
+            (InterfaceRule::Gauss, false) => gauss_legendre_2d(n),
+            (InterfaceRule::Lobatto, false) => gauss_lobatto_2d(n),
+            (InterfaceRule::Gauss, true) => triangle_rule(n),
+            (InterfaceRule::Lobatto, true) if face == CellShape::Tri3 => Ok(triangle_vertex_rule()),
+            (InterfaceRule::Lobatto, true) => {
+                return Err(CoreError::InvalidParameters {
+                    kind: "element",
+                    key: key.into(),
+                    message: "integration = \"lobatto\" (nodal) is not available for inter12: the nodal rule of the quadratic triangle gives its corners zero weight, so the corner node pairs would carry no stiffness; use integration = \"gauss\" (6 points), or inter6 for nodal integration".into(),
+                })
+            }
         }
         .map_err(|e| CoreError::Invalid(e.to_string()))?;
         Ok(InterfaceElement {
@@ -156,7 +197,7 @@ impl InterfaceElement {
     ) -> Result<Frame, ElementError> {
         let m = self.m();
         let mut dn = [[0.0; 2]; 9];
-        quad_shape(self.face, self.points[q], &mut n[..m], &mut dn[..m]);
+        surface_shape(self.face, self.points[q], &mut n[..m], &mut dn[..m]);
         let mut vxi = [0.0; 3];
         let mut veta = [0.0; 3];
         let mut x = [0.0; 3];
@@ -444,7 +485,7 @@ fn build(shape: CellShape, key: &str, b: &ElementBuild<'_>) -> Result<Arc<dyn El
 
 const OPTIONS: &[ParamDoc] = &[ParamDoc {
     name: "integration",
-    doc: "\"gauss\" (default; the paper's 3x3 for INTER18) or \"lobatto\" (nodal)",
+    doc: "\"gauss\" (default; the paper's 3x3 for INTER18, 3 points INTER6, 6 points INTER12) or \"lobatto\" (nodal: Gauss-Lobatto on quadrilaterals, the vertices on INTER6; not available for INTER12)",
 }];
 
 inventory::submit! {
@@ -472,5 +513,23 @@ inventory::submit! {
         params: OPTIONS,
         shape: CellShape::Inter18,
         build: |b| build(CellShape::Inter18, "inter18", b),
+    }
+}
+inventory::submit! {
+    ElementEntry {
+        key: "inter6",
+        description: "6-node zero-thickness interface (3+3 triangles), matches wedge6 triangular faces (Abaqus COH3D6)",
+        params: OPTIONS,
+        shape: CellShape::Inter6,
+        build: |b| build(CellShape::Inter6, "inter6", b),
+    }
+}
+inventory::submit! {
+    ElementEntry {
+        key: "inter12",
+        description: "12-node zero-thickness interface (6+6 quadratic triangles), matches wedge15 triangular faces",
+        params: OPTIONS,
+        shape: CellShape::Inter12,
+        build: |b| build(CellShape::Inter12, "inter12", b),
     }
 }

@@ -635,3 +635,111 @@ fn exact_tangent_option_assembles_the_nonsymmetric_tangent() {
         "the mixed-mode tangent is not symmetric: {asym:e}"
     );
 }
+
+/// INTER6 / INTER12 (and INTER8 for comparison) with the bilinear law:
+/// the element tangent against central differences of the element forces
+/// in the elastic regime (every point below onset) and in the softening
+/// regime (every point past onset, mixed mode, undamaged committed state),
+/// with the exact (nonsymmetric) tangent. Skewed, non-planar faces.
+#[test]
+fn triangle_interfaces_tangent_matches_fd_elastic_and_softening() {
+    use junta_core::element::{Element, ElementContext};
+    use junta_core::topology::{CellShape, TRI6_NODES};
+    use junta_interface::{InterfaceElement, InterfaceRule};
+    // a skewed, warped face over the natural triangle / square
+    let map = |x: f64, y: f64| -> [f64; 3] {
+        [
+            1.0 * x + 0.3 * y,
+            0.2 * x + 0.8 * y,
+            0.05 * x * x - 0.04 * y + 0.03 * x * y,
+        ]
+    };
+    let quad = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+    let d0 = N / K;
+    for (shape, rule) in [
+        (CellShape::Inter6, InterfaceRule::Gauss),
+        (CellShape::Inter6, InterfaceRule::Lobatto),
+        (CellShape::Inter12, InterfaceRule::Gauss),
+        (CellShape::Inter8, InterfaceRule::Gauss),
+    ] {
+        let face: Vec<[f64; 3]> = if shape == CellShape::Inter8 {
+            quad.iter().map(|p| map(p[0], p[1])).collect()
+        } else {
+            TRI6_NODES[..shape.num_nodes() / 2]
+                .iter()
+                .map(|p| map(2.0 * p[0] - 1.0, 2.0 * p[1] - 1.0))
+                .collect()
+        };
+        let m = face.len();
+        let nd = 6 * m;
+        let coords: Vec<[f64; 3]> = face.iter().chain(face.iter()).copied().collect();
+        for (regime, tangent, amp, shear) in [
+            ("elastic", "tangent = \"exact\"", 0.3, 0.7),
+            ("softening", "tangent = \"exact\"", 3.0, 0.7),
+        ] {
+            let name = format!("{} {rule:?} {regime}", shape.name());
+            let el = InterfaceElement::new(shape, rule, build("bilinear", tangent)).unwrap();
+            // top face opened (and slid) by about amp x onset, varying
+            // from node to node
+            let mut disp = vec![0.0; nd];
+            for a in 0..m {
+                let s = 1.0 + 0.1 * a as f64;
+                disp[3 * (m + a)] = shear * amp * d0 * s;
+                disp[3 * (m + a) + 2] = amp * d0 * s;
+            }
+            let mut state = vec![0.0; el.state_len()];
+            el.init_state(&mut state);
+            let eval = |u: &[f64], k: Option<&mut [f64]>| {
+                let mut trial = vec![0.0; state.len()];
+                let mut f = vec![0.0; nd];
+                el.compute(
+                    &ElementContext {
+                        coords: &coords,
+                        disp: u,
+                        state_committed: &state,
+                        step: StepInfo {
+                            increment: 1,
+                            load_factor: 1.0,
+                            delta_load_factor: 1.0,
+                            secant: false,
+                        },
+                    },
+                    &mut trial,
+                    &mut f,
+                    k,
+                )
+                .unwrap();
+                (f, trial)
+            };
+            let mut k = vec![0.0; nd * nd];
+            let (_, trial) = eval(&disp, Some(&mut k));
+            let damaged = trial
+                .chunks(slot::STATE_LEN)
+                .filter(|s| s[slot::DAMAGE] > 0.0)
+                .count();
+            if regime == "elastic" {
+                assert_eq!(damaged, 0, "{name}");
+            } else {
+                assert_eq!(damaged, el.num_points(), "{name}");
+            }
+            let (mut scale, mut err) = (0.0f64, 0.0f64);
+            let h = 1e-6 * d0;
+            for j in 0..nd {
+                let (mut up, mut dn) = (disp.clone(), disp.clone());
+                up[j] += h;
+                dn[j] -= h;
+                let (fp, fm) = (eval(&up, None).0, eval(&dn, None).0);
+                for i in 0..nd {
+                    let fd = (fp[i] - fm[i]) / (2.0 * h);
+                    err = err.max((k[i * nd + j] - fd).abs());
+                    scale = scale.max(k[i * nd + j].abs());
+                }
+            }
+            assert!(scale > 0.0, "{name}");
+            assert!(
+                err < 1e-6 * scale,
+                "{name}: tangent against FD {err:e} (scale {scale:e})"
+            );
+        }
+    }
+}

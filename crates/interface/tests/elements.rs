@@ -1,10 +1,13 @@
 //! Verification tests of the zero-thickness interface elements INTER8 /
-//! INTER16 / INTER18 (paper section 3, eqs. 15-39), with both Gauss and
-//! Lobatto integration:
+//! INTER16 / INTER18 (paper section 3, eqs. 15-39) and their triangular
+//! siblings INTER6 / INTER12, with both Gauss and Lobatto integration
+//! (Lobatto = the vertex rule on INTER6; INTER12 has no nodal rule and is
+//! tested with Gauss only, its Lobatto refusal in 8.):
 //!
 //! 1. stiffness symmetric, positive semi-definite, null space of dimension
 //!    exactly 3m, rigid-body modes give zero force;
-//! 2. constant-jump patch test on a skewed flat face in 3D;
+//! 2. constant-jump patch test on a skewed flat face in 3D (triangles: also
+//!    the consistent nodal forces against their closed form);
 //! 3. frame invariance under a rotation of the whole element;
 //! 4. local frame orthonormal on skewed / curved faces (erratum to eq. 26);
 //! 5. element tangent against central finite differences, linear law and a
@@ -16,8 +19,9 @@
 use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
 use junta_core::law::{InterfaceLaw, LawContext, LawError, LawResponse};
 use junta_core::registry::{find, ElementBuild, ElementEntry, LawEntry};
-use junta_core::topology::{CellShape, QUAD9_NODES};
-use junta_elements::shape::quad_shape;
+use junta_core::topology::{CellShape, QUAD9_NODES, TRI6_NODES};
+use junta_elements::quadrature::{triangle_rule, triangle_vertex_rule};
+use junta_elements::shape::surface_shape;
 use junta_interface as _;
 use junta_interface::{InterfaceElement, InterfaceRule, LinearPenalty};
 use nalgebra::DMatrix;
@@ -27,8 +31,24 @@ use std::sync::Arc;
 
 type V3 = [f64; 3];
 
-const SHAPES: [CellShape; 3] = [CellShape::Inter8, CellShape::Inter16, CellShape::Inter18];
+const SHAPES: [CellShape; 5] = [
+    CellShape::Inter8,
+    CellShape::Inter16,
+    CellShape::Inter18,
+    CellShape::Inter6,
+    CellShape::Inter12,
+];
 const RULES: [InterfaceRule; 2] = [InterfaceRule::Gauss, InterfaceRule::Lobatto];
+
+/// True for the element / rule pairs that exist (INTER12 has no nodal rule).
+fn exists(shape: CellShape, rule: InterfaceRule) -> bool {
+    !(shape == CellShape::Inter12 && rule == InterfaceRule::Lobatto)
+}
+
+/// True for the triangular interfaces.
+fn is_tri(shape: CellShape) -> bool {
+    matches!(shape, CellShape::Inter6 | CellShape::Inter12)
+}
 
 fn face_of(shape: CellShape) -> CellShape {
     shape.face_shape().unwrap()
@@ -101,12 +121,36 @@ impl Rng {
     }
 }
 
-/// Face nodes (Q order) of `shape`'s face, from a map of the natural square.
+/// Face nodes (Q or triangle order) of `shape`'s face, from a map of the
+/// natural square: a triangle's natural (r, s) is the square's (2r - 1,
+/// 2s - 1), so the triangle is the half of the mapped square on the side of
+/// its corners 0, 1, 3.
 fn face_nodes(shape: CellShape, map: impl Fn(f64, f64) -> V3) -> Vec<V3> {
+    if is_tri(shape) {
+        return TRI6_NODES[..m_of(shape)]
+            .iter()
+            .map(|p| map(2.0 * p[0] - 1.0, 2.0 * p[1] - 1.0))
+            .collect();
+    }
     QUAD9_NODES[..m_of(shape)]
         .iter()
         .map(|p| map(p[0], p[1]))
         .collect()
+}
+
+/// Affine map of the natural square onto the parallelogram spanned by
+/// corners `c[0]`, `c[1]`, `c[3]` (flat triangles with straight edges and
+/// mid-edge nodes at the midpoints).
+fn affine(c: [V3; 4]) -> impl Fn(f64, f64) -> V3 {
+    move |x, y| {
+        add(
+            c[0],
+            add(
+                scale(0.5 * (x + 1.0), sub(c[1], c[0])),
+                scale(0.5 * (y + 1.0), sub(c[3], c[0])),
+            ),
+        )
+    }
 }
 
 /// Bilinear map through 4 corners (Q order).
@@ -159,8 +203,8 @@ fn curved_face(shape: CellShape) -> Vec<V3> {
         add(add(base(x, y), scale(lift, n)), scale(shift, t))
     };
     let mut f = face_nodes(shape, map);
-    if shape == CellShape::Inter8 {
-        // warp: lift one corner out of the plane
+    if matches!(shape, CellShape::Inter8 | CellShape::Inter6) {
+        // warp: lift one corner out of the plane (INTER6: tilt the triangle)
         f[2] = add(f[2], scale(0.1, n));
     }
     f
@@ -244,7 +288,7 @@ fn tangents(shape: CellShape, face: &[V3], xi: [f64; 2]) -> (V3, V3) {
     let m = m_of(shape);
     let mut n = [0.0; 9];
     let mut dn = [[0.0; 2]; 9];
-    quad_shape(face_of(shape), xi, &mut n[..m], &mut dn[..m]);
+    surface_shape(face_of(shape), xi, &mut n[..m], &mut dn[..m]);
     let mut vx = [0.0; 3];
     let mut ve = [0.0; 3];
     for a in 0..m {
@@ -340,6 +384,9 @@ fn stiffness_symmetric_psd_rank_and_rigid_modes() {
     let d = [2.0e3, 3.5e3, 7.0e3];
     for shape in SHAPES {
         for rule in RULES {
+            if !exists(shape, rule) {
+                continue;
+            }
             for curved in [false, true] {
                 let name = format!("{} curved={curved}", label(shape, rule));
                 let face = if curved {
@@ -430,14 +477,24 @@ fn stiffness_symmetric_psd_rank_and_rigid_modes() {
 }
 
 /// 2. Constant-jump patch test on a skewed, trapezoidal, flat face in an
-///    arbitrary 3D orientation.
+///    arbitrary 3D orientation (triangles: the triangle c0, c1, c3 of its
+///    corners, straight-edged). A uniform jump gives the uniform traction
+///    D theta^T jump at every point, the resultants are traction x area,
+///    and on triangles each top node carries its consistent share
+///    `t int N_a dA` (closed forms: Tri3 A/3 per corner; Tri6 0 per corner
+///    and A/3 per mid-edge node), the bottom nodes the opposite.
 #[test]
 fn constant_jump_patch_test() {
     let (corners, rot) = skewed_corners();
     // normal and area computed independently from the corners
     let nvec = cross(sub(corners[1], corners[0]), sub(corners[2], corners[0]));
     let nvec2 = cross(sub(corners[2], corners[0]), sub(corners[3], corners[0]));
-    let area = 0.5 * norm(nvec) + 0.5 * norm(nvec2);
+    let quad_area = 0.5 * norm(nvec) + 0.5 * norm(nvec2);
+    let tri_area = 0.5
+        * norm(cross(
+            sub(corners[1], corners[0]),
+            sub(corners[3], corners[0]),
+        ));
     let n = scale(1.0 / norm(nvec), nvec);
     // the face is flat and its normal is the rotated z axis
     assert!(norm(sub(n, [rot[0][2], rot[1][2], rot[2][2]])) < 1e-14);
@@ -447,8 +504,15 @@ fn constant_jump_patch_test() {
     let mut rng = Rng(0x1234_5678_9abc_def1);
     for shape in SHAPES {
         for rule in RULES {
+            if !exists(shape, rule) {
+                continue;
+            }
             let name = label(shape, rule);
-            let face = face_nodes(shape, bilinear(corners));
+            let (face, area) = if is_tri(shape) {
+                (face_nodes(shape, affine(corners)), tri_area)
+            } else {
+                (face_nodes(shape, bilinear(corners)), quad_area)
+            };
             let coords = doubled(&face);
             let m = m_of(shape);
             // common (arbitrary) motion of both faces plus the jump on top
@@ -515,6 +579,25 @@ fn constant_jump_patch_test() {
                     scale(-1.0, expect)
                 );
             }
+            if is_tri(shape) {
+                for a in 0..m {
+                    let share = match (shape, a < 3) {
+                        (CellShape::Inter6, _) => 1.0 / 3.0,
+                        (_, true) => 0.0,
+                        (_, false) => 1.0 / 3.0,
+                    };
+                    let want = scale(share * area, tg);
+                    let (top, bot) = (node(&f, m + a), node(&f, a));
+                    assert!(
+                        norm(sub(top, want)) <= 1e-12 * norm(expect),
+                        "{name}: top node {a} force {top:?} vs {want:?}"
+                    );
+                    assert!(
+                        norm(add(bot, want)) <= 1e-12 * norm(expect),
+                        "{name}: bottom node {a} force {bot:?}"
+                    );
+                }
+            }
         }
     }
 }
@@ -550,6 +633,7 @@ fn frame_invariance_under_rotation() {
     .chain(SHAPES.iter().flat_map(|&s| {
         RULES
             .iter()
+            .filter(move |&&rule| exists(s, rule))
             .map(move |&rule| (s, rule, curved_face(s), "curved"))
     }))
     .collect();
@@ -660,6 +744,9 @@ fn frame_orthonormal_on_skewed_and_curved_faces() {
     let plane_n = [r[0][2], r[1][2], r[2][2]];
     for shape in SHAPES {
         for rule in RULES {
+            if !exists(shape, rule) {
+                continue;
+            }
             let mut faces = vec![("parallelogram", face_nodes(shape, bilinear(para)))];
             faces.push(("curved", curved_face(shape)));
             if shape == CellShape::Inter18 {
@@ -744,6 +831,9 @@ fn frame_orthonormal_on_skewed_and_curved_faces() {
 fn frame_is_built_on_the_mid_surface() {
     for shape in SHAPES {
         for rule in RULES {
+            if !exists(shape, rule) {
+                continue;
+            }
             let name = label(shape, rule);
             let bottom = face_nodes(shape, bilinear(skewed_corners().0));
             let top = curved_face(shape);
@@ -784,6 +874,14 @@ fn frame_is_built_on_the_mid_surface() {
 /// Weight of point `q` of the rule (the "area" output is |V_xi x V_eta| w;
 /// weights are those of the 1D rules' tensor product).
 fn area_weight(el: &InterfaceElement, q: usize) -> f64 {
+    // triangles: the rules of junta_elements::quadrature (their exactness
+    // is tested there)
+    match (el.shape(), el.rule()) {
+        (CellShape::Inter6, InterfaceRule::Gauss) => return triangle_rule(3).unwrap().weights[q],
+        (CellShape::Inter6, InterfaceRule::Lobatto) => return triangle_vertex_rule().weights[q],
+        (CellShape::Inter12, _) => return triangle_rule(6).unwrap().weights[q],
+        _ => {}
+    }
     let p = el.points()[q];
     let w1 = |x: f64| -> f64 {
         let n = match el.shape() {
@@ -844,6 +942,9 @@ fn tangent_matches_finite_differences() {
     let mut rng = Rng(0xdead_beef_cafe_f00d);
     for shape in SHAPES {
         for rule in RULES {
+            if !exists(shape, rule) {
+                continue;
+            }
             let face = curved_face(shape);
             let coords = doubled(&face);
             let nd = 3 * coords.len();
@@ -892,14 +993,18 @@ fn tangent_matches_finite_differences() {
 }
 
 /// 6. Gauss vs Lobatto: equal resultants for a constant jump; nodal
-///    (Lobatto) integration of INTER8/INTER18 couples only homologous node
-///    pairs, Gauss couples every pair (Schellekens & de Borst 1993).
+///    (Lobatto) integration of INTER8/INTER18 (and the vertex rule of
+///    INTER6) couples only homologous node pairs, Gauss couples every pair
+///    (Schellekens & de Borst 1993). INTER12 has no nodal rule.
 #[test]
 fn gauss_vs_lobatto() {
     let (corners, _) = skewed_corners();
     let d = [2.0e4, 2.0e4, 5.0e4];
     let jump = [1.0e-4, 2.0e-4, -3.0e-4];
     for shape in SHAPES {
+        if !exists(shape, InterfaceRule::Lobatto) {
+            continue;
+        }
         let m = m_of(shape);
         let nd = 6 * m;
         for (what, face) in [
@@ -988,6 +1093,9 @@ fn gauss_vs_lobatto() {
 fn degenerate_surface_is_rejected() {
     for shape in SHAPES {
         for rule in RULES {
+            if !exists(shape, rule) {
+                continue;
+            }
             let name = label(shape, rule);
             let el = element(shape, rule, [1.0, 1.0, 1.0]);
             let line = face_nodes(shape, |x, y| {
@@ -1049,6 +1157,8 @@ fn registry_entries() {
         ("inter8", CellShape::Inter8, 8),
         ("inter16", CellShape::Inter16, 16),
         ("inter18", CellShape::Inter18, 18),
+        ("inter6", CellShape::Inter6, 6),
+        ("inter12", CellShape::Inter12, 12),
     ] {
         let entry = find::<ElementEntry>(key).unwrap();
         assert_eq!(entry.shape, shape);
@@ -1079,15 +1189,34 @@ fn registry_entries() {
 
         let mut opts = toml::Table::new();
         opts.insert("integration".into(), toml::Value::String("lobatto".into()));
-        let el = (entry.build)(&ElementBuild {
+        let built = (entry.build)(&ElementBuild {
             material: None,
             law: Some(l.clone()),
             options: &opts,
-        })
-        .unwrap();
-        // Lobatto: points at the corners
-        let outs = el.point_outputs(&ctx(&coords, &zero, &[])).unwrap();
-        assert!(outs.iter().any(|p| norm(sub(p.position, face[0])) < 1e-14));
+        });
+        if shape == CellShape::Inter12 {
+            // no nodal rule for the quadratic triangle: a clear refusal
+            let e = match built {
+                Ok(_) => panic!("inter12 lobatto accepted"),
+                Err(e) => e.to_string(),
+            };
+            assert!(
+                e.contains("inter12") && e.contains("lobatto") && e.contains("gauss"),
+                "{e}"
+            );
+        } else {
+            // Lobatto: points at the corners
+            let el = built.unwrap();
+            let outs = el.point_outputs(&ctx(&coords, &zero, &[])).unwrap();
+            assert!(outs.iter().any(|p| norm(sub(p.position, face[0])) < 1e-14));
+            if shape == CellShape::Inter6 {
+                // the vertex rule: exactly the three corners
+                assert_eq!(outs.len(), 3);
+                for (p, x) in outs.iter().zip(&face) {
+                    assert!(norm(sub(p.position, *x)) < 1e-14);
+                }
+            }
+        }
 
         opts.insert("integration".into(), toml::Value::String("simpson".into()));
         let e = (entry.build)(&ElementBuild {

@@ -2,14 +2,39 @@
 //! need no external mesher.
 //!
 //! A box `[x0, x0+lx] x [y0, y0+ly] x [z0, z0+lz]` is split into
-//! `nx x ny x nz` hexahedra (H8, H20 or H27). Optional grading per axis is
-//! the ratio of the last element's size to the first's (geometric
-//! progression). Named sets: node and face sets `x0, x1, y0, y1, z0, z1` on
-//! the six sides, element set `all`.
+//! `nx x ny x nz` hexahedra (H8, H20 or H27), or into `2 nx ny nz` wedges
+//! (Wedge6 or Wedge15): each hexahedral cell cut along the diagonal from its
+//! corner 0 to its corner 2 (the (x-, y-) to (x+, y+) diagonal of its z
+//! faces) into the wedges on the triangles 0-1-2 and 0-2-3 (hexahedron
+//! corners, [`crate::topology::HEX27_NODES`]), extruded along z: wedge
+//! layers stack in z and share triangles, neighbours in x and y share
+//! quadrilateral sides. Optional grading per axis is the ratio of the last
+//! element's size to the first's (geometric progression). Named sets: node
+//! and face sets `x0, x1, y0, y1, z0, z1` on the six sides (for wedges the
+//! z sides are triangles S1 / S2, the others quadrilaterals S3..S5),
+//! element set `all`.
 
 use super::{ElementBlock, ElementRef, FaceRef, Mesh};
 use crate::error::CoreError;
 use crate::topology::{CellShape, HEX27_NODES, HEX_FACE_NAMES};
+
+/// The two wedges of a hexahedral cell: their nodes as H27 local ids (in
+/// Wedge15 order; the first 6 serve Wedge6; the diagonal mid-nodes are the
+/// z-face centres 24, 25), and which wedge face (S1..S5, 0-based) lies on
+/// each side of the cell in [`HEX_FACE_NAMES`] order (`None`: the side is
+/// the other wedge's or the cut).
+const WEDGES_OF_HEX: [([usize; 15], [Option<usize>; 6]); 2] = [
+    // triangle 0-1-2: sides z0 (S1), z1 (S2), y0 (S3: edge 0-1), x1 (S4: 1-2)
+    (
+        [0, 1, 2, 4, 5, 6, 8, 9, 24, 12, 13, 25, 16, 17, 18],
+        [Some(0), Some(1), Some(2), Some(3), None, None],
+    ),
+    // triangle 0-2-3: z0, z1, y1 (S4: edge 2-3), x0 (S5: edge 3-0)
+    (
+        [0, 2, 3, 4, 6, 7, 24, 10, 11, 25, 14, 15, 16, 18, 19],
+        [Some(0), Some(1), None, None, Some(3), Some(4)],
+    ),
+];
 
 /// Specification of a box mesh.
 #[derive(Debug, Clone, PartialEq)]
@@ -20,7 +45,7 @@ pub struct BoxSpec {
     pub size: [f64; 3],
     /// Elements along each axis.
     pub divisions: [usize; 3],
-    /// Hexahedron shape.
+    /// Hexahedron or wedge shape.
     pub shape: CellShape,
     /// Ratio of last to first element size along each axis (1 = uniform).
     pub grading: [f64; 3],
@@ -67,15 +92,16 @@ pub fn box_mesh(
     material: &str,
 ) -> Result<Mesh, CoreError> {
     let p = match spec.shape {
-        CellShape::Hex8 => 1,
-        CellShape::Hex20 | CellShape::Hex27 => 2,
+        CellShape::Hex8 | CellShape::Wedge6 => 1,
+        CellShape::Hex20 | CellShape::Hex27 | CellShape::Wedge15 => 2,
         s => {
             return Err(CoreError::Invalid(format!(
-                "box generator makes hexahedra (hex8, hex20, hex27), not {}",
+                "box generator makes hexahedra (hex8, hex20, hex27) or wedges (wedge6, wedge15), not {}",
                 s.name()
             )))
         }
     };
+    let wedge = matches!(spec.shape, CellShape::Wedge6 | CellShape::Wedge15);
     for a in 0..3 {
         if spec.divisions[a] == 0 {
             return Err(CoreError::Invalid("box divisions must be >= 1".into()));
@@ -119,18 +145,23 @@ pub fn box_mesh(
     let (lx, ly, lz) = (lattice[0].len(), lattice[1].len(), lattice[2].len());
     let lid = |i: usize, j: usize, k: usize| (k * ly + j) * lx + i;
     let npe = spec.shape.num_nodes();
-    let mut conn = Vec::with_capacity(nx * ny * nz * npe);
+    // lattice points of one cell, in H8 (p = 1) or H27 (p = 2) order
+    let cell_nodes = if p == 1 { 8 } else { 27 };
+    let cells_per_hex = if wedge { 2 } else { 1 };
+    let mut conn = Vec::with_capacity(nx * ny * nz * npe * cells_per_hex);
     let mut faces: Vec<Vec<FaceRef>> = vec![Vec::new(); 6];
     let mut e = 0;
+    let mut cell = [0usize; 27];
     for ez in 0..nz {
         for ey in 0..ny {
             for ex in 0..nx {
-                for xi in HEX27_NODES.iter().take(npe) {
+                for (c, xi) in cell.iter_mut().zip(HEX27_NODES.iter().take(cell_nodes)) {
                     let i = p * ex + ((xi[0] + 1.0) * 0.5 * p as f64) as usize;
                     let j = p * ey + ((xi[1] + 1.0) * 0.5 * p as f64) as usize;
                     let k = p * ez + ((xi[2] + 1.0) * 0.5 * p as f64) as usize;
-                    conn.push(lid(i, j, k));
+                    *c = lid(i, j, k);
                 }
+                // sides of the box this cell touches, in HEX_FACE_NAMES order
                 let on = [
                     ez == 0,
                     ez == nz - 1,
@@ -139,16 +170,33 @@ pub fn box_mesh(
                     ey == ny - 1,
                     ex == 0,
                 ];
-                for (f, &b) in on.iter().enumerate() {
-                    if b {
-                        faces[f].push(FaceRef {
-                            block: 0,
-                            element: e,
-                            face: f,
-                        });
+                if !wedge {
+                    conn.extend(cell[..npe].iter());
+                    for (f, &b) in on.iter().enumerate() {
+                        if b {
+                            faces[f].push(FaceRef {
+                                block: 0,
+                                element: e,
+                                face: f,
+                            });
+                        }
+                    }
+                    e += 1;
+                    continue;
+                }
+                for (w, (local, sides)) in WEDGES_OF_HEX.iter().enumerate() {
+                    conn.extend(local[..npe].iter().map(|&a| cell[a]));
+                    for (side, &b) in on.iter().enumerate() {
+                        if let (true, Some(face)) = (b, sides[side]) {
+                            faces[side].push(FaceRef {
+                                block: 0,
+                                element: e + w,
+                                face,
+                            });
+                        }
                     }
                 }
-                e += 1;
+                e += 2;
             }
         }
     }
@@ -236,6 +284,85 @@ mod tests {
         // top face nodes of H20: (n+1)^2 corners + 2 n (n+1) mid-edges
         assert_eq!(h20.node_sets["z1"].len(), (n + 1).pow(2) + 2 * n * (n + 1));
         assert!(h20.node_sets["z1"].iter().all(|&i| h20.nodes[i][2] == 1.0));
+    }
+
+    /// Wedge boxes: two wedges per cell, the node counts of the H8 / H27
+    /// lattice without the face centres off the cut and the body centres,
+    /// every side set covering the side's area with faces whose outward
+    /// normal (right-hand rule on the face, hence the element's
+    /// orientation) is the side's.
+    #[test]
+    fn wedge_boxes() {
+        let (n, size) = ([2, 3, 2], [2.0, 1.5, 1.0]);
+        for shape in [CellShape::Wedge6, CellShape::Wedge15] {
+            let m = box_mesh(&BoxSpec::new(size, n, shape), "b", shape.name(), "m").unwrap();
+            let cells = n[0] * n[1] * n[2];
+            assert_eq!(m.blocks[0].len(), 2 * cells);
+            assert_eq!(m.element_sets["all"].len(), 2 * cells);
+            let lattice = |p: usize| (0..3).map(|a| p * n[a] + 1).product::<usize>();
+            let want = if shape == CellShape::Wedge6 {
+                lattice(1)
+            } else {
+                // H27 lattice minus the body centres and the x- and y-face
+                // centres (the z-face centres are the cut's mid-nodes)
+                lattice(2) - cells - n[1] * n[2] * (n[0] + 1) - n[0] * n[2] * (n[1] + 1)
+            };
+            assert_eq!(m.nodes.len(), want, "{shape:?}");
+            assert!(m.used_nodes().iter().all(|u| *u));
+            let normals = [
+                [0.0, 0.0, -1.0],
+                [0.0, 0.0, 1.0],
+                [0.0, -1.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [-1.0, 0.0, 0.0],
+            ];
+            for (side, name) in HEX_FACE_NAMES.iter().enumerate() {
+                let faces = &m.face_sets[*name];
+                let mut area = 0.0;
+                for &f in faces {
+                    let x = m.face_nodes(f);
+                    let k = m.blocks[0]
+                        .shape
+                        .face_shape_of(f.face)
+                        .unwrap()
+                        .num_corners();
+                    let p = |i: usize| m.nodes[x[i]];
+                    // polygon area vector from the corners
+                    let mut a = [0.0; 3];
+                    for i in 1..k - 1 {
+                        let (u, v) = (sub(p(i), p(0)), sub(p(i + 1), p(0)));
+                        let c = [
+                            u[1] * v[2] - u[2] * v[1],
+                            u[2] * v[0] - u[0] * v[2],
+                            u[0] * v[1] - u[1] * v[0],
+                        ];
+                        for d in 0..3 {
+                            a[d] += 0.5 * c[d];
+                        }
+                    }
+                    let along: f64 = (0..3).map(|d| a[d] * normals[side][d]).sum();
+                    let len = (0..3).map(|d| a[d] * a[d]).sum::<f64>().sqrt();
+                    assert!((along - len).abs() < 1e-12, "{shape:?} {name}: {a:?}");
+                    area += along;
+                }
+                let axis = (0..3).position(|d| normals[side][d] != 0.0).unwrap();
+                let want = size[(axis + 1) % 3] * size[(axis + 2) % 3];
+                assert!((area - want).abs() < 1e-12, "{shape:?} {name}: {area}");
+                assert!(m.node_sets[*name].iter().all(|&i| {
+                    let c = m.nodes[i][axis];
+                    c == if normals[side][axis] < 0.0 {
+                        0.0
+                    } else {
+                        size[axis]
+                    }
+                }));
+            }
+        }
+    }
+
+    fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
     }
 
     #[test]

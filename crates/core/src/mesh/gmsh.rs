@@ -509,16 +509,17 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
     let mut faces: HashMap<[usize; 4], Vec<FaceRef>> = HashMap::new();
     for (bi, b) in mesh.blocks.iter().enumerate() {
         for e in 0..b.len() {
-            let conn = b.element(e);
-            for f in 0..6 {
-                let fl = b.shape.face_nodes(f);
-                let mut key = [conn[fl[0]], conn[fl[1]], conn[fl[2]], conn[fl[3]]];
-                key.sort_unstable();
-                faces.entry(key).or_default().push(FaceRef {
+            for f in 0..b.shape.num_faces() {
+                let r = FaceRef {
                     block: bi,
                     element: e,
                     face: f,
-                });
+                };
+                // triangles (wedge ends) have keys padded with usize::MAX
+                // and never match a quadrangle of a surface group
+                if let Some(key) = mesh.face_key(r) {
+                    faces.entry(key).or_default().push(r);
+                }
             }
         }
     }

@@ -91,6 +91,14 @@
 //! | C3D6   | Wedge6 | `wedge6r`      | none (Abaqus = ours; VTK differs, mapped by the writer); CalculiX's 2-point rule |
 //! | C3D15  | Wedge15| `wedge15`      | none |
 //! | COH3D8 | Inter8 | `inter8`       | none: bottom face 1-4 then top face 5-8 |
+//! | COH3D6 | Inter6 | `inter6`       | none: bottom triangle 1-3 then top triangle 4-6 (normal from 1-2-3 towards 4-6 by the right-hand rule) |
+//!
+//! Faces for `*DLOAD` `P1..P6` and `*SURFACE` `S1..S6`: hexahedra have six
+//! ([`crate::topology::HEX_FACES`]), wedges five
+//! ([`crate::topology::WEDGE_FACES`]: 1 = 1-2-3, 2 = 4-5-6, 3 = 1-2-5-4,
+//! 4 = 2-3-6-5, 5 = 3-1-4-6, as in the Abaqus and CalculiX manuals); a
+//! pressure on a face the element does not have (`P6` on a wedge) is an
+//! error naming the line.
 //!
 //! Each (TYPE, ELSET) pair of `*ELEMENT` makes one [`ElementBlock`] named
 //! after the ELSET (or the lower-case TYPE); when sections give the elements
@@ -126,7 +134,8 @@ pub const SUPPORTED_KEYWORDS: &str =
 *NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT, *INCLUDE";
 
 /// Element types the reader understands (for messages).
-pub const SUPPORTED_ELEMENT_TYPES: &str = "C3D8, C3D8I, C3D20, C3D20R, C3D27, C3D6, C3D15, COH3D8";
+pub const SUPPORTED_ELEMENT_TYPES: &str =
+    "C3D8, C3D8I, C3D20, C3D20R, C3D27, C3D6, C3D15, COH3D8, COH3D6";
 
 const OUTPUT_KEYWORDS: [&str; 7] = [
     "NODE PRINT",
@@ -614,7 +623,8 @@ pub struct InpDload {
     /// `P` for a `*DSLOAD` surface pressure).
     pub label: String,
     pub kind: InpDloadKind,
-    /// `(element, face)`: the face (0-based, S1..S6 order) for pressures,
+    /// `(element, face)`: the face (0-based, S1..S6 order of hexahedra,
+    /// S1..S5 of wedges) for pressures,
     /// 0 for body loads.
     pub elements: Vec<(ElementRef, usize)>,
     /// Index of the enclosing step (`None`: model data).
@@ -1040,6 +1050,7 @@ fn element_kind(t: &str) -> Option<(CellShape, &'static str)> {
         "C3D6" => Some((CellShape::Wedge6, "wedge6r")),
         "C3D15" => Some((CellShape::Wedge15, "wedge15")),
         "COH3D8" => Some((CellShape::Inter8, "inter8")),
+        "COH3D6" => Some((CellShape::Inter6, "inter6")),
         _ => None,
     }
 }
@@ -3273,6 +3284,8 @@ impl<'a> Parser<'a> {
                 "DLOAD"
             };
             let mut list = Vec::new();
+            // where the faces were written: the *SURFACE's keyword line
+            let mut surface_at = None;
             match t {
                 DloadTarget::Elements { target, face } => {
                     for e in self.element_target(line, kw, target)? {
@@ -3291,6 +3304,7 @@ impl<'a> Parser<'a> {
                         };
                         return Err(self.invalid(line, kw, what));
                     };
+                    surface_at = Some((name, self.surfaces[&key].0));
                     for (target, face) in faces {
                         for e in self.element_target(line, kw, target)? {
                             list.push((e, *face));
@@ -3298,7 +3312,7 @@ impl<'a> Parser<'a> {
                     }
                 }
             }
-            for &(e, _) in &list {
+            for &(e, face) in &list {
                 let el = &self.elems[e];
                 let shape = self.pre_blocks[el.pre_block].shape;
                 if !shape.is_solid() {
@@ -3312,12 +3326,19 @@ impl<'a> Parser<'a> {
                         ),
                     ));
                 }
-                if pressure && shape.face_shape().is_none() {
+                if pressure && face >= shape.num_faces() {
+                    let n = shape.num_faces();
+                    let written = match &surface_at {
+                        Some((name, at)) => {
+                            format!("face S{} of surface `{name}` (line {at})", face + 1)
+                        }
+                        None => format!("P{}", face + 1),
+                    };
                     return Err(self.invalid(
                         line,
                         kw,
                         format!(
-                            "element {} is a {} element: pressure on wedge faces is not supported yet (hexahedra only)",
+                            "{written}: element {} is a {} element, whose faces are P1..P{n} (S1..S{n})",
                             el.label,
                             shape.name()
                         ),
@@ -3557,7 +3578,7 @@ impl<'a> Parser<'a> {
                 return Err(self.invalid(
                     m.line,
                     "MATERIAL",
-                    format!("material `{}` has damage options but no *COHESIVE SECTION uses it: damage is read for cohesive elements (COH3D8) only", m.name),
+                    format!("material `{}` has damage options but no *COHESIVE SECTION uses it: damage is read for cohesive elements (COH3D8, COH3D6) only", m.name),
                 ));
             }
         }

@@ -3,16 +3,31 @@
 //! [`insert_interface`] finds the faces shared by an element of a `bottom`
 //! set and an element of a `top` set, duplicates the nodes of that surface
 //! for the `top` side and adds one interface element (INTER8 / INTER16 /
-//! INTER18) per shared face. The sets typically come from
+//! INTER18 on quadrilateral faces, INTER6 / INTER12 on triangular ones) per
+//! shared face. The sets typically come from
 //! [`super::merge::merge`] (one element set per part), from Gmsh physical
 //! volumes or from `.inp` ELSETs.
 //!
 //! # Conventions
 //!
 //! * Interface element = the shared face's nodes as seen from the `bottom`
-//!   element (its [`crate::topology::HEX_FACES`] order, right-hand normal out
-//!   of the bottom element), then the copies of the same nodes in the same
-//!   order. Its normal therefore points from `bottom` to `top`.
+//!   element (its [`crate::topology::HEX_FACES`] / [`crate::topology::WEDGE_FACES`]
+//!   order, right-hand normal out of the bottom element), then the copies
+//!   of the same nodes in the same order. Its normal therefore points from
+//!   `bottom` to `top`.
+//! * The interface shape is the one that matches the shared faces' shape
+//!   ([`crate::topology::CellShape::matching_interface`]): `Quad4` ->
+//!   INTER8, `Quad8` -> INTER16, `Quad9` -> INTER18, `Tri3` -> INTER6,
+//!   `Tri6` -> INTER12. Faces are matched by shape, not by solid: the
+//!   triangles between two wedge layers get INTER6 / INTER12, a wedge's
+//!   quadrilateral side against a hexahedron's face (Wedge6 / Hex8: Quad4;
+//!   Wedge15 / Hex20: Quad8) gets INTER8 / INTER16.
+//! * One interface block has one shape, so a surface that mixes triangles
+//!   and quadrilaterals (hexahedra and wedges side by side on the same
+//!   surface) is refused with an error naming both face shapes. Splitting
+//!   the sets would not help (the nodes on the seam between the two parts
+//!   of one side would be duplicated for one part only, cutting that side
+//!   apart): mesh such a surface with one face shape.
 //! * Only elements of `top` are moved to the copied nodes. Elements of
 //!   `bottom` **and of every other set** keep the original nodes: a third
 //!   body touching the surface stays attached to the bottom side.
@@ -33,8 +48,9 @@
 //!   (block, element, face), and the connectivity of the top elements was
 //!   updated in place.
 
-use super::{ElementBlock, ElementRef, Mesh};
+use super::{ElementBlock, ElementRef, FaceRef, Mesh};
 use crate::error::CoreError;
+use crate::topology::CellShape;
 use std::collections::{HashMap, HashSet};
 
 /// What [`insert_interface`] added.
@@ -72,7 +88,7 @@ fn solid_elements(mesh: &Mesh, set: &str) -> Result<Vec<ElementRef>, CoreError> 
         }
         if !b.shape.is_solid() {
             return Err(CoreError::Invalid(format!(
-                "element set `{set}` holds {} elements (block `{}`); interfaces join solid elements (hex8, hex20, hex27)",
+                "element set `{set}` holds {} elements (block `{}`); interfaces join solid elements (hex8, hex20, hex27, wedge6, wedge15)",
                 b.shape.name(),
                 b.name
             )));
@@ -81,14 +97,23 @@ fn solid_elements(mesh: &Mesh, set: &str) -> Result<Vec<ElementRef>, CoreError> 
     Ok(v)
 }
 
-/// Sorted corner ids of face `f` of element `r`: the key that identifies a face.
+/// Sorted corner ids of face `f` of element `r`: the key that identifies a
+/// face ([`Mesh::face_key`]; `f` is below the shape's face count).
 fn corner_key(mesh: &Mesh, r: ElementRef, f: usize) -> [usize; 4] {
-    let b = &mesh.blocks[r.block];
-    let conn = b.element(r.element);
-    let l = b.shape.face_nodes(f);
-    let mut k = [conn[l[0]], conn[l[1]], conn[l[2]], conn[l[3]]];
-    k.sort_unstable();
-    k
+    mesh.face_key(FaceRef {
+        block: r.block,
+        element: r.element,
+        face: f,
+    })
+    .expect("face index below num_faces")
+}
+
+/// Shape of face `f` of element `r` (`f` below the shape's face count).
+fn face_shape(mesh: &Mesh, r: ElementRef, f: usize) -> CellShape {
+    mesh.blocks[r.block]
+        .shape
+        .face_shape_of(f)
+        .expect("face index below num_faces")
 }
 
 fn face_nodes(mesh: &Mesh, r: ElementRef, f: usize) -> Vec<usize> {
@@ -108,18 +133,20 @@ fn describe(mesh: &Mesh, r: ElementRef) -> String {
 /// element of element set `bottom` and an element of element set `top`.
 ///
 /// * Shared faces are found by their corner nodes (a hash map keyed by the
-///   sorted corner ids), so the two sides must already share nodes (e.g.
-///   after [`super::merge::merge`]). Both faces must have the same nodes
-///   (same solid order on both sides).
+///   sorted corner ids: 4 for quadrilaterals, 3 for triangles), so the two
+///   sides must already share nodes (e.g. after [`super::merge::merge`]).
+///   Both faces must have the same shape and the same nodes (same order of
+///   interpolation on both sides; the solids may differ, e.g. a wedge's
+///   quadrilateral side against a hexahedron's face).
 /// * Every node of the shared surface (corners, mid-sides, centres) gets a
 ///   copy at the same position (appended to [`Mesh::nodes`]; labels, if
 ///   any, continue after the largest label); elements of `top`, and only
 ///   those, are renumbered to the copies.
 /// * One interface element per shared face, appended as a new block named
-///   `name` with shape `bottom_shape.matching_interface()` (element type key
-///   `"inter8"`, `"inter16"` or `"inter18"`) and material `law`; node order
-///   and normal as in the [module docs](self) (bottom face, then top copies;
-///   normal from bottom to top).
+///   `name` with shape `face_shape.matching_interface()` (element type key
+///   `"inter8"`, `"inter16"`, `"inter18"`, `"inter6"` or `"inter12"`) and
+///   material `law`; node order and normal as in the [module docs](self)
+///   (bottom face, then top copies; normal from bottom to top).
 /// * New sets: element set `name`, node sets `name.bottom` (original surface
 ///   nodes) and `name.top` (their copies). Existing node sets follow the rule
 ///   in the [module docs](self).
@@ -128,7 +155,8 @@ fn describe(mesh: &Mesh, r: ElementRef) -> String {
 /// non-solid elements, names already in use, sets that share no face,
 /// mismatched element orders across the surface, non-conforming faces
 /// (same corners, different mid-side nodes), non-manifold surfaces, or a
-/// surface mixing element orders. On error the mesh is unchanged.
+/// surface mixing face shapes (orders, or triangles and quadrilaterals).
+/// On error the mesh is unchanged.
 pub fn insert_interface(
     mesh: &mut Mesh,
     bottom: &str,
@@ -196,12 +224,16 @@ pub fn insert_interface(
                     describe(mesh, r)
                 )));
             }
-            let bs = mesh.blocks[r.block].shape;
-            let ts = mesh.blocks[tr.block].shape;
-            if bs != ts {
-                let (a, b) = (bs.name(), ts.name());
+            let (bf, tf_shape) = (face_shape(mesh, r, f), face_shape(mesh, tr, tf));
+            if bf != tf_shape {
+                let (a, b) = (
+                    mesh.blocks[r.block].shape.name(),
+                    mesh.blocks[tr.block].shape.name(),
+                );
                 return Err(CoreError::Invalid(format!(
-                    "mismatched element orders across `{bottom}`/`{top}`: {a} faces against {b} faces; interfaces need the same solid order on both sides ({} against {})",
+                    "mismatched element orders across `{bottom}`/`{top}`: {a} faces against {b} faces ({} against {}); interfaces need the same solid order on both sides ({} against {})",
+                    bf.name(),
+                    tf_shape.name(),
                     describe(mesh, r),
                     describe(mesh, tr)
                 )));
@@ -258,14 +290,24 @@ pub fn insert_interface(
         )));
     }
 
-    let shape = mesh.blocks[shared[0].0.block].shape;
-    if let Some(&(r, _)) = shared
+    let (r0, f0) = shared[0];
+    let shape = face_shape(mesh, r0, f0);
+    if let Some(&(r, f)) = shared
         .iter()
-        .find(|(r, _)| mesh.blocks[r.block].shape != shape)
+        .find(|&&(r, f)| face_shape(mesh, r, f) != shape)
     {
+        let other = face_shape(mesh, r, f);
+        let what = if shape.num_corners() != other.num_corners() {
+            "triangles and quadrilaterals: an interface block has one face shape, and splitting the sets would cut the seam between the two kinds of elements of one side; mesh this surface with one face shape (all wedge triangles or all quadrilaterals)"
+        } else {
+            "element orders: insert one interface per element order (split the sets)"
+        };
         return Err(CoreError::Invalid(format!(
-            "the surface between `{bottom}` and `{top}` mixes {} and {} elements ({}); insert one interface per element order (split the sets)",
+            "the surface between `{bottom}` and `{top}` mixes {} faces ({} elements, e.g. {}) and {} faces ({} elements, e.g. {}); interface `{name}` cannot mix {what}",
             shape.name(),
+            mesh.blocks[r0.block].shape.name(),
+            describe(mesh, r0),
+            other.name(),
             mesh.blocks[r.block].shape.name(),
             describe(mesh, r)
         )));
@@ -444,7 +486,6 @@ mod tests {
     use super::*;
     use crate::mesh::generate::{box_mesh, BoxSpec};
     use crate::mesh::merge::merge;
-    use crate::topology::CellShape;
 
     fn two_cubes(shape: CellShape) -> Mesh {
         let lo = box_mesh(&BoxSpec::new([1.0; 3], [1; 3], shape), "b", "h", "m").unwrap();

@@ -56,7 +56,8 @@ pub struct ElementRef {
 }
 
 /// Reference to one face of a solid element (face ids as in
-/// [`crate::topology::HEX_FACES`]).
+/// [`crate::topology::HEX_FACES`] / [`crate::topology::WEDGE_FACES`]: the
+/// Abaqus S1..S6 / S1..S5 order, 0-based).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct FaceRef {
     pub block: usize,
@@ -165,6 +166,23 @@ impl Mesh {
             .iter()
             .map(|&l| conn[l])
             .collect()
+    }
+
+    /// The key that identifies a face whatever element it is seen from: its
+    /// corner node ids sorted, a triangle's padded with `usize::MAX` (so a
+    /// triangle never matches a quadrilateral). `None` if `f.face` is not a
+    /// face of the element's shape.
+    pub fn face_key(&self, f: FaceRef) -> Option<[usize; 4]> {
+        let b = &self.blocks[f.block];
+        let corners = b.shape.face_shape_of(f.face)?.num_corners();
+        let conn = b.element(f.element);
+        let l = b.shape.face_nodes(f.face);
+        let mut k = [usize::MAX; 4];
+        for (x, &i) in k.iter_mut().zip(&l[..corners]) {
+            *x = conn[i];
+        }
+        k.sort_unstable();
+        Some(k)
     }
 
     /// Node set made of all the nodes of a face set.
