@@ -182,3 +182,42 @@ fn dcb_without_regularisation_stops_past_the_peak_and_says_why() {
     // the converged increments are on disk, the last one as a frame
     assert!(dir.path().join("out/checkpoint.json").exists());
 }
+
+/// The cohesive-zone mesh advice sizes a triangle by its shortest edge:
+/// on the T3 prism cut into 4 x 2 cells of 0.05 x 0.1 (a bilinear law),
+/// the wedge6 + INTER6 mesh gets the same advice as the h8 + INTER8 mesh
+/// of the same cells (element length 0.05, the quadrilateral's shorter
+/// side; same moduli and arm thickness), `junta check`'s advice line.
+#[test]
+fn mesh_advice_sizes_triangles_like_their_cells() {
+    let text = std::fs::read_to_string(repo().join("examples/paper/prism_tension.toml"))
+        .unwrap()
+        .replace(
+            "type = \"linear_penalty\"\nd = 1.0e25",
+            "type = \"bilinear\"\nK = 1.0e14\nN = 8.0e7\nS = 1.0e8\nG_Ic = 500.0\nG_IIc = 1000.0\neta = 2.0",
+        )
+        .replace("divisions = [1, 1, 1]", "divisions = [4, 2, 1]");
+    assert!(text.contains("bilinear"));
+    let dir = tempfile::tempdir().unwrap();
+    let advice = |element: &str| {
+        let scene = write(
+            dir.path(),
+            &format!("{element}.toml"),
+            &text.replace("element = \"h27\"", &format!("element = \"{element}\"")),
+        );
+        let out = junta().arg("check").arg(&scene).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let s = String::from_utf8_lossy(&out.stdout).to_string();
+        s.lines()
+            .find(|l| l.contains("mesh advice"))
+            .unwrap_or_else(|| panic!("no advice in {s}"))
+            .to_string()
+    };
+    let (w, h) = (advice("wedge6"), advice("h8"));
+    assert!(w.contains("5.000e-2 .. 5.000e-2 long"), "{w}");
+    assert_eq!(w, h);
+}

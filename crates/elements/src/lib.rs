@@ -3,13 +3,15 @@
 //! Solid finite elements of Junta and what they are made of:
 //!
 //! * [`shape`]: Lagrange / serendipity shape functions and their natural
-//!   derivatives for Q4, Q8, Q9 ([`shape::quad_shape`], also used on the
-//!   faces of the interface elements) and H8, H20, H27
+//!   derivatives for Q4, Q8, Q9 ([`shape::quad_shape`]) and Tri3, Tri6
+//!   ([`shape::tri_shape`]; both through [`shape::surface_shape`] on the
+//!   faces of the interface elements and for face loads) and H8, H20, H27
 //!   ([`shape::hex_shape`]), W6, W15 ([`shape::wedge_shape`]), in the node
 //!   order of [`junta_core::topology`].
 //! * [`quadrature`]: Gauss-Legendre (1-5 points) and Gauss-Lobatto (2-5
-//!   points) rules and their 2D / 3D tensor products; triangle x line
-//!   rules for wedges ([`quadrature::wedge_rule`]).
+//!   points) rules and their 2D / 3D tensor products; triangle rules (1, 3,
+//!   6 points, [`quadrature::triangle_rule`], and the vertex rule) and
+//!   triangle x line rules for wedges ([`quadrature::wedge_rule`]).
 //! * [`material`]: linear elastic materials implementing
 //!   [`junta_core::Material`]: [`Isotropic`] (`isotropic`) and
 //!   [`Orthotropic`] (`orthotropic`, with an Abaqus-style orientation).

@@ -26,9 +26,9 @@
 //! crack direction is not known beforehand: `l_e` is each element's shorter
 //! in-plane side (for the long thin elements of a beam model meshed with
 //! one element across its width, the side along the beam; for a triangle
-//! (INTER6 / INTER12) `sqrt(2 A)`, the side of a right isosceles triangle
-//! of the same area A, i.e. the side of the square that two such triangles
-//! split, with the direction of its shortest edge), and the verdict
+//! (INTER6 / INTER12) its shortest edge, which for the two triangles of a
+//! cut rectangle is the rectangle's shorter side, as for the quadrilateral
+//! it replaces), and the verdict
 //! uses the coarsest element of the interface. Fewer than 3 elements: too
 //! coarse (peak loads overshoot and the load-displacement curve saw-tooths);
 //! 3 to 5: adequate; 5 or more: fine.
@@ -235,19 +235,16 @@ pub fn cohesive_zone_advice(
         if b.shape.face_shape().is_some_and(|f| f.num_corners() == 3) {
             // triangle: corners 0..2 of the bottom face
             let (e01, e02, e12) = (sub(x(1), x(0)), sub(x(2), x(0)), sub(x(2), x(1)));
-            let n = cross(e01, e02);
-            let short = norm(n).sqrt();
+            let edge = *[e01, e02, e12]
+                .iter()
+                .min_by(|a, b| norm(**a).total_cmp(&norm(**b)))
+                .expect("three edges");
+            let short = norm(edge);
             l_min = l_min.min(short);
             if short > l_max {
                 l_max = short;
-                normal = unit(n);
-                let edges = [e01, e02, e12];
-                along = unit(
-                    *edges
-                        .iter()
-                        .min_by(|a, b| norm(**a).total_cmp(&norm(**b)))
-                        .expect("three edges"),
-                );
+                normal = unit(cross(e01, e02));
+                along = unit(edge);
             }
             continue;
         }

@@ -4,8 +4,10 @@
 //! laws they use.
 //!
 //! - [`element`]: INTER8 / INTER16 / INTER18 (4+4, 8+8, 9+9 nodes; they match
-//!   H8 / H20 / H27 faces), one generic kernel over the face shape, with
-//!   Gauss or Lobatto (nodal) integration. The paper's element is INTER18.
+//!   H8 / H20 / H27 faces and wedges' quadrilateral sides) and INTER6 /
+//!   INTER12 (3+3, 6+6 nodes; the triangles of wedge6 / wedge15), one
+//!   generic kernel over the face shape, with Gauss or Lobatto (nodal)
+//!   integration. The paper's element is INTER18.
 //! - [`law`]: traction-separation laws behind [`junta_core::InterfaceLaw`],
 //!   one file each, registered with `inventory`: `linear_penalty` and
 //!   `paper_debond` (the paper's), the fracture-energy laws `bilinear` and
