@@ -722,7 +722,7 @@ fn incremental_program(
                     .map(|p| c * p.1)
                     .collect();
                 t.push(c * amp.value(end));
-                if (c * amp.value(start) - lambda).abs() > 1e-12 * c.abs() {
+                if c != 0.0 && (c * amp.value(start) - lambda).abs() > 1e-12 * c.abs() {
                     notes.push(format!(
                         "{file}:{}: {}: amplitude `{}` starts at {} but the loads stand at {} of it: the jump is ramped over the step's first segment",
                         s.line,
