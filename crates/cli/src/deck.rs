@@ -128,6 +128,8 @@ pub struct DeckModel {
     /// The linear solver the deck's `*STATIC, SOLVER=` asks for (a
     /// registry key), if any.
     pub solver: Option<String>,
+    /// `*NODE PRINT` / `*EL PRINT` requests and the tables they fill.
+    pub prints: crate::deck_print::PrintTables,
 }
 
 /// Map a `*STATIC, SOLVER=` name to a Junta back end, with a note.
@@ -479,6 +481,10 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     }
     let title = deck.heading.lines().next().unwrap_or("").trim().to_string();
     let every = deck.every;
+    let prints = crate::deck_print::PrintTables::new(
+        std::mem::take(&mut deck.node_prints),
+        std::mem::take(&mut deck.el_prints),
+    );
     crate::limits::check_memory(
         &format!("{file}: the model ({} nodes)", deck.mesh.nodes.len()),
         crate::limits::model_bytes(&deck.mesh),
@@ -550,6 +556,7 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         curve,
         every,
         solver,
+        prints,
     })
 }
 

@@ -25,7 +25,7 @@
 //! written. The same step rules as `*NODE PRINT` apply.
 
 use anyhow::{anyhow, Context, Result};
-use junta_core::mesh::inp::{read_inp, InpElPrint, InpNodePrint};
+use junta_core::mesh::inp::{InpElPrint, InpNodePrint};
 use junta_core::state::StateStore;
 use junta_core::Model;
 use std::fmt::Write as _;
@@ -42,19 +42,15 @@ pub struct PrintTables {
 }
 
 impl PrintTables {
-    /// The requests of the deck `input` (none for a scene).
-    pub fn new(input: &Path) -> Result<Self> {
-        if input.extension().and_then(|e| e.to_str()) != Some("inp") {
-            return Ok(Self::default());
-        }
-        let deck = read_inp(input).map_err(|e| anyhow!("{e}"))?;
-        Ok(PrintTables {
-            nodes: deck.node_prints,
-            elements: deck.el_prints,
+    /// Empty tables for the requests of a deck.
+    pub fn new(nodes: Vec<InpNodePrint>, elements: Vec<InpElPrint>) -> Self {
+        PrintTables {
+            nodes,
+            elements,
             node_csv: HEADER.to_string(),
             el_csv: EL_HEADER.to_string(),
             notes: Vec::new(),
-        })
+        }
     }
 
     /// Whether the deck asked for nothing.
@@ -116,6 +112,33 @@ impl PrintTables {
     }
 }
 
+/// The requests in force in step `step`: those given outside any step,
+/// and those of `step` or, when it has none, of the nearest earlier step
+/// with some (requests stay active, as in CalculiX).
+fn active<T>(
+    prints: &[T],
+    step_of: impl Fn(&T) -> Option<usize>,
+    step: usize,
+) -> impl Iterator<Item = &T> {
+    let owner = prints
+        .iter()
+        .filter_map(&step_of)
+        .filter(|&s| s <= step)
+        .max();
+    prints.iter().filter(move |p| {
+        let s = step_of(p);
+        s.is_none() || s == owner
+    })
+}
+
+/// The set called `name` (case-insensitive, as decks name sets).
+fn named<'a, V>(
+    sets: &'a std::collections::BTreeMap<String, V>,
+    name: &str,
+) -> Option<(&'a String, &'a V)> {
+    sets.iter().find(|(k, _)| k.eq_ignore_ascii_case(name))
+}
+
 /// Header of `el_print.csv`.
 pub const EL_HEADER: &str = "step,set,variable,element,point,1,2,3,4,5,6\n";
 
@@ -129,21 +152,8 @@ fn el_rows(
     out: &mut String,
     notes: &mut Vec<String>,
 ) -> Result<()> {
-    let owner = prints
-        .iter()
-        .filter_map(|p| p.step)
-        .filter(|&s| s <= step)
-        .max();
-    for p in prints
-        .iter()
-        .filter(|p| p.step.is_none() || p.step == owner)
-    {
-        let Some((name, members)) = model
-            .mesh
-            .element_sets
-            .iter()
-            .find(|(k, _)| k.eq_ignore_ascii_case(&p.elset))
-        else {
+    for p in active(prints, |p| p.step, step) {
+        let Some((name, members)) = named(&model.mesh.element_sets, &p.elset) else {
             return Err(anyhow!(
                 "line {}: *EL PRINT, ELSET={}: no such element set",
                 p.line,
@@ -220,22 +230,8 @@ fn rows(
     out: &mut String,
     notes: &mut Vec<String>,
 ) -> Result<()> {
-    // the requests of this step, or of the nearest earlier step with some
-    let owner = prints
-        .iter()
-        .filter_map(|p| p.step)
-        .filter(|&s| s <= step)
-        .max();
-    for p in prints
-        .iter()
-        .filter(|p| p.step.is_none() || p.step == owner)
-    {
-        let Some((name, nodes)) = model
-            .mesh
-            .node_sets
-            .iter()
-            .find(|(k, _)| k.eq_ignore_ascii_case(&p.nset))
-        else {
+    for p in active(prints, |p| p.step, step) {
+        let Some((name, nodes)) = named(&model.mesh.node_sets, &p.nset) else {
             return Err(anyhow!(
                 "line {}: *NODE PRINT, NSET={}: no such node set",
                 p.line,

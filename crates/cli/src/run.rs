@@ -39,6 +39,8 @@ pub struct Prepared {
     /// Per step of the load program: the deck's `*STEP, INC=n` and the
     /// line of that `*STEP` (empty for scenes).
     pub increment_limits: Vec<Option<(usize, usize)>>,
+    /// A deck's print requests (empty for a scene).
+    pub prints: crate::deck_print::PrintTables,
 }
 
 fn build_solver(key: &str, table: &toml::Table, where_: &str) -> Result<Box<dyn LinearSolver>> {
@@ -202,6 +204,7 @@ fn prepare_unchecked(input: &Path, solver_overrides: &[String]) -> Result<Prepar
                 solver_table,
                 deck_steps: Vec::new(),
                 increment_limits: Vec::new(),
+                prints: Default::default(),
             })
         }
         Some("inp") => {
@@ -250,6 +253,7 @@ fn prepare_unchecked(input: &Path, solver_overrides: &[String]) -> Result<Prepar
                 solver_table: table,
                 deck_steps,
                 increment_limits,
+                prints: d.prints,
             })
         }
         _ => bail!(
@@ -322,7 +326,7 @@ pub fn run(
         p.model.mesh.num_elements(),
         p.solver.key()
     ));
-    let mut prints = crate::deck_print::PrintTables::new(input)?;
+    let mut prints = std::mem::take(&mut p.prints);
     let (res, steps_summary) = if p.deck_steps.len() > 1 {
         let (res, steps) = solve_deck_steps(&mut p, &dir, &pb, input, &mut prints)?;
         (res, Some(steps))

@@ -1090,6 +1090,31 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// A parameter with two values `(key, default, other)`: `false` when
+    /// absent or `default`, `true` for `other` (case-insensitive), an error
+    /// listing `valid` otherwise.
+    fn two_way(
+        &self,
+        line: usize,
+        keyword: &str,
+        params: &Params,
+        (key, default, other): (&str, &str, &str),
+        valid: &str,
+    ) -> Result<bool, InpError> {
+        match Self::param(params, key) {
+            None => Ok(false),
+            Some((_, Some(v))) if v.eq_ignore_ascii_case(default) => Ok(false),
+            Some((_, Some(v))) if v.eq_ignore_ascii_case(other) => Ok(true),
+            Some((_, v)) => Err(InpError::Parameter {
+                file: self.file.into(),
+                line,
+                keyword: keyword.into(),
+                parameter: format!("{key}={}", v.as_deref().unwrap_or("")),
+                valid: valid.into(),
+            }),
+        }
+    }
+
     fn param<'p>(params: &'p Params, key: &str) -> Option<&'p (String, Option<String>)> {
         params.iter().find(|(k, _)| k == key)
     }
@@ -2563,14 +2588,12 @@ impl<'a> Parser<'a> {
                 line: dl,
                 amplitude: None,
             });
-            if let Some(name) = &amplitude {
-                self.amplitude_refs.push((
-                    AmplitudeUse::Boundary,
-                    self.deck.boundaries.len() - 1,
-                    name.clone(),
-                    line,
-                ));
-            }
+            self.refer_amplitude(
+                AmplitudeUse::Boundary,
+                self.deck.boundaries.len() - 1,
+                &amplitude,
+                line,
+            );
         }
         Ok(())
     }
@@ -2628,20 +2651,13 @@ impl<'a> Parser<'a> {
         {
             return Err(self.invalid(line, kw, format!("amplitude `{name}` is defined twice")));
         }
-        let total_time = match Self::param(params, "TIME") {
-            None => false,
-            Some((_, Some(v))) if v.eq_ignore_ascii_case("STEP TIME") => false,
-            Some((_, Some(v))) if v.eq_ignore_ascii_case("TOTAL TIME") => true,
-            Some((_, v)) => {
-                return Err(InpError::Parameter {
-                    file: self.file.into(),
-                    line,
-                    keyword: kw.into(),
-                    parameter: format!("TIME={}", v.as_deref().unwrap_or("")),
-                    valid: "TIME=STEP TIME, TIME=TOTAL TIME".into(),
-                })
-            }
-        };
+        let total_time = self.two_way(
+            line,
+            kw,
+            params,
+            ("TIME", "STEP TIME", "TOTAL TIME"),
+            "TIME=STEP TIME, TIME=TOTAL TIME",
+        )?;
         for (key, valid) in [("DEFINITION", "TABULAR"), ("VALUE", "RELATIVE")] {
             if let Some((_, v)) = Self::param(params, key) {
                 if !v.as_deref().is_some_and(|v| v.eq_ignore_ascii_case(valid)) {
@@ -2710,6 +2726,20 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// Keep the `AMPLITUDE=` name of record `index` of list `what` (if
+    /// any) for resolution when the deck is read.
+    fn refer_amplitude(
+        &mut self,
+        what: AmplitudeUse,
+        index: usize,
+        amplitude: &Option<String>,
+        line: usize,
+    ) {
+        if let Some(name) = amplitude {
+            self.amplitude_refs.push((what, index, name.clone(), line));
+        }
+    }
+
     /// The `AMPLITUDE=` parameter of a load keyword: the name, only inside
     /// a step (an amplitude scales a load over the step time).
     fn amplitude_param(
@@ -2767,14 +2797,12 @@ impl<'a> Parser<'a> {
                 line: dl,
                 amplitude: None,
             });
-            if let Some(name) = &amplitude {
-                self.amplitude_refs.push((
-                    AmplitudeUse::Cload,
-                    self.deck.cloads.len() - 1,
-                    name.clone(),
-                    line,
-                ));
-            }
+            self.refer_amplitude(
+                AmplitudeUse::Cload,
+                self.deck.cloads.len() - 1,
+                &amplitude,
+                line,
+            );
         }
         Ok(())
     }
@@ -2999,20 +3027,13 @@ impl<'a> Parser<'a> {
         let kw = "SURFACE";
         self.check_params(line, kw, params, &["NAME", "TYPE"])?;
         let name = self.required(line, kw, params, "NAME")?;
-        let node = match Self::param(params, "TYPE") {
-            None => false,
-            Some((_, Some(t))) if t.eq_ignore_ascii_case("ELEMENT") => false,
-            Some((_, Some(t))) if t.eq_ignore_ascii_case("NODE") => true,
-            Some((_, v)) => {
-                return Err(InpError::Parameter {
-                    file: self.file.into(),
-                    line,
-                    keyword: kw.into(),
-                    parameter: format!("TYPE={}", v.clone().unwrap_or_default()),
-                    valid: "TYPE=ELEMENT (faces S1..S6, the default), TYPE=NODE".into(),
-                })
-            }
-        };
+        let node = self.two_way(
+            line,
+            kw,
+            params,
+            ("TYPE", "ELEMENT", "NODE"),
+            "TYPE=ELEMENT (faces S1..S6, the default), TYPE=NODE",
+        )?;
         if data.is_empty() {
             return Err(self.invalid(line, kw, format!("surface `{name}` has no data lines")));
         }
@@ -3181,14 +3202,12 @@ impl<'a> Parser<'a> {
                 line: dl,
                 amplitude: None,
             });
-            if let Some(name) = &amplitude {
-                self.amplitude_refs.push((
-                    AmplitudeUse::Dload,
-                    self.deck.dloads.len() - 1,
-                    name.clone(),
-                    line,
-                ));
-            }
+            self.refer_amplitude(
+                AmplitudeUse::Dload,
+                self.deck.dloads.len() - 1,
+                &amplitude,
+                line,
+            );
         }
         Ok(())
     }
@@ -3231,14 +3250,12 @@ impl<'a> Parser<'a> {
                 line: dl,
                 amplitude: None,
             });
-            if let Some(name) = &amplitude {
-                self.amplitude_refs.push((
-                    AmplitudeUse::Dload,
-                    self.deck.dloads.len() - 1,
-                    name.clone(),
-                    line,
-                ));
-            }
+            self.refer_amplitude(
+                AmplitudeUse::Dload,
+                self.deck.dloads.len() - 1,
+                &amplitude,
+                line,
+            );
         }
         Ok(())
     }
