@@ -733,6 +733,10 @@ pub fn run_static(
             json!(null)
         },
         "negative_pivots_max": rows.iter().filter_map(|r| r.negative_pivots).max(),
+        // solves whose residual ||b - A x|| the back end left to the
+        // driver's own force check (factor above doubt; `ldlt`
+        // `residual_check`)
+        "unchecked_solves": report.unchecked_solves,
         "matrix_kind": model.matrix_kind().name(),
         // a general tangent is assembled in full only for a back end that
         // solves general matrices; otherwise its symmetric part is used

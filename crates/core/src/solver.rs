@@ -61,6 +61,11 @@ pub struct SolveReport {
     pub precision: String,
     /// Iterative-refinement steps of the last solve (direct back ends).
     pub refinement_steps: usize,
+    /// Solves whose residual check was skipped (cumulative): the caller
+    /// checks its own residual and the factor gave no reason for doubt
+    /// ([`LinearSolver::set_caller_checks_residual`]). `residual` is that
+    /// of the last checked solve.
+    pub unchecked_solves: usize,
     /// Numeric factorisations so far (cumulative).
     pub factorizations: usize,
     /// Of those, partial refactorisations: only the part of the factor
@@ -170,6 +175,13 @@ pub trait LinearSolver: Send + std::fmt::Debug {
     /// before `analyze` (used by AMG for the rigid-body modes; ignored by
     /// default).
     fn set_layout(&mut self, _layout: &EquationLayout) {}
+    /// Told by a caller that verifies every solution through a residual of
+    /// its own (a Newton driver computes the out-of-balance forces after
+    /// each update), so that a back end may skip its check of
+    /// `||b - A x||` when its factor gives no reason for doubt (no
+    /// perturbed pivot, no tiny pivot, little growth): that check reads
+    /// the whole matrix once more per solve. Ignored by default.
+    fn set_caller_checks_residual(&mut self, _checks: bool) {}
     /// Cumulative report of what the solver did.
     fn report(&self) -> SolveReport;
     /// The matrix kinds this back end can solve (default: SPD only).

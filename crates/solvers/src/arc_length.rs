@@ -1163,6 +1163,8 @@ fn attempt(
         w.iterations += 1;
         if !w.analyzed {
             let t = Instant::now();
+            // every update is checked through the out-of-balance forces
+            solver.set_caller_checks_residual(true);
             solver.set_layout(&w.layout);
             solver.analyze(&w.k, Some(&w.coords))?;
             w.timings.analyze += t.elapsed().as_secs_f64();

@@ -54,7 +54,7 @@ mod supernodal;
 
 pub use cg::{CgSettings, CgSolver, Preconditioner};
 pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats, Precision};
-pub use ldlt::{LdltSettings, LdltSolver, LdltStats};
+pub use ldlt::{LdltSettings, LdltSolver, LdltStats, ResidualCheck, UNCHECKED_GROWTH_LIMIT};
 pub use lu::{LuSettings, LuSolver};
 pub use minres::{MinresSettings, MinresSolver};
 pub use ordering::OrderingKind;

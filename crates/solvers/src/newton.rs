@@ -721,6 +721,8 @@ impl<'m> Work<'m> {
             self.iterations += 1;
             if !self.analyzed {
                 let t = Instant::now();
+                // every update is checked through the out-of-balance forces
+                solver.set_caller_checks_residual(true);
                 solver.set_layout(&self.layout);
                 solver.analyze(&self.k, Some(&self.coords))?;
                 self.timings.analyze += t.elapsed().as_secs_f64();

@@ -579,3 +579,54 @@ fn parallel_triangular_solves_equal_the_serial_ones() {
     parallel.solve_in_place(&a, &mut one).unwrap();
     assert!(max_rel_error(&one, &ys[n..]) < 1e-12);
 }
+
+/// Under a caller that checks its own residual (a Newton driver), a solve
+/// skips its residual check only when the factor is above doubt: on a
+/// shifted Laplacian (growth near 1) every solve goes unchecked and is
+/// still accurate; on a saddle point whose multipliers carry a small
+/// diagonal `delta` and are eliminated in panels of their own (restricted
+/// pivoting: multipliers `1 / delta` in `L_RJ`, growth far above
+/// `UNCHECKED_GROWTH_LIMIT`), every solve is checked and refined to the
+/// exact solution; `residual_check = "always"` checks every solve.
+#[test]
+fn residual_check_is_skipped_only_for_a_factor_above_doubt() {
+    use junta_solvers::{ResidualCheck, UNCHECKED_GROWTH_LIMIT};
+    let run = |a: &SymmetricCsc, coords: &[[f64; 3]], check: ResidualCheck| {
+        let mut s = LdltSolver::new(LdltSettings {
+            ordering: OrderingKind::NestedDissection,
+            residual_check: check,
+            ..Default::default()
+        });
+        s.set_caller_checks_residual(true);
+        let xs = exact(a.n);
+        let mut x = rhs(a, &xs);
+        s.analyze(a, Some(coords)).unwrap();
+        s.factorize(a).unwrap();
+        s.solve_in_place(a, &mut x).unwrap();
+        (max_rel_error(&x, &xs), s.stats().clone(), s.report())
+    };
+    let (lap, coords) = shifted_laplacian(8, 0.5);
+    let (err, st, r) = run(&lap, &coords, ResidualCheck::Auto);
+    assert!(st.growth < 100.0, "{st:?}");
+    assert_eq!(r.unchecked_solves, 1);
+    assert!(err < 1e-10, "error {err}");
+    let (_, _, r) = run(&lap, &coords, ResidualCheck::Always);
+    assert_eq!(r.unchecked_solves, 0);
+    assert!(r.residual < 1e-12, "{}", r.residual);
+
+    let m = 20;
+    let (mut kkt, coords) = sparse_kkt(8, m);
+    let delta = 1e-7;
+    for j in kkt.n - m..kkt.n {
+        let p = kkt.position(j, j).unwrap();
+        kkt.values[p] = delta;
+    }
+    let (err, st, r) = run(&kkt, &coords, ResidualCheck::Auto);
+    assert_eq!(st.perturbed_pivots, 0, "{st:?}");
+    assert!(st.min_pivot_ratio > 1e-12, "{st:?}");
+    assert!(st.growth > UNCHECKED_GROWTH_LIMIT, "{st:?}");
+    assert_eq!(r.unchecked_solves, 0);
+    assert!(r.residual < 1e-10, "{}", r.residual);
+    // the exact solution of the system with the delta diagonal
+    assert!(err < 1e-8, "error {err}");
+}
