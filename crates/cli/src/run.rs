@@ -80,7 +80,7 @@ pub fn resolve_solver(
         .to_string();
         if kind == MatrixKind::General {
             notes.push(format!(
-                "solver auto: the tangent is {} (friction or non-associated plasticity), so the direct back end is `lu` (supernodal LU with partial pivoting)",
+                "solver auto: the tangent is {} (friction or non-associated plasticity), so the direct back end is `lu` (supernodal LU, row interchanges within panels)",
                 kind.name()
             ));
         } else if kind != MatrixKind::SymmetricPositiveDefinite {

@@ -50,11 +50,12 @@ pub mod lu;
 pub mod minres;
 pub mod newton;
 pub mod ordering;
+mod panel_lu;
 mod supernodal;
 
 pub use cg::{CgSettings, CgSolver, Preconditioner};
 pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats, Precision};
 pub use ldlt::{LdltSettings, LdltSolver, LdltStats, ResidualCheck, UNCHECKED_GROWTH_LIMIT};
-pub use lu::{LuSettings, LuSolver};
+pub use lu::{LuPivoting, LuSettings, LuSolver};
 pub use minres::{MinresSettings, MinresSolver};
 pub use ordering::OrderingKind;

@@ -5,7 +5,9 @@
 
 use junta_core::registry::{entries, find, SolverEntry};
 use junta_core::{LinearSolver, MatrixKind, SolverError, SymmetricCsc};
-use junta_solvers::gallery::{grid_3d, grid_3d_neumann, Stencil};
+use junta_solvers::gallery::{
+    constrained_laplacian as sparse_kkt, grid_3d, grid_3d_neumann, shifted_laplacian, Stencil,
+};
 use junta_solvers::{
     CholeskySettings, CholeskySolver, LdltSettings, LdltSolver, OrderingKind, Precision,
 };
@@ -29,39 +31,6 @@ fn max_rel_error(x: &[f64], xs: &[f64]) -> f64 {
         .zip(xs)
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
         / scale
-}
-
-/// 7-point Dirichlet Laplacian on an `n^3` grid of interior points (unit
-/// spacing) shifted by `-sigma I`, upper CSC, with one point per equation.
-fn shifted_laplacian(n: usize, sigma: f64) -> (SymmetricCsc, Vec<[f64; 3]>) {
-    let mut cols = Vec::with_capacity(n * n * n);
-    let mut vals = Vec::new();
-    let mut coords = Vec::new();
-    for k in 0..n {
-        for j in 0..n {
-            for i in 0..n {
-                let idx = i + n * (j + n * k);
-                let mut rows = Vec::new();
-                if k > 0 {
-                    rows.push(idx - n * n);
-                }
-                if j > 0 {
-                    rows.push(idx - n);
-                }
-                if i > 0 {
-                    rows.push(idx - 1);
-                }
-                vals.extend(std::iter::repeat_n(-1.0, rows.len()));
-                rows.push(idx);
-                vals.push(6.0 - sigma);
-                cols.push(rows);
-                coords.push([i as f64, j as f64, k as f64]);
-            }
-        }
-    }
-    let mut a = SymmetricCsc::from_columns(cols);
-    a.values = vals;
-    (a, coords)
 }
 
 /// Eigenvalues of the Laplacian above below `sigma`, and the distance of
@@ -202,33 +171,6 @@ fn saddle_point_needs_2x2_pivots() {
         c.factorize(&a),
         Err(SolverError::NotPositiveDefinite { .. })
     ));
-}
-
-/// Sparse saddle point: a Laplacian `A` (SPD) tied by `m` constraints
-/// `u_p - u_q = 0`, each multiplier with an explicit zero diagonal.
-fn sparse_kkt(n: usize, m: usize) -> (SymmetricCsc, Vec<[f64; 3]>) {
-    let (lap, mut coords) = shifted_laplacian(n, 0.0);
-    let na = lap.n;
-    let mut cols: Vec<Vec<usize>> = (0..na)
-        .map(|j| lap.row_idx[lap.col_ptr[j]..lap.col_ptr[j + 1]].to_vec())
-        .collect();
-    let mut vals = lap.values.clone();
-    let stride = na / m;
-    for c in 0..m {
-        let p = c * stride + stride / 3;
-        let q = p + n; // neighbour in y
-        cols.push(vec![p, q, na + c]);
-        vals.extend([1.0, -1.0, 0.0]);
-        let (cp, cq) = (coords[p], coords[q]);
-        coords.push([
-            0.5 * (cp[0] + cq[0]),
-            0.5 * (cp[1] + cq[1]),
-            0.5 * (cp[2] + cq[2]),
-        ]);
-    }
-    let mut a = SymmetricCsc::from_columns(cols);
-    a.values = vals;
-    (a, coords)
 }
 
 #[test]

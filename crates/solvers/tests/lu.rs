@@ -234,3 +234,62 @@ fn lu_against_ldlt_cost() {
         }
     }
 }
+
+/// Restricted pivoting on the symmetric structure (the default) solves a
+/// nonsymmetric grid matrix to round-off like faer's unrestricted partial
+/// pivoting, storing fewer entries than the latter's `A^T A` structure.
+/// A saddle point whose multipliers (zero diagonal) a dissection ordering
+/// eliminates in panels of their own has no acceptable pivot within those
+/// panels: `auto` refactorises with partial pivoting and says so,
+/// `restricted` perturbs the pivots and refines; both reach the solution.
+#[test]
+fn restricted_pivoting_matches_partial_pivoting_and_falls_back() {
+    use junta_solvers::gallery::constrained_laplacian;
+    use junta_solvers::{LuPivoting, LuSettings, OrderingKind};
+    let solve = |a: &SymmetricCsc, coords: &[[f64; 3]], pivoting| {
+        let mut lu = LuSolver::new(LuSettings {
+            pivoting,
+            ordering: OrderingKind::NestedDissection,
+            ..Default::default()
+        });
+        let xs = exact(a.n);
+        let mut b = rhs(a, &xs);
+        lu.analyze(a, Some(coords)).unwrap();
+        lu.factorize(a).unwrap();
+        lu.solve_in_place(a, &mut b).unwrap();
+        (max_rel_error(&b, &xs), lu.report())
+    };
+    let (a, coords) = nonsymmetric_grid(0.3);
+    let (e_auto, r_auto) = solve(&a, &coords, LuPivoting::Auto);
+    let (e_part, r_part) = solve(&a, &coords, LuPivoting::Partial);
+    assert!(e_auto < 1e-11 && e_part < 1e-11, "{e_auto} {e_part}");
+    assert!(r_auto.residual < 1e-13, "{}", r_auto.residual);
+    assert!(!r_auto.notes.iter().any(|n| n.contains("unrestricted")));
+    assert!(
+        r_auto.factor_nonzeros < r_part.factor_nonzeros,
+        "{} {}",
+        r_auto.factor_nonzeros,
+        r_part.factor_nonzeros
+    );
+
+    let (mut kkt, coords) = constrained_laplacian(8, 20);
+    kkt.set_general(true);
+    let (e, r) = solve(&kkt, &coords, LuPivoting::Auto);
+    assert!(e < 1e-10, "auto: {e}");
+    assert!(
+        r.notes
+            .iter()
+            .any(|n| n.contains("unrestricted partial pivoting")),
+        "{:?}",
+        r.notes
+    );
+    assert_eq!(r.factorizations, 2);
+    let (e, r) = solve(&kkt, &coords, LuPivoting::Restricted);
+    assert!(e < 1e-9, "restricted: {e}");
+    assert!(r.refinement_steps >= 1);
+    assert!(
+        r.warnings.iter().any(|w| w.contains("perturbed")),
+        "{:?}",
+        r.warnings
+    );
+}
