@@ -329,7 +329,10 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     let mut elements = Vec::new();
     let mut softening = false;
     for (bi, b) in deck.mesh.blocks.iter().enumerate() {
-        // `*SOLID SECTION, ORIENTATION=`: the material axes `a`, `b`
+        // `*SOLID SECTION, ORIENTATION=`: the material axes `a`, `b` (a
+        // cylindrical system: two points of the axis, `system =
+        // "cylindrical"`; the elements then take the axes at each
+        // integration point)
         let axes: Vec<(&str, toml::Value)> =
             match deck.block_orientations.get(bi).copied().flatten() {
                 Some(o) => {
@@ -337,7 +340,11 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
                     let arr = |v: [f64; 3]| {
                         toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
                     };
-                    vec![("a", arr(o.a)), ("b", arr(o.b))]
+                    let mut axes = vec![("a", arr(o.a)), ("b", arr(o.b))];
+                    if o.cylindrical {
+                        axes.push(("system", toml::Value::String("cylindrical".into())));
+                    }
+                    axes
                 }
                 None => Vec::new(),
             };
