@@ -557,6 +557,56 @@ fn cylindrical_orientation_matches_calculix() {
             );
         }
     }
+
+    // *EL PRINT of an oriented element: CalculiX prints the stresses in
+    // the material axes at each point (r, theta, z; xx, yy, zz, xy, xz, yz)
+    #[rustfmt::skip]
+    const C3D8_S: [[f64; 6]; 8] = [
+        [3.327823E+01, 1.089114E+02, 2.995328E+01, 1.134206E+02, 8.746922E+00, 1.316460E+01],
+        [2.867618E+01, -2.496425E+01, 1.712309E+01, 9.199713E+01, 1.014870E+01, 9.251793E+00],
+        [1.885074E+01, -1.129350E+02, 6.583349E+00, 1.077650E+02, 7.528835E+00, 7.037313E+00],
+        [1.553545E+01, -2.045685E+02, -3.300751E+00, 8.601528E+01, 9.540475E+00, 1.679375E+00],
+        [3.274405E+01, 3.758934E+01, 2.420349E+01, 1.282242E+02, 8.806589E+00, 1.484164E+01],
+        [2.782567E+01, -1.052702E+02, 1.046225E+01, 1.060572E+02, 1.020837E+01, 1.030060E+01],
+        [1.819703E+01, -2.120808E+02, -1.342863E+00, 1.216084E+02, 7.481507E+00, 8.713190E+00],
+        [1.461808E+01, -3.112024E+02, -1.198632E+01, 9.909137E+01, 9.493147E+00, 2.727013E+00],
+    ];
+    let el_rows = |deck: &std::path::Path, out: &std::path::Path| -> Vec<[f64; 6]> {
+        run_ok(deck, out);
+        let text = std::fs::read_to_string(out.join("el_print.csv")).unwrap();
+        text.lines()
+            .skip(1)
+            .map(|l| {
+                let r: Vec<f64> = l.split(',').skip(5).map(|x| x.parse().unwrap()).collect();
+                r.try_into().unwrap()
+            })
+            .collect()
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let deck = repo().join("crates/cli/tests/data/cyl_ring_c3d8.inp");
+    let local = el_rows(&deck, &dir.path().join("local"));
+    assert_eq!(local.len(), 8);
+    for (q, (got, want)) in local.iter().zip(&C3D8_S).enumerate() {
+        for c in 0..6 {
+            assert!(
+                (got[c] - want[c]).abs() < 1e-5 * 311.0,
+                "point {}: {got:?} vs CalculiX {want:?}",
+                q + 1
+            );
+        }
+    }
+    // GLOBAL=YES: the global components, the same invariants
+    let text = std::fs::read_to_string(&deck).unwrap();
+    let global = text.replace(
+        "*EL PRINT, ELSET=PRINTED",
+        "*EL PRINT, ELSET=PRINTED, GLOBAL=YES",
+    );
+    assert_ne!(global, text);
+    let global = el_rows(&write(dir.path(), "g.inp", &global), &dir.path().join("g"));
+    for (l, g) in local.iter().zip(&global) {
+        assert!((l[0] - g[0]).abs() > 1.0, "{l:?} {g:?}");
+        assert!(((l[0] + l[1] + l[2]) - (g[0] + g[1] + g[2])).abs() < 1e-9 * 311.0);
+    }
 }
 
 /// A malformed cylindrical `*ORIENTATION` is an error naming its data line:

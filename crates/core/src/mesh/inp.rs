@@ -675,6 +675,9 @@ pub struct InpElPrint {
     pub elset: String,
     /// Upper case, as written (default `S`).
     pub variables: Vec<String>,
+    /// `GLOBAL=YES`: global axes also for elements with an orientation
+    /// (default `NO`: as CalculiX, their material axes at each point).
+    pub global: bool,
     pub step: Option<usize>,
     pub line: usize,
 }
@@ -1751,6 +1754,25 @@ impl<'a> Parser<'a> {
                 }
                 "EL PRINT" => {
                     let elset = self.required(line, kw, params, "ELSET")?;
+                    // CalculiX prints oriented elements in their material
+                    // axes unless GLOBAL=YES
+                    let global = match Self::param(params, "GLOBAL")
+                        .and_then(|(_, v)| v.as_deref())
+                        .map(norm_key)
+                        .as_deref()
+                    {
+                        None | Some("NO") => false,
+                        Some("YES") => true,
+                        Some(v) => {
+                            return Err(InpError::Parameter {
+                                file: self.file.into(),
+                                line,
+                                keyword: kw.into(),
+                                parameter: format!("GLOBAL={v}"),
+                                valid: "GLOBAL=YES or GLOBAL=NO".into(),
+                            })
+                        }
+                    };
                     let mut variables = data
                         .iter()
                         .flat_map(|(_, f, _)| f.iter())
@@ -1763,6 +1785,7 @@ impl<'a> Parser<'a> {
                     self.deck.el_prints.push(InpElPrint {
                         elset,
                         variables,
+                        global,
                         step: self.step_open.map(|_| self.deck.steps.len() - 1),
                         line,
                     });
