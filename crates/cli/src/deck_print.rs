@@ -99,8 +99,7 @@ impl PrintTables {
         if !self.elements.is_empty() {
             el_rows(
                 model,
-                &self.elements,
-                &self.axes,
+                (&self.elements, &self.axes),
                 step,
                 u,
                 state,
@@ -158,11 +157,12 @@ fn named<'a, V>(
 /// Header of `el_print.csv`.
 pub const EL_HEADER: &str = "step,set,variable,element,point,1,2,3,4,5,6\n";
 
-/// Append the `*EL PRINT` rows of step `step` (module docs).
+/// Append the `*EL PRINT` rows of step `step` (module docs): the requests
+/// come paired with the material axes of each block (`None`: no
+/// orientation).
 fn el_rows(
     model: &Model,
-    prints: &[InpElPrint],
-    axes: &[Option<Axes>],
+    (prints, axes): (&[InpElPrint], &[Option<Axes>]),
     step: usize,
     u: &[f64],
     state: &StateStore,
