@@ -99,6 +99,7 @@ use junta_core::mesh::inp::{
 };
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
 use junta_core::Model;
+use junta_elements::Orientation;
 use junta_solvers::newton::NewtonSettings;
 use std::path::Path;
 
@@ -329,7 +330,10 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     let mut elements = Vec::new();
     let mut softening = false;
     for (bi, b) in deck.mesh.blocks.iter().enumerate() {
-        // `*SOLID SECTION, ORIENTATION=`: the material axes `a`, `b`
+        // `*SOLID SECTION, ORIENTATION=`: the material axes `a`, `b` (a
+        // cylindrical system: two points of the axis, `system =
+        // "cylindrical"`; the elements then take the axes at each
+        // integration point)
         let axes: Vec<(&str, toml::Value)> =
             match deck.block_orientations.get(bi).copied().flatten() {
                 Some(o) => {
@@ -337,7 +341,11 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
                     let arr = |v: [f64; 3]| {
                         toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
                     };
-                    vec![("a", arr(o.a)), ("b", arr(o.b))]
+                    let mut axes = vec![("a", arr(o.a)), ("b", arr(o.b))];
+                    if o.cylindrical {
+                        axes.push(("system", toml::Value::String("cylindrical".into())));
+                    }
+                    axes
                 }
                 None => Vec::new(),
             };
@@ -481,10 +489,27 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     }
     let title = deck.heading.lines().next().unwrap_or("").trim().to_string();
     let every = deck.every;
+    // material axes of each block with an orientation, for *EL PRINT
+    let block_axes = deck
+        .block_orientations
+        .iter()
+        .map(|o| {
+            o.and_then(|o| {
+                let o = &deck.orientations[o];
+                let o = if o.cylindrical {
+                    Orientation::cylindrical(o.a, o.b)
+                } else {
+                    Orientation::rectangular(o.a, o.b)
+                };
+                o.axes().ok()
+            })
+        })
+        .collect();
     let prints = crate::deck_print::PrintTables::new(
         std::mem::take(&mut deck.node_prints),
         std::mem::take(&mut deck.el_prints),
-    );
+    )
+    .with_axes(block_axes);
     crate::limits::check_memory(
         &format!("{file}: the model ({} nodes)", deck.mesh.nodes.len()),
         crate::limits::model_bytes(&deck.mesh),

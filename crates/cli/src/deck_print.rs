@@ -20,7 +20,10 @@
 //! integration points in the element's rule order (for hexahedra `xi`
 //! fastest, `zeta` slowest, as CalculiX numbers them), components in
 //! CalculiX's order: `S` the stresses `xx, yy, zz, xy, xz, yz`, `E` the
-//! strains with tensor shear components (`e_xy = gamma_xy / 2`). Other
+//! strains with tensor shear components (`e_xy = gamma_xy / 2`); for an
+//! element with an `*ORIENTATION` (rectangular or cylindrical) in its
+//! material axes at the point (`Q^T sigma Q`), as CalculiX prints them,
+//! unless the request says `GLOBAL=YES`. Other
 //! variables, and interface elements in the set, are noted and not
 //! written. The same step rules as `*NODE PRINT` apply.
 
@@ -28,6 +31,8 @@ use anyhow::{anyhow, Context, Result};
 use junta_core::mesh::inp::{InpElPrint, InpNodePrint};
 use junta_core::state::StateStore;
 use junta_core::Model;
+use junta_elements::material::Axes;
+use nalgebra::Matrix3;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -39,6 +44,8 @@ pub struct PrintTables {
     node_csv: String,
     el_csv: String,
     notes: Vec<String>,
+    /// Material axes of each block with an orientation (by block index).
+    axes: Vec<Option<Axes>>,
 }
 
 impl PrintTables {
@@ -50,7 +57,15 @@ impl PrintTables {
             node_csv: HEADER.to_string(),
             el_csv: EL_HEADER.to_string(),
             notes: Vec::new(),
+            axes: Vec::new(),
         }
+    }
+
+    /// The material axes of each mesh block (`None`: no orientation):
+    /// `*EL PRINT` rows of oriented elements are in those axes.
+    pub fn with_axes(mut self, axes: Vec<Option<Axes>>) -> Self {
+        self.axes = axes;
+        self
     }
 
     /// Whether the deck asked for nothing.
@@ -84,7 +99,7 @@ impl PrintTables {
         if !self.elements.is_empty() {
             el_rows(
                 model,
-                &self.elements,
+                (&self.elements, &self.axes),
                 step,
                 u,
                 state,
@@ -142,10 +157,12 @@ fn named<'a, V>(
 /// Header of `el_print.csv`.
 pub const EL_HEADER: &str = "step,set,variable,element,point,1,2,3,4,5,6\n";
 
-/// Append the `*EL PRINT` rows of step `step` (module docs).
+/// Append the `*EL PRINT` rows of step `step` (module docs): the requests
+/// come paired with the material axes of each block (`None`: no
+/// orientation).
 fn el_rows(
     model: &Model,
-    prints: &[InpElPrint],
+    (prints, axes): (&[InpElPrint], &[Option<Axes>]),
     step: usize,
     u: &[f64],
     state: &StateStore,
@@ -198,7 +215,10 @@ fn el_rows(
                     let Some(x) = pt.get(key) else { continue };
                     // ours: xx, yy, zz, xy, yz, zx (engineering shear for
                     // strains); CalculiX: xx, yy, zz, xy, xz, yz
-                    let c = [x[0], x[1], x[2], shear * x[3], shear * x[5], shear * x[4]];
+                    let mut c = [x[0], x[1], x[2], shear * x[3], shear * x[5], shear * x[4]];
+                    if let (false, Some(Some(a))) = (p.global, axes.get(r.block)) {
+                        c = to_local(&c, &a.at(pt.position));
+                    }
                     let _ = writeln!(
                         out,
                         "{},{name},{v},{label},{},{:e},{:e},{:e},{:e},{:e},{:e}",
@@ -216,6 +236,22 @@ fn el_rows(
         }
     }
     Ok(())
+}
+
+/// A symmetric tensor in CalculiX's order `xx, yy, zz, xy, xz, yz` in the
+/// axes `q` (columns: the local axes in global components): `Q^T T Q`, in
+/// the same order.
+fn to_local(c: &[f64; 6], q: &Matrix3<f64>) -> [f64; 6] {
+    let t = Matrix3::new(c[0], c[3], c[4], c[3], c[1], c[5], c[4], c[5], c[2]);
+    let l = q.transpose() * t * q;
+    [
+        l[(0, 0)],
+        l[(1, 1)],
+        l[(2, 2)],
+        l[(0, 1)],
+        l[(0, 2)],
+        l[(1, 2)],
+    ]
 }
 
 /// Append the rows of the requests of step `step` (0-based) for the

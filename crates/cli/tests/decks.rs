@@ -446,15 +446,15 @@ fn orientation_and_aniso_match_calculix() {
         );
     }
 
-    // errors name the line: a cylindrical system, an unknown name, a
+    // errors name the line: a spherical system, an unknown name, a
     // degenerate system, a non-positive-definite ANISO stiffness
     let line_of = |t: &str, pat: &str| t.lines().position(|l| l.starts_with(pat)).unwrap() + 1;
     for (from, to, at, expect) in [
         (
             "*ORIENTATION, NAME=R2, SYSTEM=RECTANGULAR",
-            "*ORIENTATION, NAME=R2, SYSTEM=CYLINDRICAL",
+            "*ORIENTATION, NAME=R2, SYSTEM=SPHERICAL",
             "*ORIENTATION, NAME=R2",
-            "CYLINDRICAL",
+            "SPHERICAL",
         ),
         (
             "MATERIAL=ORTHO, ORIENTATION=R1",
@@ -487,6 +487,162 @@ fn orientation_and_aniso_match_calculix() {
         err.contains("ANISO") || err.contains("positive definite"),
         "{err}"
     );
+}
+
+/// `*ORIENTATION, SYSTEM=CYLINDRICAL` (material axes r, theta, z about the
+/// axis through points a and b, taken at every integration point as
+/// CalculiX does) on a quarter of a thick tube about a skew axis, strongly
+/// orthotropic (E_r 10000, E_theta 200000, E_z 50000), clamped at one end,
+/// inner pressure and end loads (tests/data/cyl_ring_c3d20.inp: C3D20R with
+/// ENGINEERING CONSTANTS, C3D20 with ORTHO, C3D20 with ANISO couplings;
+/// cyl_ring_c3d8.inp: C3D8; both written by make_cyl_decks.py). Reference:
+/// CalculiX 2.20 on the same decks (`ccx -i cyl_ring_c3d20`, `ccx -i
+/// cyl_ring_c3d8`, their .dat files, 7 printed digits): U of END and the
+/// FIX total force.
+#[test]
+fn cylindrical_orientation_matches_calculix() {
+    const C3D20_U: [(&str, [f64; 3]); 13] = [
+        ("49", [2.505462E-01, 2.252824E-01, 2.171219E-01]),
+        ("50", [2.696399E-01, 2.025963E-01, 2.015568E-01]),
+        ("51", [2.857016E-01, 1.867700E-01, 1.957808E-01]),
+        ("52", [3.052947E-01, 1.846930E-01, 1.901017E-01]),
+        ("53", [3.345947E-01, 1.873959E-01, 1.869181E-01]),
+        ("72", [2.952620E-01, 2.271176E-01, 2.085584E-01]),
+        ("73", [3.259442E-01, 1.856840E-01, 1.847548E-01]),
+        ("74", [3.745909E-01, 1.860665E-01, 1.735173E-01]),
+        ("123", [3.434872E-01, 2.309242E-01, 2.015651E-01]),
+        ("124", [3.562513E-01, 2.035850E-01, 1.829999E-01]),
+        ("125", [3.669939E-01, 1.861891E-01, 1.742215E-01]),
+        ("126", [3.858277E-01, 1.842905E-01, 1.661998E-01]),
+        ("127", [4.156240E-01, 1.855167E-01, 1.611767E-01]),
+    ];
+    const C3D20_RF: [f64; 3] = [-5.321040E+03, -4.812752E+03, -1.650611E+01];
+    const C3D8_U: [(&str, [f64; 3]); 12] = [
+        ("49", [2.242442E-01, 1.906405E-01, 1.917661E-01]),
+        ("50", [2.488460E-01, 1.694996E-01, 1.776210E-01]),
+        ("51", [2.719721E-01, 1.641667E-01, 1.695403E-01]),
+        ("52", [3.031696E-01, 1.652274E-01, 1.623672E-01]),
+        ("101", [2.624285E-01, 1.904764E-01, 1.828431E-01]),
+        ("102", [2.855047E-01, 1.695012E-01, 1.681786E-01]),
+        ("103", [3.076549E-01, 1.646589E-01, 1.589719E-01]),
+        ("104", [3.391823E-01, 1.656006E-01, 1.509511E-01]),
+        ("153", [3.025533E-01, 1.911723E-01, 1.751710E-01]),
+        ("154", [3.228865E-01, 1.704793E-01, 1.590860E-01]),
+        ("155", [3.435921E-01, 1.657712E-01, 1.488141E-01]),
+        ("156", [3.760369E-01, 1.663654E-01, 1.404958E-01]),
+    ];
+    const C3D8_RF: [f64; 3] = [-5.181200E+03, -4.799392E+03, -5.765535E+00];
+    for (name, want_u, want_rf) in [
+        ("cyl_ring_c3d20.inp", &C3D20_U[..], C3D20_RF),
+        ("cyl_ring_c3d8.inp", &C3D8_U[..], C3D8_RF),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        run_ok(&repo().join("crates/cli/tests/data").join(name), dir.path());
+        let u = printed(dir.path(), "END", "U");
+        assert_eq!(u.len(), want_u.len(), "{name}: {u:?}");
+        for (node, want) in want_u {
+            let got = u.iter().find(|r| r.0 == *node).unwrap().1;
+            for c in 0..3 {
+                assert!(
+                    rel(got[c], want[c]) < 1e-5,
+                    "{name} node {node}: {got:?} vs CalculiX {want:?}"
+                );
+            }
+        }
+        let rf = printed(dir.path(), "FIX", "RF");
+        for c in 0..3 {
+            assert!(
+                (rf[0].1[c] - want_rf[c]).abs() < 1e-5 * 5.4e3,
+                "{name}: {rf:?} vs CalculiX {want_rf:?}"
+            );
+        }
+    }
+
+    // *EL PRINT of an oriented element: CalculiX prints the stresses in
+    // the material axes at each point (r, theta, z; xx, yy, zz, xy, xz, yz)
+    #[rustfmt::skip]
+    const C3D8_S: [[f64; 6]; 8] = [
+        [3.327823E+01, 1.089114E+02, 2.995328E+01, 1.134206E+02, 8.746922E+00, 1.316460E+01],
+        [2.867618E+01, -2.496425E+01, 1.712309E+01, 9.199713E+01, 1.014870E+01, 9.251793E+00],
+        [1.885074E+01, -1.129350E+02, 6.583349E+00, 1.077650E+02, 7.528835E+00, 7.037313E+00],
+        [1.553545E+01, -2.045685E+02, -3.300751E+00, 8.601528E+01, 9.540475E+00, 1.679375E+00],
+        [3.274405E+01, 3.758934E+01, 2.420349E+01, 1.282242E+02, 8.806589E+00, 1.484164E+01],
+        [2.782567E+01, -1.052702E+02, 1.046225E+01, 1.060572E+02, 1.020837E+01, 1.030060E+01],
+        [1.819703E+01, -2.120808E+02, -1.342863E+00, 1.216084E+02, 7.481507E+00, 8.713190E+00],
+        [1.461808E+01, -3.112024E+02, -1.198632E+01, 9.909137E+01, 9.493147E+00, 2.727013E+00],
+    ];
+    let el_rows = |deck: &std::path::Path, out: &std::path::Path| -> Vec<[f64; 6]> {
+        run_ok(deck, out);
+        let text = std::fs::read_to_string(out.join("el_print.csv")).unwrap();
+        text.lines()
+            .skip(1)
+            .map(|l| {
+                let r: Vec<f64> = l.split(',').skip(5).map(|x| x.parse().unwrap()).collect();
+                r.try_into().unwrap()
+            })
+            .collect()
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let deck = repo().join("crates/cli/tests/data/cyl_ring_c3d8.inp");
+    let local = el_rows(&deck, &dir.path().join("local"));
+    assert_eq!(local.len(), 8);
+    for (q, (got, want)) in local.iter().zip(&C3D8_S).enumerate() {
+        for c in 0..6 {
+            assert!(
+                (got[c] - want[c]).abs() < 1e-5 * 311.0,
+                "point {}: {got:?} vs CalculiX {want:?}",
+                q + 1
+            );
+        }
+    }
+    // GLOBAL=YES: the global components, the same invariants
+    let text = std::fs::read_to_string(&deck).unwrap();
+    let global = text.replace(
+        "*EL PRINT, ELSET=PRINTED",
+        "*EL PRINT, ELSET=PRINTED, GLOBAL=YES",
+    );
+    assert_ne!(global, text);
+    let global = el_rows(&write(dir.path(), "g.inp", &global), &dir.path().join("g"));
+    for (l, g) in local.iter().zip(&global) {
+        assert!((l[0] - g[0]).abs() > 1.0, "{l:?} {g:?}");
+        assert!(((l[0] + l[1] + l[2]) - (g[0] + g[1] + g[2])).abs() < 1e-9 * 311.0);
+    }
+}
+
+/// A malformed cylindrical `*ORIENTATION` is an error naming its data line:
+/// coincident axis points, 9 values (an origin c has no meaning for a
+/// cylindrical system), too few values, an additional rotation.
+#[test]
+fn cylindrical_orientation_errors_name_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let text =
+        std::fs::read_to_string(repo().join("crates/cli/tests/data/cyl_ring_c3d8.inp")).unwrap();
+    let data = text
+        .lines()
+        .skip_while(|l| !l.starts_with("*ORIENTATION"))
+        .nth(1)
+        .unwrap();
+    let at = text.lines().position(|l| l == data).unwrap() + 1;
+    for (bad_data, expect) in [
+        ("1.0, 2.0, 3.0, 1.0, 2.0, 3.0", "must differ"),
+        (
+            "1.0, 2.0, 3.0, 1.0, 2.0, 4.0, 0.0, 0.0, 0.0",
+            "expected 6 values",
+        ),
+        ("1.0, 2.0, 3.0, 1.0, 2.0", "expected 6 values"),
+        (
+            "1.0, 2.0, 3.0, 1.0, 2.0, 4.0\n3, 10.0",
+            "additional rotation",
+        ),
+    ] {
+        let bad = text.replacen(data, bad_data, 1);
+        let line = if bad_data.contains('\n') { at + 1 } else { at };
+        let err = run_err(&write(dir.path(), "bad.inp", &bad));
+        assert!(
+            err.contains(&format!("bad.inp:{line}")) && err.contains(expect),
+            "{bad_data}: {err}"
+        );
+    }
 }
 
 /// `*AMPLITUDE` in a linear static deck against CalculiX 2.20 on the same

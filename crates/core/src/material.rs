@@ -13,8 +13,23 @@ pub trait Material: Send + Sync + std::fmt::Debug {
     /// Registry key (`"isotropic"`, `"orthotropic"`).
     fn key(&self) -> &'static str;
     /// Elasticity matrix C in the global frame, sigma = C eps (Voigt order
-    /// `[xx, yy, zz, xy, yz, zx]`, engineering shear strains).
+    /// `[xx, yy, zz, xy, yz, zx]`, engineering shear strains). For a
+    /// material whose axes vary in space ([`Material::varies_in_space`]) a
+    /// representative value (the material documents which).
     fn elasticity(&self) -> Voigt6;
+    /// Whether C depends on the position (material axes of a cylindrical
+    /// system): elements then ask [`Material::elasticity_at`] at each
+    /// integration point. Default `false`.
+    fn varies_in_space(&self) -> bool {
+        false
+    }
+    /// Elasticity matrix C in the global frame at the point `x` (reference
+    /// coordinates). Default: [`Material::elasticity`]. Called once per
+    /// integration point in element loops: must not allocate.
+    fn elasticity_at(&self, x: [f64; 3]) -> Voigt6 {
+        let _ = x;
+        self.elasticity()
+    }
     /// A representative Young's modulus (for diagnostics such as the penalty advisor).
     fn reference_modulus(&self) -> f64;
     /// Young's modulus along the unit direction `n`: the ratio of stress

@@ -137,12 +137,15 @@ impl PointData {
     }
 }
 
-/// Strain-displacement matrices and volume weight at one Gauss point.
+/// Strain-displacement matrices, volume weight and elasticity at one
+/// Gauss point.
 #[derive(Clone, Copy)]
 struct PointB {
     bu: Bu,
     ba: Ba,
     dv: f64,
+    /// `C` at the point (the material's per point if it varies in space).
+    c: Voigt6,
 }
 
 /// The 8-node hexahedron with 9 condensed incompatible modes (see the
@@ -150,7 +153,10 @@ struct PointB {
 #[derive(Clone)]
 pub struct IncompatibleHex8 {
     material: Arc<dyn Material>,
+    /// `C` of a material uniform in space.
     c: Voigt6,
+    /// The material's `C` varies in space: [`Material::elasticity_at`] per point.
+    varies: bool,
     points: [PointData; 8],
     corners: [PointData; 8],
     centre: PointData,
@@ -190,6 +196,18 @@ fn jacobian(
     Ok((det, jinv))
 }
 
+/// Reference position `Σ_a N_a x_a` of point data `p`.
+#[inline]
+fn position(p: &PointData, coords: &[[f64; 3]]) -> [f64; 3] {
+    let mut x = [0.0; 3];
+    for (n, c) in p.n.iter().zip(coords) {
+        for i in 0..3 {
+            x[i] += n * c[i];
+        }
+    }
+    x
+}
+
 /// Write the 6 x 3 block `B(g)` of a gradient `g` into columns
 /// `col..col + 3` of `b`.
 #[inline(always)]
@@ -218,9 +236,11 @@ impl IncompatibleHex8 {
             *p = PointData::new(xi, 0.0);
         }
         let c = material.elasticity();
+        let varies = material.varies_in_space();
         IncompatibleHex8 {
             material,
             c,
+            varies,
             points,
             corners,
             centre: PointData::new([0.0; 3], 0.0),
@@ -248,13 +268,15 @@ impl IncompatibleHex8 {
         &self.material
     }
 
-    /// `B_u`, `B_a` and `w det J` at the 8 Gauss points.
+    /// `B_u`, `B_a`, `w det J` and `C` at the 8 Gauss points (`C` at the
+    /// trilinear position `Σ_a N_a x_a` when the material varies in space).
     fn b_matrices(&self, coords: &[[f64; 3]]) -> Result<[PointB; 8], ElementError> {
         let (det0, j0inv) = jacobian(&self.centre, coords, 16)?;
         let mut out = [PointB {
             bu: Bu::zeros(),
             ba: Ba::zeros(),
             dv: 0.0,
+            c: self.c,
         }; 8];
         for (q, (p, o)) in self.points.iter().zip(out.iter_mut()).enumerate() {
             let (det, jinv) = jacobian(p, coords, q)?;
@@ -273,6 +295,9 @@ impl IncompatibleHex8 {
                 put_b(&mut o.ba, 3 * k, g);
             }
             o.dv = p.w * det;
+            if self.varies {
+                o.c = self.material.elasticity_at(position(p, coords));
+            }
         }
         Ok(out)
     }
@@ -283,11 +308,11 @@ impl IncompatibleHex8 {
         let mut kaa = Kaa::zeros();
         let mut kuu = Kuu::zeros();
         for p in b {
-            let cba = self.c * p.ba * p.dv;
+            let cba = p.c * p.ba * p.dv;
             kua += p.bu.transpose() * cba;
             kaa += p.ba.transpose() * cba;
             if with_kuu {
-                kuu += p.bu.transpose() * (self.c * p.bu * p.dv);
+                kuu += p.bu.transpose() * (p.c * p.bu * p.dv);
             }
         }
         (kua, kaa, kuu)
@@ -353,7 +378,7 @@ impl Element for IncompatibleHex8 {
         // f_int from the stresses (= K u for this linear element)
         let mut f = SVector::<f64, NU>::zeros();
         for p in &b {
-            let sig = self.c * (p.bu * u + p.ba * alpha);
+            let sig = p.c * (p.bu * u + p.ba * alpha);
             f += p.bu.transpose() * sig * p.dv;
         }
         f_int[..NU].copy_from_slice(f.as_slice());
@@ -390,13 +415,8 @@ impl Element for IncompatibleHex8 {
         let mut out = Vec::with_capacity(8);
         for (p, pb) in self.points.iter().zip(&b) {
             let eps: Vector6<f64> = pb.bu * u + pb.ba * alpha;
-            let s: [f64; 6] = (self.c * eps).into();
-            let mut position = [0.0; 3];
-            for (n, x) in p.n.iter().zip(ctx.coords) {
-                for i in 0..3 {
-                    position[i] += n * x[i];
-                }
-            }
+            let s: [f64; 6] = (pb.c * eps).into();
+            let position = position(p, ctx.coords);
             out.push(PointOutput {
                 position,
                 values: vec![

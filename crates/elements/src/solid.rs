@@ -23,8 +23,10 @@
 //!
 //! ## Integrals
 //!
-//! With `sigma = C eps` (`C` from the [`Material`]) and a tensor Gauss rule
-//! `(xi_q, w_q)`:
+//! With `sigma = C eps` (`C` from the [`Material`]; for a material whose
+//! axes vary in space, a cylindrical orientation, `C` is taken at each
+//! integration point's reference position `x_q = Σ_a N_a(xi_q) x_a`, as
+//! CalculiX does) and a tensor Gauss rule `(xi_q, w_q)`:
 //!
 //! ```text
 //! f_a  = ∫ B_a^T sigma dV   ≈ Σ_q w_q det J_q B_a^T(xi_q) sigma(xi_q)
@@ -133,7 +135,10 @@ pub struct SolidElement {
     shape: CellShape,
     integration: Integration,
     material: Arc<dyn Material>,
+    /// `C` of a material uniform in space.
     c: Voigt6,
+    /// The material's `C` varies in space: [`Material::elasticity_at`] per point.
+    varies: bool,
     points: Vec<PointData>,
     corners: Vec<PointData>,
 }
@@ -215,12 +220,14 @@ impl SolidElement {
             .map(|&xi| PointData::new(shape, xi, 0.0))
             .collect();
         let c = material.elasticity();
+        let varies = material.varies_in_space();
         Ok(SolidElement {
             key,
             shape,
             integration,
             material,
             c,
+            varies,
             points,
             corners,
         })
@@ -317,6 +324,30 @@ impl SolidElement {
         Ok(det)
     }
 
+    /// Reference position `x = Σ_a N_a x_a` of point data `p`.
+    #[inline]
+    fn position(&self, p: &PointData, coords: &[[f64; 3]]) -> [f64; 3] {
+        let mut x = [0.0; 3];
+        for (n, c) in p.n[..self.shape.num_nodes()].iter().zip(coords) {
+            for i in 0..3 {
+                x[i] += n * c[i];
+            }
+        }
+        x
+    }
+
+    /// `C` at point data `p`: the material's at the point's reference
+    /// position if it varies in space (a cylindrical orientation, evaluated
+    /// at each integration point as CalculiX does), else the stored one.
+    #[inline]
+    fn elasticity(&self, p: &PointData, coords: &[[f64; 3]]) -> Voigt6 {
+        if self.varies {
+            self.material.elasticity_at(self.position(p, coords))
+        } else {
+            self.c
+        }
+    }
+
     /// Strain (Voigt, engineering shear) from gradients and displacements.
     #[inline]
     fn strain(&self, g: &[[f64; 3]; MAX_NODES], disp: &[f64]) -> Vector6<f64> {
@@ -389,13 +420,13 @@ impl Element for SolidElement {
             debug_assert!(k.len() >= ndof * ndof);
             k[..ndof * ndof].fill(0.0);
         }
-        let c = &self.c;
         let mut g = [[0.0; 3]; MAX_NODES];
         // C B_b, column-wise: cb[b][col] is a Voigt 6-vector
         let mut cb = [[[0.0; 6]; 3]; MAX_NODES];
         for (q, p) in self.points.iter().enumerate() {
             let det = self.gradients(p, ctx.coords, q, &mut g)?;
             let dv = p.w * det;
+            let c = &self.elasticity(p, ctx.coords);
             let eps = self.strain(&g, ctx.disp);
             let sig = c * eps;
             let s: [f64; 6] = sig.into();
@@ -457,19 +488,13 @@ impl Element for SolidElement {
     }
 
     fn point_outputs(&self, ctx: &ElementContext<'_>) -> Result<Vec<PointOutput>, ElementError> {
-        let nn = self.shape.num_nodes();
         let mut g = [[0.0; 3]; MAX_NODES];
         let mut out = Vec::with_capacity(self.points.len());
         for (q, p) in self.points.iter().enumerate() {
             self.gradients(p, ctx.coords, q, &mut g)?;
             let eps = self.strain(&g, ctx.disp);
-            let sig = self.c * eps;
-            let mut position = [0.0; 3];
-            for a in 0..nn {
-                for (i, x) in position.iter_mut().enumerate() {
-                    *x += p.n[a] * ctx.coords[a][i];
-                }
-            }
+            let sig = self.elasticity(p, ctx.coords) * eps;
+            let position = self.position(p, ctx.coords);
             let s: [f64; 6] = sig.into();
             out.push(PointOutput {
                 position,

@@ -45,10 +45,7 @@ fn composite() -> Arc<dyn Material> {
                 g13: 4.8e9,
                 g23: 3.1e9,
             },
-            Some(Orientation {
-                a: [1.0, 0.5, 0.2],
-                b: [-0.3, 1.0, 0.4],
-            }),
+            Some(Orientation::rectangular([1.0, 0.5, 0.2], [-0.3, 1.0, 0.4])),
         )
         .unwrap(),
     )

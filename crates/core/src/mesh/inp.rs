@@ -536,7 +536,7 @@ pub struct InpDeck {
     pub dloads: Vec<InpDload>,
     /// Node surfaces (`*SURFACE, TYPE=NODE`): name (upper case) -> nodes.
     pub node_surfaces: BTreeMap<String, Vec<usize>>,
-    /// `*ORIENTATION`s (rectangular systems).
+    /// `*ORIENTATION`s (rectangular and cylindrical systems).
     pub orientations: Vec<InpOrientation>,
     /// Orientation of each mesh block (index-aligned with `mesh.blocks`):
     /// its index in `orientations`, from `*SOLID SECTION, ORIENTATION=`.
@@ -584,16 +584,21 @@ impl InpAmplitude {
     }
 }
 
-/// A rectangular `*ORIENTATION`: material axis 1 along `a - c`, `b - c` in
-/// the 1-2 plane (`c` the origin, default 0).
+/// An `*ORIENTATION`. Rectangular: material axis 1 along `a - c`, `b - c`
+/// in the 1-2 plane (`c` the origin, default 0). Cylindrical: `a`, `b` two
+/// points of the cylinder axis; at a point the material axes are r (1,
+/// radial), theta (2), z (3, along `b - a`), as in CalculiX.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InpOrientation {
     /// Name as written.
     pub name: String,
-    /// Material axis 1 direction (`a - c`).
+    /// Rectangular: material axis 1 direction (`a - c`). Cylindrical: point a of the axis.
     pub a: [f64; 3],
-    /// A direction in the material 1-2 plane (`b - c`).
+    /// Rectangular: a direction in the material 1-2 plane (`b - c`).
+    /// Cylindrical: point b of the axis (`b != a`).
     pub b: [f64; 3],
+    /// `SYSTEM=CYLINDRICAL`.
+    pub cylindrical: bool,
     /// Line of the keyword.
     pub line: usize,
 }
@@ -670,6 +675,9 @@ pub struct InpElPrint {
     pub elset: String,
     /// Upper case, as written (default `S`).
     pub variables: Vec<String>,
+    /// `GLOBAL=YES`: global axes also for elements with an orientation
+    /// (default `NO`: as CalculiX, their material axes at each point).
+    pub global: bool,
     pub step: Option<usize>,
     pub line: usize,
 }
@@ -1746,6 +1754,25 @@ impl<'a> Parser<'a> {
                 }
                 "EL PRINT" => {
                     let elset = self.required(line, kw, params, "ELSET")?;
+                    // CalculiX prints oriented elements in their material
+                    // axes unless GLOBAL=YES
+                    let global = match Self::param(params, "GLOBAL")
+                        .and_then(|(_, v)| v.as_deref())
+                        .map(norm_key)
+                        .as_deref()
+                    {
+                        None | Some("NO") => false,
+                        Some("YES") => true,
+                        Some(v) => {
+                            return Err(InpError::Parameter {
+                                file: self.file.into(),
+                                line,
+                                keyword: kw.into(),
+                                parameter: format!("GLOBAL={v}"),
+                                valid: "GLOBAL=YES or GLOBAL=NO".into(),
+                            })
+                        }
+                    };
                     let mut variables = data
                         .iter()
                         .flat_map(|(_, f, _)| f.iter())
@@ -1758,6 +1785,7 @@ impl<'a> Parser<'a> {
                     self.deck.el_prints.push(InpElPrint {
                         elset,
                         variables,
+                        global,
                         step: self.step_open.map(|_| self.deck.steps.len() - 1),
                         line,
                     });
@@ -2897,9 +2925,11 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
-    /// `*ORIENTATION, NAME= [, SYSTEM=RECTANGULAR] [, DEFINITION=COORDINATES]`:
-    /// `a, b [, c]` (points: a on material axis 1, b in the 1-2 plane, c the
-    /// origin); an optional second line `axis, angle` must have angle 0.
+    /// `*ORIENTATION, NAME= [, SYSTEM=RECTANGULAR|CYLINDRICAL] [, DEFINITION=COORDINATES]`:
+    /// rectangular `a, b [, c]` (points: a on material axis 1, b in the 1-2
+    /// plane, c the origin); cylindrical `a, b` (two points of the axis,
+    /// exactly 6 values); an optional second line `axis, angle` must have
+    /// angle 0.
     fn orientation(
         &mut self,
         line: usize,
@@ -2915,27 +2945,19 @@ impl<'a> Parser<'a> {
                 .and_then(|(_, v)| v.as_deref())
                 .map(norm_key)
         };
-        match value("SYSTEM").as_deref() {
-            None | Some("RECTANGULAR") | Some("R") => {}
-            Some(sys @ ("CYLINDRICAL" | "C")) => {
-                return Err(InpError::Parameter {
-                    file: self.file.into(),
-                    line,
-                    keyword: kw.into(),
-                    parameter: format!("SYSTEM={sys}"),
-                    valid: "SYSTEM=RECTANGULAR (cylindrical material axes vary inside an element and are not supported yet)".into(),
-                })
-            }
+        let cylindrical = match value("SYSTEM").as_deref() {
+            None | Some("RECTANGULAR") | Some("R") => false,
+            Some("CYLINDRICAL") | Some("C") => true,
             Some(sys) => {
                 return Err(InpError::Parameter {
                     file: self.file.into(),
                     line,
                     keyword: kw.into(),
                     parameter: format!("SYSTEM={sys}"),
-                    valid: "SYSTEM=RECTANGULAR".into(),
+                    valid: "SYSTEM=RECTANGULAR or SYSTEM=CYLINDRICAL".into(),
                 })
             }
-        }
+        };
         if let Some(d) = value("DEFINITION").filter(|d| d != "COORDINATES") {
             return Err(InpError::Parameter {
                 file: self.file.into(),
@@ -2945,20 +2967,22 @@ impl<'a> Parser<'a> {
                 valid: "DEFINITION=COORDINATES".into(),
             });
         }
+        let expected = if cylindrical {
+            "`ax, ay, az, bx, by, bz` (two points a, b of the cylinder axis)"
+        } else {
+            "`ax, ay, az, bx, by, bz [, cx, cy, cz]`"
+        };
         let Some(&(dl, f, _)) = data.first() else {
-            return Err(self.invalid(
-                line,
-                kw,
-                "expected a data line `ax, ay, az, bx, by, bz [, cx, cy, cz]`",
-            ));
+            return Err(self.invalid(line, kw, format!("expected a data line {expected}")));
         };
         let f: Vec<&str> = f.iter().copied().filter(|t| !t.is_empty()).collect();
-        if f.len() != 6 && f.len() != 9 {
+        if !(f.len() == 6 || (f.len() == 9 && !cylindrical)) {
             return Err(self.invalid(
                 dl,
                 kw,
                 format!(
-                    "expected 6 or 9 values `ax, ay, az, bx, by, bz [, cx, cy, cz]`, found {}",
+                    "expected {} values {expected}, found {}",
+                    if cylindrical { "6" } else { "6 or 9" },
                     f.len()
                 ),
             ));
@@ -2987,21 +3011,36 @@ impl<'a> Parser<'a> {
                 ));
             }
         }
-        let sub = |p: [f64; 3]| [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
-        let (a, b) = (sub(a), sub(b));
-        let cross = [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ];
         let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        if norm(a) == 0.0 || norm(cross) <= 1e-10 * norm(a) * norm(b) {
-            return Err(self.invalid(
-                dl,
-                kw,
-                "point a must differ from the origin and point b must not lie on the line through the origin and a",
-            ));
-        }
+        let sub = |p: [f64; 3], q: [f64; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+        let (a, b) = if cylindrical {
+            // the axis direction b - a, relative to the points' size
+            if norm(sub(b, a)) <= 1e-12 * norm(a).max(norm(b)) {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    format!(
+                        "cylindrical system: points a = {a:?} and b = {b:?} must differ (they give the cylinder axis)"
+                    ),
+                ));
+            }
+            (a, b)
+        } else {
+            let (a, b) = (sub(a, c), sub(b, c));
+            let cross = [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ];
+            if norm(a) == 0.0 || norm(cross) <= 1e-10 * norm(a) * norm(b) {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    "point a must differ from the origin and point b must not lie on the line through the origin and a",
+                ));
+            }
+            (a, b)
+        };
         if self
             .deck
             .orientations
@@ -3010,9 +3049,13 @@ impl<'a> Parser<'a> {
         {
             return Err(self.invalid(line, kw, format!("orientation `{name}` is defined twice")));
         }
-        self.deck
-            .orientations
-            .push(InpOrientation { name, a, b, line });
+        self.deck.orientations.push(InpOrientation {
+            name,
+            a,
+            b,
+            cylindrical,
+            line,
+        });
         Ok(())
     }
 

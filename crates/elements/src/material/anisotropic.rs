@@ -12,11 +12,12 @@
 //! behavior", anisotropic elasticity). Junta's Voigt order is `[11, 22, 33,
 //! 12, 23, 31]`, so components 13 and 23 swap places: `C_l[p(i)][p(j)] =
 //! D(i, j)` with `p = [0, 1, 2, 3, 5, 4]`. The stiffness must be positive
-//! definite. An optional orientation `a`, `b` (as for `orthotropic`) gives
-//! `C_g = T C_l T^T` (see [`super`]).
+//! definite. An optional orientation `a`, `b` [, `system`] (as for
+//! `orthotropic`, rectangular or cylindrical) gives `C_g = T C_l T^T` (see
+//! [`super`]), for a cylindrical system at each integration point.
 
-use super::orthotropic::Orientation;
-use super::rotate_elasticity;
+use super::orthotropic::{orientation_of, Axes, Orientation, System};
+use super::rotate_symmetric;
 use junta_core::registry::{parse_params, MaterialEntry, ParamDoc};
 use junta_core::{CoreError, Material, Voigt6};
 use serde::Deserialize;
@@ -28,6 +29,8 @@ const ABAQUS_TO_VOIGT: [usize; 6] = [0, 1, 2, 3, 5, 4];
 /// Anisotropic linear elastic material.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Anisotropic {
+    axes: Axes,
+    c_local: Voigt6,
     c_global: Voigt6,
     reference: f64,
 }
@@ -41,6 +44,7 @@ pub struct AnisotropicParams {
     pub d: Vec<f64>,
     pub a: Option<[f64; 3]>,
     pub b: Option<[f64; 3]>,
+    pub system: Option<System>,
 }
 
 fn invalid(message: String) -> CoreError {
@@ -82,14 +86,18 @@ impl Anisotropic {
                     .into(),
             ));
         }
-        let rotation = match orientation {
-            Some(o) => o.rotation().map_err(|e| invalid(e.to_string()))?,
-            None => nalgebra::Matrix3::identity(),
+        let axes = match orientation {
+            Some(o) => o.axes().map_err(|e| match e {
+                CoreError::InvalidParameters { message, .. } => invalid(message),
+                e => e,
+            })?,
+            None => Axes::Fixed(nalgebra::Matrix3::identity()),
         };
-        let mut c_global = rotate_elasticity(&c_local, &rotation);
-        c_global = 0.5 * (c_global + c_global.transpose());
+        let c_global = rotate_symmetric(&c_local, &axes.reference());
         let reference = (0..3).map(|i| c_local[(i, i)]).fold(0.0, f64::max);
         Ok(Anisotropic {
+            axes,
+            c_local,
             c_global,
             reference,
         })
@@ -104,16 +112,7 @@ impl Anisotropic {
                 p.d.len()
             ))
         })?;
-        let orientation = match (p.a, p.b) {
-            (Some(a), Some(b)) => Some(Orientation { a, b }),
-            (None, None) => None,
-            _ => {
-                return Err(invalid(
-                    "give both orientation vectors `a` (material axis 1) and `b` (in the 1-2 plane), or neither"
-                        .into(),
-                ))
-            }
-        };
+        let orientation = orientation_of(p.a, p.b, p.system).map_err(invalid)?;
         Self::new(&d, orientation)
     }
 }
@@ -122,8 +121,18 @@ impl Material for Anisotropic {
     fn key(&self) -> &'static str {
         "anisotropic"
     }
+    /// For a cylindrical orientation: `C` in the axes on the cylinder axis.
     fn elasticity(&self) -> Voigt6 {
         self.c_global
+    }
+    fn varies_in_space(&self) -> bool {
+        self.axes.varies()
+    }
+    fn elasticity_at(&self, x: [f64; 3]) -> Voigt6 {
+        match self.axes {
+            Axes::Fixed(_) => self.c_global,
+            _ => rotate_symmetric(&self.c_local, &self.axes.at(x)),
+        }
     }
     /// The largest normal stiffness `D1111, D2222, D3333`.
     fn reference_modulus(&self) -> f64 {
@@ -134,11 +143,12 @@ impl Material for Anisotropic {
 inventory::submit! {
     MaterialEntry {
         key: "anisotropic",
-        description: "anisotropic linear elasticity from the 21 stiffness constants (Abaqus/CalculiX TYPE=ANISO order), optional orientation (a, b)",
+        description: "anisotropic linear elasticity from the 21 stiffness constants (Abaqus/CalculiX TYPE=ANISO order), optional orientation (a, b; rectangular or cylindrical)",
         params: &[
             ParamDoc { name: "D", doc: "21 constants D1111, D1122, D2222, D1133, D2233, D3333, D1112, D2212, D3312, D1212, D1113, D2213, D3313, D1213, D1313, D1123, D2223, D3323, D1223, D1323, D2323 (engineering shear strains); positive definite" },
             ParamDoc { name: "a", doc: "optional [x, y, z]: material axis 1 (with b; default global x)" },
             ParamDoc { name: "b", doc: "optional [x, y, z]: a vector in the material 1-2 plane (with a)" },
+            ParamDoc { name: "system", doc: "optional \"rectangular\" (default) or \"cylindrical\": a, b two points of the axis, material axes r, theta, z at each integration point" },
         ],
         build: |t| Ok(Arc::new(Anisotropic::from_table(t)?)),
     }
@@ -164,10 +174,7 @@ mod tests {
             g13: 4.5e3,
             g23: 3e3,
         };
-        let o = Orientation {
-            a: [1.0, 1.0, 0.2],
-            b: [-0.3, 1.0, 0.5],
-        };
+        let o = Orientation::rectangular([1.0, 1.0, 0.2], [-0.3, 1.0, 0.5]);
         let ortho = Orthotropic::new(k, Some(o)).unwrap();
         let c = ortho.local_elasticity();
         // Abaqus order (11,22,33,12,13,23) from Junta's Voigt indices

@@ -3,7 +3,9 @@
 //! * [`isotropic`]: key `isotropic`, parameters `E`, `nu`.
 //! * [`orthotropic`]: key `orthotropic`, engineering constants
 //!   `E1, E2, E3, nu12, nu13, nu23, G12, G13, G23` and an optional material
-//!   orientation given by two vectors `a`, `b` (as Abaqus `*ORIENTATION`).
+//!   orientation given by two vectors `a`, `b` (as Abaqus `*ORIENTATION`),
+//!   rectangular or (`system = "cylindrical"`) cylindrical, whose axes
+//!   vary with the point ([`Axes`]).
 //! * [`anisotropic`]: key `anisotropic`, the 21 stiffness constants `D` in
 //!   the Abaqus `TYPE=ANISO` order and the same optional orientation.
 //!
@@ -39,7 +41,7 @@ pub mod orthotropic;
 
 pub use anisotropic::Anisotropic;
 pub use isotropic::Isotropic;
-pub use orthotropic::{EngineeringConstants, Orientation, Orthotropic};
+pub use orthotropic::{Axes, EngineeringConstants, Orientation, Orthotropic, System};
 
 use junta_core::Voigt6;
 use nalgebra::Matrix3;
@@ -68,6 +70,14 @@ pub fn stress_rotation(q: &Matrix3<f64>) -> Voigt6 {
 pub fn rotate_elasticity(c_local: &Voigt6, q: &Matrix3<f64>) -> Voigt6 {
     let t = stress_rotation(q);
     t * c_local * t.transpose()
+}
+
+/// [`rotate_elasticity`] with the round-off asymmetry removed: `C_g` is
+/// symmetric to the last bit.
+#[inline]
+pub fn rotate_symmetric(c_local: &Voigt6, q: &Matrix3<f64>) -> Voigt6 {
+    let c = rotate_elasticity(c_local, q);
+    0.5 * (c + c.transpose())
 }
 
 /// Moduli accepted by the materials: wide enough for any unit system (Pa to

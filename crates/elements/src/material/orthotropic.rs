@@ -24,8 +24,9 @@
 //!
 //! ## Orientation
 //!
-//! As Abaqus `*ORIENTATION, SYSTEM=RECTANGULAR`: vector `a` gives material
-//! axis 1, vector `b` lies in the 1-2 plane. Then
+//! As Abaqus `*ORIENTATION, SYSTEM=RECTANGULAR` (`system = "rectangular"`,
+//! the default): vector `a` gives material axis 1, vector `b` lies in the
+//! 1-2 plane. Then
 //!
 //! ```text
 //! e1 = a / |a|,   e3 = (a x b) / |a x b|,   e2 = e3 x e1,
@@ -35,10 +36,27 @@
 //! transformation `T` of [`super::stress_rotation`]. Without `a`, `b` the
 //! material axes are the global axes.
 //!
+//! `SYSTEM=CYLINDRICAL` (`system = "cylindrical"`): `a` and `b` are two
+//! points of the cylinder axis and the axes depend on the point `x`
+//! (CalculiX's `transformatrix`): axis 3 along the cylinder axis, axis 1
+//! radial, axis 2 circumferential (r, theta, z),
+//!
+//! ```text
+//! e3 = (b - a) / |b - a|,   r = (x - a) - ((x - a) . e3) e3,
+//! e1 = r / |r|,             e2 = e3 x e1,
+//! ```
+//!
+//! and `C(x) = T(x) C_l T(x)^T`, which the elements evaluate at each
+//! integration point ([`junta_core::Material::elasticity_at`], as CalculiX
+//! does at each Gauss point). On the axis (`|r| <= 1e-10 |x - a|`) `e1` is
+//! CalculiX's fixed perpendicular to `e3`; [`Material::elasticity`] of a
+//! cylindrical material is `C` in those on-axis axes.
+//!
 //! TOML: `E1 = 135e9, E2 = 9e9, E3 = 9e9, nu12 = 0.3, nu13 = 0.3, nu23 = 0.45,
-//! G12 = 5e9, G13 = 5e9, G23 = 3.1e9, a = [1, 1, 0], b = [-1, 1, 0]`.
+//! G12 = 5e9, G13 = 5e9, G23 = 3.1e9, a = [1, 1, 0], b = [-1, 1, 0]`
+//! (add `system = "cylindrical"` for a cylindrical system).
 
-use super::rotate_elasticity;
+use super::rotate_symmetric;
 use junta_core::registry::{parse_params, MaterialEntry, ParamDoc};
 use junta_core::{CoreError, Material, Voigt6};
 use nalgebra::{Matrix3, Vector3};
@@ -95,29 +113,81 @@ impl EngineeringConstants {
     }
 }
 
-/// A material orientation: `a` along material axis 1, `b` in the 1-2 plane.
+/// Coordinate system of an [`Orientation`] (`system` in the tables).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum System {
+    /// Fixed axes: `a` along material axis 1, `b` in the 1-2 plane.
+    #[default]
+    Rectangular,
+    /// Axes (r, theta, z) about the axis through the points `a` and `b`.
+    Cylindrical,
+}
+
+/// A material orientation, as `*ORIENTATION`: for [`System::Rectangular`]
+/// `a` along material axis 1 and `b` in the 1-2 plane; for
+/// [`System::Cylindrical`] two points `a`, `b` of the cylinder axis (module
+/// docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Orientation {
     pub a: [f64; 3],
     pub b: [f64; 3],
+    pub system: System,
 }
 
 impl Orientation {
-    /// The rotation `Q = [e1 e2 e3]` (columns: material axes in global
-    /// components), or an error if `a` is zero or `b` is parallel to `a`.
-    pub fn rotation(&self) -> Result<Matrix3<f64>, CoreError> {
+    /// A rectangular system: `a` along material axis 1, `b` in the 1-2 plane.
+    pub fn rectangular(a: [f64; 3], b: [f64; 3]) -> Self {
+        Orientation {
+            a,
+            b,
+            system: System::Rectangular,
+        }
+    }
+
+    /// A cylindrical system about the axis through the points `a` and `b`.
+    pub fn cylindrical(a: [f64; 3], b: [f64; 3]) -> Self {
+        Orientation {
+            a,
+            b,
+            system: System::Cylindrical,
+        }
+    }
+
+    /// The material axes, or an error if the system is degenerate
+    /// (rectangular: `a` zero or `b` parallel to `a`; cylindrical: `a == b`).
+    pub fn axes(&self) -> Result<Axes, CoreError> {
         let a = Vector3::from(self.a);
         let b = Vector3::from(self.b);
-        if !a.iter().all(|x| x.is_finite()) || a.norm() == 0.0 {
+        if !a.iter().chain(b.iter()).all(|x| x.is_finite()) {
             return Err(invalid(format!(
-                "orientation vector a = {:?} must be finite and non-zero (it gives material axis 1)",
+                "orientation vectors a = {:?}, b = {:?} must be finite",
+                self.a, self.b
+            )));
+        }
+        if self.system == System::Cylindrical {
+            let d = b - a;
+            if d.norm() <= 1e-12 * a.norm().max(b.norm()) || d.norm() == 0.0 {
+                return Err(invalid(format!(
+                    "cylindrical orientation: the axis points a = {:?} and b = {:?} must differ",
+                    self.a, self.b
+                )));
+            }
+            return Ok(Axes::Cylindrical {
+                point: a,
+                axis: d.normalize(),
+            });
+        }
+        if a.norm() == 0.0 {
+            return Err(invalid(format!(
+                "orientation vector a = {:?} must be non-zero (it gives material axis 1)",
                 self.a
             )));
         }
         let n = a.cross(&b);
-        if !n.iter().all(|x| x.is_finite()) || n.norm() <= 1e-10 * a.norm() * b.norm() {
+        if n.norm() <= 1e-10 * a.norm() * b.norm() {
             return Err(invalid(format!(
-                "orientation vector b = {:?} must be finite and not parallel to a = {:?} \
+                "orientation vector b = {:?} must not be parallel to a = {:?} \
                  (b lies in the material 1-2 plane)",
                 self.b, self.a
             )));
@@ -125,7 +195,92 @@ impl Orientation {
         let e1 = a.normalize();
         let e3 = n.normalize();
         let e2 = e3.cross(&e1);
-        Ok(Matrix3::from_columns(&[e1, e2, e3]))
+        Ok(Axes::Fixed(Matrix3::from_columns(&[e1, e2, e3])))
+    }
+}
+
+/// Material axes resolved from an [`Orientation`]: fixed, or a function of
+/// the point (cylindrical).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Axes {
+    /// `Q = [e1 e2 e3]` (columns: material axes in global components).
+    Fixed(Matrix3<f64>),
+    /// Cylindrical: a point of the axis and the unit axis direction `e3`.
+    Cylindrical {
+        point: Vector3<f64>,
+        axis: Vector3<f64>,
+    },
+}
+
+impl Axes {
+    /// `Q = [e1 e2 e3]` at the point `x` (module docs; no allocation).
+    #[inline]
+    pub fn at(&self, x: [f64; 3]) -> Matrix3<f64> {
+        match *self {
+            Axes::Fixed(q) => q,
+            Axes::Cylindrical { point, axis } => {
+                let d = Vector3::from(x) - point;
+                let r = d - d.dot(&axis) * axis;
+                let e1 = if r.norm() <= 1e-10 * d.norm().max(f64::MIN_POSITIVE) {
+                    Self::perpendicular(&axis)
+                } else {
+                    r.normalize()
+                };
+                Matrix3::from_columns(&[e1, axis.cross(&e1), axis])
+            }
+        }
+    }
+
+    /// The axes where [`Material::elasticity`] is taken: the fixed ones, or
+    /// for a cylindrical system those on its axis.
+    pub fn reference(&self) -> Matrix3<f64> {
+        match *self {
+            Axes::Fixed(q) => q,
+            Axes::Cylindrical { axis, .. } => {
+                let e1 = Self::perpendicular(&axis);
+                Matrix3::from_columns(&[e1, axis.cross(&e1), axis])
+            }
+        }
+    }
+
+    /// Whether the axes depend on the point.
+    pub fn varies(&self) -> bool {
+        matches!(self, Axes::Cylindrical { .. })
+    }
+
+    /// CalculiX's unit vector perpendicular to `e3` for points on the axis.
+    fn perpendicular(e3: &Vector3<f64>) -> Vector3<f64> {
+        let v = if e3[0].abs() > 1e-10 {
+            Vector3::new(-e3[1] / e3[0], 1.0, 0.0)
+        } else if e3[1].abs() > 1e-10 {
+            Vector3::new(0.0, -e3[2] / e3[1], 1.0)
+        } else {
+            Vector3::new(1.0, 0.0, -e3[0] / e3[2])
+        };
+        v.normalize()
+    }
+}
+
+/// `System` and the vectors `a`, `b` of a material table as an orientation
+/// (both vectors or neither; `system` only with them).
+pub(super) fn orientation_of(
+    a: Option<[f64; 3]>,
+    b: Option<[f64; 3]>,
+    system: Option<System>,
+) -> Result<Option<Orientation>, String> {
+    match (a, b) {
+        (Some(a), Some(b)) => Ok(Some(Orientation {
+            a,
+            b,
+            system: system.unwrap_or_default(),
+        })),
+        (None, None) if system.is_none() => Ok(None),
+        (None, None) => Err("`system` needs the orientation points `a` and `b`".into()),
+        _ => Err(
+            "give both orientation vectors `a` (material axis 1, or a point of the cylinder axis) \
+             and `b` (in the 1-2 plane, or a second point of the axis), or neither"
+                .into(),
+        ),
     }
 }
 
@@ -133,7 +288,7 @@ impl Orientation {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Orthotropic {
     constants: EngineeringConstants,
-    rotation: Matrix3<f64>,
+    axes: Axes,
     c_local: Voigt6,
     c_global: Voigt6,
 }
@@ -161,6 +316,8 @@ pub struct OrthotropicParams {
     pub a: Option<[f64; 3]>,
     /// A vector in the material 1-2 plane (optional, with `a`).
     pub b: Option<[f64; 3]>,
+    /// `"rectangular"` (default) or `"cylindrical"` (`a`, `b` points of the axis).
+    pub system: Option<System>,
 }
 
 fn invalid(message: String) -> CoreError {
@@ -222,15 +379,14 @@ impl Orthotropic {
         let mut c_local = chol.inverse();
         // symmetrise the round-off of the inverse
         c_local = 0.5 * (c_local + c_local.transpose());
-        let rotation = match orientation {
-            Some(o) => o.rotation()?,
-            None => Matrix3::identity(),
+        let axes = match orientation {
+            Some(o) => o.axes()?,
+            None => Axes::Fixed(Matrix3::identity()),
         };
-        let mut c_global = rotate_elasticity(&c_local, &rotation);
-        c_global = 0.5 * (c_global + c_global.transpose());
+        let c_global = rotate_symmetric(&c_local, &axes.reference());
         Ok(Orthotropic {
             constants,
-            rotation,
+            axes,
             c_local,
             c_global,
         })
@@ -239,16 +395,7 @@ impl Orthotropic {
     /// Build from a parameter table (unknown keys rejected).
     pub fn from_table(table: &toml::Table) -> Result<Self, CoreError> {
         let p: OrthotropicParams = parse_params("material", "orthotropic", table)?;
-        let orientation = match (p.a, p.b) {
-            (Some(a), Some(b)) => Some(Orientation { a, b }),
-            (None, None) => None,
-            _ => {
-                return Err(invalid(
-                    "give both orientation vectors `a` (material axis 1) and `b` (in the 1-2 plane), or neither"
-                        .into(),
-                ))
-            }
-        };
+        let orientation = orientation_of(p.a, p.b, p.system).map_err(invalid)?;
         Self::new(
             EngineeringConstants {
                 e1: p.e1,
@@ -269,9 +416,14 @@ impl Orthotropic {
     pub fn constants(&self) -> &EngineeringConstants {
         &self.constants
     }
-    /// Material axes as columns of a rotation matrix (global components).
-    pub fn rotation(&self) -> &Matrix3<f64> {
-        &self.rotation
+    /// Material axes as columns of a rotation matrix (global components);
+    /// for a cylindrical orientation those on its axis ([`Axes::reference`]).
+    pub fn rotation(&self) -> Matrix3<f64> {
+        self.axes.reference()
+    }
+    /// The material axes (fixed or cylindrical).
+    pub fn axes(&self) -> &Axes {
+        &self.axes
     }
     /// Elasticity matrix in the material axes.
     pub fn local_elasticity(&self) -> Voigt6 {
@@ -286,6 +438,15 @@ impl Material for Orthotropic {
     fn elasticity(&self) -> Voigt6 {
         self.c_global
     }
+    fn varies_in_space(&self) -> bool {
+        self.axes.varies()
+    }
+    fn elasticity_at(&self, x: [f64; 3]) -> Voigt6 {
+        match self.axes {
+            Axes::Fixed(_) => self.c_global,
+            _ => rotate_symmetric(&self.c_local, &self.axes.at(x)),
+        }
+    }
     /// The largest of `E1, E2, E3`.
     fn reference_modulus(&self) -> f64 {
         self.constants
@@ -298,7 +459,7 @@ impl Material for Orthotropic {
 inventory::submit! {
     MaterialEntry {
         key: "orthotropic",
-        description: "orthotropic linear elasticity from engineering constants, optional orientation (a, b)",
+        description: "orthotropic linear elasticity from engineering constants, optional orientation (a, b; rectangular or cylindrical)",
         params: &[
             ParamDoc { name: "E1", doc: "Young's modulus along material axis 1, > 0" },
             ParamDoc { name: "E2", doc: "Young's modulus along material axis 2, > 0" },
@@ -311,6 +472,7 @@ inventory::submit! {
             ParamDoc { name: "G23", doc: "shear modulus in the 2-3 plane, > 0" },
             ParamDoc { name: "a", doc: "optional [x, y, z]: material axis 1 (with b; default global x)" },
             ParamDoc { name: "b", doc: "optional [x, y, z]: a vector in the material 1-2 plane (with a)" },
+            ParamDoc { name: "system", doc: "optional \"rectangular\" (default) or \"cylindrical\": a, b two points of the axis, material axes r, theta, z at each integration point" },
         ],
         build: |t| Ok(Arc::new(Orthotropic::from_table(t)?)),
     }
@@ -345,10 +507,7 @@ mod tests {
         let i = Isotropic::new(70e9, 0.33).unwrap();
         assert!(rel(&o.elasticity(), &i.elasticity()) < 1e-13);
         // and any orientation leaves it unchanged
-        let r = Orientation {
-            a: [1.0, 2.0, -0.5],
-            b: [0.3, -1.0, 2.0],
-        };
+        let r = Orientation::rectangular([1.0, 2.0, -0.5], [0.3, -1.0, 2.0]);
         let o = Orthotropic::new(EngineeringConstants::isotropic(70e9, 0.33), Some(r)).unwrap();
         assert!(rel(&o.elasticity(), &i.elasticity()) < 1e-13);
     }
@@ -358,10 +517,7 @@ mod tests {
         let k = composite();
         let o = Orthotropic::new(
             k,
-            Some(Orientation {
-                a: [0.0, 1.0, 0.0],
-                b: [-1.0, 0.0, 0.0],
-            }),
+            Some(Orientation::rectangular([0.0, 1.0, 0.0], [-1.0, 0.0, 0.0])),
         )
         .unwrap();
         let s = o.elasticity().try_inverse().unwrap();
@@ -388,10 +544,7 @@ mod tests {
         let k = composite();
         let o = Orthotropic::new(
             k,
-            Some(Orientation {
-                a: [1.0, 1.0, 0.0],
-                b: [-1.0, 1.0, 0.0],
-            }),
+            Some(Orientation::rectangular([1.0, 1.0, 0.0], [-1.0, 1.0, 0.0])),
         )
         .unwrap();
         let s = o.elasticity().try_inverse().unwrap();
@@ -403,10 +556,7 @@ mod tests {
     fn c_is_symmetric_positive_definite() {
         let o = Orthotropic::new(
             composite(),
-            Some(Orientation {
-                a: [0.2, 1.0, 0.7],
-                b: [1.0, -0.4, 0.1],
-            }),
+            Some(Orientation::rectangular([0.2, 1.0, 0.7], [1.0, -0.4, 0.1])),
         )
         .unwrap();
         let c = o.elasticity();
@@ -437,10 +587,7 @@ mod tests {
         assert!(e.contains("G23"), "{e}");
         let e = Orthotropic::new(
             composite(),
-            Some(Orientation {
-                a: [1.0, 0.0, 0.0],
-                b: [2.0, 0.0, 0.0],
-            }),
+            Some(Orientation::rectangular([1.0, 0.0, 0.0], [2.0, 0.0, 0.0])),
         )
         .unwrap_err()
         .to_string();
@@ -466,5 +613,56 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("E4"));
+    }
+
+    #[test]
+    fn cylindrical_axes_follow_the_point() {
+        let k = composite();
+        // axis along global z through (1, 2, 0)
+        let o = Orthotropic::new(
+            k,
+            Some(Orientation::cylindrical([1.0, 2.0, 0.0], [1.0, 2.0, 5.0])),
+        )
+        .unwrap();
+        assert!(o.varies_in_space());
+        let e = |c: Voigt6, n: usize| 1.0 / c.try_inverse().unwrap()[(n, n)];
+        // on the +x side of the axis: x radial (E1), y hoop (E2), z axial (E3)
+        let c = o.elasticity_at([4.0, 2.0, 7.0]);
+        assert!((e(c, 0) / k.e1 - 1.0).abs() < 1e-10);
+        assert!((e(c, 1) / k.e2 - 1.0).abs() < 1e-10);
+        assert!((e(c, 2) / k.e3 - 1.0).abs() < 1e-10);
+        // on the +y side: y radial, x hoop
+        let c = o.elasticity_at([1.0, 5.0, -1.0]);
+        assert!((e(c, 1) / k.e1 - 1.0).abs() < 1e-10);
+        assert!((e(c, 0) / k.e2 - 1.0).abs() < 1e-10);
+        // at 45 degrees: the rectangular system with a radial, b hoop
+        let q = o.axes().at([2.0, 3.0, 0.5]);
+        let r = Orthotropic::new(
+            k,
+            Some(Orientation::rectangular([1.0, 1.0, 0.0], [-1.0, 1.0, 0.0])),
+        )
+        .unwrap();
+        assert!((q - r.rotation()).norm() < 1e-14);
+        assert!(rel(&o.elasticity_at([2.0, 3.0, 0.5]), &r.elasticity()) < 1e-14);
+        // on the axis: CalculiX's perpendicular, a valid frame
+        let q = o.axes().at([1.0, 2.0, 3.0]);
+        assert!((q.transpose() * q - Matrix3::identity()).norm() < 1e-14);
+        assert!((q.determinant() - 1.0).abs() < 1e-14);
+        // a == b is an error; a table with system = "cylindrical"
+        assert!(Orthotropic::new(
+            k,
+            Some(Orientation::cylindrical([1.0, 2.0, 0.0], [1.0, 2.0, 0.0]))
+        )
+        .unwrap_err()
+        .to_string()
+        .contains("must differ"));
+        let base = "E1 = 135e9\nE2 = 9e9\nE3 = 9e9\nnu12 = 0.3\nnu13 = 0.3\nnu23 = 0.45\nG12 = 5e9\nG13 = 5e9\nG23 = 3.1e9\n";
+        let t: toml::Table = toml::from_str(&format!(
+            "{base}a = [0.0, 0.0, 0.0]\nb = [0.0, 0.0, 1.0]\nsystem = \"cylindrical\""
+        ))
+        .unwrap();
+        assert!(Orthotropic::from_table(&t).unwrap().varies_in_space());
+        let t: toml::Table = toml::from_str(&format!("{base}system = \"cylindrical\"")).unwrap();
+        assert!(Orthotropic::from_table(&t).is_err());
     }
 }
