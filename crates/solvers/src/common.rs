@@ -292,9 +292,11 @@ pub(crate) fn symmetric_norm_inf(a: &SymmetricCsc) -> f64 {
     inf_norm(&symmetric_row_sums(a))
 }
 
-/// Absolute row sums `sum_j |a_ij|` of a symmetric matrix stored as its
-/// upper triangle.
+/// Absolute row sums `sum_j |a_ij|` of a matrix stored as its upper
+/// triangle (symmetric) or, when general ([`SymmetricCsc::is_general`]),
+/// with its lower triangle transposed in `lower`.
 pub(crate) fn symmetric_row_sums(a: &SymmetricCsc) -> Vec<f64> {
+    let low = if a.is_general() { &a.lower } else { &a.values };
     // row sums over column chunks in parallel (one vector per chunk)
     let chunks = if a.row_idx.len() > 200_000 {
         rayon::current_num_threads().clamp(1, 8)
@@ -308,10 +310,10 @@ pub(crate) fn symmetric_row_sums(a: &SymmetricCsc) -> Vec<f64> {
             let mut rows = vec![0.0f64; a.n];
             for j in (c * per).min(a.n)..((c + 1) * per).min(a.n) {
                 for p in a.col_ptr[j]..a.col_ptr[j + 1] {
-                    let (i, v) = (a.row_idx[p], a.values[p].abs());
-                    rows[i] += v;
+                    let i = a.row_idx[p];
+                    rows[i] += a.values[p].abs();
                     if i != j {
-                        rows[j] += v;
+                        rows[j] += low[p].abs();
                     }
                 }
             }
@@ -326,6 +328,16 @@ pub(crate) fn symmetric_row_sums(a: &SymmetricCsc) -> Vec<f64> {
         rows.iter_mut().zip(&other).for_each(|(r, o)| *r += o);
     }
     rows
+}
+
+/// `max(a, b)` that keeps a NaN (a scan for the largest entry that must
+/// also notice a non-finite one).
+pub(crate) fn nan_max(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
 }
 
 #[cfg(test)]

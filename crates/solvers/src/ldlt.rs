@@ -114,7 +114,7 @@
 //! row sums of `|A|`, updated with the entries that changed.
 
 use crate::common::{
-    inf_norm, norm2, residual, symmetric_only, symmetric_row_sums, validate, Pattern,
+    inf_norm, nan_max, norm2, residual, symmetric_only, symmetric_row_sums, validate, Pattern,
 };
 use crate::ordering::OrderingKind;
 use crate::supernodal::{PanelFactor, ScatterIndex, SharedPtr, SolvePlan};
@@ -1299,16 +1299,11 @@ fn max_multiplier(f: &PanelFactor, values: &[f64], s: usize) -> f64 {
     let w = e - b;
     let m = w + f.pattern(s).len();
     let panel = &values[f.val_ptr[s]..f.val_ptr[s] + m * w];
-    let mut max = 0.0f64;
-    for j in 0..w {
-        for &v in &panel[j * m + j + 1..(j + 1) * m] {
-            // NaN sticks: `v > NaN` and `NaN > max` are false
-            if !(v.abs() <= max) && !max.is_nan() {
-                max = v.abs();
-            }
-        }
-    }
-    max
+    (0..w).fold(0.0, |max, j| {
+        panel[j * m + j + 1..(j + 1) * m]
+            .iter()
+            .fold(max, |a, v| nan_max(a, v.abs()))
+    })
 }
 
 fn factor_panel(

@@ -50,7 +50,7 @@
 //! A symmetric matrix ([`SymmetricCsc::is_general`] false) is accepted too
 //! (mirrored), so `lu` solves every [`MatrixKind`].
 
-use crate::common::{norm2, residual, validate, Pattern};
+use crate::common::{norm2, residual, symmetric_norm_inf, validate, Pattern};
 use crate::ordering::OrderingKind;
 use crate::panel_lu::{PanelLu, PanelLuStats};
 use crate::supernodal::PanelFactor;
@@ -534,7 +534,7 @@ impl LinearSolver for LuSolver {
                     });
                 }
             }
-            let norm = general_inf_norm(matrix);
+            let norm = symmetric_norm_inf(matrix);
             let threads = self.threads();
             let (f, lu) = self.panels.as_mut().expect("analysed");
             let st = lu.factorize(
@@ -715,23 +715,6 @@ impl LinearSolver for LuSolver {
     fn report(&self) -> SolveReport {
         self.report.clone()
     }
-}
-
-/// `||A||_inf` (largest row sum of `|A|`) of a matrix stored as its upper
-/// triangle (`values`) and, when general, its lower triangle transposed.
-fn general_inf_norm(a: &SymmetricCsc) -> f64 {
-    let low = if a.is_general() { &a.lower } else { &a.values };
-    let mut rows = vec![0.0f64; a.n];
-    for j in 0..a.n {
-        for p in a.col_ptr[j]..a.col_ptr[j + 1] {
-            let i = a.row_idx[p];
-            rows[i] += a.values[p].abs();
-            if i != j {
-                rows[j] += low[p].abs();
-            }
-        }
-    }
-    rows.into_iter().fold(0.0, f64::max)
 }
 
 inventory::submit! {

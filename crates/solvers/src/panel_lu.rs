@@ -46,6 +46,7 @@
 //! solver then refines the solution, or falls back to unrestricted partial
 //! pivoting ([`crate::LuSolver`], `pivoting = "auto"`).
 
+use crate::common::nan_max;
 use crate::supernodal::{PanelFactor, SharedPtr};
 use faer::linalg::triangular_solve as tri;
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -319,7 +320,6 @@ fn factor_panel(
 ) -> PanelLuStats {
     let (b, w, pat_s) = panel(f, s);
     let (r, m) = (pat_s.len(), w + pat_s.len());
-    let e = b + w;
     // SAFETY: panel s is written only by this task; its descendants are
     // complete and only read.
     let (ls, us, rows) = unsafe {
@@ -333,8 +333,8 @@ fn factor_panel(
         let d = d as usize;
         let (_, wd, pd) = panel(f, d);
         let md = wd + pd.len();
-        let k0 = pd.partition_point(|&x| (x as usize) < b);
-        let k1 = k0 + pd[k0..].partition_point(|&x| (x as usize) < e);
+        let (k0, k1) = f.descendant_rows(s, d, &mut scratch.loc);
+        let loc = &scratch.loc;
         let (len, mid) = (pd.len() - k0, k1 - k0);
         if mid == 0 {
             continue;
@@ -359,21 +359,6 @@ fn factor_panel(
         } else {
             Par::Seq
         };
-        // local rows of d's pattern (from k0) in panel s
-        let loc = &mut scratch.loc;
-        loc.clear();
-        let mut q = 0usize;
-        for &g in &pd[k0..] {
-            let g = g as usize;
-            if g < e {
-                loc.push((g - b) as u32);
-            } else {
-                while pat_s[q] as usize != g {
-                    q += 1;
-                }
-                loc.push((w + q) as u32);
-            }
-        }
         // lower side: L[rows, K_d] U[K_d, J]
         let prod = &mut scratch.prod;
         prod.clear();
@@ -501,13 +486,4 @@ fn factor_panel(
     }
     st.max_upper = us.iter().fold(st.max_upper, |a, v| nan_max(a, v.abs()));
     st
-}
-
-/// `max(a, b)` that keeps a NaN.
-fn nan_max(a: f64, b: f64) -> f64 {
-    if a.is_nan() || b.is_nan() {
-        f64::NAN
-    } else {
-        a.max(b)
-    }
 }

@@ -725,6 +725,33 @@ impl PanelFactor {
         Ok(())
     }
 
+    /// The rows of descendant panel `d` that panel `s` receives: `k0` and
+    /// `k1`, where `d`'s pattern enters and leaves the columns of `s`
+    /// (`pattern(d)[k0..k1]` are columns of `s`, `pattern(d)[k1..]` rows
+    /// below them), and in `loc` the local row in panel `s` of each of
+    /// `pattern(d)[k0..]` (diagonal block first, then `s`'s own pattern).
+    pub(crate) fn descendant_rows(&self, s: usize, d: usize, loc: &mut Vec<u32>) -> (usize, usize) {
+        let (b, e) = (self.begin[s], self.begin[s + 1]);
+        let w = e - b;
+        let (pd, pat_s) = (self.pattern(d), self.pattern(s));
+        let k0 = pd.partition_point(|&x| (x as usize) < b);
+        let k1 = k0 + pd[k0..].partition_point(|&x| (x as usize) < e);
+        loc.clear();
+        let mut q = 0usize;
+        for &g in &pd[k0..] {
+            let g = g as usize;
+            if g < e {
+                loc.push((g - b) as u32);
+            } else {
+                while pat_s[q] as usize != g {
+                    q += 1;
+                }
+                loc.push((w + q) as u32);
+            }
+        }
+        (k0, k1)
+    }
+
     /// Left-looking update of panel `s`: `A'[J', J] = A[J', J] - sum_d
     /// L[J', K_d] R_d^T` over the descendants `d` whose rows meet `J`, with
     /// `R_d = L[J, K_d]` (Cholesky), or `R_d = L[J, K_d] D_d` written by
@@ -756,8 +783,7 @@ impl PanelFactor {
             let wd = self.begin[d + 1] - self.begin[d];
             let pd = self.pattern(d);
             let md = wd + pd.len();
-            let k0 = pd.partition_point(|&x| (x as usize) < b);
-            let k1 = k0 + pd[k0..].partition_point(|&x| (x as usize) < e);
+            let (k0, k1) = self.descendant_rows(s, d, &mut loc);
             let (len, mid) = (pd.len() - k0, k1 - k0);
             let ld = unsafe {
                 std::slice::from_raw_parts(ptr.get().add(self.val_ptr[d]) as *const T, md * wd)
@@ -778,20 +804,6 @@ impl PanelFactor {
             } else {
                 Par::Seq
             };
-            // local rows in panel s
-            loc.clear();
-            let mut q = 0usize;
-            for &g in &pd[k0..] {
-                let g = g as usize;
-                if g < e {
-                    loc.push((g - b) as u32);
-                } else {
-                    while pat_s[q] as usize != g {
-                        q += 1;
-                    }
-                    loc.push((w + q) as u32);
-                }
-            }
             let (l0, ln) = (loc[0] as usize, loc[len - 1] as usize);
             if ln - l0 == len - 1 {
                 // contiguous rows (e.g. an earlier panel of the same
