@@ -91,6 +91,70 @@ fn amg_cg_solves_a_bonded_stack_with_mesh_independent_iterations() {
     );
 }
 
+/// The bonded stack (3 plates of 8 x 8 x 2 H8) as the penalty grows from
+/// 1e7 to the penalty advisor's recommended d_op (1.34e12 N/mm^3 here, read
+/// from the run's `penalty_advice`). Measured: 16, 17, 17 AMG-CG iterations
+/// at d = 1e7, 1e9, 1e11 (tol 1e-10) and 15 at d_op (tol 1e-9: at d_op the
+/// round-off floor of the residual, eps |||K| |u||| / ||f||, is 2.3e-10, and
+/// CG says so when asked for 1e-10). Nodes tied by the bond are one block
+/// of the smoother and one aggregate; smoothed node by node
+/// (`amg_bonded_clusters = false`) the count grows with the penalty (19,
+/// 154, 510), and capped at 60 iterations it stops with its numbers.
+#[test]
+fn amg_iterations_stay_bounded_up_to_the_advisors_penalty() {
+    let first = run_scene(&stack(3, 8, 2, 1e7, true, AMG));
+    let d_op = first["penalty_advice"]["i1"]["d_op"].as_f64().unwrap();
+    assert!(d_op > 1e11, "advisor's d_op {d_op:e}");
+    let base = first["solver"]["iterations"].as_u64().unwrap();
+    for d in [1e9, 1e11, d_op] {
+        let tol = if d < 1e12 { 1e-10 } else { 1e-9 };
+        let solver = format!("type = \"cg\"\npreconditioner = \"amg\"\ntol = {tol:e}");
+        let s = run_scene(&stack(3, 8, 2, d, true, &solver));
+        let it = s["solver"]["iterations"].as_u64().unwrap();
+        let res = s["solver"]["residual"].as_f64().unwrap();
+        eprintln!("d = {d:e}: {it} iterations, residual {res:.2e}");
+        assert!(res <= tol, "d = {d:e}: residual {res:e}");
+        assert!(
+            it as f64 <= 1.5 * base as f64,
+            "d = {d:e}: {it} iterations against {base} at d = 1e7"
+        );
+        let c = run_scene(&stack(3, 8, 2, d, true, "type = \"cholesky\""));
+        let (ra, rc) = (&s["reactions"]["p0.z0"], &c["reactions"]["p0.z0"]);
+        for k in [0, 2] {
+            let (a, b) = (ra[k].as_f64().unwrap(), rc[k].as_f64().unwrap());
+            assert!(
+                (a - b).abs() <= 1e-6 * b.abs(),
+                "d = {d:e}, reaction {k}: amg {a}, cholesky {b}"
+            );
+        }
+    }
+    // node-by-node smoothing stalls at a stiff penalty, with its numbers
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("s.toml");
+    let solver = format!("{AMG}\nmax_iterations = 60\namg_bonded_clusters = false");
+    std::fs::write(&p, stack(3, 8, 2, 1e11, true, &solver)).unwrap();
+    let err = run_err(&p);
+    assert!(
+        err.contains("did not converge") && err.contains("after 60 iterations"),
+        "{err}"
+    );
+}
+
+/// At a penalty so stiff that the residual cannot be resolved to the
+/// requested tolerance, CG names the round-off floor instead of a bare
+/// non-convergence.
+#[test]
+fn cg_names_the_round_off_floor_of_an_unreachable_tolerance() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("s.toml");
+    std::fs::write(&p, stack(3, 8, 2, 1e14, true, AMG)).unwrap();
+    let err = run_err(&p);
+    assert!(
+        err.contains("round-off floor") && err.contains("raise it"),
+        "{err}"
+    );
+}
+
 /// A fully failed interface (penalty 1e-3 N/mm^3, 10 orders below the
 /// solids' nodal stiffness): three loose plates, each a cantilever held by
 /// its own supports. Measured (3 plates of 16 x 16 x 4 H8, 11k equations):

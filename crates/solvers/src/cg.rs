@@ -52,7 +52,7 @@
 //! (rows in parallel, no scatter).
 
 use crate::amg::{layout_from_coords, Amg, AmgSettings};
-use crate::common::{dot, norm2, symmetric_only, validate, FullCsr, Pattern};
+use crate::common::{dot, norm2, residual_floor, symmetric_only, validate, FullCsr, Pattern};
 use crate::ordering;
 use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
 use junta_core::{LinearSolver, SolveReport, SolverError, SymmetricCsc};
@@ -103,6 +103,11 @@ pub struct CgSettings {
     pub amg_per_body: bool,
     /// AMG: strength threshold across interfaces (default 0.25).
     pub amg_interface_theta: f64,
+    /// AMG: nodes at one point tied by a strong interface bond are one
+    /// node of the hierarchy (block-smoothed, aggregated together); default
+    /// true. `false` smooths them node by node, whose iteration count
+    /// grows with the penalty.
+    pub amg_bonded_clusters: bool,
 }
 
 impl Default for CgSettings {
@@ -117,6 +122,7 @@ impl Default for CgSettings {
             amg_degree: 2,
             amg_per_body: true,
             amg_interface_theta: 0.25,
+            amg_bonded_clusters: true,
         }
     }
 }
@@ -158,6 +164,10 @@ pub const CG_PARAMS: &[ParamDoc] = &[
     ParamDoc {
         name: "amg_interface_theta",
         doc: "amg: strength threshold on 3x3 blocks across interfaces; weaker (soft, damaged) bonds separate the bodies (default 0.25)",
+    },
+    ParamDoc {
+        name: "amg_bonded_clusters",
+        doc: "amg: nodes at one point tied by a strong interface bond form one block of the smoother and one aggregate, so that stiff penalties do not slow it (default true)",
     },
 ];
 
@@ -293,9 +303,31 @@ impl CgSolver {
     }
 
     /// z = M^-1 r, and returns r · z.
+    /// `y = A x`: with AMG the hierarchy's level-0 matrix (vectors in its
+    /// order, [`Amg::perm`]), so the matrix is stored once; otherwise the
+    /// solver's own full copy.
+    fn matvec(&self, x: &[f64], y: &mut [f64]) {
+        match &self.amg {
+            Some(amg) => amg.levels[0].a.mul(x, y),
+            None => self.full.mul(x, y),
+        }
+    }
+
+    /// `eps |||A| |x|||` (see [`crate::common::residual_floor`]).
+    fn residual_floor(&self, x: &[f64]) -> f64 {
+        match &self.amg {
+            Some(amg) => {
+                let a = &amg.levels[0].a;
+                residual_floor(&a.row_ptr, &a.col, &a.val, x)
+            }
+            None => self.full.residual_floor(x),
+        }
+    }
+
+    /// `z = M^-1 r`, returns `r . z` (with AMG in level-0 order).
     fn precondition(&mut self, r: &[f64], z: &mut [f64]) -> f64 {
         if let Some(amg) = &mut self.amg {
-            amg.apply(r, z);
+            amg.apply_in_level_order(r, z);
             return dot(r, z);
         }
         z.par_iter_mut()
@@ -329,17 +361,19 @@ impl CgSolver {
                 theta_interface: self.settings.amg_interface_theta,
                 max_coarse: self.settings.amg_max_coarse.max(1),
                 degree: self.settings.amg_degree.max(1),
+                bonded_clusters: self.settings.amg_bonded_clusters,
                 ..Default::default()
             };
             let amg = Amg::setup(matrix, &self.coords, &layout, settings)?;
             let bodies = layout.body.iter().copied().max().map_or(0, |b| b + 1);
             let note = format!(
-                "amg: {} levels {:?}, operator complexity {:.2}, {} bod{}",
+                "amg: {} levels {:?}, operator complexity {:.2}, {} bod{}, {} bonded node clusters",
                 amg.num_levels(),
                 amg.sizes(),
                 amg.operator_complexity(),
                 bodies,
-                if bodies == 1 { "y" } else { "ies" }
+                if bodies == 1 { "y" } else { "ies" },
+                amg.bonded_clusters()
             );
             tracing::info!("{note}");
             self.report.notes.retain(|n| !n.starts_with("amg:"));
@@ -383,7 +417,12 @@ impl LinearSolver for CgSolver {
             return Err(SolverError::Usage("cg: more than 2^32 equations".into()));
         }
         self.ready = false;
-        self.full = FullCsr::new(matrix);
+        // with AMG the hierarchy holds the (only) full copy of the matrix
+        self.full = if self.settings.preconditioner == Preconditioner::Amg {
+            FullCsr::default()
+        } else {
+            FullCsr::new(matrix)
+        };
         let coords = coords.filter(|c| c.len() == matrix.n);
         self.group_ptr = ordering::equation_groups(matrix, coords);
         self.layout_blocks(matrix.n);
@@ -415,11 +454,11 @@ impl LinearSolver for CgSolver {
                 ),
             });
         }
-        self.full.fill(matrix);
         let n = matrix.n;
         if self.settings.preconditioner == Preconditioner::Amg {
             return self.factorize_amg(matrix, t0);
         }
+        self.full.fill(matrix);
         let diag = matrix.diagonal();
         let mut i = 0;
         while i < n {
@@ -509,6 +548,18 @@ impl LinearSolver for CgSolver {
             self.report.solve_seconds += t0.elapsed().as_secs_f64();
             return Ok(());
         }
+        // with AMG, CG runs in the hierarchy's level-0 order
+        let perm: Option<Vec<usize>> = self
+            .amg
+            .as_ref()
+            .filter(|a| !a.perm.is_empty())
+            .map(|a| a.perm.clone());
+        let original = perm.as_ref().map(|_| b.to_vec());
+        if let (Some(perm), Some(orig)) = (&perm, &original) {
+            b.par_iter_mut()
+                .zip(perm.par_iter())
+                .for_each(|(v, &i)| *v = orig[i]);
+        }
         let mut x = vec![0.0; n];
         let mut r = b.to_vec();
         let mut z = vec![0.0; n];
@@ -531,7 +582,7 @@ impl LinearSolver for CgSolver {
                 return Err(self.fail(t0, it, rel, e));
             }
             it += 1;
-            self.full.mul(&p, &mut q);
+            self.matvec(&p, &mut q);
             let pq = dot(&p, &q);
             if !pq.is_finite() || !rz.is_finite() {
                 let e = SolverError::NonFinite {
@@ -577,7 +628,7 @@ impl LinearSolver for CgSolver {
             }
             if rel <= tol {
                 // Confirm with the true residual.
-                self.full.mul(&x, &mut q);
+                self.matvec(&x, &mut q);
                 r.par_iter_mut()
                     .zip(b.par_iter().zip(q.par_iter()))
                     .for_each(|(ri, (bi, qi))| *ri = bi - qi);
@@ -587,10 +638,16 @@ impl LinearSolver for CgSolver {
                 }
                 restarts += 1;
                 if restarts > MAX_RESTARTS {
+                    let floor = self.residual_floor(&x) / bnorm;
                     let e = SolverError::NotConverged {
                         method: format!(
-                            "cg ({:?} preconditioner; true residual stays above the recurrence one after {MAX_RESTARTS} restarts)",
-                            self.settings.preconditioner
+                            "cg ({:?} preconditioner; true residual stays above the recurrence one after {MAX_RESTARTS} restarts; its round-off floor eps |||A| |x||| / ||b|| is {floor:.1e}{})",
+                            self.settings.preconditioner,
+                            if floor > 0.1 * tol {
+                                format!(", so `tol` = {tol:e} is too close to what double precision resolves on this matrix: raise it")
+                            } else {
+                                String::new()
+                            }
                         ),
                         iterations: it,
                         residual: rel,
@@ -615,7 +672,14 @@ impl LinearSolver for CgSolver {
             };
             return Err(self.fail(t0, it, rel, e));
         }
-        b.copy_from_slice(&x);
+        match &perm {
+            Some(perm) => {
+                for (&i, &v) in perm.iter().zip(&x) {
+                    b[i] = v;
+                }
+            }
+            None => b.copy_from_slice(&x),
+        }
         self.report.iterations = it;
         self.report.residual = rel;
         self.report.solve_seconds += t0.elapsed().as_secs_f64();

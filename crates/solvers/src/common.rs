@@ -284,6 +284,27 @@ impl FullCsr {
             }
         });
     }
+
+    /// `eps || |A| |x| ||_2` (see [`residual_floor`]).
+    pub(crate) fn residual_floor(&self, x: &[f64]) -> f64 {
+        residual_floor(&self.row_ptr, &self.col_idx, &self.values, x)
+    }
+}
+
+/// `eps || |A| |x| ||_2` for a matrix in full CSR: the size below which
+/// the residual `b - A x` cannot be resolved in double precision (each
+/// entry of `A x` carries a rounding error of order `eps (|A| |x|)_i`).
+pub(crate) fn residual_floor(row_ptr: &[usize], col: &[u32], val: &[f64], x: &[f64]) -> f64 {
+    let sq: f64 = (0..row_ptr.len().saturating_sub(1))
+        .into_par_iter()
+        .map(|i| {
+            let acc: f64 = (row_ptr[i]..row_ptr[i + 1])
+                .map(|p| (val[p] * x[col[p] as usize]).abs())
+                .sum();
+            acc * acc
+        })
+        .sum();
+    f64::EPSILON * sq.sqrt()
 }
 
 /// `||A||_inf` (largest absolute row sum) of a symmetric matrix stored as
