@@ -1,6 +1,8 @@
-//! `[solver] type = "auto"` for symmetric positive-definite models: the
-//! direct supernodal Cholesky unless its factor would not fit, then
-//! conjugate gradients with the smoothed-aggregation AMG preconditioner.
+//! `[solver] type = "auto"` for symmetric models: the direct supernodal
+//! Cholesky (`ldlt` when a law can soften) unless its factor would not fit,
+//! then the smoothed-aggregation AMG preconditioner with conjugate
+//! gradients (`cg`), or with GMRES (`gmres`) when the tangent can be
+//! indefinite.
 //!
 //! Models of at most [`DIRECT_ALWAYS`] equations keep `cholesky` without
 //! any analysis (their factor is small; existing results stay bit for bit).
@@ -17,15 +19,9 @@ use junta_solvers::ordering;
 /// Up to this many equations `auto` keeps the direct solver.
 pub const DIRECT_ALWAYS: usize = 150_000;
 
-/// Bytes of memory the system can still give (Linux `MemAvailable`).
-fn mem_available() -> Option<u64> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024)
-}
-
-/// `Some(reason)` when `auto` should use AMG-CG instead of `cholesky`.
+/// `Some(reason)` when `auto` should use AMG instead of the direct factor
+/// (the reason names the factor's size against the memory available,
+/// [`crate::limits::machine_memory`], which `JUNTA_MEMORY_LIMIT` sets).
 pub fn prefer_amg(model: &Model) -> Option<String> {
     let n = model.dofs.num_free;
     if n <= DIRECT_ALWAYS {
@@ -36,11 +32,11 @@ pub fn prefer_amg(model: &Model) -> Option<String> {
     let perm = ordering::nested_dissection(&pattern, Some(&coords));
     let nnz_l = ordering::factor_nonzeros(&pattern, Some(&perm));
     let bytes = 8.0 * nnz_l as f64;
-    let avail = mem_available()? as f64;
+    let avail = crate::limits::machine_memory()?;
     let gb = |b: f64| b / 1e9;
     if bytes > 0.5 * avail {
         Some(format!(
-            "solver auto: the Cholesky factor of {n} equations would hold {nnz_l} non-zeros ({:.1} GB in double precision, nested dissection), more than half of the {:.1} GB available: using cg with the smoothed-aggregation AMG preconditioner",
+            "solver auto: the direct factor of {n} equations would hold {nnz_l} non-zeros ({:.1} GB in double precision, nested dissection), more than half of the {:.1} GB available",
             gb(bytes),
             gb(avail)
         ))

@@ -62,10 +62,22 @@ pub fn resolve_solver(
     notes: &mut Vec<String>,
 ) -> Result<Box<dyn LinearSolver>> {
     let kind = model.matrix_kind();
-    if key == "auto" && kind == MatrixKind::SymmetricPositiveDefinite {
+    if key == "auto" && kind != MatrixKind::General {
         if let Some(reason) = crate::auto::prefer_amg(model) {
-            notes.push(reason);
-            *key = "cg".to_string();
+            let method = if kind == MatrixKind::SymmetricPositiveDefinite {
+                "cg"
+            } else {
+                "gmres"
+            };
+            notes.push(format!(
+                "{reason}: using {method} with the smoothed-aggregation AMG preconditioner{}",
+                if method == "gmres" {
+                    " (GMRES: the tangent can be indefinite, a softening law)"
+                } else {
+                    ""
+                }
+            ));
+            *key = method.to_string();
             let mut t = toml::Table::new();
             t.insert("preconditioner".into(), "amg".into());
             return build_solver(key, &t, where_);

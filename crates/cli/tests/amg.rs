@@ -306,3 +306,64 @@ fn export_matrix_reads_back_as_the_assembled_matrix() {
         assert_eq!(*v, if c == 0 { 1.0 } else { 0.0 });
     }
 }
+
+/// `[solver] type = "auto"` on a model above 150,000 equations whose direct
+/// factor would need more than half the memory available (here 0.2 GB, set
+/// by `JUNTA_MEMORY_LIMIT`; the factor would need 1.4 GB): the factor is
+/// never attempted, AMG is taken, with GMRES when a law can soften (the
+/// tangent can be indefinite) and CG otherwise, and `summary.json` says
+/// which and why. Two 10 x 10 x 5 mm blocks of 37 x 37 x 18 H8 (158,840
+/// equations) joined by a bilinear (softening) or a linear interface.
+#[test]
+fn auto_takes_amg_when_the_direct_factor_would_not_fit() {
+    let scene =
+        std::fs::read_to_string(repo().join("crates/cli/tests/data/auto_amg_big.toml")).unwrap();
+    let linear = scene
+        .replace(
+            "type = \"bilinear\"",
+            "type = \"linear_penalty\"\nd = 100000.0",
+        )
+        .lines()
+        .filter(|l| {
+            !["K =", "N =", "S =", "G_I", "eta ="]
+                .iter()
+                .any(|k| l.starts_with(k))
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    for (text, method) in [(scene.as_str(), "gmres"), (linear.as_str(), "cg")] {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("s.toml");
+        std::fs::write(&p, text).unwrap();
+        let out = junta()
+            .args(["run", "-q", "-o"])
+            .arg(dir.path().join("out"))
+            .arg(&p)
+            .env("JUNTA_MEMORY_LIMIT", "2e8")
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let s: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap(),
+        )
+        .unwrap();
+        let solver = &s["solver"];
+        assert_eq!(solver["name"], method, "{solver}");
+        let notes = solver["notes"].to_string();
+        assert!(
+            notes.contains("more than half of the 0.2 GB available")
+                && notes.contains(&format!("using {method} with the smoothed-aggregation AMG")),
+            "{notes}"
+        );
+        // equilibrium of the iterative solution: the two reactions balance
+        let (lo, up) = (
+            s["reactions"]["lower.z0"][2].as_f64().unwrap(),
+            s["reactions"]["upper.z1"][2].as_f64().unwrap(),
+        );
+        assert!(lo < 0.0 && (lo + up).abs() <= 1e-8 * up.abs(), "{lo} {up}");
+    }
+}

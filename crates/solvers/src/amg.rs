@@ -81,6 +81,7 @@
 //! same pattern (block inverses, spectral radii, `P`, Galerkin products and
 //! the coarse factor).
 
+use crate::common::{update, PAR_MIN_LEN};
 use junta_core::{EquationLayout, SolverError, SymmetricCsc};
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
@@ -106,6 +107,12 @@ pub struct AmgSettings {
     /// Make nodes at one point tied by a strong bond one node of level 0
     /// (see [`Amg::bonded_clusters`]).
     pub bonded_clusters: bool,
+    /// The matrix may be indefinite (a softening tangent, for GMRES): the
+    /// nodal blocks are inverted with partial pivoting and the coarsest
+    /// level by LU when Cholesky fails, so that only a singular block or
+    /// level is an error. The cycle is then not positive definite and
+    /// cannot precondition CG.
+    pub indefinite: bool,
 }
 
 impl Default for AmgSettings {
@@ -117,6 +124,7 @@ impl Default for AmgSettings {
             max_levels: 12,
             degree: 2,
             bonded_clusters: true,
+            indefinite: false,
         }
     }
 }
@@ -154,8 +162,19 @@ impl Csr {
         )
     }
 
-    /// `y = A x`, rows in parallel.
+    /// `y = A x`, rows in parallel (on the calling thread for small
+    /// matrices).
     pub fn mul(&self, x: &[f64], y: &mut [f64]) {
+        if self.n_rows < PAR_MIN_LEN {
+            for (i, yi) in y.iter_mut().enumerate() {
+                let mut acc = 0.0;
+                for p in self.row_ptr[i]..self.row_ptr[i + 1] {
+                    acc += self.val[p] * x[self.col[p] as usize];
+                }
+                *yi = acc;
+            }
+            return;
+        }
         y.par_chunks_mut(512).enumerate().for_each(|(c, chunk)| {
             let base = c * 512;
             for (k, yi) in chunk.iter_mut().enumerate() {
@@ -293,7 +312,15 @@ pub struct Amg {
     /// Level-0 nodes made of several mesh nodes.
     clusters: usize,
     src0: Vec<usize>,
-    coarse: Option<nalgebra::Cholesky<f64, nalgebra::Dyn>>,
+    coarse: Option<CoarseFactor>,
+}
+
+/// Dense factor of the coarsest level.
+#[derive(Debug, Clone)]
+enum CoarseFactor {
+    Cholesky(nalgebra::Cholesky<f64, nalgebra::Dyn>),
+    /// With [`AmgSettings::indefinite`], when Cholesky fails.
+    Lu(nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>),
 }
 
 fn nonpd(detail: String) -> SolverError {
@@ -353,11 +380,69 @@ fn invert_spd_block(a: &mut [f64], bs: usize) -> bool {
     true
 }
 
+/// In-place inverse of the `bs × bs` block `a` (row-major) by Gauss-Jordan
+/// elimination with partial pivoting; `false` when it is singular to
+/// working precision. `perm` holds `bs` entries of scratch.
+fn invert_block_pivoting(a: &mut [f64], bs: usize, perm: &mut [usize]) -> bool {
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for (k, p) in perm.iter_mut().enumerate().take(bs) {
+        *p = k;
+    }
+    for k in 0..bs {
+        // pivot row
+        let p = (k..bs)
+            .max_by(|&i, &j| a[i * bs + k].abs().total_cmp(&a[j * bs + k].abs()))
+            .unwrap_or(k);
+        let pivot = a[p * bs + k];
+        if !(pivot.abs() > 1e-13 * scale && pivot.is_finite()) {
+            return false;
+        }
+        if p != k {
+            for j in 0..bs {
+                a.swap(k * bs + j, p * bs + j);
+            }
+            perm.swap(k, p);
+        }
+        let inv = 1.0 / pivot;
+        a[k * bs + k] = 1.0;
+        for j in 0..bs {
+            a[k * bs + j] *= inv;
+        }
+        for i in 0..bs {
+            if i == k {
+                continue;
+            }
+            let f = a[i * bs + k];
+            if f == 0.0 {
+                continue;
+            }
+            a[i * bs + k] = 0.0;
+            for j in 0..bs {
+                a[i * bs + j] -= f * a[k * bs + j];
+            }
+        }
+    }
+    // row interchanges of A become column interchanges of A^-1
+    let mut row = vec![0.0; bs];
+    for i in 0..bs {
+        for (k, &pk) in perm.iter().enumerate().take(bs) {
+            row[pk] = a[i * bs + k];
+        }
+        a[i * bs..(i + 1) * bs].copy_from_slice(&row);
+    }
+    true
+}
+
 impl BlockInverse {
     /// The inverses of the diagonal blocks of `a` over the nodes
     /// `node_ptr`; a block that is not positive definite is an error naming
     /// the level and the node.
-    fn new(a: &Csr, node_ptr: &[usize], level: usize) -> Result<BlockInverse, SolverError> {
+    fn new(
+        a: &Csr,
+        node_ptr: &[usize],
+        level: usize,
+        indefinite: bool,
+    ) -> Result<BlockInverse, SolverError> {
         let nn = node_ptr.len() - 1;
         let n = a.n_rows;
         let mut start = vec![0u32; n];
@@ -406,7 +491,19 @@ impl BlockInverse {
                             blk[j * bs + i] = m;
                         }
                     }
-                    if !invert_spd_block(blk, bs) {
+                    if indefinite {
+                        let mut perm = [0usize; 64];
+                        let ok = if bs <= 64 {
+                            invert_block_pivoting(blk, bs, &mut perm[..bs])
+                        } else {
+                            invert_block_pivoting(blk, bs, &mut vec![0; bs])
+                        };
+                        if !ok {
+                            return Err(nonpd(format!(
+                                ": amg level {level}: the diagonal block of node {k} (equations {s}..{e}) is singular"
+                            )));
+                        }
+                    } else if !invert_spd_block(blk, bs) {
                         return Err(nonpd(format!(
                             ": amg level {level}: the diagonal block of node {k} (equations {s}..{e}) is not positive definite"
                         )));
@@ -438,9 +535,7 @@ impl BlockInverse {
 
     /// `z = D^-1 r`, equations in parallel.
     fn apply(&self, r: &[f64], z: &mut [f64]) {
-        z.par_iter_mut()
-            .enumerate()
-            .for_each(|(i, zi)| *zi = self.row_times(i, r));
+        update(z, |i, _| self.row_times(i, r));
     }
 }
 
@@ -1230,8 +1325,24 @@ impl Amg {
         Ok(amg)
     }
 
-    /// Recompute the numeric values for a new matrix of the same pattern.
-    pub fn refresh(&mut self, m: &SymmetricCsc) -> Result<(), SolverError> {
+    /// Take a new matrix of the same pattern on level 0 only: its values,
+    /// block inverse and spectral radius follow `m`, while the prolongators
+    /// and coarse levels stay those of the matrix the hierarchy was built
+    /// or refreshed for. The cycle stays symmetric and, for a matrix close
+    /// to that one (the next Newton iteration), nearly as effective, at a
+    /// small part of the cost of [`Amg::refresh`].
+    pub fn update_finest(&mut self, m: &SymmetricCsc) -> Result<(), SolverError> {
+        if self.levels.len() < 2 {
+            return self.refresh(m);
+        }
+        self.copy_finest(m)?;
+        let lev = &mut self.levels[0];
+        lev.dinv = BlockInverse::new(&lev.a, &lev.node_ptr, 0, self.settings.indefinite)?;
+        lev.rho = spectral_radius(&lev.a, &lev.dinv);
+        Ok(())
+    }
+
+    fn copy_finest(&mut self, m: &SymmetricCsc) -> Result<(), SolverError> {
         let a0 = &mut self.levels[0].a;
         if m.n != a0.n_rows || self.src0.iter().any(|&p| p >= m.values.len()) {
             return Err(SolverError::Usage(
@@ -1242,6 +1353,12 @@ impl Amg {
             .par_iter_mut()
             .zip(self.src0.par_iter())
             .for_each(|(v, &p)| *v = m.values[p]);
+        Ok(())
+    }
+
+    /// Recompute the numeric values for a new matrix of the same pattern.
+    pub fn refresh(&mut self, m: &SymmetricCsc) -> Result<(), SolverError> {
+        self.copy_finest(m)?;
         self.numeric()
     }
 
@@ -1268,7 +1385,7 @@ impl Amg {
         lev.d = vec![0.0; n];
         lev.z = vec![0.0; n];
         let t0 = std::time::Instant::now();
-        lev.dinv = BlockInverse::new(&lev.a, &lev.node_ptr, l)?;
+        lev.dinv = BlockInverse::new(&lev.a, &lev.node_ptr, l, self.settings.indefinite)?;
         lev.rho = spectral_radius(&lev.a, &lev.dinv);
         let t1 = t0.elapsed().as_secs_f64();
         let omega = 4.0 / (3.0 * lev.rho);
@@ -1300,12 +1417,28 @@ impl Amg {
             }
         }
         let dense = (&dense + dense.transpose()) * 0.5;
-        self.coarse = Some(dense.cholesky().ok_or_else(|| {
+        let fail = || {
             nonpd(format!(
-                ": amg coarsest level ({nc} equations, level {}) is not positive definite",
-                nl - 1
+                ": amg coarsest level ({nc} equations, level {}) is {}",
+                nl - 1,
+                if self.settings.indefinite {
+                    "singular"
+                } else {
+                    "not positive definite"
+                }
             ))
-        })?);
+        };
+        self.coarse = Some(match dense.clone().cholesky() {
+            Some(c) => CoarseFactor::Cholesky(c),
+            None if self.settings.indefinite => {
+                let lu = dense.lu();
+                if !lu.is_invertible() {
+                    return Err(fail());
+                }
+                CoarseFactor::Lu(lu)
+            }
+            None => return Err(fail()),
+        });
         Ok(())
     }
 
@@ -1334,11 +1467,7 @@ impl Amg {
             return;
         }
         let perm = &self.perm;
-        self.levels[0]
-            .rhs
-            .par_iter_mut()
-            .zip(perm.par_iter())
-            .for_each(|(v, &i)| *v = r[i]);
+        update(&mut self.levels[0].rhs, |k, _| r[perm[k]]);
         self.cycle(0);
         for (&i, &v) in self.perm.iter().zip(&self.levels[0].x) {
             z[i] = v;
@@ -1364,7 +1493,10 @@ impl Amg {
         if l + 1 == nl {
             let lev = &mut self.levels[l];
             let rhs = DVector::from_column_slice(&lev.rhs);
-            let x = self.coarse.as_ref().expect("factorised").solve(&rhs);
+            let x = match self.coarse.as_ref().expect("factorised") {
+                CoarseFactor::Cholesky(c) => c.solve(&rhs),
+                CoarseFactor::Lu(lu) => lu.solve(&rhs).unwrap_or(rhs),
+            };
             lev.x.copy_from_slice(x.as_slice());
             return;
         }
@@ -1375,10 +1507,8 @@ impl Amg {
             chebyshev(lev, degree);
             // residual
             lev.a.mul(&lev.x, &mut lev.res);
-            lev.res
-                .par_iter_mut()
-                .zip(lev.rhs.par_iter())
-                .for_each(|(r, b)| *r = b - *r);
+            let rhs = &lev.rhs;
+            update(&mut lev.res, |i, r| rhs[i] - r);
         }
         {
             let (fine, coarse) = self.levels.split_at_mut(l + 1);
@@ -1389,10 +1519,8 @@ impl Amg {
             let (fine, coarse) = self.levels.split_at_mut(l + 1);
             let lev = &mut fine[l];
             lev.p.mul(&coarse[0].x, &mut lev.d);
-            lev.x
-                .par_iter_mut()
-                .zip(lev.d.par_iter())
-                .for_each(|(x, d)| *x += d);
+            let d = &lev.d;
+            update(&mut lev.x, |i, x| x + d[i]);
             chebyshev(lev, degree);
         }
     }
@@ -1419,31 +1547,21 @@ fn chebyshev(lev: &mut Level, degree: usize) {
         ..
     } = lev;
     a.mul(x, res);
-    res.par_iter_mut()
-        .zip(rhs.par_iter())
-        .for_each(|(r, b)| *r = b - *r);
+    update(res, |i, r| rhs[i] - r);
     dinv.apply(res, z);
-    d.par_iter_mut()
-        .zip(z.par_iter())
-        .for_each(|(di, zi)| *di = zi / theta);
+    update(d, |i, _| z[i] / theta);
     for k in 0..degree {
-        x.par_iter_mut()
-            .zip(d.par_iter())
-            .for_each(|(xi, di)| *xi += di);
+        update(x, |i, xi| xi + d[i]);
         if k + 1 == degree {
             break;
         }
         a.mul(x, res);
-        res.par_iter_mut()
-            .zip(rhs.par_iter())
-            .for_each(|(r, b)| *r = b - *r);
+        update(res, |i, r| rhs[i] - r);
         dinv.apply(res, z);
         let rho_new = 1.0 / (2.0 * sigma - rho);
         let c1 = rho_new * rho;
         let c2 = 2.0 * rho_new / delta;
-        d.par_iter_mut()
-            .zip(z.par_iter())
-            .for_each(|(di, zi)| *di = c1 * *di + c2 * zi);
+        update(d, |i, di| c1 * di + c2 * z[i]);
         rho = rho_new;
     }
 }
@@ -1535,7 +1653,7 @@ mod tests {
     #[test]
     fn block_inverse_inverts_every_nodal_block() {
         let (a, node_ptr, _) = small_level();
-        let inv = BlockInverse::new(&a, &node_ptr, 0).unwrap();
+        let inv = BlockInverse::new(&a, &node_ptr, 0, false).unwrap();
         let ad = dense(&a);
         for k in 0..node_ptr.len() - 1 {
             let (s, e) = (node_ptr[k], node_ptr[k + 1]);
@@ -1558,7 +1676,7 @@ mod tests {
     #[test]
     fn smoothed_prolongator_and_galerkin_product_match_dense_formulas() {
         let (a, node_ptr, t) = small_level();
-        let dinv = BlockInverse::new(&a, &node_ptr, 0).unwrap();
+        let dinv = BlockInverse::new(&a, &node_ptr, 0, false).unwrap();
         let omega = 0.7;
         let p = smoothed_prolongator(&a, &t, &dinv, &node_ptr, omega);
         let (ad, td) = (dense(&a), dense(&t));

@@ -52,12 +52,13 @@
 //! (rows in parallel, no scatter).
 
 use crate::amg::{layout_from_coords, Amg, AmgSettings};
-use crate::common::{dot, norm2, residual_floor, symmetric_only, validate, FullCsr, Pattern};
+use crate::common::{
+    dot, norm2, residual_floor, symmetric_only, update, update_sum, validate, FullCsr, Pattern,
+};
 use crate::ordering;
 use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
-use junta_core::{LinearSolver, SolveReport, SolverError, SymmetricCsc};
+use junta_core::{LinearSolver, MatrixKind, SolveReport, SolverError, SymmetricCsc};
 use nalgebra::Matrix3;
-use rayon::prelude::*;
 use serde::Deserialize;
 use std::time::Instant;
 
@@ -78,12 +79,33 @@ pub enum Preconditioner {
     Amg,
 }
 
-/// Settings of [`CgSolver`] (TOML parameters of the `cg` key).
+/// Krylov method of [`CgSolver`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum KrylovMethod {
+    /// Conjugate gradients: symmetric positive-definite matrices (registry
+    /// key `cg`).
+    #[default]
+    Cg,
+    /// Restarted GMRES with right preconditioning ([`gmres`]): symmetric
+    /// indefinite matrices such as softening tangents (registry key
+    /// `gmres`).
+    Gmres,
+}
+
+mod gmres;
+
+/// Settings of [`CgSolver`] (TOML parameters of the `cg` and `gmres` keys).
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CgSettings {
     /// `"jacobi"` or `"block_jacobi"` (default).
     pub preconditioner: Preconditioner,
+    /// Krylov method: CG (SPD matrices) or GMRES (any non-singular
+    /// symmetric matrix; the `gmres` back end).
+    #[serde(skip)]
+    pub method: KrylovMethod,
+    /// GMRES: restart length (default 50).
+    pub restart: usize,
     /// Relative residual `||b - A x|| / ||b||` to reach (1e-10).
     pub tol: f64,
     /// Iteration limit; `None`: `min(10 n, 20000)` (at least 100).
@@ -108,12 +130,20 @@ pub struct CgSettings {
     /// true. `false` smooths them node by node, whose iteration count
     /// grows with the penalty.
     pub amg_bonded_clusters: bool,
+    /// AMG: for a new matrix of the same pattern (the next Newton
+    /// iteration) keep the hierarchy and update level 0 only, until the
+    /// iteration count exceeds 1.5 times (plus 3) the count of the first
+    /// solve after its set-up, or a solve fails; then build it anew
+    /// (default true). `false` recomputes every level for every matrix.
+    pub amg_reuse: bool,
 }
 
 impl Default for CgSettings {
     fn default() -> Self {
         CgSettings {
             preconditioner: Preconditioner::BlockJacobi,
+            method: KrylovMethod::Cg,
+            restart: 50,
             tol: 1e-10,
             max_iterations: None,
             stagnation_window: 2000,
@@ -123,6 +153,7 @@ impl Default for CgSettings {
             amg_per_body: true,
             amg_interface_theta: 0.25,
             amg_bonded_clusters: true,
+            amg_reuse: true,
         }
     }
 }
@@ -169,6 +200,14 @@ pub const CG_PARAMS: &[ParamDoc] = &[
         name: "amg_bonded_clusters",
         doc: "amg: nodes at one point tied by a strong interface bond form one block of the smoother and one aggregate, so that stiff penalties do not slow it (default true)",
     },
+    ParamDoc {
+        name: "restart",
+        doc: "gmres: restart length, vectors kept (default 50)",
+    },
+    ParamDoc {
+        name: "amg_reuse",
+        doc: "amg: keep the hierarchy for the next matrices (level 0 updated) until the iteration count grows by half or a solve fails, then rebuild (default true)",
+    },
 ];
 
 /// Preconditioned conjugate-gradient back end (registry key `"cg"`).
@@ -188,6 +227,17 @@ pub struct CgSolver {
     coords: Vec<[f64; 3]>,
     layout: Option<junta_core::EquationLayout>,
     amg: Option<Amg>,
+    /// The hierarchy was built (or refreshed) for the current matrix.
+    amg_fresh: bool,
+    /// Rebuild at the next factorisation (the iteration count grew).
+    amg_stale: bool,
+    /// Iterations of the first solve after the last set-up.
+    amg_base_iterations: Option<usize>,
+    /// Set-ups, reuses, rebuilds after growth, rebuilds after a failure.
+    amg_counts: [usize; 4],
+    /// Iteration cap of a solve with a kept hierarchy (`2 base + 10`): a
+    /// hierarchy that far off is rebuilt at once rather than iterated on.
+    iteration_cap: Option<usize>,
     report: SolveReport,
     analyze_count: usize,
     blocks3: usize,
@@ -225,6 +275,11 @@ impl CgSolver {
             coords: Vec::new(),
             layout: None,
             amg: None,
+            amg_fresh: false,
+            amg_stale: false,
+            amg_base_iterations: None,
+            amg_counts: [0; 4],
+            iteration_cap: None,
             report: SolveReport {
                 solver: "cg".into(),
                 ..Default::default()
@@ -236,12 +291,35 @@ impl CgSolver {
 
     /// From a TOML parameter table (unknown keys are an error).
     pub fn from_table(table: &toml::Table) -> Result<Self, junta_core::CoreError> {
-        let s: CgSettings = parse_params("solver", "cg", table)?;
+        Self::from_table_with(table, KrylovMethod::Cg)
+    }
+
+    /// From a TOML parameter table for `method` (key `cg` or `gmres`; the
+    /// `gmres` key defaults to the AMG preconditioner).
+    pub fn from_table_with(
+        table: &toml::Table,
+        method: KrylovMethod,
+    ) -> Result<Self, junta_core::CoreError> {
+        let key = match method {
+            KrylovMethod::Cg => "cg",
+            KrylovMethod::Gmres => "gmres",
+        };
+        let mut s: CgSettings = parse_params("solver", key, table)?;
+        s.method = method;
+        if method == KrylovMethod::Gmres && !table.contains_key("preconditioner") {
+            s.preconditioner = Preconditioner::Amg;
+        }
         let bad = |message: String| junta_core::CoreError::InvalidParameters {
             kind: "solver",
-            key: "cg".into(),
+            key: key.into(),
             message,
         };
+        if s.restart == 0 || s.restart > 1000 {
+            return Err(bad(format!(
+                "`restart` = {} must lie in 1..=1000 (GMRES stores that many vectors)",
+                s.restart
+            )));
+        }
         if !(s.tol.is_finite() && s.tol > 0.0 && s.tol < 1.0) {
             return Err(bad(format!("`tol` = {} must lie in (0, 1)", s.tol)));
         }
@@ -251,7 +329,9 @@ impl CgSolver {
         if s.stagnation_window == 0 {
             return Err(bad("`stagnation_window` = 0 must be >= 1".into()));
         }
-        Ok(Self::new(s))
+        let mut solver = Self::new(s);
+        solver.report.solver = key.into();
+        Ok(solver)
     }
 
     /// The settings.
@@ -330,59 +410,98 @@ impl CgSolver {
             amg.apply_in_level_order(r, z);
             return dot(r, z);
         }
-        z.par_iter_mut()
-            .enumerate()
-            .map(|(i, zi)| {
-                let s = self.block_start[i];
-                let row = &self.inv_row[i];
-                let v = match self.block_size[i] {
-                    3 => row[0] * r[s] + row[1] * r[s + 1] + row[2] * r[s + 2],
-                    _ => row[0] * r[i],
-                };
-                *zi = v;
-                v * r[i]
-            })
-            .sum()
+        let (start, size, inv_row) = (&self.block_start, &self.block_size, &self.inv_row);
+        update_sum(z, |i, _| {
+            let s = start[i];
+            let row = &inv_row[i];
+            let v = match size[i] {
+                3 => row[0] * r[s] + row[1] * r[s + 1] + row[2] * r[s + 2],
+                _ => row[0] * r[i],
+            };
+            (v, v * r[i])
+        })
     }
 
     fn factorize_amg(&mut self, matrix: &SymmetricCsc, t0: Instant) -> Result<(), SolverError> {
-        if let Some(amg) = &mut self.amg {
-            amg.refresh(matrix)?;
-        } else {
-            let mut layout = match &self.layout {
-                Some(l) if l.node.len() == matrix.n => l.clone(),
-                _ => layout_from_coords(&self.coords),
-            };
-            if !self.settings.amg_per_body {
-                layout.body.iter_mut().for_each(|b| *b = 0);
+        match &mut self.amg {
+            Some(amg) if !self.amg_stale && self.settings.amg_reuse => {
+                amg.update_finest(matrix)?;
+                self.amg_fresh = false;
+                self.amg_counts[1] += 1;
             }
-            let settings = AmgSettings {
-                theta: self.settings.amg_theta,
-                theta_interface: self.settings.amg_interface_theta,
-                max_coarse: self.settings.amg_max_coarse.max(1),
-                degree: self.settings.amg_degree.max(1),
-                bonded_clusters: self.settings.amg_bonded_clusters,
-                ..Default::default()
-            };
-            let amg = Amg::setup(matrix, &self.coords, &layout, settings)?;
-            let bodies = layout.body.iter().copied().max().map_or(0, |b| b + 1);
-            let note = format!(
-                "amg: {} levels {:?}, operator complexity {:.2}, {} bod{}, {} bonded node clusters",
-                amg.num_levels(),
-                amg.sizes(),
-                amg.operator_complexity(),
-                bodies,
-                if bodies == 1 { "y" } else { "ies" },
-                amg.bonded_clusters()
-            );
-            tracing::info!("{note}");
-            self.report.notes.retain(|n| !n.starts_with("amg:"));
-            self.report.notes.push(note);
-            self.amg = Some(amg);
+            Some(amg) if !self.settings.amg_reuse => {
+                amg.refresh(matrix)?;
+                self.amg_fresh = true;
+            }
+            _ => {
+                if self.amg_stale {
+                    self.amg_counts[2] += 1;
+                }
+                self.setup_amg(matrix)?;
+            }
         }
+        self.update_reuse_note();
         self.ready = true;
         self.report.factor_seconds += t0.elapsed().as_secs_f64();
         Ok(())
+    }
+
+    /// A new hierarchy for `matrix` (aggregates included: damage may have
+    /// changed which interfaces are strong).
+    fn setup_amg(&mut self, matrix: &SymmetricCsc) -> Result<(), SolverError> {
+        let mut layout = match &self.layout {
+            Some(l) if l.node.len() == matrix.n => l.clone(),
+            _ => layout_from_coords(&self.coords),
+        };
+        if !self.settings.amg_per_body {
+            layout.body.iter_mut().for_each(|b| *b = 0);
+        }
+        let settings = AmgSettings {
+            theta: self.settings.amg_theta,
+            theta_interface: self.settings.amg_interface_theta,
+            max_coarse: self.settings.amg_max_coarse.max(1),
+            degree: self.settings.amg_degree.max(1),
+            bonded_clusters: self.settings.amg_bonded_clusters,
+            indefinite: self.settings.method == KrylovMethod::Gmres,
+            ..Default::default()
+        };
+        self.amg = None;
+        let amg = Amg::setup(matrix, &self.coords, &layout, settings)?;
+        let bodies = layout.body.iter().copied().max().map_or(0, |b| b + 1);
+        let note = format!(
+            "amg: {} levels {:?}, operator complexity {:.2}, {} bod{}, {} bonded node clusters",
+            amg.num_levels(),
+            amg.sizes(),
+            amg.operator_complexity(),
+            bodies,
+            if bodies == 1 { "y" } else { "ies" },
+            amg.bonded_clusters()
+        );
+        tracing::info!("{note}");
+        self.report.notes.retain(|n| !n.starts_with("amg:"));
+        self.report.notes.push(note);
+        self.amg = Some(amg);
+        self.amg_fresh = true;
+        self.amg_stale = false;
+        self.amg_base_iterations = None;
+        self.amg_counts[0] += 1;
+        Ok(())
+    }
+
+    fn update_reuse_note(&mut self) {
+        if !self.settings.amg_reuse || self.amg_counts[1] == 0 {
+            return;
+        }
+        let [setups, reuses, growth, failed] = self.amg_counts;
+        let note = format!(
+            "amg reuse: {setups} set-up{} for {} matrices ({reuses} solved with a kept hierarchy; rebuilt {growth} time{} when the iterations grew by half, {failed} time{} when a kept hierarchy failed or needed over twice the iterations)",
+            if setups == 1 { "" } else { "s" },
+            setups + reuses,
+            if growth == 1 { "" } else { "s" },
+            if failed == 1 { "" } else { "s" },
+        );
+        self.report.notes.retain(|n| !n.starts_with("amg reuse:"));
+        self.report.notes.push(note);
     }
 
     fn fail(
@@ -402,7 +521,17 @@ impl CgSolver {
 
 impl LinearSolver for CgSolver {
     fn key(&self) -> &'static str {
-        "cg"
+        match self.settings.method {
+            KrylovMethod::Cg => "cg",
+            KrylovMethod::Gmres => "gmres",
+        }
+    }
+
+    fn accepts(&self, kind: MatrixKind) -> bool {
+        match self.settings.method {
+            KrylovMethod::Cg => kind == MatrixKind::SymmetricPositiveDefinite,
+            KrylovMethod::Gmres => kind != MatrixKind::General,
+        }
     }
 
     fn analyze(
@@ -517,49 +646,67 @@ impl LinearSolver for CgSolver {
     }
 
     fn solve_in_place(&mut self, matrix: &SymmetricCsc, b: &mut [f64]) -> Result<(), SolverError> {
-        let t0 = Instant::now();
-        if !self.ready {
-            return Err(SolverError::Usage(
-                "cg: solve called without a successful factorize".into(),
-            ));
+        let kept = self.amg.is_some() && !self.amg_fresh;
+        let rhs = if kept { b.to_vec() } else { Vec::new() };
+        self.iteration_cap = match self.amg_base_iterations {
+            Some(base) if kept => Some(2 * base + 10),
+            _ => None,
+        };
+        let first = self.solve_once(matrix, b);
+        self.iteration_cap = None;
+        match first {
+            Err(
+                e @ (SolverError::NotConverged { .. } | SolverError::NotPositiveDefinite { .. }),
+            ) if kept => {
+                let w = format!(
+                    "cg: the kept AMG hierarchy failed on this matrix ({e}); rebuilt for it"
+                );
+                tracing::info!("{w}");
+                b.copy_from_slice(&rhs);
+                self.amg_counts[3] += 1;
+                // this matrix ends up solved with a new hierarchy
+                self.amg_counts[1] -= 1;
+                let t0 = Instant::now();
+                self.setup_amg(matrix)?;
+                self.update_reuse_note();
+                self.report.factor_seconds += t0.elapsed().as_secs_f64();
+                self.solve_once(matrix, b)?;
+            }
+            r => r?,
         }
-        let n = self.block_size.len();
-        if b.len() != n {
-            return Err(SolverError::Usage(format!(
-                "cg: right-hand side has {} entries, the matrix {n} equations",
-                b.len()
-            )));
+        if self.amg.is_some() {
+            let it = self.report.iterations;
+            match self.amg_base_iterations {
+                None if self.amg_fresh => self.amg_base_iterations = Some(it),
+                Some(base) if it as f64 > 1.5 * base as f64 + 3.0 => self.amg_stale = true,
+                _ => {}
+            }
         }
-        if let Some(p) = &self.pattern {
-            p.check(matrix, "cg solve")?;
-        }
-        if let Some(i) = b.iter().position(|v| !v.is_finite()) {
-            return Err(SolverError::NonFinite {
-                method: format!("cg: the right-hand side holds {} at equation {i}", b[i]),
-            });
-        }
-        let tol = self.settings.tol;
-        let max_it = self.max_iterations(n);
-        let bnorm = norm2(b);
-        if bnorm == 0.0 {
-            b.fill(0.0);
-            self.report.iterations = 0;
-            self.report.residual = 0.0;
-            self.report.solve_seconds += t0.elapsed().as_secs_f64();
-            return Ok(());
-        }
-        // with AMG, CG runs in the hierarchy's level-0 order
-        let perm: Option<Vec<usize>> = self
-            .amg
-            .as_ref()
-            .filter(|a| !a.perm.is_empty())
-            .map(|a| a.perm.clone());
-        let original = perm.as_ref().map(|_| b.to_vec());
-        if let (Some(perm), Some(orig)) = (&perm, &original) {
-            b.par_iter_mut()
-                .zip(perm.par_iter())
-                .for_each(|(v, &i)| *v = orig[i]);
-        }
+        Ok(())
+    }
+
+    fn set_layout(&mut self, layout: &junta_core::EquationLayout) {
+        self.layout = Some(layout.clone());
+        self.amg = None;
+    }
+
+    fn report(&self) -> SolveReport {
+        self.report.clone()
+    }
+}
+
+impl CgSolver {
+    /// Preconditioned CG iterations from `x = 0` (vectors in level order);
+    /// returns `x`, the iterations and the true relative residual.
+    fn cg_iterate(
+        &mut self,
+        b: &[f64],
+        bnorm: f64,
+        max_it: usize,
+        tol: f64,
+        t0: Instant,
+    ) -> Result<(Vec<f64>, usize, f64), SolverError> {
+        let n = b.len();
         let mut x = vec![0.0; n];
         let mut r = b.to_vec();
         let mut z = vec![0.0; n];
@@ -600,16 +747,11 @@ impl LinearSolver for CgSolver {
                 return Err(self.fail(t0, it, rel, e));
             }
             let alpha = rz / pq;
-            let rr: f64 = x
-                .par_iter_mut()
-                .zip(r.par_iter_mut())
-                .zip(p.par_iter().zip(q.par_iter()))
-                .map(|((xi, ri), (pi, qi))| {
-                    *xi += alpha * pi;
-                    *ri -= alpha * qi;
-                    *ri * *ri
-                })
-                .sum();
+            update(&mut x, |i, xi| xi + alpha * p[i]);
+            let rr = update_sum(&mut r, |i, ri| {
+                let new = ri - alpha * q[i];
+                (new, new * new)
+            });
             rel = rr.sqrt() / bnorm;
             if rel < 0.5 * best {
                 best = rel;
@@ -629,9 +771,7 @@ impl LinearSolver for CgSolver {
             if rel <= tol {
                 // Confirm with the true residual.
                 self.matvec(&x, &mut q);
-                r.par_iter_mut()
-                    .zip(b.par_iter().zip(q.par_iter()))
-                    .for_each(|(ri, (bi, qi))| *ri = bi - qi);
+                update(&mut r, |i, _| b[i] - q[i]);
                 rel = norm2(&r) / bnorm;
                 if rel <= tol {
                     break;
@@ -662,10 +802,61 @@ impl LinearSolver for CgSolver {
             let rz_new = self.precondition(&r, &mut z);
             let beta = rz_new / rz;
             rz = rz_new;
-            p.par_iter_mut()
-                .zip(z.par_iter())
-                .for_each(|(pi, zi)| *pi = zi + beta * *pi);
+            update(&mut p, |i, pi| z[i] + beta * pi);
         }
+        Ok((x, it, rel))
+    }
+
+    /// One preconditioned CG solve of `matrix x = b` (`b` overwritten by
+    /// `x`).
+    fn solve_once(&mut self, matrix: &SymmetricCsc, b: &mut [f64]) -> Result<(), SolverError> {
+        let t0 = Instant::now();
+        if !self.ready {
+            return Err(SolverError::Usage(
+                "cg: solve called without a successful factorize".into(),
+            ));
+        }
+        let n = self.block_size.len();
+        if b.len() != n {
+            return Err(SolverError::Usage(format!(
+                "cg: right-hand side has {} entries, the matrix {n} equations",
+                b.len()
+            )));
+        }
+        if let Some(p) = &self.pattern {
+            p.check(matrix, "cg solve")?;
+        }
+        if let Some(i) = b.iter().position(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite {
+                method: format!("cg: the right-hand side holds {} at equation {i}", b[i]),
+            });
+        }
+        let tol = self.settings.tol;
+        let max_it = self
+            .iteration_cap
+            .map_or(self.max_iterations(n), |c| c.min(self.max_iterations(n)));
+        let bnorm = norm2(b);
+        if bnorm == 0.0 {
+            b.fill(0.0);
+            self.report.iterations = 0;
+            self.report.residual = 0.0;
+            self.report.solve_seconds += t0.elapsed().as_secs_f64();
+            return Ok(());
+        }
+        // with AMG, CG runs in the hierarchy's level-0 order
+        let perm: Option<Vec<usize>> = self
+            .amg
+            .as_ref()
+            .filter(|a| !a.perm.is_empty())
+            .map(|a| a.perm.clone());
+        let original = perm.as_ref().map(|_| b.to_vec());
+        if let (Some(perm), Some(orig)) = (&perm, &original) {
+            update(b, |k, _| orig[perm[k]]);
+        }
+        let (x, it, rel) = match self.settings.method {
+            KrylovMethod::Cg => self.cg_iterate(b, bnorm, max_it, tol, t0)?,
+            KrylovMethod::Gmres => self.gmres_iterate(b, bnorm, max_it, tol, t0)?,
+        };
         if x.iter().any(|v| !v.is_finite()) {
             let e = SolverError::NonFinite {
                 method: "cg".into(),
@@ -686,15 +877,6 @@ impl LinearSolver for CgSolver {
         tracing::debug!(iterations = it, residual = rel, "cg converged");
         Ok(())
     }
-
-    fn set_layout(&mut self, layout: &junta_core::EquationLayout) {
-        self.layout = Some(layout.clone());
-        self.amg = None;
-    }
-
-    fn report(&self) -> SolveReport {
-        self.report.clone()
-    }
 }
 
 inventory::submit! {
@@ -703,6 +885,15 @@ inventory::submit! {
         description: "preconditioned conjugate gradients with Jacobi, 3x3 nodal block-Jacobi or smoothed-aggregation AMG preconditioning",
         params: CG_PARAMS,
         build: |table| Ok(Box::new(CgSolver::from_table(table)?)),
+    }
+}
+
+inventory::submit! {
+    SolverEntry {
+        key: "gmres",
+        description: "restarted GMRES for symmetric indefinite (softening) tangents, AMG (default), block-Jacobi or Jacobi preconditioning; the same parameters as `cg` plus `restart`",
+        params: CG_PARAMS,
+        build: |table| Ok(Box::new(CgSolver::from_table_with(table, KrylovMethod::Gmres)?)),
     }
 }
 

@@ -53,7 +53,7 @@ pub mod ordering;
 mod panel_lu;
 mod supernodal;
 
-pub use cg::{CgSettings, CgSolver, Preconditioner};
+pub use cg::{CgSettings, CgSolver, KrylovMethod, Preconditioner};
 pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats, Precision};
 pub use ldlt::{LdltSettings, LdltSolver, LdltStats, ResidualCheck, UNCHECKED_GROWTH_LIMIT};
 pub use lu::{LuPivoting, LuSettings, LuSolver};
