@@ -4,9 +4,10 @@
 # 206,763 dofs), 2 threads each, run one after the other. Checks that the
 # top Fz reactions agree to 1e-6 and prints wall time and peak memory
 # (/usr/bin/time -v). Junta runs twice: with its default solver settings
-# (auto precision: a single-precision factor refined to double-precision
-# residuals on these well-conditioned matrices) and with
-# `--solver precision=double` (double-precision factor).
+# (`auto`: AMG-CG on these compact 3D models above 100,000 equations, see
+# crates/cli/src/auto.rs; the direct solver's auto precision below) and with
+# `--solver type=cholesky --solver precision=double` (double-precision
+# factor).
 # Usage: bench/cube_vs_calculix.sh [CASES...]
 # where a case is C3D20:20 or C3D8:40 (default: both).
 set -euo pipefail
@@ -45,7 +46,7 @@ for c in "${cases[@]}"; do
   python3 "$here/make_cube_deck.py" "$et" "$n" "$work/$name.inp"
   read -r cw cm < <(cd "$work" && measure "$work/$name.ccx" ccx -i "$name")
   read -r jw jm < <(measure "$work/$name.junta" "$junta" run "$work/$name.inp" -o "$work/$name.out" -q)
-  read -r dw dm < <(measure "$work/$name.junta_double" "$junta" run "$work/$name.inp" -o "$work/$name.double" -q --solver precision=double)
+  read -r dw dm < <(measure "$work/$name.junta_double" "$junta" run "$work/$name.inp" -o "$work/$name.double" -q --solver type=cholesky --solver precision=double)
   # CalculiX prints "total force (fx,fy,fz) for set TOP ..." then the totals line
   fz_c=$(awk '/total force/ {getline; getline; print $3}' "$work/$name.dat" | tail -1)
   fz_j=$(python3 -c "import json;print(json.load(open('$work/$name.out/summary.json'))['reactions']['TOP'][2])")
@@ -75,10 +76,11 @@ printf '\n| H8 n | equations | wall s | peak MB | AMG set-up s | solve s | itera
 for n in "${amg_sizes[@]}"; do
   name="cube_c3d8_n$n"
   python3 "$here/make_cube_deck.py" C3D8 "$n" "$work/$name.inp"
-  extra=()
-  [ "$n" = "${amg_sizes[0]}" ] && extra=(--export-matrix "$work/$name.mtx")
+  # the matrix for pyamg is exported by a separate, untimed run
+  [ "$n" = "${amg_sizes[0]}" ] && "$junta" run "$work/$name.inp" -o "$work/$name.export" -q \
+    --solver type=cg --solver preconditioner=amg --export-matrix "$work/$name.mtx" >/dev/null
   read -r aw am < <(measure "$work/$name.amg" "$junta" run "$work/$name.inp" -o "$work/$name.amgout" -q \
-    --solver type=cg --solver preconditioner=amg "${extra[@]}")
+    --solver type=cg --solver preconditioner=amg)
   python3 - "$work/$name.amgout/summary.json" "$n" "$aw" "$am" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1])); n, aw, am = sys.argv[2], float(sys.argv[3]), float(sys.argv[4])
@@ -87,6 +89,22 @@ lv = [x for x in so["notes"] if x.startswith("amg:")][0].split(" levels ")[1].sp
 print(f"| {n} | {s['dofs']} | {aw:.1f} | {am:.0f} | {t['factor']:.1f} | {t['solve']:.1f} | {so['iterations']} | {lv} | {1e6*aw/s['dofs']:.0f} |")
 PY
 done
+# H20 n=20: AMG against the default direct solver (mixed precision) on the
+# same deck; the faster is what `auto` should take there.
+name=cube_c3d20_n20
+python3 "$here/make_cube_deck.py" C3D20 20 "$work/$name.inp"
+read -r hw hm < <(measure "$work/$name.amgh" "$junta" run "$work/$name.inp" -o "$work/$name.amgout" -q \
+  --solver type=cg --solver preconditioner=amg)
+read -r dw dm < <(measure "$work/$name.direct" "$junta" run "$work/$name.inp" -o "$work/$name.directout" -q --solver type=cholesky)
+python3 - "$work/$name.amgout/summary.json" "$work/$name.directout/summary.json" "$hw" "$hm" "$dw" "$dm" <<'PY'
+import json, sys
+a, d = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+hw, hm, dw, dm = map(float, sys.argv[3:])
+fa, fd = a["reactions"]["TOP"][2], d["reactions"]["TOP"][2]
+print(f"\nH20 n=20 ({a['dofs']} dofs): AMG-CG {hw:.1f} s, {hm:.0f} MB, {a['solver']['iterations']} iterations; "
+      f"direct (auto precision) {dw:.1f} s, {dm:.0f} MB; AMG/direct time {hw/dw:.2f}; Fz {fa:.7f} vs {fd:.7f} "
+      f"(rel. diff {abs(fa-fd)/abs(fd):.1e})")
+PY
 python3 - "$work/cube_c3d8_n${amg_sizes[0]}.mtx" <<'PY'
 import sys, time, numpy as np, scipy.io, pyamg
 d = sys.argv[1]

@@ -63,7 +63,9 @@ pub fn resolve_solver(
 ) -> Result<Box<dyn LinearSolver>> {
     let kind = model.matrix_kind();
     if key == "auto" && kind != MatrixKind::General {
-        if let Some(reason) = crate::auto::prefer_amg(model) {
+        if let Some(reason) =
+            crate::auto::prefer_amg(model, kind == MatrixKind::SymmetricPositiveDefinite)
+        {
             let method = if kind == MatrixKind::SymmetricPositiveDefinite {
                 "cg"
             } else {

@@ -360,8 +360,15 @@ pub fn report(rows: &[SweepRow]) {
     for (solver, _, _) in SWEEP_SOLVERS {
         let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.solver == solver).collect();
         if let Some(first) = mine.iter().find(|r| !r.notes.is_empty()) {
+            // the mixed-precision back end notes its fallbacks; the others
+            // note what they built (e.g. the AMG hierarchy)
+            let what = if solver == "cholesky_mixed" {
+                "falls back to double precision from"
+            } else {
+                "notes from"
+            };
             println!(
-                "{solver}: falls back to double precision from d = {:.2e}: {}",
+                "{solver}: {what} d = {:.2e}: {}",
                 first.d,
                 first.notes.join("; ")
             );
