@@ -56,12 +56,15 @@
 //!    block diagonal (the `A_II` of every node, inverted per node),
 //!    `ω = 4 / (3 ρ)` and `ρ` a power-iteration estimate of the spectral
 //!    radius of `D^-1 A` (12 steps, times 1.1).
-//! 6. **Galerkin coarse matrix** `A_{l+1} = P^T A P` (two sparse products,
-//!    rows in parallel).
+//! 6. **Galerkin coarse matrix** `A_{l+1} = P^T A P`, one coarse row at a
+//!    time (`(R_I A) P` with `R = P^T`, coarse rows in parallel), so that
+//!    neither `A P` nor `R A` is stored; `P` itself is built row by row
+//!    from `A` and `T` without forming `A T`.
 //!
 //! Coarsening stops when a level has at most `max_coarse` equations, when
 //! it no longer shrinks by 10 %, or after `max_levels` levels. The coarsest
-//! matrix is factorised densely (Cholesky).
+//! matrix is factorised densely (Cholesky; LU when
+//! [`AmgSettings::indefinite`] and Cholesky fails).
 //!
 //! # Cycle
 //!
@@ -79,7 +82,10 @@
 //! layout and the first matrix's strength of connection; they are kept.
 //! [`Amg::refresh`] recomputes only numeric values for a new matrix of the
 //! same pattern (block inverses, spectral radii, `P`, Galerkin products and
-//! the coarse factor).
+//! the coarse factor); [`Amg::update_finest`] only level 0's matrix, block
+//! inverse and spectral radius, keeping the coarse levels of an earlier
+//! matrix (what `cg` and `gmres` do across Newton iterations until the
+//! iteration count grows, see `amg_reuse`).
 
 use crate::common::{update, PAR_MIN_LEN};
 use junta_core::{EquationLayout, SolverError, SymmetricCsc};

@@ -1,5 +1,7 @@
-//! Preconditioned conjugate gradients (PCG) for SPD systems, with a
-//! (block-)Jacobi preconditioner.
+//! Preconditioned conjugate gradients (PCG) for SPD systems (registry key
+//! `cg`) and restarted GMRES for symmetric indefinite ones (key `gmres`,
+//! [`gmres`]), with a Jacobi, block-Jacobi or smoothed-aggregation AMG
+//! ([`crate::amg`]) preconditioner.
 //!
 //! # Algorithm
 //!
@@ -48,8 +50,19 @@
 //!   is SPD. Block-Jacobi removes the intra-node coupling (Poisson
 //!   effect, rotated orthotropic materials) that scalar Jacobi cannot see.
 //!
+//! * `amg`: one V-cycle of [`crate::amg::Amg`]. The hierarchy's level-0
+//!   matrix is the only full copy of `A` (the Krylov vectors then live in
+//!   its equation order, [`crate::amg::Amg::perm`]). With `amg_reuse` a new
+//!   matrix of the same pattern updates level 0 only; the hierarchy is
+//!   built anew when a solve needs more than 1.5x + 3 the iterations of the
+//!   first solve after the last set-up (at the next `factorize`), or at
+//!   once, the solve repeated, when a kept hierarchy fails or needs more
+//!   than 2x + 10.
+//!
 //! The product `A p` uses both triangles in CSR built once in `analyze`
-//! (rows in parallel, no scatter).
+//! (rows in parallel, no scatter; on the calling thread below
+//! 50,000 equations, where waking the thread pool costs more than the
+//! arithmetic).
 
 use crate::amg::{layout_from_coords, Amg, AmgSettings};
 use crate::common::{
@@ -92,7 +105,7 @@ pub enum KrylovMethod {
     Gmres,
 }
 
-mod gmres;
+pub mod gmres;
 
 /// Settings of [`CgSolver`] (TOML parameters of the `cg` and `gmres` keys).
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
@@ -853,9 +866,19 @@ impl CgSolver {
         if let (Some(perm), Some(orig)) = (&perm, &original) {
             update(b, |k, _| orig[perm[k]]);
         }
-        let (x, it, rel) = match self.settings.method {
-            KrylovMethod::Cg => self.cg_iterate(b, bnorm, max_it, tol, t0)?,
-            KrylovMethod::Gmres => self.gmres_iterate(b, bnorm, max_it, tol, t0)?,
+        let result = match self.settings.method {
+            KrylovMethod::Cg => self.cg_iterate(b, bnorm, max_it, tol, t0),
+            KrylovMethod::Gmres => self.gmres_iterate(b, bnorm, max_it, tol, t0),
+        };
+        let (x, it, rel) = match result {
+            Ok(r) => r,
+            Err(e) => {
+                // b holds the right-hand side again, in the caller's order
+                if let Some(orig) = &original {
+                    b.copy_from_slice(orig);
+                }
+                return Err(e);
+            }
         };
         if x.iter().any(|v| !v.is_finite()) {
             let e = SolverError::NonFinite {
