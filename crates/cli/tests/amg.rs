@@ -47,6 +47,14 @@ fn stack(layers: usize, n: usize, m: usize, d: f64, bonded: bool, solver: &str) 
     s + "[solver]\n" + solver + "\n"
 }
 
+/// Run a scene that must fail; its stderr.
+fn scene_err(text: &str) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("s.toml");
+    std::fs::write(&p, text).unwrap();
+    run_err(&p)
+}
+
 fn run_scene(text: &str) -> serde_json::Value {
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join("s.toml");
@@ -129,11 +137,8 @@ fn amg_iterations_stay_bounded_up_to_the_advisors_penalty() {
         }
     }
     // node-by-node smoothing stalls at a stiff penalty, with its numbers
-    let dir = tempfile::tempdir().unwrap();
-    let p = dir.path().join("s.toml");
     let solver = format!("{AMG}\nmax_iterations = 60\namg_bonded_clusters = false");
-    std::fs::write(&p, stack(3, 8, 2, 1e11, true, &solver)).unwrap();
-    let err = run_err(&p);
+    let err = scene_err(&stack(3, 8, 2, 1e11, true, &solver));
     assert!(
         err.contains("did not converge") && err.contains("after 60 iterations"),
         "{err}"
@@ -145,10 +150,7 @@ fn amg_iterations_stay_bounded_up_to_the_advisors_penalty() {
 /// non-convergence.
 #[test]
 fn cg_names_the_round_off_floor_of_an_unreachable_tolerance() {
-    let dir = tempfile::tempdir().unwrap();
-    let p = dir.path().join("s.toml");
-    std::fs::write(&p, stack(3, 8, 2, 1e14, true, AMG)).unwrap();
-    let err = run_err(&p);
+    let err = scene_err(&stack(3, 8, 2, 1e14, true, AMG));
     assert!(
         err.contains("round-off floor") && err.contains("raise it"),
         "{err}"
@@ -181,10 +183,7 @@ fn failed_interface_needs_per_body_aggregation() {
     assert!(it <= 30, "{it}");
     assert!(s["solver"]["residual"].as_f64().unwrap() <= 1e-10);
     assert!(s["solver"]["notes"].to_string().contains("3 bodies"));
-    let dir = tempfile::tempdir().unwrap();
-    let p = dir.path().join("s.toml");
-    std::fs::write(&p, scene(false)).unwrap();
-    let err = run_err(&p);
+    let err = scene_err(&scene(false));
     assert!(
         err.contains("did not converge") && err.contains("after 30 iterations"),
         "{err}"

@@ -234,46 +234,6 @@ impl Csr {
             val,
         }
     }
-
-    /// `self * b` (Gustavson, row blocks in parallel, one dense
-    /// accumulator per block).
-    pub fn matmul(&self, b: &Csr) -> Csr {
-        let n = self.n_rows;
-        let chunk = (n / (8 * rayon::current_num_threads().max(1))).max(256);
-        let parts: Vec<(Vec<usize>, Vec<u32>, Vec<f64>)> = (0..n.div_ceil(chunk))
-            .into_par_iter()
-            .map(|c| {
-                let (r0, r1) = (c * chunk, ((c + 1) * chunk).min(n));
-                let mut marker = vec![usize::MAX; b.n_cols];
-                let mut acc = vec![0.0; b.n_cols];
-                let mut lens = Vec::with_capacity(r1 - r0);
-                let mut cols: Vec<u32> = Vec::new();
-                let mut vals = Vec::new();
-                for i in r0..r1 {
-                    let start = cols.len();
-                    for p in self.row_ptr[i]..self.row_ptr[i + 1] {
-                        let a = self.val[p];
-                        let k = self.col[p] as usize;
-                        for q in b.row_ptr[k]..b.row_ptr[k + 1] {
-                            let j = b.col[q] as usize;
-                            if marker[j] != i {
-                                marker[j] = i;
-                                cols.push(j as u32);
-                                acc[j] = a * b.val[q];
-                            } else {
-                                acc[j] += a * b.val[q];
-                            }
-                        }
-                    }
-                    cols[start..].sort_unstable();
-                    vals.extend(cols[start..].iter().map(|&j| acc[j as usize]));
-                    lens.push(cols.len() - start);
-                }
-                (lens, cols, vals)
-            })
-            .collect();
-        concat_rows(parts, n, b.n_cols)
-    }
 }
 
 /// One level of the hierarchy.
@@ -354,60 +314,37 @@ pub struct BlockInverse {
     inv: Vec<f64>,
 }
 
-/// In-place inverse of the symmetric positive-definite `bs × bs` block `a`
-/// (row-major) by Gauss-Jordan elimination without pivoting (its pivots are
-/// Schur complements of an SPD matrix, hence positive). `false` when a
-/// pivot is not positive and finite.
-fn invert_spd_block(a: &mut [f64], bs: usize) -> bool {
-    for k in 0..bs {
-        let pivot = a[k * bs + k];
-        if !(pivot > 0.0 && pivot.is_finite()) {
-            return false;
-        }
-        let inv = 1.0 / pivot;
-        a[k * bs + k] = 1.0;
-        for j in 0..bs {
-            a[k * bs + j] *= inv;
-        }
-        for i in 0..bs {
-            if i == k {
-                continue;
-            }
-            let f = a[i * bs + k];
-            if f == 0.0 {
-                continue;
-            }
-            a[i * bs + k] = 0.0;
-            for j in 0..bs {
-                a[i * bs + j] -= f * a[k * bs + j];
-            }
-        }
-    }
-    true
-}
-
-/// In-place inverse of the `bs × bs` block `a` (row-major) by Gauss-Jordan
-/// elimination with partial pivoting; `false` when it is singular to
-/// working precision. `perm` holds `bs` entries of scratch.
-fn invert_block_pivoting(a: &mut [f64], bs: usize, perm: &mut [usize]) -> bool {
+/// In-place inverse of the `bs × bs` block `a` (row-major, `bs <= 255`)
+/// by Gauss-Jordan elimination. Without `pivoting` the block must be
+/// symmetric positive definite: its pivots are Schur complements of an SPD
+/// matrix, hence positive, and a pivot that is not positive and finite
+/// gives `false`. With `pivoting` (an indefinite block) each step takes the
+/// largest entry of its column as pivot and `false` means singular to
+/// working precision; the row interchanges of `A` become column
+/// interchanges of `A^-1`, applied at the end in reverse order.
+fn invert_block(a: &mut [f64], bs: usize, pivoting: bool) -> bool {
     let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    for (k, p) in perm.iter_mut().enumerate().take(bs) {
-        *p = k;
-    }
+    let mut swaps = [0u8; 256];
     for k in 0..bs {
-        // pivot row
-        let p = (k..bs)
-            .max_by(|&i, &j| a[i * bs + k].abs().total_cmp(&a[j * bs + k].abs()))
-            .unwrap_or(k);
-        let pivot = a[p * bs + k];
-        if !(pivot.abs() > 1e-13 * scale && pivot.is_finite()) {
-            return false;
-        }
-        if p != k {
-            for j in 0..bs {
-                a.swap(k * bs + j, p * bs + j);
+        if pivoting {
+            let p = (k..bs)
+                .max_by(|&i, &j| a[i * bs + k].abs().total_cmp(&a[j * bs + k].abs()))
+                .unwrap_or(k);
+            if p != k {
+                for j in 0..bs {
+                    a.swap(k * bs + j, p * bs + j);
+                }
             }
-            perm.swap(k, p);
+            swaps[k] = p as u8;
+        }
+        let pivot = a[k * bs + k];
+        let ok = if pivoting {
+            pivot.abs() > 1e-13 * scale
+        } else {
+            pivot > 0.0
+        };
+        if !(ok && pivot.is_finite()) {
+            return false;
         }
         let inv = 1.0 / pivot;
         a[k * bs + k] = 1.0;
@@ -428,13 +365,15 @@ fn invert_block_pivoting(a: &mut [f64], bs: usize, perm: &mut [usize]) -> bool {
             }
         }
     }
-    // row interchanges of A become column interchanges of A^-1
-    let mut row = vec![0.0; bs];
-    for i in 0..bs {
-        for (k, &pk) in perm.iter().enumerate().take(bs) {
-            row[pk] = a[i * bs + k];
+    if pivoting {
+        for k in (0..bs).rev() {
+            let p = swaps[k] as usize;
+            if p != k {
+                for i in 0..bs {
+                    a.swap(i * bs + k, i * bs + p);
+                }
+            }
         }
-        a[i * bs..(i + 1) * bs].copy_from_slice(&row);
     }
     true
 }
@@ -497,21 +436,14 @@ impl BlockInverse {
                             blk[j * bs + i] = m;
                         }
                     }
-                    if indefinite {
-                        let mut perm = [0usize; 64];
-                        let ok = if bs <= 64 {
-                            invert_block_pivoting(blk, bs, &mut perm[..bs])
-                        } else {
-                            invert_block_pivoting(blk, bs, &mut vec![0; bs])
-                        };
-                        if !ok {
-                            return Err(nonpd(format!(
-                                ": amg level {level}: the diagonal block of node {k} (equations {s}..{e}) is singular"
-                            )));
-                        }
-                    } else if !invert_spd_block(blk, bs) {
+                    if !invert_block(blk, bs, indefinite) {
                         return Err(nonpd(format!(
-                            ": amg level {level}: the diagonal block of node {k} (equations {s}..{e}) is not positive definite"
+                            ": amg level {level}: the diagonal block of node {k} (equations {s}..{e}) is {}",
+                            if indefinite {
+                                "singular"
+                            } else {
+                                "not positive definite"
+                            }
                         )));
                     }
                 }
@@ -1676,7 +1608,15 @@ mod tests {
             }
         }
         let mut bad = vec![1.0, 2.0, 2.0, 1.0]; // eigenvalues 3 and -1
-        assert!(!invert_spd_block(&mut bad, 2));
+        assert!(!invert_block(&mut bad, 2, false));
+        // with pivoting: indefinite blocks, one with a zero leading entry
+        let m = DMatrix::from_row_slice(3, 3, &[0.0, 2.0, 1.0, 2.0, -1.0, 0.5, 1.0, 0.5, 3.0]);
+        let mut b: Vec<f64> = m.transpose().as_slice().to_vec(); // row-major
+        assert!(invert_block(&mut b, 3, true));
+        let inv = DMatrix::from_row_slice(3, 3, &b);
+        assert!((&inv * &m - DMatrix::<f64>::identity(3, 3)).amax() < 1e-14);
+        let mut singular = vec![1.0, 2.0, 2.0, 4.0];
+        assert!(!invert_block(&mut singular, 2, true));
     }
 
     #[test]
@@ -1712,7 +1652,7 @@ mod tests {
     }
 
     #[test]
-    fn matmul_and_transpose_match_dense() {
+    fn transpose_matches_dense() {
         let a = Csr {
             n_rows: 2,
             n_cols: 3,
@@ -1721,11 +1661,7 @@ mod tests {
             val: vec![1.0, 2.0, 3.0],
         };
         let at = a.transpose();
-        let c = a.matmul(&at); // 2x2: [[5, 0], [0, 9]]
-        assert_eq!(c.row_ptr, vec![0, 1, 2]);
-        assert_eq!(c.val, vec![5.0, 9.0]);
-        let d = at.matmul(&a); // 3x3
-        assert_eq!(d.n_rows, 3);
-        assert_eq!(d.val, vec![1.0, 2.0, 9.0, 2.0, 4.0]);
+        assert_eq!(dense(&at), dense(&a).transpose());
+        assert_eq!(at.row_ptr, vec![0, 1, 2, 3]);
     }
 }

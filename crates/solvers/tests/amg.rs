@@ -63,6 +63,14 @@ fn amg_cg() -> CgSolver {
     })
 }
 
+/// `||b - K x|| / ||b||`.
+fn relative_residual(k: &SymmetricCsc, x: &[f64], b: &[f64]) -> f64 {
+    let mut kx = vec![0.0; k.n];
+    k.mul_vec(x, &mut kx);
+    let r: f64 = kx.iter().zip(b).map(|(a, b)| (a - b).powi(2)).sum();
+    r.sqrt() / b.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
+
 /// Solve with AMG-CG; returns (iterations, true relative residual).
 fn solve(model: &Model, s: &mut CgSolver) -> (usize, f64) {
     let (k, b) = assemble(model);
@@ -72,16 +80,7 @@ fn solve(model: &Model, s: &mut CgSolver) -> (usize, f64) {
     s.factorize(&k).unwrap();
     let mut x = b.clone();
     s.solve_in_place(&k, &mut x).unwrap();
-    let mut ax = vec![0.0; k.n];
-    k.mul_vec(&x, &mut ax);
-    let r: f64 = ax
-        .iter()
-        .zip(&b)
-        .map(|(a, b)| (a - b).powi(2))
-        .sum::<f64>()
-        .sqrt();
-    let bn: f64 = b.iter().map(|v| v * v).sum::<f64>().sqrt();
-    (s.report().iterations, r / bn)
+    (s.report().iterations, relative_residual(&k, &x, &b))
 }
 
 #[test]
@@ -249,15 +248,7 @@ fn hierarchy_is_kept_for_nearby_matrices_and_rebuilt_when_iterations_grow() {
         s.factorize(m).unwrap();
         let mut x = b.clone();
         s.solve_in_place(m, &mut x).unwrap();
-        let mut ax = vec![0.0; m.n];
-        m.mul_vec(&x, &mut ax);
-        let r = ax
-            .iter()
-            .zip(&b)
-            .map(|(a, b)| (a - b).powi(2))
-            .sum::<f64>()
-            .sqrt()
-            / b.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let r = relative_residual(m, &x, &b);
         assert!(r <= 1e-10, "residual {r:e}");
         let rep = s.report();
         let note = rep

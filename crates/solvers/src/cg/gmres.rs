@@ -48,7 +48,9 @@ impl CgSolver {
         let mut r = b.to_vec();
         let mut w = vec![0.0; n];
         let mut z = vec![0.0; n];
-        let mut v: Vec<Vec<f64>> = Vec::with_capacity(m + 1);
+        // Krylov basis: vectors allocated once and reused by every restart
+        let mut basis: Vec<Vec<f64>> = Vec::with_capacity(m + 1);
+        let mut used;
         let mut h = vec![vec![0.0; m]; m + 1];
         let (mut cs, mut sn, mut g) = (vec![0.0; m], vec![0.0; m], vec![0.0; m + 1]);
         let mut it = 0usize;
@@ -85,8 +87,11 @@ impl CgSolver {
                 return Err(self.fail(t0, it, rel, e));
             }
             cycle_start_rel = rel;
-            v.clear();
-            v.push(r.iter().map(|ri| ri / beta).collect());
+            if basis.is_empty() {
+                basis.push(vec![0.0; n]);
+            }
+            update(&mut basis[0], |i, _| r[i] / beta);
+            used = 1;
             g.fill(0.0);
             g[0] = beta;
             let mut k_done = 0;
@@ -96,10 +101,10 @@ impl CgSolver {
                 }
                 it += 1;
                 // w = A M^-1 v_k
-                self.precondition(&v[k], &mut z);
+                self.precondition(&basis[k], &mut z);
                 self.matvec(&z, &mut w);
                 for _ in 0..2 {
-                    for (j, vj) in v.iter().enumerate() {
+                    for (j, vj) in basis[..used].iter().enumerate() {
                         let hj = dot(&w, vj);
                         h[j][k] += hj;
                         update(&mut w, |i, wi| wi - hj * vj[i]);
@@ -136,7 +141,11 @@ impl CgSolver {
                 if estimate <= tol || hk1 == 0.0 || k + 1 == m {
                     break;
                 }
-                v.push(w.iter().map(|wi| wi / hk1).collect());
+                if basis.len() == used {
+                    basis.push(vec![0.0; n]);
+                }
+                update(&mut basis[used], |i, _| w[i] / hk1);
+                used += 1;
             }
             // y = H^-1 g (upper triangular), x += M^-1 V y
             let mut y = vec![0.0; k_done];
@@ -148,7 +157,7 @@ impl CgSolver {
                 y[i] = if h[i][i] != 0.0 { acc / h[i][i] } else { 0.0 };
             }
             w.fill(0.0);
-            for (vj, yj) in v.iter().zip(&y) {
+            for (vj, yj) in basis[..used].iter().zip(&y) {
                 update(&mut w, |i, wi| wi + yj * vj[i]);
             }
             self.precondition(&w, &mut z);
