@@ -597,3 +597,78 @@ fn wedge_cantilever_decks_match_calculix() {
         assert!(rel(fz, 1000.0) < 1e-9, "{deck}: {fz}");
     }
 }
+
+/// A Gmsh wedge mesh (crates/core/tests/data/prism_stack_o1.msh and _o2,
+/// written by Gmsh 4.15.2 from make_prism_msh.py: the unit square in
+/// triangles, extruded into two volumes of one wedge layer each), the two
+/// volumes bonded by INTER6 (prism6) or INTER12 (prism15) inserted on
+/// their shared triangles, clamped on the `bottom` triangles, held
+/// laterally on the `sides` quadrangles and pulled by `delta` on the `top`
+/// triangles. Closed form of the bonded stack in uniaxial strain
+/// (BENCHMARKS.md section 3): `sigma = delta / (2 h / M + 1 / d)`, `M =
+/// E (1 - nu) / ((1 + nu)(1 - 2 nu))`, the same normal traction at every
+/// interface point and the opening `sigma / d`.
+#[test]
+fn gmsh_wedge_stack_with_triangle_surfaces_matches_the_bonded_stack() {
+    let (e, nu, h, d, delta) = (210000.0f64, 0.3f64, 0.5, 1.0e5, 0.01);
+    let m = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let sigma = delta / (2.0 * h / m + 1.0 / d);
+    for (file, element, iface) in [
+        ("prism_stack_o1.msh", "wedge6", "inter6"),
+        ("prism_stack_o2.msh", "wedge15", "inter12"),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::copy(
+            repo().join("crates/core/tests/data").join(file),
+            dir.path().join(file),
+        )
+        .unwrap();
+        let scene = format!(
+            r#"[materials.steel]
+type = "isotropic"
+E = {e}
+nu = {nu}
+[laws.bond]
+type = "linear_penalty"
+d = {d}
+[mesh]
+type = "gmsh"
+file = "{file}"
+[[blocks]]
+name = "lower"
+element = "{element}"
+material = "steel"
+[[blocks]]
+name = "upper"
+element = "{element}"
+material = "steel"
+[[interface]]
+name = "bond"
+between = ["lower", "upper"]
+law = "bond"
+[[boundary]]
+set = "sides"
+fixed = ["x", "y"]
+[[boundary]]
+set = "bottom"
+fixed = "all"
+[[boundary]]
+set = "top"
+fixed = ["x", "y"]
+displacement = {{ z = {delta} }}
+"#
+        );
+        let s = run_ok(&write(dir.path(), "stack.toml", &scene), &dir.path().join("out"));
+        let wedges = s["elements"][element].as_u64().unwrap();
+        assert_eq!(s["elements"][iface].as_u64(), Some(wedges / 2), "{}", s["elements"]);
+        let r = s["reactions"]["top"][2].as_f64().unwrap();
+        assert!(rel(r, sigma) < 1e-9, "{file}: top reaction {r} vs closed form {sigma}");
+        let b = &s["interfaces"]["bond"];
+        for (key, want) in [("traction", sigma), ("jump", sigma / d)] {
+            for mm in ["min", "max"] {
+                let v = b[format!("{key}_{mm}")][2].as_f64().unwrap();
+                assert!(rel(v, want) < 1e-9, "{file}: {key}_{mm} {v} vs {want}");
+            }
+        }
+    }
+}

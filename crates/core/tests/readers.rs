@@ -774,6 +774,93 @@ fn gmsh_hex27_fixture() {
     assert_eq!(m.node_set("top").unwrap().len(), 9);
 }
 
+/// Wedge meshes written by Gmsh 4.15.2 (tests/data/make_prism_msh.py): two
+/// physical volumes of prisms, triangles on the physical surfaces `bottom`,
+/// `mid` and `top`, quadrangles on `sides`. Each surface element is matched
+/// to the face of a wedge: triangles to the end faces S1 (z-) / S2 (z+),
+/// the internal `mid` surface to the face whose outward normal agrees with
+/// the triangle's right-hand normal (Gmsh orients the extruded top
+/// surface along +z, so the lower wedges' S2).
+#[test]
+fn gmsh_prism_fixtures_match_triangles_to_wedge_faces() {
+    for (file, wedge, tri, quad) in [
+        ("prism_stack_o1.msh", CellShape::Wedge6, CellShape::Tri3, CellShape::Quad4),
+        ("prism_stack_o2.msh", CellShape::Wedge15, CellShape::Tri6, CellShape::Quad8),
+    ] {
+        let m = read_msh(data(file)).unwrap();
+        let names: Vec<&str> = m.blocks.iter().map(|b| b.name.as_str()).collect();
+        assert_eq!(names, ["lower", "upper"], "{file}");
+        assert!(m.blocks.iter().all(|b| b.shape == wedge), "{file}");
+        let lower = m.blocks[0].len();
+        assert!(lower >= 4 && m.blocks[1].len() == lower, "{file}");
+        // every wedge is right-handed: positive volume of its corner prism
+        for b in &m.blocks {
+            for e in 0..b.len() {
+                let c = b.element(e);
+                let p = |k: usize| m.nodes[c[k]];
+                let (a, bb, cc, d) = (p(0), p(1), p(2), p(3));
+                let u = [bb[0] - a[0], bb[1] - a[1], bb[2] - a[2]];
+                let v = [cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]];
+                let w = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
+                let det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+                    + u[2] * (v[0] * w[1] - v[1] * w[0]);
+                assert!(det > 0.0, "{file}: {} element {e} is inverted", b.name);
+            }
+        }
+        for (name, z, block, face) in [("bottom", 0.0, 0, 0), ("mid", 0.5, 0, 1), ("top", 1.0, 1, 1)] {
+            let faces = m.face_set(name).unwrap();
+            assert_eq!(faces.len(), lower, "{file} {name}: one face per wedge");
+            for &f in faces {
+                assert_eq!((f.block, f.face), (block, face), "{file} {name}");
+                let shape = m.blocks[f.block].shape.face_shape_of(f.face).unwrap();
+                assert_eq!(shape, tri, "{file} {name}");
+                assert!(m.face_nodes(f).iter().all(|&n| m.nodes[n][2] == z), "{file} {name}");
+            }
+            assert_eq!(m.nodes_of_faces(faces), m.node_set(name).unwrap(), "{file} {name}");
+        }
+        let sides = m.face_set("sides").unwrap();
+        for &f in sides {
+            let shape = m.blocks[f.block].shape.face_shape_of(f.face).unwrap();
+            assert_eq!(shape, quad, "{file} sides");
+            let nodes = m.face_nodes(f);
+            let on_side = |d: usize, v: f64| nodes.iter().all(|&n| m.nodes[n][d] == v);
+            assert!(
+                on_side(0, 0.0) || on_side(0, 1.0) || on_side(1, 0.0) || on_side(1, 1.0),
+                "{file}: side face {f:?} is not on the boundary"
+            );
+        }
+        // the sides of the two volumes: as many quadrangles as boundary
+        // edges of the triangulated square, twice
+        assert_eq!(sides.len() % 2, 0, "{file}");
+    }
+    // a triangle that is no wedge face is refused with its tag and a hint
+    // (the first triangle of the first surface block gets a node of the
+    // top surface as its third corner)
+    let text = std::fs::read_to_string(data("prism_stack_o1.msh")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let at = lines.iter().position(|l| l == "$Elements").unwrap();
+    let header = (at + 2..lines.len())
+        .find(|&i| lines[i].split_whitespace().nth(2) == Some("2"))
+        .unwrap();
+    let top = m_top_node(&text);
+    let mut t: Vec<String> = lines[header + 1].split_whitespace().map(String::from).collect();
+    let tag = t[0].clone();
+    t[3] = top.to_string();
+    lines[header + 1] = t.join(" ");
+    let e = parse_msh(&lines.join("\n"), "p.msh").unwrap_err().to_string();
+    assert!(
+        e.contains(&format!("triangle {tag} of surface")) && e.contains("wedge"),
+        "{e}"
+    );
+}
+
+/// Tag of a node at z = 1 in a Gmsh 4.1 file (first one listed).
+fn m_top_node(text: &str) -> usize {
+    let m = parse_msh(text, "p.msh").unwrap();
+    let i = (0..m.nodes.len()).find(|&i| m.nodes[i][2] == 1.0).unwrap();
+    m.node_labels[i]
+}
+
 const HEX8_MSH: &str = "$MeshFormat
 4.1 0 8
 $EndMeshFormat

@@ -5,17 +5,19 @@
 //! - `$PhysicalNames`, `$Entities` (to map entity tags to physical groups),
 //!   `$Nodes` (entity blocks, arbitrary tags kept in [`Mesh::node_labels`]),
 //!   `$Elements`; any other section is skipped.
-//! - Volume elements: 5 (hex8), 17 (hex20), 12 (hex27). They become one
-//!   [`ElementBlock`] per physical volume and shape: block name = physical
-//!   name (or `volume<tag>` for an entity outside any physical group),
-//!   `element_type` = `h8` / `h20` / `h27`, `material` = the physical name.
+//! - Volume elements: 5 (hex8), 17 (hex20), 12 (hex27), 6 (prism6), 18
+//!   (prism15). They become one [`ElementBlock`] per physical volume and
+//!   shape: block name = physical name (or `volume<tag>` for an entity
+//!   outside any physical group), `element_type` = `h8` / `h20` / `h27` /
+//!   `wedge6` / `wedge15`, `material` = the physical name.
 //!   Each physical volume is also an element set.
-//! - Surface elements: 3 (quad4), 16 (quad8), 10 (quad9). A physical surface
-//!   becomes a node set (all nodes of its quads) and a face set: each quad is
-//!   matched, by its corner nodes, to the face of a volume element
-//!   ([`FaceRef`]). On an internal surface shared by two volume elements the
-//!   face whose outward normal agrees with the quad's right-hand normal is
-//!   taken (so orient internal surfaces as you want the pressure to act).
+//! - Surface elements: 3 (quad4), 16 (quad8), 10 (quad9), 2 (tri3), 9
+//!   (tri6). A physical surface becomes a node set (all nodes of its
+//!   elements) and a face set: each quadrangle or triangle is matched, by
+//!   its corner nodes, to the face of a volume element ([`FaceRef`]; a
+//!   triangle to the end face of a wedge). On an internal surface shared
+//!   by two volume elements the face whose outward normal agrees with the
+//!   surface element's right-hand normal is taken (so orient internal surfaces as you want the pressure to act).
 //! - Points (15) and lines (1, 8, 26) only feed node sets of 0D / 1D
 //!   physical groups.
 //!
@@ -75,7 +77,7 @@ pub enum GmshError {
         version: String,
     },
     /// An element type the reader does not handle.
-    #[error("{file}:{line}: Gmsh element type {code} is not supported; valid: 5 (hex8), 17 (hex20), 12 (hex27), 3/16/10 (quad4/8/9 boundary faces), 15 (point), 1/8/26 (lines, ignored)")]
+    #[error("{file}:{line}: Gmsh element type {code} is not supported; valid: 5 (hex8), 17 (hex20), 12 (hex27), 3/16/10 (quad4/8/9 boundary faces), 2/9 (tri3/6 boundary faces), 15 (point), 1/8/26 (lines, ignored)")]
     ElementType {
         file: String,
         line: usize,
@@ -190,6 +192,8 @@ fn shape_of(code: usize) -> Option<(CellShape, usize)> {
         3 => Some((CellShape::Quad4, 4)),
         16 => Some((CellShape::Quad8, 8)),
         10 => Some((CellShape::Quad9, 9)),
+        2 => Some((CellShape::Tri3, 3)),
+        9 => Some((CellShape::Tri6, 6)),
         15 => Some((CellShape::Quad4, 1)), // point: shape unused
         1 => Some((CellShape::Quad4, 2)),
         8 => Some((CellShape::Quad4, 3)),
@@ -211,9 +215,14 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
-/// Right-hand normal of a quadrilateral given by its 4 corners.
-fn quad_normal(p: [[f64; 3]; 4]) -> [f64; 3] {
-    cross(sub(p[2], p[0]), sub(p[3], p[1]))
+/// Right-hand normal of a face given by its corners: a quadrilateral's
+/// diagonals crossed, a triangle's first two edges.
+fn face_normal(p: &[[f64; 3]]) -> [f64; 3] {
+    if p.len() == 3 {
+        cross(sub(p[1], p[0]), sub(p[2], p[0]))
+    } else {
+        cross(sub(p[2], p[0]), sub(p[3], p[1]))
+    }
 }
 
 /// Parse the text of a MSH 4.1 ASCII file; `file_name` is used in messages.
@@ -532,8 +541,13 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
         if groups.is_empty() {
             continue;
         }
-        let is_quad = matches!(b.code, 3 | 16 | 10);
-        if b.dim == 2 && !is_quad {
+        // corners of a surface element: quadrangles 4, triangles 3
+        let corners = match b.code {
+            3 | 16 | 10 => 4,
+            2 | 9 => 3,
+            _ => 0,
+        };
+        if b.dim == 2 && corners == 0 {
             return Err(c.err(
                 b.line,
                 format!("element type {} cannot lie on a surface", b.code),
@@ -544,36 +558,36 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
                 .iter()
                 .map(|&t| resolve(&c, b.line, t))
                 .collect::<Result<_, _>>()?;
-            let face = if is_quad {
-                let mut key = [ids[0], ids[1], ids[2], ids[3]];
+            let face = if b.dim == 2 {
+                // the face key of Mesh::face_key: sorted corners, a
+                // triangle's padded with usize::MAX
+                let mut key = [usize::MAX; 4];
+                key[..corners].copy_from_slice(&ids[..corners]);
                 key.sort_unstable();
+                let what = if corners == 4 { "quadrangle" } else { "triangle" };
                 let cands = faces.get(&key).ok_or_else(|| {
+                    let hint = if corners == 3 {
+                        " (triangles match the end faces of wedge elements)"
+                    } else {
+                        ""
+                    };
                     c.err(
                         b.line,
                         format!(
-                            "quadrangle {tag} of surface {} is not a face of any volume element",
+                            "{what} {tag} of surface {} is not a face of any volume element{hint}",
                             b.entity
                         ),
                     )
                 })?;
-                let p = [
-                    mesh.nodes[ids[0]],
-                    mesh.nodes[ids[1]],
-                    mesh.nodes[ids[2]],
-                    mesh.nodes[ids[3]],
-                ];
-                let nq = quad_normal(p);
+                let p: Vec<[f64; 3]> = ids[..corners].iter().map(|&i| mesh.nodes[i]).collect();
+                let nq = face_normal(&p);
                 let pick = cands
                     .iter()
                     .find(|&&f| {
                         let fnodes = mesh.face_nodes(f);
-                        let q = [
-                            mesh.nodes[fnodes[0]],
-                            mesh.nodes[fnodes[1]],
-                            mesh.nodes[fnodes[2]],
-                            mesh.nodes[fnodes[3]],
-                        ];
-                        dot(quad_normal(q), nq) > 0.0
+                        let q: Vec<[f64; 3]> =
+                            fnodes[..corners].iter().map(|&i| mesh.nodes[i]).collect();
+                        dot(face_normal(&q), nq) > 0.0
                     })
                     .unwrap_or(&cands[0]);
                 Some(*pick)
