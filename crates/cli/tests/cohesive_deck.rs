@@ -311,3 +311,89 @@ fn coh3d6_deck_matches_the_bonded_stack() {
         assert_eq!(types, ["5", "5"], "{what}");
     }
 }
+
+/// `*EQUATION` in incremental runs. The DCB deck of examples/delamination
+/// with its loaded ends tied by linear equations to one node each (`u_z`
+/// of every other LOAD_UP / LOAD_LOW node equals that of node 727 / 1,
+/// the way a deck ties a face to a reference node), only those two nodes
+/// displaced. Physically the same model, so:
+/// * Newton (displacement control) follows the untied deck increment for
+///   increment to its limit point (52 increments, peak 142.5258 N, see
+///   the deck's header), the curves equal to 1e-9;
+/// * `*STATIC, RIKS` (path following in the reduced unknowns) follows the
+///   untied deck's path and passes the peak like
+///   `riks_deck_runs_with_path_following`: peak within 3 % of Akantu's
+///   142.7 N (BENCHMARKS.md section 6), the end of the propagation branch
+///   within 3 % of corrected beam theory.
+#[test]
+fn equations_tie_the_loaded_ends_in_incremental_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(repo().join("examples/delamination/dcb_abaqus.inp")).unwrap();
+    let (up, low) = ([727, 848, 969, 1090, 1211, 1332], [1, 122, 243, 364, 485, 606]);
+    let mut eqs = String::from("*EQUATION\n");
+    for set in [up, low] {
+        for n in &set[1..] {
+            eqs += &format!("2\n{n}, 3, 1.0, {}, 3, -1.0\n", set[0]);
+        }
+    }
+    let tied = text
+        .replace("*STEP, NAME=OPEN", &format!("{eqs}*STEP, NAME=OPEN"))
+        .replace("LOAD_UP, 3, 3, 5.0", "727, 3, 3, 5.0")
+        .replace("LOAD_LOW, 3, 3, -5.0", "1, 3, 3, -5.0");
+    assert_ne!(tied, text);
+    let riks = |t: &str| {
+        t.replace(
+            "*STEP, NAME=OPEN, NLGEOM=NO, INC=1000\n*STATIC\n0.01, 1.0, 1e-06, 0.01",
+            "*STEP, NAME=OPEN, NLGEOM=NO, INC=40\n*STATIC, RIKS\n0.01, 1.0, , , 1.0",
+        )
+    };
+    // Newton: both stop at the limit point; the converged increments agree
+    let mut curves = Vec::new();
+    for (name, deck) in [("plain", &text), ("tied", &tied)] {
+        let path = write(dir.path(), &format!("{name}.inp"), deck);
+        let out = dir.path().join(name);
+        let o = junta()
+            .arg("run")
+            .arg(&path)
+            .args(["-q", "-o"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("Limit point") && !err.contains("panicked"), "{name}: {err}");
+        curves.push(curve(&out));
+    }
+    assert_eq!(curves[0].len(), 52, "the untied deck's documented run");
+    assert_eq!(curves[0].len(), curves[1].len());
+    for (a, b) in curves[0].iter().zip(&curves[1]) {
+        for k in 0..3 {
+            assert!((a[k] - b[k]).abs() <= 1e-9 * b[k].abs().max(1.0), "{a:?} vs {b:?}");
+        }
+    }
+    // RIKS with the equations: the untied deck's path (measured: the same
+    // 40 increments, peak 139.137395 N at 4.517 mm in both, curves equal
+    // to 5e-10), which passes the peak
+    let mut paths = Vec::new();
+    for (name, deck) in [("riks", riks(&text)), ("riks_tied", riks(&tied))] {
+        let path = write(dir.path(), &format!("{name}.inp"), &deck);
+        let s = run_ok(&path, &dir.path().join(name));
+        assert_eq!(s["control"], "arc_length");
+        paths.push(curve(&dir.path().join(name)));
+    }
+    assert_eq!(paths[0].len(), paths[1].len());
+    for (a, b) in paths[0].iter().zip(&paths[1]) {
+        for k in 0..3 {
+            assert!((a[k] - b[k]).abs() <= 1e-7 * b[k].abs().max(1.0), "{a:?} vs {b:?}");
+        }
+    }
+    let rows = &paths[1];
+    let pk = rows.iter().map(|r| r[1]).fold(0.0, f64::max);
+    assert!((pk / 142.7 - 1.0).abs() < 0.03, "peak {pk}");
+    let [_, p, delta] = rows[rows.len() - 1];
+    assert!(delta > 8.0, "did not pass the peak far: {delta}");
+    let (gic, b, e11, h): (f64, f64, f64, f64) = (0.969, 25.4, 122700.0, 1.56);
+    let cbt = (gic * b).powf(0.75)
+        * (e11 * b * h.powi(3) / 12.0).powf(0.25)
+        * (2.0 / (3.0 * delta)).sqrt();
+    assert!((p / cbt - 1.0).abs() < 0.03, "P({delta}) = {p} against {cbt}");
+}

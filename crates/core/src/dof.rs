@@ -316,19 +316,26 @@ impl DofMap {
     /// the free dofs of its equation.
     pub fn reduce(&self, full: &[f64]) -> Vec<f64> {
         let mut v = vec![0.0; self.num_free];
+        self.reduce_into(full, &mut v);
+        v
+    }
+
+    /// [`DofMap::reduce`] into `out` (length [`DofMap::num_free`]), without
+    /// allocating: `out[e]` is `full` at the dof of equation `e` plus the
+    /// dependents' shares.
+    pub fn reduce_into(&self, full: &[f64], out: &mut [f64]) {
         for (d, &e) in self.eq.iter().enumerate() {
             if e != CONSTRAINED {
-                v[e] = full[d];
+                out[e] = full[d];
             }
         }
         for (d, terms) in self.dependents.iter() {
             for &(m, c) in terms {
                 if self.eq[m] != CONSTRAINED {
-                    v[self.eq[m]] += c * full[d];
+                    out[self.eq[m]] += c * full[d];
                 }
             }
         }
-        v
     }
 
     /// Node, component and body (from `node_body`, one per node) of each

@@ -345,19 +345,22 @@ struct Coupling {
 
 impl Coupling {
     fn new(model: &Model) -> Self {
-        let ubar: Vec<f64> = model
+        // the prescribed values, and the dependents of linear equations
+        // that follow them (`u = T u_f + lambda ubar`)
+        let mut ubar: Vec<f64> = model
             .dofs
             .prescribed
             .iter()
             .enumerate()
             .map(|(d, &v)| {
-                if model.dofs.eq[d] == CONSTRAINED {
+                if model.dofs.eq[d] == CONSTRAINED && !model.dofs.dependents.contains(d) {
                     v
                 } else {
                     0.0
                 }
             })
             .collect();
+        model.dofs.fill_dependents(&mut ubar);
         let mut elements = Vec::new();
         for (b, block) in model.mesh.blocks.iter().enumerate() {
             for e in 0..block.len() {
@@ -384,6 +387,10 @@ impl Coupling {
     }
 
     /// `q` (free, by equation), `g` (free, by equation) and `h` at `u`.
+    /// With linear equations (`*EQUATION`), `ubar` holds the dependents
+    /// too and the element rows / columns go to the equations behind each
+    /// dof ([`junta_core::dof::DofMap::targets`]): `q = T^T (f_ext - K
+    /// ubar)`, `g = T^T K^T ubar`, `h = ubar^T K ubar`.
     fn compute(
         &mut self,
         model: &Model,
@@ -393,15 +400,8 @@ impl Coupling {
         q: &mut [f64],
         g: &mut [f64],
     ) -> Result<f64, CoreError> {
-        for (e, qv) in q.iter_mut().enumerate() {
-            *qv = 0.0;
-            g[e] = 0.0;
-        }
-        for (d, &eq) in model.dofs.eq.iter().enumerate() {
-            if eq != CONSTRAINED {
-                q[eq] = model.f_ext[d];
-            }
-        }
+        model.dofs.reduce_into(&model.f_ext, q);
+        g.fill(0.0);
         let mut h = 0.0;
         for &(b, e) in &self.elements {
             let block = &model.mesh.blocks[b];
@@ -437,23 +437,24 @@ impl Coupling {
                 })?;
             for i in 0..nd {
                 let di = self.dofs[i];
-                let ei = model.dofs.eq[di];
+                let ui = self.ubar[di];
                 for j in 0..nd {
                     let dj = self.dofs[j];
                     let kij = self.kbuf[i * nd + j];
-                    let (ui, uj) = (self.ubar[di], self.ubar[dj]);
-                    if ei != CONSTRAINED {
-                        // row free, column prescribed: -K_fc ubar into q
-                        q[ei] -= kij * uj;
-                        // row prescribed, column free: K_cf^T ubar into g
-                    } else {
-                        let ej = model.dofs.eq[dj];
-                        if ej != CONSTRAINED {
-                            g[ej] += ui * kij;
-                        } else {
-                            h += ui * kij * uj;
+                    let uj = self.ubar[dj];
+                    // row i's equations: -K ubar into q
+                    if uj != 0.0 {
+                        for (ei, ci) in model.dofs.targets(di) {
+                            q[ei] -= ci * kij * uj;
                         }
                     }
+                    // column j's equations: K^T ubar into g
+                    if ui != 0.0 {
+                        for (ej, cj) in model.dofs.targets(dj) {
+                            g[ej] += cj * ui * kij;
+                        }
+                    }
+                    h += ui * kij * uj;
                 }
             }
         }
@@ -461,15 +462,16 @@ impl Coupling {
     }
 }
 
-/// Energy measures of a state: `a = f_ext,f . u_f`, `p = ubar_c . f_int,c`.
+/// Energy measures of a state: `a = f_ext,f . u_f`, `p = ubar_c . f_int,c`
+/// (with linear equations: `a` over the free and dependent dofs, `p` over
+/// the prescribed dofs and the dependents that follow them).
 fn work_measures(model: &Model, coupling: &Coupling, u: &[f64], f_int: &[f64]) -> (f64, f64) {
     let (mut a, mut p) = (0.0, 0.0);
     for (d, &eq) in model.dofs.eq.iter().enumerate() {
-        if eq != CONSTRAINED {
+        if eq != CONSTRAINED || model.dofs.dependents.contains(d) {
             a += model.f_ext[d] * u[d];
-        } else {
-            p += coupling.ubar[d] * f_int[d];
         }
+        p += coupling.ubar[d] * f_int[d];
     }
     (a, p)
 }
@@ -548,7 +550,6 @@ where
 {
     let t_run = Instant::now();
     arc.validate()?;
-    crate::newton::no_equations(model)?;
     if program.len() != 1 || !program[0].is_finite() || program[0] == 0.0 {
         return Err(CoreError::Invalid(format!(
             "path following needs a single step with a finite, non-zero end load factor \
@@ -1127,6 +1128,9 @@ fn attempt(
                 *u = lambda * model.dofs.prescribed[d];
             }
         }
+        // dependents of linear equations follow their free and
+        // prescribed terms
+        model.dofs.fill_dependents(&mut w.u);
     };
     set_prescribed(w, lambda);
     w.lambda_trial = lambda;
@@ -1195,8 +1199,8 @@ fn attempt(
                 Err(e) => return Err(e.into()),
             }
         };
-        for (e, &d) in w.free_dofs.iter().enumerate() {
-            w.du[e] = -w.res[d];
+        for (du, &r) in w.du.iter_mut().zip(&w.res_f) {
+            *du = -r;
         }
         let t = Instant::now();
         let factor_before = solver.report().factor_seconds;
@@ -1284,8 +1288,8 @@ fn attempt(
                 // dphi = w . du + c_l dlambda
                 let mut wdu1 = 0.0;
                 let mut wdu2 = 0.0;
-                for (e, &d) in w.free_dofs.iter().enumerate() {
-                    let wv = 0.5 * base.lambda * (model.f_ext[d] - pw.g[e]);
+                for e in 0..nf {
+                    let wv = 0.5 * base.lambda * (w.fext_f[e] - pw.g[e]);
                     wdu1 += wv * w.du[e];
                     wdu2 += wv * pw.du2[e];
                 }

@@ -26,6 +26,12 @@
 //! ```
 //!
 //! Its free part must vanish; on constrained dofs it is the reaction.
+//! With linear equations (`*EQUATION`, see [`junta_core::dof`]) the free
+//! part is the reduced residual `r_f = T^T r` (each dependent's residual
+//! distributed onto the free dofs of its equation), the tangent is the
+//! reduced `T^T K T` the assembler builds, and every trial state sets the
+//! dependents from their terms; the raw residual on a dependent dof is the
+//! force its equation carries.
 //! Each increment `lambda_n -> lambda_{n+1}` starts from the converged
 //! free displacements of the previous increment with the constrained dofs
 //! moved to `lambda_{n+1} * prescribed` (the prescribed jump enters the first
@@ -547,9 +553,15 @@ pub(crate) struct Work<'m> {
     pub(crate) coords: Vec<[f64; 3]>,
     pub(crate) layout: junta_core::EquationLayout,
     pub(crate) free_dofs: Vec<usize>,
+    /// The reduced external force `T^T f_ext` (by equation).
+    pub(crate) fext_f: Vec<f64>,
     pub(crate) fext_free_norm: f64,
     pub(crate) f_int: Vec<f64>,
+    /// `f_int - lambda f_ext` (full length: reactions on constrained dofs).
     pub(crate) res: Vec<f64>,
+    /// The reduced residual `T^T res` (by equation): the out-of-balance
+    /// force of the equations, linear constraints folded in.
+    pub(crate) res_f: Vec<f64>,
     pub(crate) u: Vec<f64>,
     pub(crate) u_base: Vec<f64>,
     pub(crate) u_conv: Vec<f64>,
@@ -581,11 +593,8 @@ impl<'m> Work<'m> {
         settings: &NewtonSettings,
     ) -> Self {
         let nf = free_dofs.len();
-        let fext_free_norm = free_dofs
-            .iter()
-            .map(|&d| model.f_ext[d] * model.f_ext[d])
-            .sum::<f64>()
-            .sqrt();
+        let fext_f = model.dofs.reduce(&model.f_ext);
+        let fext_free_norm = fext_f.iter().map(|v| v * v).sum::<f64>().sqrt();
         Work {
             model,
             k: asm.pattern.clone(),
@@ -593,9 +602,11 @@ impl<'m> Work<'m> {
             coords: model.dofs.equation_coords(&model.mesh.nodes),
             layout: model.equation_layout(),
             free_dofs,
+            fext_f,
             fext_free_norm,
             f_int: vec![0.0; u_start.len()],
             res: vec![0.0; u_start.len()],
+            res_f: vec![0.0; nf],
             u: u_start.clone(),
             u_base: u_start.clone(),
             u_conv: u_start,
@@ -635,7 +646,8 @@ impl<'m> Work<'m> {
         );
         self.timings.assemble += t.elapsed().as_secs_f64();
         r?;
-        let (mut free2, mut reac2) = (0.0, 0.0);
+        let mut reac2 = 0.0;
+        let dependents = &m.dofs.dependents;
         for (d, (r, (&fi, &fe))) in self
             .res
             .iter_mut()
@@ -643,12 +655,12 @@ impl<'m> Work<'m> {
             .enumerate()
         {
             *r = fi - lambda * fe;
-            if m.dofs.eq[d] != CONSTRAINED {
-                free2 += *r * *r;
-            } else if !m.dofs.orphan[d] {
+            if m.dofs.eq[d] == CONSTRAINED && !m.dofs.orphan[d] && !dependents.contains(d) {
                 reac2 += *r * *r;
             }
         }
+        m.dofs.reduce_into(&self.res, &mut self.res_f);
+        let free2: f64 = self.res_f.iter().map(|r| r * r).sum();
         let abs = free2.sqrt();
         let scale_now = (lambda.abs() * self.fext_free_norm).max(reac2.sqrt());
         let scale = scale_now
@@ -661,11 +673,12 @@ impl<'m> Work<'m> {
         })
     }
 
-    /// `u = u_base + s du` on the free dofs.
+    /// `u = u_base + s du` on the free dofs (dependents follow).
     fn set_trial(&mut self, s: f64) {
         for (e, &d) in self.free_dofs.iter().enumerate() {
             self.u[d] = self.u_base[d] + s * self.du[e];
         }
+        self.model.dofs.fill_dependents(&mut self.u);
     }
 
     /// One attempt of an increment from the converged state in `u_conv`.
@@ -687,6 +700,7 @@ impl<'m> Work<'m> {
                 self.u_conv[d]
             };
         }
+        m.dofs.fill_dependents(&mut self.u);
         self.history.clear();
         let fail = |iterations, rel, reason| Attempt::Failed {
             iterations,
@@ -734,9 +748,9 @@ impl<'m> Work<'m> {
             if let Err(e) = r {
                 return Ok(fail(it, ev.rel, IncrementFailure::Solver(e)));
             }
-            for (e, &d) in self.free_dofs.iter().enumerate() {
-                self.r_prev[e] = self.res[d];
-                self.du[e] = -self.res[d];
+            for (e, &r) in self.res_f.iter().enumerate() {
+                self.r_prev[e] = r;
+                self.du[e] = -r;
             }
             let t = Instant::now();
             // a back end may refactorise inside a solve (the mixed-precision
@@ -825,8 +839,8 @@ impl<'m> Work<'m> {
                 return Ok(fail(it, ev.rel, IncrementFailure::NonFinite));
             }
             let (mut w_new, mut w_old) = (0.0, 0.0);
-            for (e, &d) in self.free_dofs.iter().enumerate() {
-                w_new += s * self.du[e] * self.res[d];
+            for (e, &r) in self.res_f.iter().enumerate() {
+                w_new += s * self.du[e] * r;
                 w_old += s * self.du[e] * self.r_prev[e];
             }
             if it == 1 {
@@ -941,19 +955,6 @@ pub(crate) fn any_wants_small(model: &Model, state: &StateStore) -> bool {
     })
 }
 
-/// Linear equations (`*EQUATION`) are eliminated in linear static
-/// analyses only: the incremental drivers refuse them.
-pub(crate) fn no_equations(model: &Model) -> Result<(), NonlinearError> {
-    if model.dofs.has_equations() {
-        return Err(CoreError::Invalid(format!(
-            "the model has {} linear equations (*EQUATION); they are supported in linear static analyses only, not in incremental (Newton or arc-length) runs",
-            model.dofs.dependents.dofs.len()
-        ))
-        .into());
-    }
-    Ok(())
-}
-
 /// Run the load program `program` (end load factor of each step) on `model`
 /// with full Newton-Raphson, from the unloaded state or from `restart`.
 ///
@@ -975,7 +976,6 @@ where
 {
     let t_run = Instant::now();
     settings.validate()?;
-    no_equations(model)?;
     if program.is_empty() || program.iter().any(|l| !l.is_finite()) {
         return Err(CoreError::Invalid(
             "load program: give at least one finite step end load factor".into(),
