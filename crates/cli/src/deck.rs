@@ -177,6 +177,8 @@ pub struct DeckIncremental {
     /// between its points, all with the deck step's limit: the limit counts
     /// the increments of all of them).
     pub increment_limits: Vec<Option<(usize, usize)>>,
+    /// Per program step: the deck step (0-based) it belongs to.
+    pub deck_steps: Vec<usize>,
     /// The load pattern the load factor scales (the first step's loads, at
     /// amplitude 1 when it has one).
     pub pattern: DeckStep,
@@ -678,6 +680,7 @@ fn incremental_program(
 ) -> Result<DeckIncremental> {
     let mut program = Vec::with_capacity(steps.len());
     let mut limits = Vec::with_capacity(steps.len());
+    let mut deck_steps = Vec::with_capacity(steps.len());
     let mut settings: Option<(NewtonSettings, usize)> = None;
     let amps = (0..steps.len())
         .map(|k| step_amplitude(deck, k, file))
@@ -775,6 +778,7 @@ fn incremental_program(
             if t != lambda {
                 program.push(t);
                 limits.push(limit);
+                deck_steps.push(k);
                 lambda = t;
             }
         }
@@ -922,6 +926,7 @@ fn incremental_program(
             arc_length,
         },
         increment_limits: limits,
+        deck_steps,
         pattern,
     })
 }

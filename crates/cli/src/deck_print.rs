@@ -15,6 +15,13 @@
 //! nearest earlier step that has some (requests stay active, as in
 //! CalculiX); a request outside any step applies to every step.
 //!
+//! In an incremental run (a deck with a softening law) the rows of a step
+//! are those of its last increment, at the step's end load (CalculiX's
+//! `.dat` prints every increment; its last block of a step is the one
+//! compared). The tables are saved at the end of every step; a run that
+//! stops inside a step prints that step at its last converged increment
+//! and says so, and a restart keeps the rows of the steps already done.
+//!
 //! `*EL PRINT, ELSET=` requests go to `el_print.csv`:
 //! `step,set,variable,element,point,1,...,6`, elements in ascending label,
 //! integration points in the element's rule order (for hexahedra `xi`
@@ -84,14 +91,31 @@ impl PrintTables {
         f_ext: &[f64],
         state: &StateStore,
     ) -> Result<()> {
+        let f_int = if self.nodes.is_empty() {
+            Vec::new()
+        } else {
+            internal_force(residual, f_ext)
+        };
+        self.add_step_with_internal_force(model, step, u, &f_int, state)
+    }
+
+    /// [`PrintTables::add_step`] given the elements' internal force
+    /// `f_int` itself (what `RF` prints; unused without `*NODE PRINT`).
+    pub fn add_step_with_internal_force(
+        &mut self,
+        model: &Model,
+        step: usize,
+        u: &[f64],
+        f_int: &[f64],
+        state: &StateStore,
+    ) -> Result<()> {
         if !self.nodes.is_empty() {
-            let f_int = internal_force(residual, f_ext);
             rows(
                 model,
                 &self.nodes,
                 step,
                 u,
-                &f_int,
+                f_int,
                 &mut self.node_csv,
                 &mut self.notes,
             )?;
@@ -113,6 +137,15 @@ impl PrintTables {
     /// Write `node_print.csv` / `el_print.csv` (those requested) to `dir`;
     /// returns the notes (what was not written, once each).
     pub fn write(mut self, dir: &Path) -> Result<Vec<String>> {
+        self.save(dir)?;
+        let mut seen = std::collections::HashSet::new();
+        self.notes.retain(|n| seen.insert(n.clone()));
+        Ok(self.notes)
+    }
+
+    /// Write the tables as they stand (an incremental run saves them at
+    /// the end of every step, so that a stopped run keeps its rows).
+    pub fn save(&self, dir: &Path) -> Result<()> {
         for (reqs, name, text) in [
             (!self.nodes.is_empty(), "node_print.csv", &self.node_csv),
             (!self.elements.is_empty(), "el_print.csv", &self.el_csv),
@@ -122,8 +155,32 @@ impl PrintTables {
                     .with_context(|| format!("writing {}", dir.join(name).display()))?;
             }
         }
-        self.notes.dedup();
-        Ok(self.notes)
+        Ok(())
+    }
+
+    /// Add a note (printed once, with the others, by [`PrintTables::write`]).
+    pub fn note(&mut self, note: String) {
+        self.notes.push(note);
+    }
+
+    /// Keep the rows of steps before `step` (0-based) from the tables a
+    /// stopped run wrote to `dir` (a restart continues them).
+    pub fn resume_from(&mut self, dir: &Path, step: usize) {
+        for (name, csv) in [
+            ("node_print.csv", &mut self.node_csv),
+            ("el_print.csv", &mut self.el_csv),
+        ] {
+            let Ok(text) = std::fs::read_to_string(dir.join(name)) else {
+                continue;
+            };
+            for line in text.lines().skip(1) {
+                let s = line.split(',').next().and_then(|s| s.parse::<usize>().ok());
+                if s.is_some_and(|s| s >= 1 && s <= step) {
+                    csv.push_str(line);
+                    csv.push('\n');
+                }
+            }
+        }
     }
 }
 

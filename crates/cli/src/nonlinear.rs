@@ -417,6 +417,23 @@ pub fn run_static(
         .then(|| std::fs::read_to_string(input).ok())
         .flatten();
     let increment_limits = p.increment_limits.clone();
+    // a deck's *NODE PRINT / *EL PRINT tables: rows at the end of each deck
+    // step (a deck step with an amplitude spans several program steps)
+    let mut prints = std::mem::take(&mut p.prints);
+    let deck_step_of = p.program_deck_steps.clone();
+    let deck_step_ends = |step: usize, fraction: f64| -> Option<usize> {
+        let ds = *deck_step_of.get(step)?;
+        (fraction >= 1.0 - 1e-12 && deck_step_of.get(step + 1) != Some(&ds)).then_some(ds)
+    };
+    // deck steps whose rows are in the tables
+    let mut printed_steps = 0;
+    if let Some(c) = checkpoint.as_ref().filter(|_| !prints.is_empty()) {
+        printed_steps = match deck_step_ends(c.step, c.step_fraction) {
+            Some(ds) => ds + 1,
+            None => deck_step_of.get(c.step).copied().unwrap_or(0),
+        };
+        prints.resume_from(dir, printed_steps);
+    }
     // (step, INC, line of its *STEP) when a deck's INC stopped the run
     let mut inc_reached: Option<(usize, usize, usize)> = None;
     let result = {
@@ -518,6 +535,19 @@ pub fn run_static(
                 curve_file.write_all(row.csv().as_bytes())?;
                 curve_file.flush()?;
                 rows.push(row);
+                if let Some(ds) = deck_step_ends(r.step, r.step_fraction) {
+                    if !prints.is_empty() {
+                        let f_int: Vec<f64> = v
+                            .residual
+                            .iter()
+                            .zip(&model.f_ext)
+                            .map(|(res, f)| res + r.lambda * f)
+                            .collect();
+                        prints.add_step_with_internal_force(model, ds, v.u, &f_int, v.state)?;
+                        prints.save(dir)?;
+                    }
+                    printed_steps = ds + 1;
+                }
                 if r.increment_index.is_multiple_of(every) || separated {
                     let ctx = FrameContext {
                         model,
@@ -704,6 +734,46 @@ pub fn run_static(
             summary["interfaces"] = output::interface_summary(model, &ifs);
         }
     }
+    // a deck step the run did not finish: its print rows at the last
+    // converged increment, with a note
+    if let Some(last) = rows.last().filter(|_| !prints.is_empty()) {
+        let ds = deck_step_of.get(last.step).copied().unwrap_or(0);
+        if ds >= printed_steps && last_increment > start_increment {
+            match &run {
+                Some(run) => {
+                    let f_int: Vec<f64> = run
+                        .residual
+                        .iter()
+                        .zip(&model.f_ext)
+                        .map(|(res, f)| res + last.lambda * f)
+                        .collect();
+                    prints.add_step_with_internal_force(model, ds, &run.u, &f_int, &run.state)?;
+                }
+                None => {
+                    let r = read_restart(dir)?;
+                    let mut state = model.initial_state();
+                    state
+                        .committed
+                        .copy_from_slice(&r.checkpoint.state_committed);
+                    state.restore();
+                    let u = r.checkpoint.u;
+                    let f_int = internal_force_at(model, &u, &state, step)?;
+                    prints.add_step_with_internal_force(model, ds, &u, &f_int, &state)?;
+                }
+            }
+            prints.note(format!(
+                "step {} did not finish: its *NODE PRINT / *EL PRINT rows are at the last converged increment ({}, load factor {:.6e})",
+                ds + 1,
+                last.increment,
+                last.lambda
+            ));
+        }
+    }
+    if !prints.is_empty() {
+        for n in prints.write(dir)? {
+            pb.suspend(|| eprintln!("note: {n}"));
+        }
+    }
     let (zone, zone_lines, law_warnings) = output::cohesive_zone_advice(model)?;
     if !zone_lines.is_empty() {
         summary["mesh_advice"] = zone;
@@ -880,4 +950,29 @@ pub fn read_restart(dir: &Path) -> Result<RestartFile> {
     })?;
     serde_json::from_str(&text)
         .with_context(|| format!("{}: not a Junta checkpoint", path.display()))
+}
+
+/// The elements' internal force `f_int(u)` at a converged state (trial
+/// state from `state`'s committed values): the `RF` of a print table.
+fn internal_force_at(
+    model: &junta_core::Model,
+    u: &[f64],
+    state: &junta_core::state::StateStore,
+    step: junta_core::element::StepInfo,
+) -> Result<Vec<f64>> {
+    let asm = model.assembler();
+    let mut f_int = vec![0.0; model.dofs.num_dofs()];
+    let mut state = state.clone();
+    asm.assemble(
+        &model.mesh,
+        &model.elements,
+        &model.dofs,
+        u,
+        &mut state,
+        step,
+        None,
+        &mut f_int,
+    )
+    .context("internal force of the last converged increment")?;
+    Ok(f_int)
 }

@@ -39,6 +39,9 @@ pub struct Prepared {
     /// Per step of the load program: the deck's `*STEP, INC=n` and the
     /// line of that `*STEP` (empty for scenes).
     pub increment_limits: Vec<Option<(usize, usize)>>,
+    /// Per step of the load program: the deck step it belongs to (empty
+    /// for scenes).
+    pub program_deck_steps: Vec<usize>,
     /// A deck's print requests (empty for a scene).
     pub prints: crate::deck_print::PrintTables,
 }
@@ -218,6 +221,7 @@ fn prepare_unchecked(input: &Path, solver_overrides: &[String]) -> Result<Prepar
                 solver_table,
                 deck_steps: Vec::new(),
                 increment_limits: Vec::new(),
+                program_deck_steps: Vec::new(),
                 prints: Default::default(),
             })
         }
@@ -234,12 +238,17 @@ fn prepare_unchecked(input: &Path, solver_overrides: &[String]) -> Result<Prepar
                 &input.display().to_string(),
                 &mut notes,
             )?;
-            let (analysis, increment_limits, deck_steps) = match d.incremental {
+            let (analysis, (increment_limits, program_deck_steps), deck_steps) = match d.incremental
+            {
                 // the load program holds the steps
-                Some(inc) => (inc.analysis, inc.increment_limits, Vec::new()),
+                Some(inc) => (
+                    inc.analysis,
+                    (inc.increment_limits, inc.deck_steps),
+                    Vec::new(),
+                ),
                 None => (
                     Default::default(),
-                    Vec::new(),
+                    (Vec::new(), Vec::new()),
                     if d.steps.len() > 1 {
                         d.steps
                     } else {
@@ -267,6 +276,7 @@ fn prepare_unchecked(input: &Path, solver_overrides: &[String]) -> Result<Prepar
                 solver_table: table,
                 deck_steps,
                 increment_limits,
+                program_deck_steps,
                 prints: d.prints,
             })
         }

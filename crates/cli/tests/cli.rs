@@ -658,11 +658,22 @@ fixed = ["x", "y"]
 displacement = {{ z = {delta} }}
 "#
         );
-        let s = run_ok(&write(dir.path(), "stack.toml", &scene), &dir.path().join("out"));
+        let s = run_ok(
+            &write(dir.path(), "stack.toml", &scene),
+            &dir.path().join("out"),
+        );
         let wedges = s["elements"][element].as_u64().unwrap();
-        assert_eq!(s["elements"][iface].as_u64(), Some(wedges / 2), "{}", s["elements"]);
+        assert_eq!(
+            s["elements"][iface].as_u64(),
+            Some(wedges / 2),
+            "{}",
+            s["elements"]
+        );
         let r = s["reactions"]["top"][2].as_f64().unwrap();
-        assert!(rel(r, sigma) < 1e-9, "{file}: top reaction {r} vs closed form {sigma}");
+        assert!(
+            rel(r, sigma) < 1e-9,
+            "{file}: top reaction {r} vs closed form {sigma}"
+        );
         let b = &s["interfaces"]["bond"];
         for (key, want) in [("traction", sigma), ("jump", sigma / d)] {
             for mm in ["min", "max"] {

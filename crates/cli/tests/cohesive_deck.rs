@@ -328,8 +328,12 @@ fn coh3d6_deck_matches_the_bonded_stack() {
 #[test]
 fn equations_tie_the_loaded_ends_in_incremental_runs() {
     let dir = tempfile::tempdir().unwrap();
-    let text = std::fs::read_to_string(repo().join("examples/delamination/dcb_abaqus.inp")).unwrap();
-    let (up, low) = ([727, 848, 969, 1090, 1211, 1332], [1, 122, 243, 364, 485, 606]);
+    let text =
+        std::fs::read_to_string(repo().join("examples/delamination/dcb_abaqus.inp")).unwrap();
+    let (up, low) = (
+        [727, 848, 969, 1090, 1211, 1332],
+        [1, 122, 243, 364, 485, 606],
+    );
     let mut eqs = String::from("*EQUATION\n");
     for set in [up, low] {
         for n in &set[1..] {
@@ -360,14 +364,20 @@ fn equations_tie_the_loaded_ends_in_incremental_runs() {
             .output()
             .unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains("Limit point") && !err.contains("panicked"), "{name}: {err}");
+        assert!(
+            err.contains("Limit point") && !err.contains("panicked"),
+            "{name}: {err}"
+        );
         curves.push(curve(&out));
     }
     assert_eq!(curves[0].len(), 52, "the untied deck's documented run");
     assert_eq!(curves[0].len(), curves[1].len());
     for (a, b) in curves[0].iter().zip(&curves[1]) {
         for k in 0..3 {
-            assert!((a[k] - b[k]).abs() <= 1e-9 * b[k].abs().max(1.0), "{a:?} vs {b:?}");
+            assert!(
+                (a[k] - b[k]).abs() <= 1e-9 * b[k].abs().max(1.0),
+                "{a:?} vs {b:?}"
+            );
         }
     }
     // RIKS with the equations: the untied deck's path (measured: the same
@@ -383,7 +393,10 @@ fn equations_tie_the_loaded_ends_in_incremental_runs() {
     assert_eq!(paths[0].len(), paths[1].len());
     for (a, b) in paths[0].iter().zip(&paths[1]) {
         for k in 0..3 {
-            assert!((a[k] - b[k]).abs() <= 1e-7 * b[k].abs().max(1.0), "{a:?} vs {b:?}");
+            assert!(
+                (a[k] - b[k]).abs() <= 1e-7 * b[k].abs().max(1.0),
+                "{a:?} vs {b:?}"
+            );
         }
     }
     let rows = &paths[1];
@@ -395,5 +408,107 @@ fn equations_tie_the_loaded_ends_in_incremental_runs() {
     let cbt = (gic * b).powf(0.75)
         * (e11 * b * h.powi(3) / 12.0).powf(0.25)
         * (2.0 / (3.0 * delta)).sqrt();
-    assert!((p / cbt - 1.0).abs() < 0.03, "P({delta}) = {p} against {cbt}");
+    assert!(
+        (p / cbt - 1.0).abs() < 0.03,
+        "P({delta}) = {p} against {cbt}"
+    );
+}
+
+/// `*NODE PRINT` / `*EL PRINT` in an incremental run: rows at the end of
+/// every deck step (tests/data/amplitude_cohesive.inp written as three
+/// steps opening the glued bricks to 0.02, closing to 0.008, reopening to
+/// 0.03). Checks: `U` of TOP is the prescribed opening of each step; the
+/// `RF` total of TOP is the curve's reaction at the step's end; the mean
+/// `sigma_zz` over the 8 equally weighted Gauss points of the upper brick
+/// equals that force over its unit area (for isoparametric elements
+/// `int sigma_zz dV = sum_a z_a f_int,z^a`, and the brick spans z = 1..2
+/// with its bottom nodes carrying -F, so the integral is F exactly). A run
+/// stopped after 5 increments and restarted writes the same tables; a
+/// run stopped inside a step prints that step at its last increment, with
+/// a note.
+#[test]
+fn print_tables_of_an_incremental_deck() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(repo().join("crates/cli/tests/data/amplitude_cohesive.inp"))
+        .unwrap();
+    let steps = "*NODE PRINT, NSET=TOP, TOTALS=YES\nU, RF\n*EL PRINT, ELSET=ARMS\nS\n\
+                 *STEP, INC=200\n*STATIC\n0.1, 1.0\n*BOUNDARY\nTOP, 3, 3, 0.02\n*END STEP\n\
+                 *STEP, INC=200\n*STATIC\n0.1, 1.0\n*BOUNDARY\nTOP, 3, 3, 0.008\n*END STEP\n\
+                 *STEP, INC=200\n*STATIC\n0.1, 1.0\n*BOUNDARY\nTOP, 3, 3, 0.03\n*END STEP\n";
+    let start = text.find("*STEP").unwrap();
+    let deck = write(
+        dir.path(),
+        "steps.inp",
+        &format!("{}{steps}", &text[..start]),
+    );
+    let full = dir.path().join("full");
+    run_ok_with(&deck, &full, &["--solver", "type=ldlt"]);
+    let rows = curve(&full);
+    let table = std::fs::read_to_string(full.join("node_print.csv")).unwrap();
+    let el = std::fs::read_to_string(full.join("el_print.csv")).unwrap();
+    let field = |line: &str, k: usize| line.split(',').nth(k).unwrap().parse::<f64>().unwrap();
+    // the curve's rows at the ends of the steps: load factor 1, 0.4, 1.5
+    for (step, (lambda, opening)) in [(1.0, 0.02), (0.4, 0.008), (1.5, 0.03)].iter().enumerate() {
+        let s = step + 1;
+        let end = rows
+            .iter()
+            .rev()
+            .find(|r| (r[0] - lambda).abs() < 1e-12)
+            .unwrap_or_else(|| panic!("no row at {lambda}"));
+        let u: Vec<&str> = table
+            .lines()
+            .filter(|l| l.starts_with(&format!("{s},TOP,U,")) && !l.contains("total"))
+            .collect();
+        assert_eq!(u.len(), 4, "{table}");
+        for l in &u {
+            assert!((field(l, 6) - opening).abs() < 1e-15, "{l}");
+        }
+        let total = table
+            .lines()
+            .find(|l| l.starts_with(&format!("{s},TOP,RF,total")))
+            .unwrap();
+        let f = field(total, 6);
+        assert!(
+            rel(f, end[1]) < 1e-9,
+            "step {s}: RF total {f} vs curve {}",
+            end[1]
+        );
+        let szz: Vec<f64> = el
+            .lines()
+            .filter(|l| l.starts_with(&format!("{s},ARMS,S,2,")))
+            .map(|l| field(l, 7))
+            .collect();
+        assert_eq!(szz.len(), 8, "{el}");
+        let mean = szz.iter().sum::<f64>() / 8.0;
+        assert!(
+            rel(mean, f) < 1e-9,
+            "step {s}: mean sigma_zz {mean} vs F {f}"
+        );
+    }
+    // stopped after 5 increments and restarted: the same tables
+    let part = dir.path().join("part");
+    run_ok_with(
+        &deck,
+        &part,
+        &["--solver", "type=ldlt", "--max-increments", "5"],
+    );
+    let cut = std::fs::read_to_string(part.join("node_print.csv")).unwrap();
+    assert!(cut.lines().all(|l| !l.starts_with("2,")), "{cut}");
+    assert!(cut.lines().any(|l| l.starts_with("1,TOP,U,")), "{cut}");
+    restart_ok(&part);
+    for name in ["node_print.csv", "el_print.csv"] {
+        let a = std::fs::read_to_string(full.join(name)).unwrap();
+        let b = std::fs::read_to_string(part.join(name)).unwrap();
+        assert_eq!(a, b, "{name}");
+    }
+    // a run stopped inside step 1 notes it
+    let out = junta()
+        .arg("run")
+        .arg(&deck)
+        .args(["--solver", "type=ldlt", "--max-increments", "3", "-o"])
+        .arg(dir.path().join("three"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("step 1 did not finish"), "{err}");
 }

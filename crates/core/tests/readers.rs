@@ -784,8 +784,18 @@ fn gmsh_hex27_fixture() {
 #[test]
 fn gmsh_prism_fixtures_match_triangles_to_wedge_faces() {
     for (file, wedge, tri, quad) in [
-        ("prism_stack_o1.msh", CellShape::Wedge6, CellShape::Tri3, CellShape::Quad4),
-        ("prism_stack_o2.msh", CellShape::Wedge15, CellShape::Tri6, CellShape::Quad8),
+        (
+            "prism_stack_o1.msh",
+            CellShape::Wedge6,
+            CellShape::Tri3,
+            CellShape::Quad4,
+        ),
+        (
+            "prism_stack_o2.msh",
+            CellShape::Wedge15,
+            CellShape::Tri6,
+            CellShape::Quad8,
+        ),
     ] {
         let m = read_msh(data(file)).unwrap();
         let names: Vec<&str> = m.blocks.iter().map(|b| b.name.as_str()).collect();
@@ -807,16 +817,27 @@ fn gmsh_prism_fixtures_match_triangles_to_wedge_faces() {
                 assert!(det > 0.0, "{file}: {} element {e} is inverted", b.name);
             }
         }
-        for (name, z, block, face) in [("bottom", 0.0, 0, 0), ("mid", 0.5, 0, 1), ("top", 1.0, 1, 1)] {
+        for (name, z, block, face) in [
+            ("bottom", 0.0, 0, 0),
+            ("mid", 0.5, 0, 1),
+            ("top", 1.0, 1, 1),
+        ] {
             let faces = m.face_set(name).unwrap();
             assert_eq!(faces.len(), lower, "{file} {name}: one face per wedge");
             for &f in faces {
                 assert_eq!((f.block, f.face), (block, face), "{file} {name}");
                 let shape = m.blocks[f.block].shape.face_shape_of(f.face).unwrap();
                 assert_eq!(shape, tri, "{file} {name}");
-                assert!(m.face_nodes(f).iter().all(|&n| m.nodes[n][2] == z), "{file} {name}");
+                assert!(
+                    m.face_nodes(f).iter().all(|&n| m.nodes[n][2] == z),
+                    "{file} {name}"
+                );
             }
-            assert_eq!(m.nodes_of_faces(faces), m.node_set(name).unwrap(), "{file} {name}");
+            assert_eq!(
+                m.nodes_of_faces(faces),
+                m.node_set(name).unwrap(),
+                "{file} {name}"
+            );
         }
         let sides = m.face_set("sides").unwrap();
         for &f in sides {
@@ -843,11 +864,16 @@ fn gmsh_prism_fixtures_match_triangles_to_wedge_faces() {
         .find(|&i| lines[i].split_whitespace().nth(2) == Some("2"))
         .unwrap();
     let top = m_top_node(&text);
-    let mut t: Vec<String> = lines[header + 1].split_whitespace().map(String::from).collect();
+    let mut t: Vec<String> = lines[header + 1]
+        .split_whitespace()
+        .map(String::from)
+        .collect();
     let tag = t[0].clone();
     t[3] = top.to_string();
     lines[header + 1] = t.join(" ");
-    let e = parse_msh(&lines.join("\n"), "p.msh").unwrap_err().to_string();
+    let e = parse_msh(&lines.join("\n"), "p.msh")
+        .unwrap_err()
+        .to_string();
     assert!(
         e.contains(&format!("triangle {tag} of surface")) && e.contains("wedge"),
         "{e}"

@@ -564,7 +564,11 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
                 let mut key = [usize::MAX; 4];
                 key[..corners].copy_from_slice(&ids[..corners]);
                 key.sort_unstable();
-                let what = if corners == 4 { "quadrangle" } else { "triangle" };
+                let what = if corners == 4 {
+                    "quadrangle"
+                } else {
+                    "triangle"
+                };
                 let cands = faces.get(&key).ok_or_else(|| {
                     let hint = if corners == 3 {
                         " (triangles match the end faces of wedge elements)"
