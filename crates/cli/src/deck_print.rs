@@ -30,8 +30,14 @@
 //! strains with tensor shear components (`e_xy = gamma_xy / 2`); for an
 //! element with an `*ORIENTATION` (rectangular or cylindrical) in its
 //! material axes at the point (`Q^T sigma Q`), as CalculiX prints them,
-//! unless the request says `GLOBAL=YES`. Other
-//! variables, and interface elements in the set, are noted and not
+//! unless the request says `GLOBAL=YES`. `ME` (mechanical strains)
+//! prints as `E` (no thermal strains), `ENER` the energy density
+//! `sigma : eps / 2` at each point, `COORD` the points' global
+//! coordinates, and per element (empty `point`) `ELSE` the strain energy
+//! `sum_q sigma : eps / 2 dV_q` and `EVOL` the volume `sum_q dV_q` (`dV_q`
+//! = weight x det J, the elements' `volume` output); unused columns are
+//! empty. Other variables (`PEEQ`: CalculiX prints none for an elastic
+//! material), and interface elements in the set, are noted and not
 //! written. The same step rules as `*NODE PRINT` apply.
 
 use anyhow::{anyhow, Context, Result};
@@ -238,18 +244,12 @@ fn el_rows(
         members.sort_by_key(|r| model.mesh.element_label(r.block, r.element));
         members.dedup();
         for v in &p.variables {
-            // (our output, CalculiX's component order, factor of the shear
-            // components)
-            let (key, shear) = match v.as_str() {
-                "S" => ("stress", 1.0),
-                "E" => ("strain", 0.5),
-                other => {
-                    notes.push(format!(
-                        "line {}: *EL PRINT variable {other} is not written (Junta prints S and E)",
-                        p.line
-                    ));
-                    continue;
-                }
+            let Some(kind) = ElVariable::of(v) else {
+                notes.push(format!(
+                    "line {}: *EL PRINT variable {v} is not written (Junta prints S, E, ME, ENER, ELSE, EVOL, COORD; PEEQ only with plasticity, which Junta's solids do not have, as CalculiX prints no PEEQ for an elastic material)",
+                    p.line
+                ));
+                continue;
             };
             for r in &members {
                 if !model.mesh.blocks[r.block].shape.is_solid() {
@@ -268,31 +268,104 @@ fn el_rows(
                     r.element,
                     junta_core::element::StepInfo::default(),
                 )?;
-                for (q, pt) in pts.iter().enumerate() {
-                    let Some(x) = pt.get(key) else { continue };
-                    // ours: xx, yy, zz, xy, yz, zx (engineering shear for
-                    // strains); CalculiX: xx, yy, zz, xy, xz, yz
-                    let mut c = [x[0], x[1], x[2], shear * x[3], shear * x[5], shear * x[4]];
-                    if let (false, Some(Some(a))) = (p.global, axes.get(r.block)) {
-                        c = to_local(&c, &a.at(pt.position));
+                let at = |pt: &junta_core::PointOutput, key: &str| -> Result<Vec<f64>> {
+                    pt.get(key).map(<[f64]>::to_vec).ok_or_else(|| {
+                        anyhow!("element {label} reports no {key} at its integration points")
+                    })
+                };
+                // per element: the integral over its volume
+                if matches!(kind, ElVariable::Energy | ElVariable::Volume) {
+                    let mut sum = 0.0;
+                    for pt in &pts {
+                        let dv = at(pt, "volume")?[0];
+                        sum += match kind {
+                            ElVariable::Energy => {
+                                energy_density(&at(pt, "stress")?, &at(pt, "strain")?) * dv
+                            }
+                            _ => dv,
+                        };
                     }
-                    let _ = writeln!(
-                        out,
-                        "{},{name},{v},{label},{},{:e},{:e},{:e},{:e},{:e},{:e}",
-                        step + 1,
-                        q + 1,
-                        c[0],
-                        c[1],
-                        c[2],
-                        c[3],
-                        c[4],
-                        c[5]
-                    );
+                    let _ = writeln!(out, "{},{name},{v},{label},,{sum:e},,,,,", step + 1);
+                    continue;
+                }
+                for (q, pt) in pts.iter().enumerate() {
+                    let vals: Vec<f64> = match kind {
+                        ElVariable::Stress | ElVariable::Strain => {
+                            let (x, shear) = if kind == ElVariable::Stress {
+                                (at(pt, "stress")?, 1.0)
+                            } else {
+                                (at(pt, "strain")?, 0.5)
+                            };
+                            // ours: xx, yy, zz, xy, yz, zx (engineering shear
+                            // for strains); CalculiX: xx, yy, zz, xy, xz, yz
+                            let mut c =
+                                [x[0], x[1], x[2], shear * x[3], shear * x[5], shear * x[4]];
+                            if let (false, Some(Some(a))) = (p.global, axes.get(r.block)) {
+                                c = to_local(&c, &a.at(pt.position));
+                            }
+                            c.to_vec()
+                        }
+                        ElVariable::EnergyDensity => {
+                            vec![energy_density(&at(pt, "stress")?, &at(pt, "strain")?)]
+                        }
+                        ElVariable::Coordinates => pt.position.to_vec(),
+                        ElVariable::Energy | ElVariable::Volume => {
+                            unreachable!("per element above")
+                        }
+                    };
+                    let _ = write!(out, "{},{name},{v},{label},{}", step + 1, q + 1);
+                    for c in 0..6 {
+                        match vals.get(c) {
+                            Some(x) => {
+                                let _ = write!(out, ",{x:e}");
+                            }
+                            None => out.push(','),
+                        }
+                    }
+                    out.push('\n');
                 }
             }
         }
     }
     Ok(())
+}
+
+/// The `*EL PRINT` variables Junta writes (CalculiX's names).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ElVariable {
+    /// `S`: stresses at the integration points.
+    Stress,
+    /// `E` and `ME` (mechanical strains: the same without thermal strain):
+    /// strains with tensor shear components.
+    Strain,
+    /// `ENER`: strain energy density `sigma : eps / 2` at the points.
+    EnergyDensity,
+    /// `ELSE`: strain energy of the element, `int sigma : eps / 2 dV`.
+    Energy,
+    /// `EVOL`: volume of the element.
+    Volume,
+    /// `COORD`: global coordinates of the integration points.
+    Coordinates,
+}
+
+impl ElVariable {
+    fn of(name: &str) -> Option<Self> {
+        Some(match name {
+            "S" => ElVariable::Stress,
+            "E" | "ME" => ElVariable::Strain,
+            "ENER" => ElVariable::EnergyDensity,
+            "ELSE" => ElVariable::Energy,
+            "EVOL" => ElVariable::Volume,
+            "COORD" => ElVariable::Coordinates,
+            _ => return None,
+        })
+    }
+}
+
+/// `sigma : eps / 2` from Voigt stresses and strains with engineering
+/// shear components (the same order).
+fn energy_density(s: &[f64], e: &[f64]) -> f64 {
+    0.5 * s.iter().zip(e).map(|(a, b)| a * b).sum::<f64>()
 }
 
 /// A symmetric tensor in CalculiX's order `xx, yy, zz, xy, xz, yz` in the

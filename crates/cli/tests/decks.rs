@@ -900,3 +900,76 @@ fn wedge_pressure_on_a_missing_face_names_the_line() {
         "{err}"
     );
 }
+
+/// `*EL PRINT` variables beyond S and E: `ENER` (energy density at the
+/// points), `ELSE` (element strain energy), `EVOL` (element volume), `ME`
+/// (mechanical strains, the strains here) and `COORD` (point
+/// coordinates), on tests/data/el_print_hex.inp with the request
+/// `ENER, ELSE, EVOL, ME, COORD, PEEQ` added. Golden values: CalculiX 2.20
+/// (`ccx -i` on the same edited deck), its `.dat`; CalculiX prints no PEEQ
+/// block for an elastic material, Junta notes it and writes none.
+#[test]
+fn el_print_energy_volume_and_coordinates_match_calculix() {
+    #[rustfmt::skip]
+    const CCX: [(&str, &str, &str, &[f64]); 9] = [
+        ("ENER", "1", "1", &[8.155189E-03]),
+        ("ENER", "1", "5", &[2.883258E-02]),
+        ("ENER", "2", "8", &[4.080570E-03]),
+        ("ELSE", "1", "", &[1.136892E-02]),
+        ("ELSE", "2", "", &[7.041426E-03]),
+        ("EVOL", "2", "", &[1.078333E+00]),
+        ("ME", "1", "6", &[5.814414E-03, -7.386028E-04, -1.235559E-03, -4.097821E-04, -1.784578E-04, 9.614975E-04]),
+        ("ME", "2", "8", &[2.281811E-04, -1.496680E-04, -1.666893E-03, 3.872189E-04, -8.521783E-04, -1.433872E-03]),
+        ("COORD", "2", "2", &[1.886788E+00, 2.113249E-01, 2.674253E-01]),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(repo().join("crates/cli/tests/data/el_print_hex.inp"))
+        .unwrap()
+        .replace(
+            "*END STEP",
+            "*EL PRINT, ELSET=HEX\nENER, ELSE, EVOL, ME, COORD, PEEQ\n*END STEP",
+        );
+    let deck = write(dir.path(), "vars.inp", &text);
+    let out = junta()
+        .arg("run")
+        .arg(&deck)
+        .arg("-o")
+        .arg(dir.path().join("out"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("variable PEEQ is not written"), "{err}");
+    let csv = std::fs::read_to_string(dir.path().join("out/el_print.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    let count = |v: &str| rows.iter().filter(|r| r[2] == v).count();
+    // per point: 2 elements x 8 points; per element: 2
+    assert_eq!(
+        ["ENER", "ELSE", "EVOL", "ME", "COORD", "PEEQ"].map(count),
+        [16, 2, 2, 16, 16, 0]
+    );
+    for (var, el, pt, want) in CCX {
+        let row = rows
+            .iter()
+            .find(|r| r[2] == var && r[3] == el && r[4] == pt)
+            .unwrap_or_else(|| panic!("no row {var} {el} {pt}"));
+        assert_eq!(row.len(), 11, "{row:?}");
+        let scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (c, w) in want.iter().enumerate() {
+            let got: f64 = row[5 + c].parse().unwrap();
+            assert!(
+                (got - w).abs() < 2e-6 * scale,
+                "{var} element {el} point {pt} component {}: {got} vs CalculiX {w}",
+                c + 1
+            );
+        }
+        assert!(
+            row[5 + want.len()..].iter().all(|f| f.is_empty()),
+            "{row:?}"
+        );
+    }
+}

@@ -423,6 +423,7 @@ impl Element for IncompatibleHex8 {
                     ("stress", s.to_vec()),
                     ("strain", eps.iter().copied().collect()),
                     ("mises", vec![von_mises(&s)]),
+                    ("volume", vec![pb.dv]),
                 ],
             });
         }

@@ -491,7 +491,7 @@ impl Element for SolidElement {
         let mut g = [[0.0; 3]; MAX_NODES];
         let mut out = Vec::with_capacity(self.points.len());
         for (q, p) in self.points.iter().enumerate() {
-            self.gradients(p, ctx.coords, q, &mut g)?;
+            let det = self.gradients(p, ctx.coords, q, &mut g)?;
             let eps = self.strain(&g, ctx.disp);
             let sig = self.elasticity(p, ctx.coords) * eps;
             let position = self.position(p, ctx.coords);
@@ -502,6 +502,7 @@ impl Element for SolidElement {
                     ("stress", s.to_vec()),
                     ("strain", eps.iter().copied().collect()),
                     ("mises", vec![von_mises(&s)]),
+                    ("volume", vec![p.w * det]),
                 ],
             });
         }
