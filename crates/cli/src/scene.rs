@@ -716,8 +716,10 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
         let ins = junta_core::mesh::interface::insert_interface(&mut mesh, a, b, &c.name, "")
             .map_err(|e| anyhow!("{}: key `crack[{i}].between`: {e}", sf.at(c.between.span())))?;
         // keep the duplicated nodes, drop the elements: a traction-free cut
-        mesh.blocks.remove(ins.block);
         mesh.element_sets.remove(&c.name);
+        for &b in ins.blocks.iter().rev() {
+            remove_block(&mut mesh, b);
+        }
     }
     for (i, ns) in sf.scene.node_set.iter().enumerate() {
         let [lo, hi] = *ns.within.get_ref();
@@ -764,7 +766,7 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
         if let Some(pc) = &f.precrack {
             split_precrack(
                 &mut mesh,
-                ins.block,
+                &ins.blocks,
                 &f.name,
                 *pc.within.get_ref(),
                 pc.law.get_ref(),
@@ -777,7 +779,7 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
             })?;
         }
         if let Some(w) = &f.within {
-            keep_within(&mut mesh, ins.block, &f.name, *w.get_ref())
+            keep_within(&mut mesh, &ins.blocks, &f.name, *w.get_ref())
                 .map_err(|e| anyhow!("{}: key `interface[{i}].within`: {e}", sf.at(w.span())))?;
         }
     }
@@ -802,86 +804,153 @@ fn element_centres(mesh: &Mesh, block: usize) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// Move the elements of interface block `block` whose centre lies in
-/// `[lo, hi]` to a new block `NAME.precrack` with law `law` (and element
-/// set of the same name).
-fn split_precrack(
-    mesh: &mut Mesh,
-    block: usize,
-    name: &str,
-    [lo, hi]: [[f64; 3]; 2],
-    law: &str,
-) -> Result<()> {
-    let tol = 1e-9 * mesh_diagonal(mesh);
-    let inside: Vec<bool> = element_centres(mesh, block)
-        .iter()
-        .map(|c| (0..3).all(|k| c[k] >= lo[k] - tol && c[k] <= hi[k] + tol))
-        .collect();
-    if !inside.iter().any(|&x| x) {
-        bail!("no interface element lies in {lo:?} .. {hi:?}");
+/// Remove block `b` from the mesh; element sets drop its elements and
+/// refer to the later blocks by their new indices.
+fn remove_block(mesh: &mut Mesh, b: usize) {
+    mesh.blocks.remove(b);
+    if b < mesh.element_labels.len() {
+        mesh.element_labels.remove(b);
     }
-    if inside.iter().all(|&x| x) {
-        bail!("every interface element lies in {lo:?} .. {hi:?}: nothing is left bonded");
-    }
-    let b = &mesh.blocks[block];
-    let npe = b.nodes_per_element();
-    let (mut keep, mut cut) = (Vec::new(), Vec::new());
-    for (e, c) in b.connectivity.chunks(npe).enumerate() {
-        if inside[e] {
-            cut.extend_from_slice(c);
-        } else {
-            keep.extend_from_slice(c);
+    for set in mesh.element_sets.values_mut() {
+        set.retain(|r| r.block != b);
+        for r in set.iter_mut() {
+            if r.block > b {
+                r.block -= 1;
+            }
         }
     }
-    let mut pre = b.clone();
-    pre.name = format!("{name}.precrack");
-    pre.material = law.to_string();
-    pre.connectivity = cut;
-    mesh.blocks[block].connectivity = keep;
-    let nb = mesh.blocks.len();
-    let n_pre = pre.len();
-    mesh.blocks.push(pre);
-    let n_keep = mesh.blocks[block].len();
-    mesh.element_sets.insert(
-        name.to_string(),
-        (0..n_keep)
-            .map(|element| junta_core::mesh::ElementRef { block, element })
-            .collect(),
-    );
-    mesh.element_sets.insert(
-        format!("{name}.precrack"),
-        (0..n_pre)
-            .map(|element| junta_core::mesh::ElementRef { block: nb, element })
-            .collect(),
-    );
+}
+
+/// Which elements of the interface blocks `blocks` have their centre in
+/// `[lo, hi]` (per block, per element).
+fn centres_within(mesh: &Mesh, blocks: &[usize], [lo, hi]: [[f64; 3]; 2]) -> Vec<Vec<bool>> {
+    let tol = 1e-9 * mesh_diagonal(mesh);
+    blocks
+        .iter()
+        .map(|&b| {
+            element_centres(mesh, b)
+                .iter()
+                .map(|c| (0..3).all(|k| c[k] >= lo[k] - tol && c[k] <= hi[k] + tol))
+                .collect()
+        })
+        .collect()
+}
+
+/// Split the elements of each interface block (`blocks`, the blocks of
+/// interface `name`: one per face shape) in two by `inside`: block `b`
+/// keeps those with `inside[k][e] == keep_inside`, the others go to a new
+/// block named `suffix(b's name)` with material `law` (`None`: dropped).
+/// Blocks left empty are removed. Returns the new blocks.
+fn partition_blocks(
+    mesh: &mut Mesh,
+    blocks: &[usize],
+    inside: &[Vec<bool>],
+    keep_inside: bool,
+    moved: Option<(&dyn Fn(&str) -> String, &str)>,
+) -> Vec<usize> {
+    let mut new_blocks = Vec::new();
+    for (&block, inside) in blocks.iter().zip(inside) {
+        let b = &mesh.blocks[block];
+        let npe = b.nodes_per_element();
+        let (mut keep, mut other) = (Vec::new(), Vec::new());
+        for (e, c) in b.connectivity.chunks(npe).enumerate() {
+            if inside[e] == keep_inside {
+                keep.extend_from_slice(c);
+            } else {
+                other.extend_from_slice(c);
+            }
+        }
+        if let (Some((suffix, law)), false) = (&moved, other.is_empty()) {
+            let mut pre = b.clone();
+            pre.name = suffix(&b.name);
+            pre.material = law.to_string();
+            pre.connectivity = other;
+            new_blocks.push(mesh.blocks.len());
+            mesh.blocks.push(pre);
+        }
+        mesh.blocks[block].connectivity = keep;
+    }
+    new_blocks
+}
+
+/// The element set `name` of every element of `blocks`.
+fn set_of_blocks(mesh: &mut Mesh, name: &str, blocks: &[usize]) {
+    let set = blocks
+        .iter()
+        .flat_map(|&block| {
+            (0..mesh.blocks[block].len())
+                .map(move |element| junta_core::mesh::ElementRef { block, element })
+        })
+        .collect();
+    mesh.element_sets.insert(name.to_string(), set);
+}
+
+/// Remove the blocks of `blocks` that have no element left (highest
+/// index first); returns the indices of those that stay, after removal.
+fn drop_empty(mesh: &mut Mesh, blocks: &mut Vec<usize>) {
+    let mut sorted = blocks.clone();
+    sorted.sort_unstable();
+    for &b in sorted.iter().rev() {
+        if mesh.blocks[b].is_empty() {
+            remove_block(mesh, b);
+            blocks.retain(|&x| x != b);
+            for x in blocks.iter_mut() {
+                if *x > b {
+                    *x -= 1;
+                }
+            }
+        }
+    }
+}
+
+/// Move the elements of the interface blocks `blocks` (interface `name`)
+/// whose centre lies in `[lo, hi]` to new blocks `NAME.precrack` (and
+/// `NAME.tri.precrack` for the triangles of a mixed surface) with law
+/// `law`; element sets `NAME` (bonded) and `NAME.precrack`.
+fn split_precrack(
+    mesh: &mut Mesh,
+    blocks: &[usize],
+    name: &str,
+    within: [[f64; 3]; 2],
+    law: &str,
+) -> Result<()> {
+    let [lo, hi] = within;
+    let inside = centres_within(mesh, blocks, within);
+    if !inside.iter().flatten().any(|&x| x) {
+        bail!("no interface element lies in {lo:?} .. {hi:?}");
+    }
+    if inside.iter().flatten().all(|&x| x) {
+        bail!("every interface element lies in {lo:?} .. {hi:?}: nothing is left bonded");
+    }
+    let suffix = |n: &str| format!("{n}.precrack");
+    let mut pre = partition_blocks(mesh, blocks, &inside, false, Some((&suffix, law)));
+    let mut kept = blocks.to_vec();
+    // (the precrack blocks come after every interface block: removing an
+    // emptied bonded block shifts them by one)
+    let n_before = mesh.blocks.len();
+    drop_empty(mesh, &mut kept);
+    let shift = n_before - mesh.blocks.len();
+    for p in &mut pre {
+        *p -= shift;
+    }
+    set_of_blocks(mesh, name, &kept);
+    set_of_blocks(mesh, &format!("{name}.precrack"), &pre);
     Ok(())
 }
 
-/// Keep only the elements of interface block `block` whose centre lies in
-/// the box `[lo, hi]`; the rest of the surface stays cut (traction free).
-fn keep_within(mesh: &mut Mesh, block: usize, name: &str, [lo, hi]: [[f64; 3]; 2]) -> Result<()> {
-    let tol = 1e-9 * mesh_diagonal(mesh);
-    let centres = element_centres(mesh, block);
-    let b = &mut mesh.blocks[block];
-    let npe = b.nodes_per_element();
-    let kept: Vec<usize> = b
-        .connectivity
-        .chunks(npe)
-        .zip(&centres)
-        .filter(|(_, c)| (0..3).all(|k| c[k] >= lo[k] - tol && c[k] <= hi[k] + tol))
-        .flat_map(|(conn, _)| conn.iter().copied())
-        .collect();
-    if kept.is_empty() {
+/// Keep only the elements of the interface blocks `blocks` (interface
+/// `name`) whose centre lies in the box `[lo, hi]`; the rest of the
+/// surface stays cut (traction free).
+fn keep_within(mesh: &mut Mesh, blocks: &[usize], name: &str, within: [[f64; 3]; 2]) -> Result<()> {
+    let [lo, hi] = within;
+    let inside = centres_within(mesh, blocks, within);
+    if !inside.iter().flatten().any(|&x| x) {
         bail!("no interface element lies in {lo:?} .. {hi:?}");
     }
-    b.connectivity = kept;
-    let n = b.len();
-    mesh.element_sets.insert(
-        name.to_string(),
-        (0..n)
-            .map(|element| junta_core::mesh::ElementRef { block, element })
-            .collect(),
-    );
+    partition_blocks(mesh, blocks, &inside, true, None);
+    let mut kept = blocks.to_vec();
+    drop_empty(mesh, &mut kept);
+    set_of_blocks(mesh, name, &kept);
     Ok(())
 }
 
@@ -924,7 +993,11 @@ pub fn build_elements(
             .boxes
             .iter()
             .position(|b| b.name == block.name);
-        let iface = sf.scene.interface.iter().position(|f| f.name == block.name);
+        // an interface's blocks: `NAME`, and `NAME.tri` on a surface of
+        // triangles and quadrilaterals
+        let iface = sf.scene.interface.iter().position(|f| {
+            block.name == f.name || block.name.strip_suffix(".tri") == Some(f.name.as_str())
+        });
         let where_ = match (override_, part, iface, &sf.scene.mesh.element) {
             (Some(i), _, _, _) => format!(
                 "{}: key `blocks[{i}]`",

@@ -610,21 +610,76 @@ fn wedge_cantilever_decks_match_calculix() {
 /// interface point and the opening `sigma / d`.
 #[test]
 fn gmsh_wedge_stack_with_triangle_surfaces_matches_the_bonded_stack() {
-    let (e, nu, h, d, delta) = (210000.0f64, 0.3f64, 0.5, 1.0e5, 0.01);
-    let m = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    let sigma = delta / (2.0 * h / m + 1.0 / d);
     for (file, element, iface) in [
         ("prism_stack_o1.msh", "wedge6", "inter6"),
         ("prism_stack_o2.msh", "wedge15", "inter12"),
     ] {
-        let dir = tempfile::tempdir().unwrap();
-        std::fs::copy(
-            repo().join("crates/core/tests/data").join(file),
-            dir.path().join(file),
-        )
-        .unwrap();
-        let scene = format!(
-            r#"[materials.steel]
+        let s = bonded_stack(file, &[("lower", element), ("upper", element)]);
+        let wedges = s["elements"][element].as_u64().unwrap();
+        assert_eq!(
+            s["elements"][iface].as_u64(),
+            Some(wedges / 2),
+            "{}",
+            s["elements"]
+        );
+        check_bonded_stack(&s, file, &["bond"]);
+    }
+}
+
+/// A Gmsh mesh whose volumes hold hexahedra and wedges side by side
+/// (crates/core/tests/data/mixed_stack_o1.msh and _o2, written by Gmsh
+/// 4.15.2 from make_prism_msh.py: the left half of the square in
+/// quadrangles, the right half in triangles), so the bonded surface mixes
+/// quadrilaterals and triangles: the interface gets INTER8 + INTER6
+/// (INTER16 + INTER12 at order 2) in blocks `bond` and `bond.tri` on one
+/// set of duplicated nodes (the seam's topology is checked in
+/// core's `mixed_triangle_and_quadrilateral_surface_gets_one_block_per_shape`).
+/// The same closed form as the wedge stack, at every point of both blocks.
+#[test]
+fn gmsh_mixed_hexahedra_and_wedges_bonded_across_one_surface() {
+    for (file, hex, wedge, quad_iface, tri_iface) in [
+        ("mixed_stack_o1.msh", "h8", "wedge6", "inter8", "inter6"),
+        ("mixed_stack_o2.msh", "h20", "wedge15", "inter16", "inter12"),
+    ] {
+        let (lw, uw) = (format!("lower_{wedge}"), format!("upper_{wedge}"));
+        let blocks = [("lower", hex), (&lw, wedge), ("upper", hex), (&uw, wedge)];
+        let s = bonded_stack(file, &blocks);
+        let count = |k: &str| s["elements"][k].as_u64().unwrap_or(0);
+        assert!(
+            count(quad_iface) > 0 && count(tri_iface) > 0,
+            "{}",
+            s["elements"]
+        );
+        assert_eq!(count(quad_iface), count(hex) / 2, "{}", s["elements"]);
+        assert_eq!(count(tri_iface), count(wedge) / 2, "{}", s["elements"]);
+        check_bonded_stack(&s, file, &["bond", "bond.tri"]);
+    }
+}
+
+/// Material, penalty and opening of the bonded-stack tests, and the closed
+/// form `sigma = delta / (2 h / M + 1 / d)` (h = 0.5 per layer).
+const STACK: (f64, f64, f64, f64) = (210000.0, 0.3, 1.0e5, 0.01);
+
+fn stack_sigma() -> f64 {
+    let (e, nu, d, delta) = STACK;
+    let m = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    delta / (2.0 * 0.5 / m + 1.0 / d)
+}
+
+/// Run the Gmsh mesh `file` (from crates/core/tests/data) with its solid
+/// blocks `(name, element)`, the volumes `lower` / `upper` bonded by a
+/// linear penalty, clamped on `bottom`, held laterally on `sides` and
+/// pulled on `top` ([`STACK`]); returns the summary.
+fn bonded_stack(file: &str, blocks: &[(&str, &str)]) -> serde_json::Value {
+    let (e, nu, d, delta) = STACK;
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        repo().join("crates/core/tests/data").join(file),
+        dir.path().join(file),
+    )
+    .unwrap();
+    let mut scene = format!(
+        r#"[materials.steel]
 type = "isotropic"
 E = {e}
 nu = {nu}
@@ -634,14 +689,6 @@ d = {d}
 [mesh]
 type = "gmsh"
 file = "{file}"
-[[blocks]]
-name = "lower"
-element = "{element}"
-material = "steel"
-[[blocks]]
-name = "upper"
-element = "{element}"
-material = "steel"
 [[interface]]
 name = "bond"
 between = ["lower", "upper"]
@@ -657,28 +704,37 @@ set = "top"
 fixed = ["x", "y"]
 displacement = {{ z = {delta} }}
 "#
+    );
+    for (name, element) in blocks {
+        scene += &format!(
+            "[[blocks]]\nname = \"{name}\"\nelement = \"{element}\"\nmaterial = \"steel\"\n"
         );
-        let s = run_ok(
-            &write(dir.path(), "stack.toml", &scene),
-            &dir.path().join("out"),
-        );
-        let wedges = s["elements"][element].as_u64().unwrap();
-        assert_eq!(
-            s["elements"][iface].as_u64(),
-            Some(wedges / 2),
-            "{}",
-            s["elements"]
-        );
-        let r = s["reactions"]["top"][2].as_f64().unwrap();
-        assert!(
-            rel(r, sigma) < 1e-9,
-            "{file}: top reaction {r} vs closed form {sigma}"
-        );
-        let b = &s["interfaces"]["bond"];
+    }
+    run_ok(
+        &write(dir.path(), "stack.toml", &scene),
+        &dir.path().join("out"),
+    )
+}
+
+/// The reaction on `top` and the normal traction and opening at every
+/// point of the interface blocks `blocks` equal the closed form.
+fn check_bonded_stack(s: &serde_json::Value, file: &str, blocks: &[&str]) {
+    let (sigma, d) = (stack_sigma(), STACK.2);
+    let r = s["reactions"]["top"][2].as_f64().unwrap();
+    assert!(
+        rel(r, sigma) < 1e-9,
+        "{file}: top reaction {r} vs closed form {sigma}"
+    );
+    for name in blocks {
+        let b = &s["interfaces"][*name];
         for (key, want) in [("traction", sigma), ("jump", sigma / d)] {
             for mm in ["min", "max"] {
-                let v = b[format!("{key}_{mm}")][2].as_f64().unwrap();
-                assert!(rel(v, want) < 1e-9, "{file}: {key}_{mm} {v} vs {want}");
+                let v = b[format!("{key}_{mm}")][2].as_f64();
+                let v = v.unwrap_or_else(|| panic!("{file}: no {key}_{mm} of `{name}`: {b}"));
+                assert!(
+                    rel(v, want) < 1e-9,
+                    "{file} {name}: {key}_{mm} {v} vs {want}"
+                );
             }
         }
     }

@@ -402,11 +402,14 @@ fn wedge_sides_get_quadrilateral_interfaces() {
 }
 
 /// A surface of triangles (wedges on wedges) and quadrilaterals (hexahedra
-/// on hexahedra) side by side is refused, naming both face shapes and both
-/// solids, and the mesh is left unchanged (module docs: one face shape per
-/// interface block).
+/// on hexahedra) side by side gets two interface blocks on one surface:
+/// `glue` (INTER8 on the quadrilateral) and `glue.tri` (INTER6 on the two
+/// triangles), the element set `glue` holding all three, every surface
+/// node (the seam's included) duplicated once and every top element moved
+/// to the copies, so the two sides are apart everywhere but through the
+/// interface.
 #[test]
-fn mixed_triangle_and_quadrilateral_surface_is_refused() {
+fn mixed_triangle_and_quadrilateral_surface_gets_one_block_per_shape() {
     let parts = vec![
         (
             "lw".to_string(),
@@ -436,12 +439,52 @@ fn mixed_triangle_and_quadrilateral_surface_is_refused() {
         v.extend(m.element_sets[b].iter().copied());
         m.element_sets.insert(set.into(), v);
     }
-    let before = m.clone();
-    let err = insert_interface(&mut m, "lower", "upper", "glue", "law")
-        .unwrap_err()
-        .to_string();
-    for want in ["tri3", "quad4", "wedge6", "hex8", "glue", "one face shape"] {
-        assert!(err.contains(want), "`{want}` missing from: {err}");
+    let nodes_before = m.nodes.len();
+    let ins = insert_interface(&mut m, "lower", "upper", "glue", "law").unwrap();
+    assert_eq!(ins.blocks.len(), 2);
+    assert_eq!(ins.block, ins.blocks[0]);
+    let (q, t) = (&m.blocks[ins.blocks[0]], &m.blocks[ins.blocks[1]]);
+    assert_eq!(
+        (q.name.as_str(), q.shape, q.len()),
+        ("glue", CellShape::Inter8, 1)
+    );
+    assert_eq!(
+        (t.name.as_str(), t.shape, t.len()),
+        ("glue.tri", CellShape::Inter6, 2)
+    );
+    assert_eq!(ins.elements, 3);
+    assert_eq!(m.element_sets["glue"].len(), 3);
+    // the surface z = 0.5: x in {0, 1, 2}, y in {0, 1}
+    assert_eq!(ins.duplicated_nodes, 6);
+    assert_eq!(m.nodes.len(), nodes_before + 6);
+    let copies: std::collections::HashSet<usize> = (nodes_before..m.nodes.len()).collect();
+    let originals: std::collections::HashSet<usize> =
+        m.node_sets["glue.bottom"].iter().copied().collect();
+    for set in ["uw", "uh"] {
+        for r in &m.element_sets[set] {
+            let conn = m.blocks[r.block].element(r.element);
+            assert!(
+                conn.iter().all(|n| !originals.contains(n)),
+                "{set}: {conn:?}"
+            );
+            assert!(conn.iter().any(|n| copies.contains(n)), "{set}: {conn:?}");
+        }
     }
-    assert_eq!(m, before);
+    for set in ["lw", "lh"] {
+        for r in &m.element_sets[set] {
+            let conn = m.blocks[r.block].element(r.element);
+            assert!(conn.iter().all(|n| !copies.contains(n)), "{set}: {conn:?}");
+        }
+    }
+    // each interface element: bottom side originals, top side their copies
+    for b in [q, t] {
+        let half = b.nodes_per_element() / 2;
+        for e in 0..b.len() {
+            let c = b.element(e);
+            for k in 0..half {
+                assert!(originals.contains(&c[k]) && copies.contains(&c[half + k]));
+                assert_eq!(m.nodes[c[k]], m.nodes[c[half + k]]);
+            }
+        }
+    }
 }

@@ -23,11 +23,12 @@
 //!   quadrilateral side against a hexahedron's face (Wedge6 / Hex8: Quad4;
 //!   Wedge15 / Hex20: Quad8) gets INTER8 / INTER16.
 //! * One interface block has one shape, so a surface that mixes triangles
-//!   and quadrilaterals (hexahedra and wedges side by side on the same
-//!   surface) is refused with an error naming both face shapes. Splitting
-//!   the sets would not help (the nodes on the seam between the two parts
-//!   of one side would be duplicated for one part only, cutting that side
-//!   apart): mesh such a surface with one face shape.
+//!   and quadrilaterals of one order (hexahedra and wedges side by side on
+//!   the same surface) gets two blocks, `NAME` (quadrilaterals) and
+//!   `NAME.tri` (triangles), inserted together: the nodes on the seam
+//!   between the two parts are duplicated once, for both (splitting the
+//!   sets into two insertions would cut each side apart along the seam).
+//!   Faces of different orders on one surface are refused.
 //! * Only elements of `top` are moved to the copied nodes. Elements of
 //!   `bottom` **and of every other set** keep the original nodes: a third
 //!   body touching the surface stays attached to the bottom side.
@@ -54,10 +55,14 @@ use crate::topology::CellShape;
 use std::collections::{HashMap, HashSet};
 
 /// What [`insert_interface`] added.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct InterfaceInsertion {
-    /// Index of the new interface block in [`Mesh::blocks`].
+    /// Index of the new interface block in [`Mesh::blocks`] (on a surface
+    /// of triangles and quadrilaterals: the quadrilaterals' block).
     pub block: usize,
+    /// Every new interface block: `[block]`, or on a mixed surface the
+    /// quadrilaterals' block `name` and the triangles' block `name.tri`.
+    pub blocks: Vec<usize>,
     /// Number of interface elements (one per shared face).
     pub elements: usize,
     /// Number of nodes duplicated (all nodes of the shared surface,
@@ -146,16 +151,20 @@ fn describe(mesh: &Mesh, r: ElementRef) -> String {
 ///   `name` with shape `face_shape.matching_interface()` (element type key
 ///   `"inter8"`, `"inter16"`, `"inter18"`, `"inter6"` or `"inter12"`) and
 ///   material `law`; node order and normal as in the [module docs](self)
-///   (bottom face, then top copies; normal from bottom to top).
-/// * New sets: element set `name`, node sets `name.bottom` (original surface
-///   nodes) and `name.top` (their copies). Existing node sets follow the rule
-///   in the [module docs](self).
+///   (bottom face, then top copies; normal from bottom to top). A surface
+///   of triangles and quadrilaterals of one order (wedges next to
+///   hexahedra: Tri3 with Quad4, Tri6 with Quad8) gets two blocks, `name`
+///   for the quadrilaterals and `name.tri` for the triangles; they share
+///   the duplicated nodes along the seam, so the interface is one surface.
+/// * New sets: element set `name` (every interface element), node sets
+///   `name.bottom` (original surface nodes) and `name.top` (their copies).
+///   Existing node sets follow the rule in the [module docs](self).
 ///
 /// Errors ([`CoreError`]): unknown sets, sets that overlap or hold
 /// non-solid elements, names already in use, sets that share no face,
 /// mismatched element orders across the surface, non-conforming faces
 /// (same corners, different mid-side nodes), non-manifold surfaces, or a
-/// surface mixing face shapes (orders, or triangles and quadrilaterals).
+/// surface mixing element orders.
 /// On error the mesh is unchanged.
 pub fn insert_interface(
     mesh: &mut Mesh,
@@ -290,20 +299,27 @@ pub fn insert_interface(
         )));
     }
 
+    // one face shape, or triangles and quadrilaterals of one order (wedges
+    // next to hexahedra): one interface block per face shape
     let (r0, f0) = shared[0];
     let shape = face_shape(mesh, r0, f0);
+    let conforming = |a: CellShape, b: CellShape| {
+        a == b
+            || matches!(
+                (a, b),
+                (CellShape::Tri3, CellShape::Quad4)
+                    | (CellShape::Quad4, CellShape::Tri3)
+                    | (CellShape::Tri6, CellShape::Quad8)
+                    | (CellShape::Quad8, CellShape::Tri6)
+            )
+    };
     if let Some(&(r, f)) = shared
         .iter()
-        .find(|&&(r, f)| face_shape(mesh, r, f) != shape)
+        .find(|&&(r, f)| !conforming(face_shape(mesh, r, f), shape))
     {
         let other = face_shape(mesh, r, f);
-        let what = if shape.num_corners() != other.num_corners() {
-            "triangles and quadrilaterals: an interface block has one face shape, and splitting the sets would cut the seam between the two kinds of elements of one side; mesh this surface with one face shape (all wedge triangles or all quadrilaterals)"
-        } else {
-            "element orders: insert one interface per element order (split the sets)"
-        };
         return Err(CoreError::Invalid(format!(
-            "the surface between `{bottom}` and `{top}` mixes {} faces ({} elements, e.g. {}) and {} faces ({} elements, e.g. {}); interface `{name}` cannot mix {what}",
+            "the surface between `{bottom}` and `{top}` mixes {} faces ({} elements, e.g. {}) and {} faces ({} elements, e.g. {}); interface `{name}` cannot mix element orders: insert one interface per element order (split the sets)",
             shape.name(),
             mesh.blocks[r0.block].shape.name(),
             describe(mesh, r0),
@@ -312,12 +328,32 @@ pub fn insert_interface(
             describe(mesh, r)
         )));
     }
-    let Some(ishape) = shape.matching_interface() else {
+    // the face shapes met, quadrilaterals first
+    let mut shapes: Vec<CellShape> = Vec::with_capacity(2);
+    for &(r, f) in &shared {
+        let s = face_shape(mesh, r, f);
+        if !shapes.contains(&s) {
+            shapes.push(s);
+        }
+    }
+    shapes.sort_by_key(|s| std::cmp::Reverse(s.num_corners()));
+    let mixed_name = format!("{name}.tri");
+    if shapes.len() > 1
+        && (mesh.element_sets.contains_key(&mixed_name)
+            || mesh.blocks.iter().any(|b| b.name == mixed_name))
+    {
         return Err(CoreError::Invalid(format!(
-            "no interface element matches {} faces",
-            shape.name()
+            "interface `{name}` mixes triangles and quadrilaterals and would put the triangles in block `{mixed_name}`, a name already in use; choose another name"
         )));
-    };
+    }
+    for s in &shapes {
+        if s.matching_interface().is_none() {
+            return Err(CoreError::Invalid(format!(
+                "no interface element matches {} faces",
+                s.name()
+            )));
+        }
+    }
 
     // --- all checks passed: modify the mesh ---
     let bottom_faces: Vec<Vec<usize>> = shared
@@ -353,32 +389,42 @@ pub fn insert_interface(
     }
     update_node_sets(mesh, &copy);
 
-    let mut connectivity = Vec::with_capacity(bottom_faces.len() * ishape.num_nodes());
-    for face in &bottom_faces {
-        connectivity.extend_from_slice(face);
-        connectivity.extend(face.iter().map(|i| copy[i]));
-    }
-    let block = mesh.blocks.len();
     let elements = bottom_faces.len();
-    mesh.blocks.push(ElementBlock {
-        name: name.to_string(),
-        shape: ishape,
-        connectivity,
-        element_type: ishape.name().to_string(),
-        material: law.to_string(),
-    });
-    mesh.element_sets.insert(
-        name.to_string(),
-        (0..elements)
-            .map(|element| ElementRef { block, element })
-            .collect(),
-    );
+    let mut blocks = Vec::with_capacity(shapes.len());
+    let mut set = Vec::with_capacity(elements);
+    for (k, &fshape) in shapes.iter().enumerate() {
+        let ishape = fshape.matching_interface().expect("checked above");
+        let mut connectivity = Vec::new();
+        for (face, &(r, f)) in bottom_faces.iter().zip(&shared) {
+            if face_shape(mesh, r, f) == fshape {
+                connectivity.extend_from_slice(face);
+                connectivity.extend(face.iter().map(|i| copy[i]));
+            }
+        }
+        let block = mesh.blocks.len();
+        let n = connectivity.len() / ishape.num_nodes();
+        set.extend((0..n).map(|element| ElementRef { block, element }));
+        mesh.blocks.push(ElementBlock {
+            name: if k == 0 {
+                name.to_string()
+            } else {
+                mixed_name.clone()
+            },
+            shape: ishape,
+            connectivity,
+            element_type: ishape.name().to_string(),
+            material: law.to_string(),
+        });
+        blocks.push(block);
+    }
+    mesh.element_sets.insert(name.to_string(), set);
     mesh.node_sets
         .insert(format!("{name}.top"), (n0..n0 + surface.len()).collect());
     mesh.node_sets.insert(format!("{name}.bottom"), surface);
     mesh.validate()?;
     Ok(InterfaceInsertion {
-        block,
+        block: blocks[0],
+        blocks,
         elements,
         duplicated_nodes: mesh.nodes.len() - n0,
     })
