@@ -5,6 +5,10 @@
 use junta_core::mesh::{gmsh::parse_msh, inp::parse_inp};
 
 const MSH: &str = include_str!("data/box_hex20.msh");
+/// Gmsh 4.15.2 meshes of prisms, and of hexahedra and prisms side by side,
+/// with triangles and quadrangles on physical surfaces.
+const MSH_PRISMS: &str = include_str!("data/prism_stack_o2.msh");
+const MSH_MIXED: &str = include_str!("data/mixed_stack_o1.msh");
 const INP: &str = include_str!("data/cube_h8_n2.inp");
 
 #[test]
@@ -124,11 +128,12 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
 #[test]
 fn mutated_gmsh_files_and_decks_never_panic() {
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
-    for case in 0..1500 {
-        let (base, is_msh) = if case % 2 == 0 {
-            (MSH, true)
-        } else {
-            (INP, false)
+    for case in 0..2000 {
+        let (base, is_msh) = match case % 4 {
+            0 => (MSH, true),
+            1 => (MSH_PRISMS, true),
+            2 => (MSH_MIXED, true),
+            _ => (INP, false),
         };
         let text = mutate(base, &mut rng);
         let r = std::panic::catch_unwind(|| {
