@@ -537,12 +537,7 @@ pub fn run_static(
                 rows.push(row);
                 if let Some(ds) = deck_step_ends(r.step, r.step_fraction) {
                     if !prints.is_empty() {
-                        let f_int: Vec<f64> = v
-                            .residual
-                            .iter()
-                            .zip(&model.f_ext)
-                            .map(|(res, f)| res + r.lambda * f)
-                            .collect();
+                        let f_int = internal_force_of(model, v.residual, r.lambda);
                         prints.add_step_with_internal_force(model, ds, v.u, &f_int, v.state)?;
                         prints.save(dir)?;
                     }
@@ -741,12 +736,7 @@ pub fn run_static(
         if ds >= printed_steps && last_increment > start_increment {
             match &run {
                 Some(run) => {
-                    let f_int: Vec<f64> = run
-                        .residual
-                        .iter()
-                        .zip(&model.f_ext)
-                        .map(|(res, f)| res + last.lambda * f)
-                        .collect();
+                    let f_int = internal_force_of(model, &run.residual, last.lambda);
                     prints.add_step_with_internal_force(model, ds, &run.u, &f_int, &run.state)?;
                 }
                 None => {
@@ -950,6 +940,16 @@ pub fn read_restart(dir: &Path) -> Result<RestartFile> {
     })?;
     serde_json::from_str(&text)
         .with_context(|| format!("{}: not a Junta checkpoint", path.display()))
+}
+
+/// The elements' internal force `f_int = r + lambda f_ext` from a run's
+/// residual `r = f_int - lambda f_ext`.
+fn internal_force_of(model: &junta_core::Model, residual: &[f64], lambda: f64) -> Vec<f64> {
+    residual
+        .iter()
+        .zip(&model.f_ext)
+        .map(|(r, f)| r + lambda * f)
+        .collect()
 }
 
 /// The elements' internal force `f_int(u)` at a converged state (trial

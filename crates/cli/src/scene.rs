@@ -886,7 +886,7 @@ fn set_of_blocks(mesh: &mut Mesh, name: &str, blocks: &[usize]) {
 }
 
 /// Remove the blocks of `blocks` that have no element left (highest
-/// index first); returns the indices of those that stay, after removal.
+/// index first); `blocks` keeps those that stay, at their new indices.
 fn drop_empty(mesh: &mut Mesh, blocks: &mut Vec<usize>) {
     let mut sorted = blocks.clone();
     sorted.sort_unstable();
