@@ -1,6 +1,7 @@
 //! `junta`: run TOML scenes or Abaqus/CalculiX decks, check them, list plugins.
 //!
-//! The whole command line lives in this library; the `junta` binary is
+//! A thin consumer of the run API (the `junta` crate): arguments, the
+//! progress bar, messages. The `junta` binary is
 //! `fn main() -> ExitCode { junta_cli::main() }`. A researcher's own crate can
 //! register laws, criteria or elements with `inventory::submit!` and build its
 //! own `junta` the same way (see `examples/plugin_law/`).
@@ -17,20 +18,12 @@ use junta_elements as _;
 use junta_interface as _;
 use junta_solvers as _;
 
-mod auto;
-mod deck;
-mod deck_print;
-mod export;
-mod limits;
-mod nonlinear;
-mod output;
-mod plot;
-mod restart_guard;
-mod run;
-mod scene;
-mod sweep;
-mod sweep_control;
-mod validate;
+mod progress;
+mod report;
+
+use anyhow::Result;
+use junta::{export, sweep, sweep_control, Options, RunResults, RunSettings, Simulation};
+use std::path::Path;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -87,7 +80,11 @@ enum Command {
         input: PathBuf,
     },
     /// List every registered element, material, law, criterion and solver.
-    List,
+    List {
+        /// Print the catalogue as Markdown (docs/parameters.md).
+        #[arg(long)]
+        markdown: bool,
+    },
     /// Run a scene over a range of a parameter and chart accuracy and speed.
     Sweep {
         #[command(subcommand)]
@@ -169,25 +166,27 @@ pub fn main() -> ExitCode {
             allow_edited,
             export_matrix,
         } => match (input, restart) {
-            (_, Some(dir)) => run::restart(&dir, !cli.quiet, max_increments, allow_edited),
-            (Some(input), None) => export_matrix
-                .map_or(Ok(()), |dir| {
-                    export::export_matrix(&run::prepare(&input, &solver)?.model, &dir)
-                })
-                .and_then(|()| {
-                    run::run(
-                        &input,
-                        output.as_deref(),
-                        !cli.quiet,
-                        max_increments,
-                        &solver,
-                    )
-                }),
+            (_, Some(dir)) => restart_run(&dir, !cli.quiet, max_increments, allow_edited),
+            (Some(input), None) => run(
+                &input,
+                output.as_deref(),
+                !cli.quiet,
+                max_increments,
+                solver,
+                export_matrix.as_deref(),
+            ),
             (None, None) => Err(anyhow::anyhow!("give a scene or --restart DIR")),
         },
-        Command::Check { input } => run::check(&input),
-        Command::List => {
-            run::list();
+        Command::Check { input } => Simulation::from_file(&input)
+            .and_then(|sim| sim.check())
+            .map(|report| print!("{report}"))
+            .map_err(anyhow::Error::from),
+        Command::List { markdown } => {
+            if markdown {
+                print!("{}", junta::catalog::markdown());
+            } else {
+                print!("{}", junta::catalog::text());
+            }
             Ok(())
         }
         Command::Sweep {
@@ -200,27 +199,31 @@ pub fn main() -> ExitCode {
                     output,
                 },
         } => {
-            let out = output.unwrap_or_else(|| run::default_dir(&input, "-sweep"));
-            sweep::sweep_penalty(&input, from, to, per_decade, &out).map(|rows| {
-                sweep::report(&rows);
-                println!(
-                    "wrote {}/sweep.csv and {}/sweep.svg",
-                    out.display(),
-                    out.display()
-                );
-            })
+            let out = output.unwrap_or_else(|| junta::prepare::default_dir(&input, "-sweep"));
+            sweep::sweep_penalty(&input, from, to, per_decade, &out)
+                .map_err(anyhow::Error::from)
+                .map(|rows| {
+                    report::sweep(&rows);
+                    println!(
+                        "wrote {}/sweep.csv and {}/sweep.svg",
+                        out.display(),
+                        out.display()
+                    );
+                })
         }
         Command::Sweep {
             what: SweepKind::Control { input, output },
         } => {
-            let out = output.unwrap_or_else(|| run::default_dir(&input, "-control"));
-            sweep_control::sweep_control(&input, &out).map(|runs| {
-                sweep_control::report(&runs);
-                println!(
-                    "wrote {}/control.csv, control_summary.csv and control.svg",
-                    out.display()
-                );
-            })
+            let out = output.unwrap_or_else(|| junta::prepare::default_dir(&input, "-control"));
+            sweep_control::sweep_control(&input, &out)
+                .map_err(anyhow::Error::from)
+                .map(|runs| {
+                    report::control(&runs);
+                    println!(
+                        "wrote {}/control.csv, control_summary.csv and control.svg",
+                        out.display()
+                    );
+                })
         }
         Command::Sweep {
             what:
@@ -231,10 +234,10 @@ pub fn main() -> ExitCode {
                     output,
                 },
         } => {
-            let out = output.unwrap_or_else(|| run::default_dir(&input, "-integration"));
+            let out = output.unwrap_or_else(|| junta::prepare::default_dir(&input, "-integration"));
             match ["x", "y", "z"].iter().position(|a| *a == axis) {
                 None => Err(anyhow::anyhow!("--axis {axis}: use x, y or z")),
-                Some(ax) => sweep::sweep_integration(&input, &d, ax, &out).map(|profiles| {
+                Some(ax) => sweep::sweep_integration(&input, &d, ax, &out).map_err(anyhow::Error::from).map(|profiles| {
                     for p in &profiles {
                         println!(
                             "d = {:>9} {:>8}: {} points, roughness {:.3}, {} local extrema, t_n in [{:.4e}, {:.4e}]",
@@ -258,5 +261,117 @@ pub fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
         }
+    }
+}
+
+/// `junta run INPUT`.
+fn run(
+    input: &Path,
+    output: Option<&Path>,
+    progress: bool,
+    max_increments: Option<usize>,
+    solver: Vec<String>,
+    export_matrix: Option<&Path>,
+) -> Result<()> {
+    let mut bar = progress::Progress::new(progress, format!("reading {}", input.display()));
+    let options = Options {
+        solver,
+        overrides: Vec::new(),
+    };
+    let sim = Simulation::from_file_with(input, options)?;
+    if let Some(dir) = export_matrix {
+        export::export_matrix(sim.model(), dir)?;
+    }
+    // a linear run's notes come before its solve
+    let shown = if sim.is_incremental() {
+        0
+    } else {
+        for n in sim.notes() {
+            bar.suspend(|| eprintln!("note: {n}"));
+        }
+        sim.notes().len()
+    };
+    let dir = output.map_or_else(|| sim.default_output(), Path::to_path_buf);
+    let settings = RunSettings {
+        output: Some(dir),
+        max_increments,
+    };
+    let results = sim.run(&settings, &mut [&mut bar])?;
+    bar.finish();
+    finish(input, &results, shown)
+}
+
+/// `junta run --restart DIR`.
+fn restart_run(
+    dir: &Path,
+    progress: bool,
+    max_increments: Option<usize>,
+    allow_edited: bool,
+) -> Result<()> {
+    let Some(restart) = junta::simulation::read_checkpoint(dir, allow_edited)? else {
+        println!("{}", junta::simulation::finished_message(dir)?);
+        return Ok(());
+    };
+    for change in &restart.edits {
+        eprintln!("note: continuing with an edited input (--allow-edited): {change}");
+    }
+    let shown = restart.edits.len();
+    let input = restart.file.input.clone();
+    let mut bar = progress::Progress::new(
+        progress,
+        format!(
+            "restarting {} from increment {}",
+            input.display(),
+            restart.file.checkpoint.increment_index
+        ),
+    );
+    let settings = RunSettings {
+        output: Some(dir.to_path_buf()),
+        max_increments,
+    };
+    let results = junta::simulation::restart(dir, restart, &settings, &mut [&mut bar])?;
+    bar.finish();
+    finish(&input, &results, shown)
+}
+
+/// Print a run's notes (past the first `shown`), warnings and result line;
+/// the run's failure is the command's error.
+fn finish(input: &Path, r: &RunResults, shown: usize) -> Result<()> {
+    for n in r.notes.iter().skip(shown) {
+        eprintln!("note: {n}");
+    }
+    for w in &r.warnings {
+        eprintln!("warning: {w}");
+    }
+    let s = &r.summary;
+    let dir = r.output.as_deref().unwrap_or(Path::new("."));
+    if r.rows.is_empty() && s["analysis"] == "linear_static" {
+        println!(
+            "{}: {} equations, max |u| = {:.6e}, total {:.2} s -> {}",
+            input.display(),
+            s["equations"],
+            s["displacement_max"].as_f64().unwrap_or(0.0),
+            s["timings"]["total"].as_f64().unwrap_or(0.0),
+            dir.display()
+        );
+        if let Some(obj) = s["reactions"].as_object() {
+            for (k, v) in obj {
+                println!("  reaction on {k}: {v}");
+            }
+        }
+    } else {
+        println!(
+            "{}: {}; {} increments, {} Newton iterations, load factor {:.6} -> {}",
+            input.display(),
+            r.status_line,
+            s["increments"],
+            s["newton_iterations"]["total"],
+            s["load_factor"].as_f64().unwrap_or(0.0),
+            dir.display()
+        );
+    }
+    match &r.failure {
+        Some(e) => Err(anyhow::anyhow!("{}", e.chain())),
+        None => Ok(()),
     }
 }

@@ -340,6 +340,7 @@ impl Assembler {
                     disp: &s.disp[..nd],
                     state_committed: &[],
                     step: StepInfo::default(),
+                    law_responses: None,
                 };
                 let ke = &mut s.k[..nd * nd];
                 elements[er.block]
@@ -517,6 +518,7 @@ impl Assembler {
             }
             None => (None, SharedMut(std::ptr::null_mut()), None),
         };
+        let batches = batch_law_responses(mesh, elements, u, state, step)?;
         let fv = SharedMut(f_int.as_mut_ptr());
         let committed = &state.committed;
         let trial = SharedMut(state.trial.as_mut_ptr());
@@ -546,6 +548,10 @@ impl Assembler {
                         disp: &s.disp[..nd],
                         state_committed: &committed[r.clone()],
                         step,
+                        law_responses: {
+                            let np = el.num_points();
+                            batches[er.block].get(er.element * np..(er.element + 1) * np)
+                        },
                     };
                     // SAFETY: each element owns its state range.
                     let trial_slice = unsafe { trial.slice(r) };
@@ -713,6 +719,73 @@ fn upper_positions(
             at(a, b, p);
         }
     }
+}
+
+/// Evaluate the laws that work in batches
+/// ([`crate::InterfaceLaw::is_batched`], e.g. a law written in Python): for
+/// every interface block with such a law, the jumps of all its points, one
+/// `evaluate_batch` call, the trial states into `state.trial`. Returns the
+/// responses per block, element-major (empty for the other blocks). Costs
+/// nothing when no law is batched.
+pub fn batch_law_responses(
+    mesh: &Mesh,
+    elements: &[Arc<dyn Element>],
+    u: &[f64],
+    state: &mut StateStore,
+    step: StepInfo,
+) -> Result<Vec<Vec<crate::LawResponse>>, CoreError> {
+    let mut out = vec![Vec::new(); elements.len()];
+    for (b, el) in elements.iter().enumerate() {
+        let Some(law) = el.batch_law() else { continue };
+        let block = &mesh.blocks[b];
+        let np = el.num_points();
+        let n = block.len();
+        let mut jumps = vec![[0.0; 3]; n * np];
+        let mut coords = Vec::new();
+        let mut disp = Vec::new();
+        for e in 0..n {
+            let conn = block.element(e);
+            coords.clear();
+            disp.clear();
+            coords.extend(conn.iter().map(|&node| mesh.nodes[node]));
+            disp.extend(
+                conn.iter()
+                    .flat_map(|&node| u[3 * node..3 * node + 3].iter().copied()),
+            );
+            let r = state.range(b, e);
+            let ctx = ElementContext {
+                coords: &coords,
+                disp: &disp,
+                state_committed: &state.committed[r],
+                step,
+                law_responses: None,
+            };
+            el.jumps_into(&ctx, &mut jumps[e * np..(e + 1) * np])
+                .map_err(|source| CoreError::Element {
+                    block: block.name.clone(),
+                    element: e,
+                    source,
+                })?;
+        }
+        let span = state.block_offsets[b]..state.block_offsets[b] + n * state.per_element[b];
+        let mut responses = vec![crate::LawResponse::default(); n * np];
+        law.evaluate_batch(
+            &jumps,
+            &state.committed[span.clone()],
+            step,
+            &mut state.trial[span],
+            &mut responses,
+        )
+        .map_err(|e| {
+            CoreError::Invalid(format!(
+                "interface block `{}`: law `{}`: {e}",
+                block.name,
+                law.key()
+            ))
+        })?;
+        out[b] = responses;
+    }
+    Ok(out)
 }
 
 /// Greedy colouring: no two elements of a colour share a node.

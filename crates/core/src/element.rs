@@ -50,6 +50,11 @@ pub struct ElementContext<'a> {
     pub state_committed: &'a [f64],
     /// Increment information.
     pub step: StepInfo,
+    /// The law's responses at this element's points when its law is
+    /// evaluated in batches ([`crate::InterfaceLaw::is_batched`]): the
+    /// assembler evaluates the whole block first and the element uses these
+    /// instead of calling the law (`None` for every other law).
+    pub law_responses: Option<&'a [crate::law::LawResponse]>,
 }
 
 /// Output at one integration point: position and named values.
@@ -106,6 +111,20 @@ pub trait Element: Send + Sync + std::fmt::Debug {
         f_int: &mut [f64],
         k: Option<&mut [f64]>,
     ) -> Result<(), ElementError>;
+    /// The interface law of an element whose law is evaluated in batches
+    /// (see [`crate::InterfaceLaw::is_batched`]); `None` otherwise.
+    fn batch_law(&self) -> Option<&dyn crate::InterfaceLaw> {
+        None
+    }
+    /// The local jumps `[s1, s2, n]` at the integration points
+    /// (interface elements; `out.len() == num_points()`), for batched laws.
+    fn jumps_into(
+        &self,
+        _ctx: &ElementContext<'_>,
+        _out: &mut [[f64; 3]],
+    ) -> Result<(), ElementError> {
+        Ok(())
+    }
     /// Check the reference geometry (positive Jacobian everywhere).
     fn check_geometry(&self, coords: &[[f64; 3]]) -> Result<(), ElementError>;
     /// Integration-point output for post-processing (may allocate).

@@ -141,4 +141,36 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     fn warnings(&self) -> Vec<String> {
         Vec::new()
     }
+    /// True for a law evaluated for all the points of an interface block
+    /// at once ([`InterfaceLaw::evaluate_batch`]), such as a law written in
+    /// Python: the assembler then calls `evaluate_batch` once per block and
+    /// assembly instead of `evaluate` once per point. Default: false.
+    fn is_batched(&self) -> bool {
+        false
+    }
+    /// Evaluate `jumps.len()` points at once: point `i` has the jump
+    /// `jumps[i]` and the committed state `committed[i*k..(i+1)*k]`
+    /// (`k = state_len()`); its trial state goes to the same range of
+    /// `trial` and its response to `out[i]`. The default calls
+    /// [`InterfaceLaw::evaluate`] point by point. An error names the point
+    /// (`LawError::Failed("point 12: ...")`).
+    fn evaluate_batch(
+        &self,
+        jumps: &[[f64; 3]],
+        committed: &[f64],
+        step: StepInfo,
+        trial: &mut [f64],
+        out: &mut [LawResponse],
+    ) -> Result<(), LawError> {
+        let k = self.state_len();
+        for (i, (jump, r)) in jumps.iter().zip(out.iter_mut()).enumerate() {
+            let ctx = LawContext {
+                jump: *jump,
+                state_committed: &committed[i * k..(i + 1) * k],
+                step,
+            };
+            *r = self.evaluate(&ctx, &mut trial[i * k..(i + 1) * k])?;
+        }
+        Ok(())
+    }
 }

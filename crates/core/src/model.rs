@@ -211,6 +211,7 @@ impl Model {
                     disp: &disp,
                     state_committed: &state.committed[state.range(b, e)],
                     step: crate::element::StepInfo::default(),
+                    law_responses: None,
                 };
                 let pts = el
                     .point_outputs(&ctx)

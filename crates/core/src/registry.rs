@@ -72,6 +72,82 @@ pub struct LawEntry {
     pub build: fn(&toml::Table) -> Result<Arc<dyn InterfaceLaw>, CoreError>,
 }
 
+/// Builds a law registered at run time from its parameter table.
+pub type RuntimeLawBuild =
+    Arc<dyn Fn(&toml::Table) -> Result<Arc<dyn InterfaceLaw>, CoreError> + Send + Sync>;
+
+/// A law registered at run time (a law written in Python): its key,
+/// description, and builder.
+#[derive(Clone)]
+pub struct RuntimeLaw {
+    /// Key scenes name in `[laws.NAME] type = "KEY"`.
+    pub key: String,
+    /// One-line description.
+    pub description: String,
+    /// Builder from the scene's parameter table (without `type`).
+    pub build: RuntimeLawBuild,
+}
+
+static RUNTIME_LAWS: std::sync::RwLock<Vec<RuntimeLaw>> = std::sync::RwLock::new(Vec::new());
+
+/// Register (or replace) a law at run time. A key of a compiled-in law is
+/// refused: compiled laws cannot be shadowed.
+pub fn register_runtime_law(law: RuntimeLaw) -> Result<(), CoreError> {
+    if inventory::iter::<LawEntry>
+        .into_iter()
+        .any(|e| e.key == law.key)
+    {
+        return Err(CoreError::Invalid(format!(
+            "law `{}` is a built-in law; register the new law under another name",
+            law.key
+        )));
+    }
+    let mut laws = RUNTIME_LAWS.write().unwrap_or_else(|p| p.into_inner());
+    laws.retain(|l| l.key != law.key);
+    laws.push(law);
+    Ok(())
+}
+
+/// Remove a law registered at run time; true when it was there.
+pub fn unregister_runtime_law(key: &str) -> bool {
+    let mut laws = RUNTIME_LAWS.write().unwrap_or_else(|p| p.into_inner());
+    let n = laws.len();
+    laws.retain(|l| l.key != key);
+    laws.len() != n
+}
+
+/// The laws registered at run time, by key.
+pub fn runtime_laws() -> Vec<RuntimeLaw> {
+    let mut v = RUNTIME_LAWS
+        .read()
+        .unwrap_or_else(|p| p.into_inner())
+        .clone();
+    v.sort_by(|a, b| a.key.cmp(&b.key));
+    v
+}
+
+/// Build the law `key` (compiled in, or registered at run time) from its
+/// parameters; an unknown key lists every valid one.
+pub fn build_law(key: &str, params: &toml::Table) -> Result<Arc<dyn InterfaceLaw>, CoreError> {
+    if let Some(l) = runtime_laws().into_iter().find(|l| l.key == key) {
+        return (l.build)(params);
+    }
+    match find::<LawEntry>(key) {
+        Ok(e) => (e.build)(params),
+        Err(CoreError::UnknownKey { kind, key, valid }) => {
+            let mut all: Vec<String> = valid.split(", ").map(str::to_string).collect();
+            all.extend(runtime_laws().into_iter().map(|l| l.key));
+            all.sort();
+            Err(CoreError::UnknownKey {
+                kind,
+                key,
+                valid: all.join(", "),
+            })
+        }
+        Err(e) => Err(e),
+    }
+}
+
 /// Registry entry of a failure criterion.
 pub struct CriterionEntry {
     pub key: &'static str,

@@ -39,6 +39,7 @@ fn bench(c: &mut Criterion) {
             disp: &u,
             state_committed: &[],
             step: StepInfo::default(),
+            law_responses: None,
         };
         group.bench_function(name, |b| {
             b.iter(|| {

@@ -75,6 +75,7 @@ fn ctx<'a>(coords: &'a [[f64; 3]], disp: &'a [f64]) -> ElementContext<'a> {
         disp,
         state_committed: &[],
         step: StepInfo::default(),
+        law_responses: None,
     }
 }
 

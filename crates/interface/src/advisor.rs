@@ -121,6 +121,7 @@ pub fn penalty_advice(
                 disp: &disp,
                 state_committed: &state,
                 step: StepInfo::default(),
+                law_responses: None,
             })
             .map_err(|source| CoreError::Element {
                 block: ib.name.clone(),
@@ -158,6 +159,7 @@ pub fn penalty_advice(
                     disp: &disp,
                     state_committed: &[],
                     step: StepInfo::default(),
+                    law_responses: None,
                 },
                 &mut state,
                 &mut f,

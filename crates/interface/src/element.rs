@@ -64,7 +64,7 @@
 //! [`InterfaceLaw::output_names`] (e.g. `damage`, `dissipated_energy`).
 
 use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
-use junta_core::law::{InterfaceLaw, LawContext};
+use junta_core::law::{InterfaceLaw, LawContext, LawResponse};
 use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
 use junta_core::topology::CellShape;
 use junta_core::CoreError;
@@ -240,7 +240,69 @@ impl InterfaceElement {
         }
         [0, 1, 2].map(|i| f.e[i][0] * g[0] + f.e[i][1] * g[1] + f.e[i][2] * g[2])
     }
+    /// The law's response at point `q` (frame `fr`, shape functions `n`),
+    /// its trial state into `trial`.
+    fn evaluate_point(
+        &self,
+        ctx: &ElementContext<'_>,
+        q: usize,
+        fr: &Frame,
+        n: &[f64; 9],
+        trial: &mut [f64],
+    ) -> Result<LawResponse, ElementError> {
+        let sl = self.law.state_len();
+        self.law
+            .evaluate(
+                &LawContext {
+                    jump: self.jump(fr, n, ctx.disp),
+                    state_committed: &ctx.state_committed[q * sl..(q + 1) * sl],
+                    step: ctx.step,
+                },
+                trial,
+            )
+            .map_err(|e| ElementError::Law {
+                point: q,
+                message: e.to_string(),
+            })
+    }
+
+    /// The responses of a batched law at every point: the assembler's
+    /// (block evaluated at once; trial states already written), or else
+    /// this element's points evaluated in one batch into `own` (trial
+    /// states into `trial`). `None` for a law evaluated point by point.
+    fn batch_responses<'b>(
+        &self,
+        ctx: &ElementContext<'b>,
+        trial: &mut [f64],
+        own: &'b mut [LawResponse; MAX_POINTS],
+    ) -> Result<Option<&'b [LawResponse]>, ElementError> {
+        if let Some(rs) = ctx.law_responses {
+            return Ok(Some(rs));
+        }
+        if !self.law.is_batched() {
+            return Ok(None);
+        }
+        let np = self.points.len();
+        let mut jumps = [[0.0; 3]; MAX_POINTS];
+        self.jumps_into(ctx, &mut jumps[..np])?;
+        self.law
+            .evaluate_batch(
+                &jumps[..np],
+                ctx.state_committed,
+                ctx.step,
+                trial,
+                &mut own[..np],
+            )
+            .map_err(|e| ElementError::Law {
+                point: 0,
+                message: e.to_string(),
+            })?;
+        Ok(Some(&own[..np]))
+    }
 }
+
+/// Most integration points of an interface element (INTER18: 9).
+const MAX_POINTS: usize = 16;
 
 impl Element for InterfaceElement {
     fn key(&self) -> &'static str {
@@ -282,23 +344,16 @@ impl Element for InterfaceElement {
         let sl = self.law.state_len();
         let symmetric = self.law.tangent_kind() != junta_core::MatrixKind::General;
         let mut n = [0.0; 9];
+        let mut own = [LawResponse::default(); MAX_POINTS];
+        let batch = self.batch_responses(ctx, state_trial, &mut own)?;
         for q in 0..self.points.len() {
             let fr = self.frame(ctx.coords, q, &mut n)?;
-            let jump = self.jump(&fr, &n, ctx.disp);
-            let r = self
-                .law
-                .evaluate(
-                    &LawContext {
-                        jump,
-                        state_committed: &ctx.state_committed[q * sl..(q + 1) * sl],
-                        step: ctx.step,
-                    },
-                    &mut state_trial[q * sl..(q + 1) * sl],
-                )
-                .map_err(|e| ElementError::Law {
-                    point: q,
-                    message: e.to_string(),
-                })?;
+            let r = match batch {
+                Some(rs) => rs[q],
+                None => {
+                    self.evaluate_point(ctx, q, &fr, &n, &mut state_trial[q * sl..(q + 1) * sl])?
+                }
+            };
             let da = fr.jac * self.weights[q];
             let e = &fr.e;
             // global traction t_g = theta t
@@ -369,6 +424,23 @@ impl Element for InterfaceElement {
         Ok(())
     }
 
+    fn batch_law(&self) -> Option<&dyn InterfaceLaw> {
+        self.law.is_batched().then_some(&*self.law)
+    }
+
+    fn jumps_into(
+        &self,
+        ctx: &ElementContext<'_>,
+        out: &mut [[f64; 3]],
+    ) -> Result<(), ElementError> {
+        let mut n = [0.0; 9];
+        for (q, j) in out.iter_mut().enumerate().take(self.points.len()) {
+            let fr = self.frame(ctx.coords, q, &mut n)?;
+            *j = self.jump(&fr, &n, ctx.disp);
+        }
+        Ok(())
+    }
+
     fn check_geometry(&self, coords: &[[f64; 3]]) -> Result<(), ElementError> {
         let mut n = [0.0; 9];
         for q in 0..self.points.len() {
@@ -382,24 +454,17 @@ impl Element for InterfaceElement {
         let mut trial = vec![0.0; sl];
         let mut n = [0.0; 9];
         let mut out = Vec::with_capacity(self.points.len());
+        let mut own = [LawResponse::default(); MAX_POINTS];
+        let mut trial_all = vec![0.0; sl * self.points.len()];
+        let batch = self.batch_responses(ctx, &mut trial_all, &mut own)?;
         for q in 0..self.points.len() {
             let fr = self.frame(ctx.coords, q, &mut n)?;
             let jump = self.jump(&fr, &n, ctx.disp);
             let committed = &ctx.state_committed[q * sl..(q + 1) * sl];
-            let r = self
-                .law
-                .evaluate(
-                    &LawContext {
-                        jump,
-                        state_committed: committed,
-                        step: ctx.step,
-                    },
-                    &mut trial,
-                )
-                .map_err(|e| ElementError::Law {
-                    point: q,
-                    message: e.to_string(),
-                })?;
+            let r = match batch {
+                Some(rs) => rs[q],
+                None => self.evaluate_point(ctx, q, &fr, &n, &mut trial)?,
+            };
             let names = self.law.output_names();
             let mut law_out = [0.0; 16];
             let nl = names.len().min(law_out.len());

@@ -563,6 +563,7 @@ fn inter8_top_face_pulled_uniformly() {
                     delta_load_factor: 0.0,
                     secant: false,
                 },
+                law_responses: None,
             },
             &mut trial,
             &mut f,

@@ -228,6 +228,7 @@ fn ctx<'a>(coords: &'a [V3], disp: &'a [f64], state: &'a [f64]) -> ElementContex
         disp,
         state_committed: state,
         step: Default::default(),
+        law_responses: None,
     }
 }
 

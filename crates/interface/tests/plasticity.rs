@@ -532,6 +532,7 @@ fn element_and_assembly_keep_the_nonsymmetric_friction_tangent() {
                 disp: u,
                 state_committed: &state,
                 step: StepInfo::default(),
+                law_responses: None,
             },
             &mut trial,
             &mut f,

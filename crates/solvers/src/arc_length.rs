@@ -428,6 +428,7 @@ impl Coupling {
                 disp: &self.disp,
                 state_committed: &state.committed[r],
                 step,
+                law_responses: None,
             };
             el.compute(&ctx, &mut self.trial, &mut self.fbuf, Some(&mut self.kbuf))
                 .map_err(|source| CoreError::Element {

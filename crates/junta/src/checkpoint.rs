@@ -1,12 +1,70 @@
-//! What a checkpoint must prove before a restart continues it: the inputs
-//! are the ones the run started from (a hash of the scene and of every file
-//! it reads, with the scene's text to name the keys that changed), the run
-//! has not already finished, and the driver's fields are in range.
+//! The restart point of an incremental run (`checkpoint.json`) and what it
+//! must prove before a restart continues it: the inputs are the ones the
+//! run started from (a hash of the scene and of every file it reads, with
+//! the scene's text to name the keys that changed), the run has not
+//! already finished, and the driver's fields are in range.
 
-use crate::nonlinear::RestartFile;
-use anyhow::{bail, Result};
+use crate::error::{bail, Context, Result};
+use junta_solvers::newton::Checkpoint;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
+
+/// What `checkpoint.json` holds.
+#[derive(Debug, Serialize, Deserialize)]
+pub struct RestartFile {
+    /// The scene that was run.
+    pub input: PathBuf,
+    /// The driver's restart point.
+    pub checkpoint: Checkpoint,
+    /// First failure so far, if any.
+    pub first_failure: Option<FirstFailure>,
+    /// Frames written so far `(load factor, file)`.
+    pub frames: Vec<(f64, String)>,
+    /// The run's `--solver KEY=VALUE` overrides (applied again on restart).
+    #[serde(default)]
+    pub solver_overrides: Vec<String>,
+    /// Hashes of the scene and every file it reads (a restart refuses
+    /// edited inputs).
+    #[serde(default)]
+    pub inputs: Vec<InputHash>,
+    /// The scene's text, to name the keys an edit changed.
+    #[serde(default)]
+    pub scene_text: Option<String>,
+    /// The status of a run that ended for good (end of the program, or
+    /// every interface point failed): a restart has nothing to do.
+    #[serde(default)]
+    pub finished: Option<String>,
+}
+
+/// When the first interface point failed.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct FirstFailure {
+    pub increment: usize,
+    pub load_factor: f64,
+    pub reaction: Option<f64>,
+    pub displacement: Option<f64>,
+}
+
+/// Write `path` atomically (temporary file, then rename).
+pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let tmp = path.with_extension("tmp");
+    std::fs::write(&tmp, bytes).with_context(|| format!("cannot write {}", tmp.display()))?;
+    std::fs::rename(&tmp, path).with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// Read `DIR/checkpoint.json`.
+pub fn read_restart(dir: &Path) -> Result<RestartFile> {
+    let path = dir.join("checkpoint.json");
+    let text = std::fs::read_to_string(&path).with_context(|| {
+        format!(
+            "cannot read {} (is {} the output directory of an incremental run?)",
+            path.display(),
+            dir.display()
+        )
+    })?;
+    serde_json::from_str(&text)
+        .with_context(|| format!("{}: not a Junta checkpoint", path.display()))
+}
 
 /// One input file of a run and its hash.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -19,8 +19,8 @@
 //! `control.svg` (the curves, the scene's reference curve, the stop points)
 //! and each run's own directory.
 
-use crate::{plot, run, scene};
-use anyhow::{anyhow, bail, Context, Result};
+use crate::error::{bail, err, Context, Result};
+use crate::{plot, scene};
 use std::path::{Path, PathBuf};
 
 /// One method's run.
@@ -37,7 +37,7 @@ pub struct ControlRun {
 }
 
 impl ControlRun {
-    fn peak(&self) -> Option<(f64, f64)> {
+    pub fn peak(&self) -> Option<(f64, f64)> {
         self.points
             .iter()
             .map(|p| (p.0, p.1))
@@ -78,10 +78,10 @@ fn run_variant(table: &toml::Table, dir: &Path, method: &'static str) -> Result<
         .with_context(|| format!("cannot write {}", file.display()))?;
     let out = dir.join(method);
     let _ = std::fs::remove_dir_all(&out);
-    eprintln!("sweep control: {method} ...");
-    let error = run::run(&file, Some(&out), false, None, &[])
-        .err()
-        .map(|e| format!("{e:#}"));
+    tracing::info!("sweep control: {method} ...");
+    let error = crate::Simulation::from_file(&file)
+        .and_then(|sim| sim.run(&crate::RunSettings::into_dir(&out), &mut []))
+        .map_or_else(|e| Some(e.chain()), |r| r.failure.map(|e| e.chain()));
     let status = std::fs::read_to_string(out.join("summary.json"))
         .ok()
         .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
@@ -106,7 +106,7 @@ fn analysis(t: &mut toml::Table) -> &mut toml::Table {
 /// Run the three methods on `input` into `out`.
 pub fn sweep_control(input: &Path, out: &Path) -> Result<Vec<ControlRun>> {
     // validate as a scene first (clear errors with the file and key)
-    let sf = scene::SceneFile::read(input)?;
+    let sf = crate::validate::read_scene(input)?;
     if sf.scene.analysis.kind != "static" {
         bail!(
             "{}: key `analysis.type`: `junta sweep control` needs an incremental scene (\"static\")",
@@ -121,9 +121,7 @@ pub fn sweep_control(input: &Path, out: &Path) -> Result<Vec<ControlRun>> {
     };
     let text = std::fs::read_to_string(input)
         .with_context(|| format!("cannot read {}", input.display()))?;
-    let mut base: toml::Table = text
-        .parse()
-        .map_err(|e| anyhow!("{}: {e}", input.display()))?;
+    let mut base: toml::Table = text.parse().map_err(|e| err!("{}: {e}", input.display()))?;
     // files named relative to the scene (mesh, reference curve) must keep
     // working from the output directory
     let scene_dir = std::fs::canonicalize(input.parent().unwrap_or(Path::new(".")))
@@ -328,7 +326,7 @@ fn write_outputs(
     }
     if let Some(rf) = &curve.reference {
         let path = sf.path.parent().unwrap_or(Path::new(".")).join(&rf.file);
-        if let Ok(pts) = crate::nonlinear::read_reference_points(&path) {
+        if let Ok(pts) = crate::curve::read_reference_points(&path) {
             series.push(plot::Series {
                 name: rf.label.clone(),
                 points: pts,
@@ -355,24 +353,4 @@ fn write_outputs(
             vlines: vec![],
         }],
     )
-}
-
-/// Print the per-method table.
-pub fn report(runs: &[ControlRun]) {
-    println!(
-        "{:<13} {:>10} {:>13} {:>13}  status",
-        "method", "increments", "peak", "last"
-    );
-    for r in runs {
-        println!(
-            "{:<13} {:>10} {:>13} {:>13}  {}",
-            r.method,
-            r.points.len(),
-            r.peak().map_or("-".into(), |p| format!("{:.4e}", p.1)),
-            r.points
-                .last()
-                .map_or("-".into(), |p| format!("({:.3e}, {:.3e})", p.0, p.1)),
-            r.status
-        );
-    }
 }

@@ -40,7 +40,7 @@
 //! material), and interface elements in the set, are noted and not
 //! written. The same step rules as `*NODE PRINT` apply.
 
-use anyhow::{anyhow, Context, Result};
+use crate::error::{err, Context, Result};
 use junta_core::mesh::inp::{InpElPrint, InpNodePrint};
 use junta_core::state::StateStore;
 use junta_core::Model;
@@ -234,7 +234,7 @@ fn el_rows(
 ) -> Result<()> {
     for p in active(prints, |p| p.step, step) {
         let Some((name, members)) = named(&model.mesh.element_sets, &p.elset) else {
-            return Err(anyhow!(
+            return Err(err!(
                 "line {}: *EL PRINT, ELSET={}: no such element set",
                 p.line,
                 p.elset
@@ -270,7 +270,7 @@ fn el_rows(
                 )?;
                 let at = |pt: &junta_core::PointOutput, key: &str| -> Result<Vec<f64>> {
                     pt.get(key).map(<[f64]>::to_vec).ok_or_else(|| {
-                        anyhow!("element {label} reports no {key} at its integration points")
+                        err!("element {label} reports no {key} at its integration points")
                     })
                 };
                 // per element: the integral over its volume
@@ -398,7 +398,7 @@ fn rows(
 ) -> Result<()> {
     for p in active(prints, |p| p.step, step) {
         let Some((name, nodes)) = named(&model.mesh.node_sets, &p.nset) else {
-            return Err(anyhow!(
+            return Err(err!(
                 "line {}: *NODE PRINT, NSET={}: no such node set",
                 p.line,
                 p.nset

@@ -12,7 +12,7 @@
 //! * `layout.csv`: per equation its node, component (0..2), body and
 //!   coordinates.
 
-use anyhow::{Context, Result};
+use crate::error::{Context, Result};
 use junta_core::element::StepInfo;
 use junta_core::Model;
 use std::io::Write;

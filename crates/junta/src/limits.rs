@@ -3,7 +3,7 @@
 //! hundred million values fail at once with the estimate against what the
 //! machine has, naming the key.
 
-use anyhow::{bail, Result};
+use crate::error::{bail, Result};
 use junta_core::mesh::Mesh;
 
 /// Memory the machine can give (`MemAvailable` of `/proc/meminfo`, else

@@ -92,8 +92,8 @@
 //! increment fractions apply to each segment; `INC=n` counts the
 //! increments of all segments of the step.
 
+use crate::error::{bail, err, Result};
 use crate::scene::{AnalysisSpec, CurveSpec};
-use anyhow::{anyhow, bail, Result};
 use junta_core::mesh::inp::{
     read_inp, InpDeck, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening,
 };
@@ -156,7 +156,7 @@ pub fn solver_of_deck(
         }
         "ITERATIVE SCALING" | "ITERATIVE CHOLESKY" | "ITERATIVE" => "cg",
         _ => {
-            return Err(anyhow!(
+            return Err(err!(
                 "{at}: *STATIC, SOLVER={name}: unknown solver; valid: SPOOLES, PARDISO, PASTIX, ITERATIVE SCALING, ITERATIVE CHOLESKY"
             ))
         }
@@ -318,7 +318,7 @@ fn period(deck: &InpDeck, k: usize) -> f64 {
 pub fn build_model(path: &Path) -> Result<DeckModel> {
     let file = path.display().to_string();
     // *INCLUDE files are read in place, errors name the file they are in
-    let mut deck = read_inp(path).map_err(|e| anyhow!("{e}"))?;
+    let mut deck = read_inp(path).map_err(|e| err!("{e}"))?;
     if deck.mesh.nodes.is_empty() && deck.mesh.blocks.is_empty() {
         bail!("{file}: the deck is empty: no *NODE and no *ELEMENT");
     }
@@ -358,13 +358,13 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
             t
         };
         let mat = deck.material(&b.material).ok_or_else(|| {
-            anyhow!(
+            err!(
                 "{file}: elements of block `{}` have no material: add a *SOLID SECTION (or *COHESIVE SECTION) for their ELSET",
                 b.name
             )
         })?;
         let entry =
-            registry::find::<ElementEntry>(&b.element_type).map_err(|e| anyhow!("{file}: {e}"))?;
+            registry::find::<ElementEntry>(&b.element_type).map_err(|e| err!("{file}: {e}"))?;
         let mut build = ElementBuild {
             material: None,
             law: None,
@@ -374,14 +374,14 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         match (&mat.kind, b.shape.is_interface()) {
             (InpMaterialKind::Isotropic { e, nu }, false) => {
                 let m = registry::find::<MaterialEntry>("isotropic")?;
-                build.material = Some((m.build)(&table(&[("E", *e), ("nu", *nu)])).map_err(|e| anyhow!("{at}: {e}"))?);
+                build.material = Some((m.build)(&table(&[("E", *e), ("nu", *nu)])).map_err(|e| err!("{at}: {e}"))?);
             }
             (InpMaterialKind::EngineeringConstants(c), false) => {
                 let names = ["E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23"];
                 let pairs: Vec<(&str, f64)> = names.iter().copied().zip(c.iter().copied()).collect();
                 let m = registry::find::<MaterialEntry>("orthotropic")?;
                 build.material = Some(
-                    (m.build)(&with_axes(table(&pairs))).map_err(|e| anyhow!("{at}: {e}"))?,
+                    (m.build)(&with_axes(table(&pairs))).map_err(|e| err!("{at}: {e}"))?,
                 );
             }
             (InpMaterialKind::Anisotropic(d), false) => {
@@ -392,32 +392,31 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
                 );
                 let m = registry::find::<MaterialEntry>("anisotropic")?;
                 build.material =
-                    Some((m.build)(&with_axes(t)).map_err(|e| anyhow!("{at}: {e}"))?);
+                    Some((m.build)(&with_axes(t)).map_err(|e| err!("{at}: {e}"))?);
             }
             (InpMaterialKind::Traction(_), true) => {
                 let thickness = section_thickness(&deck, mat, &file)?;
                 let (key, t) = cohesive_law_table(mat, thickness, period(&deck, 0), &file, &mut notes)?;
                 softening |= key != "linear_penalty";
                 let l = registry::find::<LawEntry>(key)?;
-                let law = (l.build)(&t).map_err(|e| anyhow!("{at}: law `{key}`: {e}"))?;
+                let law = (l.build)(&t).map_err(|e| err!("{at}: law `{key}`: {e}"))?;
                 notes.extend(law.warnings().into_iter().map(|w| format!("{at}: {w}")));
                 build.law = Some(law);
             }
             (_, true) => {
-                return Err(anyhow!(
+                return Err(err!(
                     "{at}: cohesive elements of block `{}` need *ELASTIC, TYPE=TRACTION",
                     b.name
                 ))
             }
             (_, false) => {
-                return Err(anyhow!(
+                return Err(err!(
                     "{at}: solid elements of block `{}` need *ELASTIC (ISOTROPIC, ENGINEERING CONSTANTS, ORTHO or ANISO)",
                     b.name
                 ))
             }
         }
-        elements
-            .push((entry.build)(&build).map_err(|e| anyhow!("{file}: block `{}`: {e}", b.name))?);
+        elements.push((entry.build)(&build).map_err(|e| err!("{file}: block `{}`: {e}", b.name))?);
     }
     let mut solver = None;
     for st in &deck.steps {
@@ -426,7 +425,7 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
                 let at = format!("{file}:{}", p.line);
                 let key = solver_of_deck(name, softening, &at, &mut notes)?;
                 if solver.as_ref().is_some_and(|k| k != &key) {
-                    return Err(anyhow!(
+                    return Err(err!(
                         "{at}: *STATIC, SOLVER={name} differs from an earlier step's solver; Junta uses one back end per run"
                     ));
                 }
@@ -554,19 +553,17 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
                 .and_then(|b| labels.get(&(b, element)));
             match label {
                 Some(label) => {
-                    anyhow!("{file}: element {label} (*ELEMENT label) of ELSET `{block}`: {source}")
+                    err!("{file}: element {label} (*ELEMENT label) of ELSET `{block}`: {source}")
                 }
-                None => anyhow!(
+                None => err!(
                     "{file}: element {} of block `{block}`: {source}",
                     element + 1
                 ),
             }
         }
-        e => anyhow!("{file}: {e}"),
+        e => err!("{file}: {e}"),
     })?;
-    model
-        .add_equations(&equations)
-        .map_err(|e| anyhow!("{e}"))?;
+    model.add_equations(&equations).map_err(|e| err!("{e}"))?;
     if !equations.is_empty() {
         notes.push(format!(
             "{} linear equations (*EQUATION) eliminated: {} dependent dofs",
@@ -727,7 +724,7 @@ fn incremental_program(
     let mut lambda = 0.0;
     for (k, s) in steps.iter().enumerate() {
         let not_proportional = || {
-            anyhow!(
+            err!(
                 "{file}:{}: {}: its loads and prescribed displacements are not a multiple of the first step's; Junta's incremental runs scale one load pattern over the steps (a proportional program), so multi-step softening decks must keep the same loaded dofs with proportional values (or be split into several decks)",
                 s.line,
                 s.name
@@ -993,14 +990,14 @@ fn add_distributed_loads(
         let c = scale(d.amplitude, d.step);
         let at = |err: junta_core::CoreError| {
             let kw = if d.label == "P" { "DSLOAD" } else { "DLOAD" };
-            anyhow!("{file}:{}: *{kw}: {err}", d.line)
+            err!("{file}:{}: *{kw}: {err}", d.line)
         };
         let elements: Vec<ElementRef> = members.iter().map(|m| m.0).collect();
         let density = || -> Result<f64> {
             let b = &deck.mesh.blocks[block];
             match deck.material(&b.material).and_then(|m| m.density) {
                 Some(rho) => Ok(rho),
-                None => Err(anyhow!(
+                None => Err(err!(
                     "{file}:{}: *DLOAD: {} needs the density of material `{}` (element {}): add *DENSITY to it",
                     d.line,
                     d.label,
@@ -1120,7 +1117,7 @@ fn deck_steps_scaled(
                     let value = bc.value * scale(bc.amplitude, bc.step);
                     if let Some(&(v, s, line)) = bcs.get(&d) {
                         if s == bc.step && v != value {
-                            return Err(anyhow!(
+                            return Err(err!(
                                 "{file}:{}: *BOUNDARY: node {} dof {dof} is given {} here and {v} at line {line} of the same {}",
                                 bc.line,
                                 deck.mesh.node_labels.get(n).copied().unwrap_or(n + 1),
@@ -1214,7 +1211,7 @@ mod tests {
     }
 
     fn law_of(text: &str) -> Result<(&'static str, toml::Table, Vec<String>)> {
-        let deck = parse_inp(text, "t.inp").map_err(|e| anyhow!("{e}"))?;
+        let deck = parse_inp(text, "t.inp").map_err(|e| err!("{e}"))?;
         let mat = deck.material("CZ").unwrap();
         let mut notes = Vec::new();
         let t = section_thickness(&deck, mat, "t.inp")?;
@@ -1319,7 +1316,7 @@ mod tests {
             )
         };
         let program = |steps: &str| -> Result<DeckIncremental> {
-            let deck = parse_inp(&deck_text(steps), "t.inp").map_err(|e| anyhow!("{e}"))?;
+            let deck = parse_inp(&deck_text(steps), "t.inp").map_err(|e| err!("{e}"))?;
             let s = deck_steps(&deck, "t.inp")?;
             incremental_program(&deck, &s, "t.inp", &mut Vec::new())
         };
@@ -1389,7 +1386,7 @@ mod tests {
             )
         };
         let program = |steps: &str| -> Result<DeckIncremental> {
-            let deck = parse_inp(&deck_text(steps), "t.inp").map_err(|e| anyhow!("{e}"))?;
+            let deck = parse_inp(&deck_text(steps), "t.inp").map_err(|e| err!("{e}"))?;
             let s = deck_steps(&deck, "t.inp")?;
             incremental_program(&deck, &s, "t.inp", &mut Vec::new())
         };

@@ -18,7 +18,7 @@
 //! coincident triangles and no volume; the mid-surface triangle is the
 //! analogue of the quadrilaterals written for INTER8..18.
 
-use anyhow::{Context, Result};
+use crate::error::{Context, Result};
 use junta_core::element::{ElementContext, StepInfo};
 use junta_core::state::StateStore;
 use junta_core::Model;
@@ -116,6 +116,7 @@ pub fn element_points(
         disp: &disp,
         state_committed: &state.committed[state.range(bi, e)],
         step,
+        law_responses: None,
     };
     model.elements[bi]
         .point_outputs(&ctx)

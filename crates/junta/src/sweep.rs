@@ -14,8 +14,8 @@
 //! `sweep.csv` and `sweep.svg`; the chart also draws the paper's error
 //! estimate (eq. 53) and the advisor's optimum d_op (eq. 55).
 
+use crate::error::{bail, err, Context, Result};
 use crate::{output, plot, scene};
-use anyhow::{anyhow, bail, Context, Result};
 use junta_core::registry::{self, SolverEntry};
 use junta_solvers::linear_static::solve_linear_static;
 use std::fmt::Write as _;
@@ -43,7 +43,7 @@ pub struct SweepRow {
 }
 
 /// The back ends of the sweep: label, registry key, parameters.
-const SWEEP_SOLVERS: [(&str, &str, &str); 4] = [
+pub const SWEEP_SOLVERS: [(&str, &str, &str); 4] = [
     ("cholesky", "cholesky", "precision = \"double\""),
     (
         "cholesky_mixed",
@@ -94,7 +94,7 @@ pub fn sweep_penalty(
             to.log10() - from.log10()
         );
     }
-    let mut sf = scene::SceneFile::read(input)?;
+    let mut sf = crate::validate::read_scene(input)?;
     if set_penalty(&mut sf, from) == 0 {
         bail!(
             "{}: the sweep changes the `d` of `linear_penalty` laws, and the scene has none in [laws]",
@@ -113,7 +113,7 @@ pub fn sweep_penalty(
         .blocks
         .iter()
         .position(|b| b.shape.is_interface())
-        .ok_or_else(|| anyhow!("{}: the scene has no interface", input.display()))?;
+        .ok_or_else(|| err!("{}: the scene has no interface", input.display()))?;
     let advice = junta_interface::penalty_advice(&model0, advice_block, None)?;
     drop(model0);
     let mut rows = Vec::new();
@@ -322,87 +322,6 @@ pub fn sweep_penalty(
     Ok(rows)
 }
 
-/// Print the sweep's table and its findings.
-pub fn report(rows: &[SweepRow]) {
-    println!(
-        "{:>10} {:>9} {:>8} {:>11} {:>11} {:>9} {:>6}  note",
-        "d", "solver", "status", "rel.error", "|delta_3|", "seconds", "iters"
-    );
-    for r in rows {
-        let status = if !r.ok {
-            "FAILED"
-        } else if r.warnings.is_empty() {
-            "ok"
-        } else {
-            "warning"
-        };
-        let note = if r.ok {
-            r.warnings.first().cloned().unwrap_or_default()
-        } else {
-            r.message.clone()
-        };
-        println!(
-            "{:>10.2e} {:>9} {:>8} {:>11} {:>11} {:>9.2e} {:>6}  {}",
-            r.d,
-            r.solver,
-            status,
-            r.rel_error
-                .map(|v| format!("{v:.2e}"))
-                .unwrap_or("-".into()),
-            r.max_normal_jump
-                .map(|v| format!("{v:.2e}"))
-                .unwrap_or("-".into()),
-            r.seconds,
-            r.iterations,
-            note.chars().take(100).collect::<String>()
-        );
-    }
-    for (solver, _, _) in SWEEP_SOLVERS {
-        let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.solver == solver).collect();
-        if let Some(first) = mine.iter().find(|r| !r.notes.is_empty()) {
-            // the mixed-precision back end notes its fallbacks; the others
-            // note what they built (e.g. the AMG hierarchy)
-            let what = if solver == "cholesky_mixed" {
-                "falls back to double precision from"
-            } else {
-                "notes from"
-            };
-            println!(
-                "{solver}: {what} d = {:.2e}: {}",
-                first.d,
-                first.notes.join("; ")
-            );
-        }
-        if let Some(best) = mine
-            .iter()
-            .filter(|r| r.ok && r.rel_error.is_some())
-            .min_by(|a, b| a.rel_error.partial_cmp(&b.rel_error).unwrap())
-        {
-            println!(
-                "{solver}: best relative error {:.2e} at d = {:.2e}",
-                best.rel_error.unwrap(),
-                best.d
-            );
-        }
-        if let Some(first) = mine.iter().find(|r| !r.ok || !r.warnings.is_empty()) {
-            println!(
-                "{solver}: {} from d = {:.2e}: {}",
-                if first.ok {
-                    "warns (lost digits)"
-                } else {
-                    "fails"
-                },
-                first.d,
-                if first.ok {
-                    first.warnings.join("; ")
-                } else {
-                    first.message.clone()
-                }
-            );
-        }
-    }
-}
-
 /// Normal-traction profile along one axis for one (d, rule) run.
 #[derive(Debug, Clone)]
 pub struct Profile {
@@ -455,7 +374,7 @@ pub fn sweep_integration(
     axis: usize,
     out: &Path,
 ) -> Result<Vec<Profile>> {
-    let mut sf = scene::SceneFile::read(input)?;
+    let mut sf = crate::validate::read_scene(input)?;
     if sf.scene.interface.is_empty() {
         bail!("{}: the scene has no [[interface]]", input.display());
     }
@@ -481,7 +400,7 @@ pub fn sweep_integration(
             let model = scene::build_model(&sf)?;
             let (mut key, table) = scene::solver_table(&sf);
             let mut notes = Vec::new();
-            let mut solver = crate::run::resolve_solver(
+            let mut solver = crate::prepare::resolve_solver(
                 &mut key,
                 &table,
                 &model,

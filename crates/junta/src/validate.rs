@@ -3,9 +3,16 @@
 //! components, probe / reference / curve sets), so that both refuse the
 //! same inputs before solving, with the key in the message.
 
-use crate::run::Prepared;
+use crate::error::{bail, Result};
 use crate::scene::{self, SceneFile};
-use anyhow::{bail, Result};
+use std::path::Path;
+
+/// Read a scene file and check its numbers (see [`scene()`]).
+pub fn read_scene(path: &Path) -> Result<SceneFile> {
+    let sf = SceneFile::read(path)?;
+    scene(&sf)?;
+    Ok(sf)
+}
 
 fn finite(file: &str, key: &str, v: &[f64]) -> Result<()> {
     if let Some(x) = v.iter().find(|x| !x.is_finite()) {
@@ -155,41 +162,6 @@ pub fn analysis(file: &str, a: &scene::AnalysisSpec) -> Result<()> {
             "{file}: key `analysis.newton.growth`: {} is not valid; it must lie in [1, 100]",
             n.growth
         );
-    }
-    Ok(())
-}
-
-/// What needs the model: probe, reference and curve sets, curve components.
-pub fn prepared(file: &str, p: &Prepared) -> Result<()> {
-    analysis(file, &p.analysis)?;
-    let mesh = &p.model.mesh;
-    for s in &p.probes {
-        mesh.node_set(s)
-            .map_err(|e| anyhow::anyhow!("{file}: key `output.probes`: {e}"))?;
-    }
-    if let Some((r, _)) = &p.reference {
-        mesh.node_set(&r.set)
-            .map_err(|e| anyhow::anyhow!("{file}: key `reference.set`: {e}"))?;
-    }
-    if let Some(c) = &p.curve {
-        for (k, v) in [
-            ("reaction_component", &c.reaction_component),
-            ("point_component", &c.point_component),
-        ] {
-            if scene::component(v).is_none() {
-                bail!("{file}: key `output.curve.{k}`: `{v}` is not valid; use x, y or z");
-            }
-        }
-        for (k, v) in [
-            ("reaction_set", Some(&c.reaction_set)),
-            ("point_set", Some(&c.point_set)),
-            ("relative_to", c.relative_to.as_ref()),
-        ] {
-            if let Some(v) = v {
-                mesh.node_set(v)
-                    .map_err(|e| anyhow::anyhow!("{file}: key `output.curve.{k}`: {e}"))?;
-            }
-        }
     }
     Ok(())
 }

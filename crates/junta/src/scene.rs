@@ -5,7 +5,7 @@
 //! the line where we know it, and what would be valid. See the README for
 //! an annotated example.
 
-use anyhow::{anyhow, bail, Context, Result};
+use crate::error::{bail, err, Context, Result};
 use junta_core::mesh::generate::{box_mesh, BoxSpec};
 use junta_core::mesh::Mesh;
 use junta_core::registry::{self, ElementBuild, ElementEntry, Entry, LawEntry, MaterialEntry};
@@ -190,7 +190,7 @@ impl ReferenceSpec {
     /// Component index 0..3, or an error naming the key.
     pub fn component_index(&self, file: &Path) -> Result<usize> {
         component(&self.component).ok_or_else(|| {
-            anyhow!(
+            err!(
                 "{}: key `reference.component`: `{}` is not valid; use x, y or z",
                 file.display(),
                 self.component
@@ -437,13 +437,12 @@ impl SceneFile {
     /// Parse scene text (the path is used in messages and for relative files).
     pub fn parse(path: &Path, text: String) -> Result<Self> {
         let scene: Scene = toml::from_str(&text)
-            .map_err(|e| anyhow!("{}: {}", path.display(), e.to_string().trim_end()))?;
+            .map_err(|e| err!("{}: {}", path.display(), e.to_string().trim_end()))?;
         let sf = SceneFile {
             path: path.to_path_buf(),
             text,
             scene,
         };
-        crate::validate::scene(&sf)?;
         Ok(sf)
     }
 
@@ -509,10 +508,37 @@ where
             }
         };
         let entry = registry::find::<E>(&key)
-            .map_err(|e| anyhow!("{}: key `{section}.{name}.type`: {e}", sf.path.display()))?;
+            .map_err(|e| err!("{}: key `{section}.{name}.type`: {e}", sf.path.display()))?;
         let m = build(entry, &t)
-            .map_err(|e| anyhow!("{}: key `{section}.{name}`: {e}", sf.path.display()))?;
+            .map_err(|e| err!("{}: key `{section}.{name}`: {e}", sf.path.display()))?;
         out.insert(name.clone(), m);
+    }
+    Ok(out)
+}
+
+/// The `[laws.NAME]` of a scene: compiled-in laws and laws registered at
+/// run time (a law written in Python) alike.
+fn build_laws(sf: &SceneFile) -> Result<BTreeMap<String, Arc<dyn InterfaceLaw>>> {
+    let file = sf.path.display();
+    let mut out = BTreeMap::new();
+    for (name, table) in &sf.scene.laws {
+        let mut t = table.clone();
+        let Some(toml::Value::String(key)) = t.remove("type") else {
+            let mut valid: Vec<String> = registry::entries::<LawEntry>()
+                .iter()
+                .map(|e| e.key().to_string())
+                .collect();
+            valid.extend(registry::runtime_laws().into_iter().map(|l| l.key));
+            bail!(
+                "{file}: key `laws.{name}.type` is missing or not a string; valid types: {}",
+                valid.join(", ")
+            )
+        };
+        let law = registry::build_law(&key, &t).map_err(|e| match e {
+            junta_core::CoreError::UnknownKey { .. } => err!("{file}: key `laws.{name}.type`: {e}"),
+            e => err!("{file}: key `laws.{name}`: {e}"),
+        })?;
+        out.insert(name.clone(), law);
     }
     Ok(out)
 }
@@ -541,7 +567,7 @@ fn generate_box(
         grading,
     } = geometry;
     let entry = registry::find::<ElementEntry>(element.get_ref())
-        .map_err(|e| anyhow!("{}: key `{key}.element`: {e}", sf.at(element.span())))?;
+        .map_err(|e| err!("{}: key `{key}.element`: {e}", sf.at(element.span())))?;
     if !entry.shape.is_solid() {
         bail!(
             "{}: key `{key}.element`: `{}` is not a solid element; the box generator makes h8, h8i, h20, h27, h20r, h27r, wedge6, wedge6r, wedge15",
@@ -582,7 +608,7 @@ fn generate_box(
         grading,
     };
     box_mesh(&spec, "solid", element.get_ref(), material.get_ref())
-        .map_err(|e| anyhow!("{}: key `{key}`: {e}", sf.at(element.span())))
+        .map_err(|e| err!("{}: key `{key}`: {e}", sf.at(element.span())))
 }
 
 fn mesh_diagonal(mesh: &Mesh) -> f64 {
@@ -628,7 +654,7 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
             allowed.join(", ")
         );
     }
-    let missing = |k: &str| anyhow!("{at}: key `mesh.{k}` is required with type = \"{kind}\"");
+    let missing = |k: &str| err!("{at}: key `mesh.{k}` is required with type = \"{kind}\"");
     let mut mesh = match kind {
         "box" => generate_box(
             sf,
@@ -684,7 +710,7 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
                 parts.push((b.name.clone(), part));
             }
             let mut mesh = junta_core::mesh::merge::merge(parts, 1e-9)
-                .map_err(|e| anyhow!("{at}: key `mesh.boxes`: {e}"))?;
+                .map_err(|e| err!("{at}: key `mesh.boxes`: {e}"))?;
             for (i, b) in m.boxes.iter().enumerate() {
                 if let Some(g) = &b.group {
                     if m.boxes.iter().any(|o| &o.name == g) {
@@ -701,20 +727,19 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
         }
         "gmsh" => {
             let p = sf.relative(m.file.as_ref().ok_or_else(|| missing("file"))?);
-            junta_core::mesh::gmsh::read_msh(&p)
-                .map_err(|e| anyhow!("{at}: key `mesh.file`: {e}"))?
+            junta_core::mesh::gmsh::read_msh(&p).map_err(|e| err!("{at}: key `mesh.file`: {e}"))?
         }
         _ => {
             let p = sf.relative(m.file.as_ref().ok_or_else(|| missing("file"))?);
             junta_core::mesh::inp::read_inp(&p)
-                .map_err(|e| anyhow!("{at}: key `mesh.file`: {e}"))?
+                .map_err(|e| err!("{at}: key `mesh.file`: {e}"))?
                 .mesh
         }
     };
     for (i, c) in sf.scene.crack.iter().enumerate() {
         let [a, b] = c.between.get_ref();
         let ins = junta_core::mesh::interface::insert_interface(&mut mesh, a, b, &c.name, "")
-            .map_err(|e| anyhow!("{}: key `crack[{i}].between`: {e}", sf.at(c.between.span())))?;
+            .map_err(|e| err!("{}: key `crack[{i}].between`: {e}", sf.at(c.between.span())))?;
         // keep the duplicated nodes, drop the elements: a traction-free cut
         mesh.element_sets.remove(&c.name);
         for &b in ins.blocks.iter().rev() {
@@ -758,7 +783,7 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
             f.law.get_ref(),
         )
         .map_err(|e| {
-            anyhow!(
+            err!(
                 "{}: key `interface[{i}].between`: {e}",
                 sf.at(f.between.span())
             )
@@ -772,7 +797,7 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
                 pc.law.get_ref(),
             )
             .map_err(|e| {
-                anyhow!(
+                err!(
                     "{}: key `interface[{i}].precrack.within`: {e}",
                     sf.at(pc.within.span())
                 )
@@ -780,7 +805,7 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
         }
         if let Some(w) = &f.within {
             keep_within(&mut mesh, &ins.blocks, &f.name, *w.get_ref())
-                .map_err(|e| anyhow!("{}: key `interface[{i}].within`: {e}", sf.at(w.span())))?;
+                .map_err(|e| err!("{}: key `interface[{i}].within`: {e}", sf.at(w.span())))?;
         }
     }
     Ok(mesh)
@@ -968,7 +993,7 @@ pub fn build_elements(
             .iter_mut()
             .find(|mb| mb.name == *b.name.get_ref())
             .ok_or_else(|| {
-                anyhow!(
+                err!(
                     "{}: key `blocks[{i}].name`: no block `{}` in the mesh; blocks: {}",
                     sf.at(b.name.span()),
                     b.name.get_ref(),
@@ -1019,7 +1044,7 @@ pub fn build_elements(
             ),
         };
         let entry = registry::find::<ElementEntry>(&block.element_type)
-            .map_err(|e| anyhow!("{where_}: {e}"))?;
+            .map_err(|e| err!("{where_}: {e}"))?;
         if entry.shape != block.shape {
             bail!(
                 "{where_}: element type `{}` needs {} cells but block `{}` has {} cells",
@@ -1032,7 +1057,7 @@ pub fn build_elements(
         let mut options = toml::Table::new();
         let (material, law) = if block.shape.is_interface() {
             let law = laws.get(&block.material).cloned().ok_or_else(|| {
-                anyhow!(
+                err!(
                     "{where_}: unknown law `{}`; laws defined in [laws]: {}",
                     block.material,
                     list_keys(laws)
@@ -1044,7 +1069,7 @@ pub fn build_elements(
             (None, Some(law))
         } else {
             let m = materials.get(&block.material).cloned().ok_or_else(|| {
-                anyhow!(
+                err!(
                     "{where_}: unknown material `{}`; materials defined in [materials]: {}",
                     block.material,
                     list_keys(materials)
@@ -1057,7 +1082,7 @@ pub fn build_elements(
             law,
             options: &options,
         })
-        .map_err(|e| anyhow!("{where_}: {e}"))?;
+        .map_err(|e| err!("{where_}: {e}"))?;
         out.push(el);
     }
     Ok(out)
@@ -1069,7 +1094,7 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
         build_plugins::<MaterialEntry, _>(sf, "materials", &sf.scene.materials, |e, t| {
             (e.build)(t)
         })?;
-    let laws = build_plugins::<LawEntry, _>(sf, "laws", &sf.scene.laws, |e, t| (e.build)(t))?;
+    let laws = build_laws(sf)?;
     let mut mesh = build_mesh(sf)?;
     let elements = build_elements(sf, &mut mesh, &materials, &laws)?;
     let mut constraints = Vec::new();
@@ -1078,7 +1103,7 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
         let set = bc.set.get_ref();
         let nodes = mesh
             .node_set(set)
-            .map_err(|e| anyhow!("{}: key `boundary[{i}].set`: {e}", sf.at(bc.set.span())))?;
+            .map_err(|e| err!("{}: key `boundary[{i}].set`: {e}", sf.at(bc.set.span())))?;
         let mut comps: Vec<(usize, f64)> = Vec::new();
         match &bc.fixed {
             Some(Fixed::Word(w)) if w == "all" => comps.extend([(0, 0.0), (1, 0.0), (2, 0.0)]),
@@ -1089,7 +1114,7 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
             Some(Fixed::List(l)) => {
                 for c in l {
                     let k = component(c).ok_or_else(|| {
-                        anyhow!(
+                        err!(
                             "{}: key `boundary[{i}].fixed`: component `{c}` is not valid; use x, y or z",
                             sf.at(bc.set.span())
                         )
@@ -1133,7 +1158,7 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
                 }
                 let nodes = mesh
                     .node_set(set.get_ref())
-                    .map_err(|e| anyhow!("{}: key `load[{i}].set`: {e}", sf.at(set.span())))?;
+                    .map_err(|e| err!("{}: key `load[{i}].set`: {e}", sf.at(set.span())))?;
                 let f = match (l.force, l.total_force) {
                     (Some(f), None) => f,
                     (None, Some(t)) if !nodes.is_empty() => t.map(|v| v / nodes.len() as f64),
@@ -1151,7 +1176,7 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
             (None, Some(fs)) => {
                 let faces = mesh
                     .face_set(fs.get_ref())
-                    .map_err(|e| anyhow!("{}: key `load[{i}].face_set`: {e}", sf.at(fs.span())))?
+                    .map_err(|e| err!("{}: key `load[{i}].face_set`: {e}", sf.at(fs.span())))?
                     .to_vec();
                 let load = match (l.pressure, l.traction, l.force.or(l.total_force)) {
                     (Some(p), None, None) => junta_elements::face_load::FaceLoad::Pressure(p),
@@ -1162,7 +1187,7 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
                     ),
                 };
                 junta_elements::face_load::add_face_load(&mesh, &faces, load, &mut f_ext)
-                    .map_err(|e| anyhow!("{}: key `load[{i}]`: {e}", sf.at(fs.span())))?;
+                    .map_err(|e| err!("{}: key `load[{i}]`: {e}", sf.at(fs.span())))?;
             }
             _ => bail!(
                 "{}: key `load[{i}]`: give exactly one of `set` (nodal force) or `face_set` (pressure, traction)",
@@ -1180,7 +1205,7 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
         crate::limits::model_bytes(&mesh),
     )?;
     Model::new(mesh, elements, &constraints, f_ext, reaction_sets)
-        .map_err(|e| anyhow!("{}: {e}", sf.path.display()))
+        .map_err(|e| err!("{}: {e}", sf.path.display()))
 }
 
 /// The solver table of the scene (`type` plus parameters), or the default.

@@ -2,7 +2,7 @@
 //! optional vertical marker lines. SVG needs no font files and opens in any
 //! browser.
 
-use anyhow::{anyhow, Result};
+use crate::error::{err, Result};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -84,7 +84,7 @@ where
         .flat_map(|s| s.points.iter().filter(|(x, y)| ok(*x, *y)).map(|(_, y)| *y));
     let (Some((x0, x1)), Some((y0, y1))) = (range(xs, p.log_x), range(ys, p.log_y)) else {
         area.titled(&format!("{} (no data)", p.title), ("sans-serif", 16))
-            .map_err(|e| anyhow!("plot: {e:?}"))?;
+            .map_err(|e| err!("plot: {e:?}"))?;
         return Ok(());
     };
     macro_rules! body {
@@ -97,12 +97,12 @@ where
                 .x_label_formatter(&|v| format!("{v:.1e}"))
                 .y_label_formatter(&|v| format!("{v:.1e}"))
                 .draw()
-                .map_err(|e| anyhow!("plot: {e:?}"))?;
+                .map_err(|e| err!("plot: {e:?}"))?;
             for (x, label) in &p.vlines {
                 let style = ShapeStyle::from(&BLACK).stroke_width(1);
                 chart
                     .draw_series(LineSeries::new(vec![(*x, y0), (*x, y1)], style))
-                    .map_err(|e| anyhow!("plot: {e:?}"))?
+                    .map_err(|e| err!("plot: {e:?}"))?
                     .label(label.as_str())
                     .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
             }
@@ -117,11 +117,11 @@ where
                 if !s.markers_only {
                     chart
                         .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
-                        .map_err(|e| anyhow!("plot: {e:?}"))?;
+                        .map_err(|e| err!("plot: {e:?}"))?;
                 }
                 chart
                     .draw_series(pts.iter().map(|&(x, y)| Circle::new((x, y), 3, c.filled())))
-                    .map_err(|e| anyhow!("plot: {e:?}"))?
+                    .map_err(|e| err!("plot: {e:?}"))?
                     .label(s.name.as_str())
                     .legend(move |(x, y)| Circle::new((x + 10, y), 4, c.filled()));
             }
@@ -131,7 +131,7 @@ where
                 .border_style(BLACK)
                 .position(SeriesLabelPosition::UpperRight)
                 .draw()
-                .map_err(|e| anyhow!("plot: {e:?}"))?;
+                .map_err(|e| err!("plot: {e:?}"))?;
         }};
     }
     let mut b = ChartBuilder::on(area);
@@ -142,16 +142,16 @@ where
     match (p.log_x, p.log_y) {
         (true, true) => body!(b
             .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
-            .map_err(|e| anyhow!("plot: {e:?}"))?),
+            .map_err(|e| err!("plot: {e:?}"))?),
         (true, false) => body!(b
             .build_cartesian_2d((x0..x1).log_scale(), y0..y1)
-            .map_err(|e| anyhow!("plot: {e:?}"))?),
+            .map_err(|e| err!("plot: {e:?}"))?),
         (false, true) => body!(b
             .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
-            .map_err(|e| anyhow!("plot: {e:?}"))?),
+            .map_err(|e| err!("plot: {e:?}"))?),
         (false, false) => body!(b
             .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(|e| anyhow!("plot: {e:?}"))?),
+            .map_err(|e| err!("plot: {e:?}"))?),
     }
     Ok(())
 }
@@ -160,11 +160,11 @@ where
 pub fn write_svg(path: &Path, panels: &[Panel]) -> Result<()> {
     let height = 360 * panels.len() as u32;
     let root = SVGBackend::new(path, (900, height)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| anyhow!("plot: {e:?}"))?;
+    root.fill(&WHITE).map_err(|e| err!("plot: {e:?}"))?;
     let areas = root.split_evenly((panels.len(), 1));
     for (a, p) in areas.iter().zip(panels) {
         draw_panel(a, p)?;
     }
     root.present()
-        .map_err(|e| anyhow!("cannot write chart {}: {e:?}", path.display()))
+        .map_err(|e| err!("cannot write chart {}: {e:?}", path.display()))
 }

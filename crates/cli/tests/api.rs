@@ -1,0 +1,260 @@
+//! The run API (`junta` crate) against the command line on the same
+//! inputs: the same curve, an observer's stop as a restart point, scene
+//! overrides as edits of the scene, results as typed values.
+
+mod common;
+use common::{junta, repo, run_ok};
+use junta::{
+    Flow, FnObserver, FrameCollector, Increment, Options, RunSettings, Simulation, Status,
+};
+use std::path::Path;
+
+/// curve.csv without the wall-clock column (`seconds`, column 9).
+fn curve_without_seconds(dir: &Path) -> Vec<String> {
+    std::fs::read_to_string(dir.join("curve.csv"))
+        .unwrap()
+        .lines()
+        .map(|l| {
+            let mut f: Vec<&str> = l.split(',').collect();
+            f.remove(9);
+            f.join(",")
+        })
+        .collect()
+}
+
+/// The DCB of the examples, through the API into a directory, writes the
+/// CLI's curve.csv to the last bit (wall time aside), and the typed curve
+/// holds the same numbers as the CSV text.
+#[test]
+fn dcb_through_the_api_writes_the_cli_curve_bit_for_bit() {
+    let scene = repo().join("examples/delamination/dcb.toml");
+    let cli = tempfile::tempdir().unwrap();
+    run_ok(&scene, cli.path());
+    let api = tempfile::tempdir().unwrap();
+    let results = Simulation::from_file(&scene)
+        .unwrap()
+        .run(&RunSettings::into_dir(api.path()), &mut [])
+        .unwrap();
+    assert_eq!(results.status, Status::Completed, "{}", results.status_line);
+    let (a, b) = (
+        curve_without_seconds(cli.path()),
+        curve_without_seconds(api.path()),
+    );
+    assert!(
+        a.len() > 20,
+        "the DCB converges many increments: {}",
+        a.len()
+    );
+    assert_eq!(a, b);
+    // typed columns = the CSV's numbers
+    let text = std::fs::read_to_string(cli.path().join("curve.csv")).unwrap();
+    let reactions: Vec<f64> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(3).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(results.curve.get("reaction").unwrap(), reactions.as_slice());
+    // the peak is the corrected-beam-theory one within the scene's own
+    // tolerance (BENCHMARKS.md section 4: 138.5 N)
+    let peak = reactions.iter().cloned().fold(0.0, f64::max);
+    assert!((peak - 138.5).abs() / 138.5 < 0.03, "peak {peak}");
+}
+
+/// An observer that stops at a load factor leaves a run directory that
+/// restarts to the same end as the uninterrupted run.
+#[test]
+fn observer_stop_leaves_a_restartable_run() {
+    let scene = repo().join("examples/paper/beam_peel.toml");
+    let whole = tempfile::tempdir().unwrap();
+    run_ok(&scene, whole.path());
+    let parts = tempfile::tempdir().unwrap();
+    let mut stop_at = FnObserver(|inc: &Increment<'_>| {
+        if inc.report.lambda >= 0.3 {
+            Flow::Stop("load factor 0.3 reached".into())
+        } else {
+            Flow::Continue
+        }
+    });
+    let first = Simulation::from_file(&scene)
+        .unwrap()
+        .run(&RunSettings::into_dir(parts.path()), &mut [&mut stop_at])
+        .unwrap();
+    assert_eq!(first.status, Status::Stopped);
+    assert_eq!(first.status_line, "stopped: load factor 0.3 reached");
+    let last = *first.curve.get("load_factor").unwrap().last().unwrap();
+    assert!(last >= 0.3 && last < 1.0, "stopped at {last}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(parts.path().join("summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(summary["status"], "stopped: load factor 0.3 reached");
+    let out = junta()
+        .args(["run", "-q", "--restart"])
+        .arg(parts.path())
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        curve_without_seconds(whole.path()),
+        curve_without_seconds(parts.path())
+    );
+}
+
+/// An override gives the result of the edited scene; a key the scene does
+/// not have is an error that names it.
+#[test]
+fn overrides_act_as_edits_of_the_scene() {
+    let scene = repo().join("examples/paper/beam_peel.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let table: toml::Table = toml::from_str(&text).unwrap();
+    let (law, params) = table["laws"].as_table().unwrap().iter().next().unwrap();
+    let key = ["d", "K"]
+        .into_iter()
+        .find(|k| params.get(*k).is_some())
+        .expect("a penalty key");
+    let old = params[key].as_float().unwrap();
+    let path = format!("laws.{law}.{key}");
+    // the edited scene, next to the original (its mesh and reference paths)
+    let edited_table = {
+        let mut t = table.clone();
+        junta::prepare::apply_override(&mut t, &path, toml::Value::Float(old * 0.5)).unwrap();
+        t
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let edited = scene.with_file_name("beam_peel_edited_for_test.toml");
+    std::fs::write(&edited, toml::to_string(&edited_table).unwrap()).unwrap();
+    let by_file = Simulation::from_file(&edited)
+        .and_then(|s| s.run(&RunSettings::into_dir(dir.path()), &mut []));
+    std::fs::remove_file(&edited).unwrap();
+    let by_file = by_file.unwrap();
+    let options = Options {
+        overrides: vec![(path.clone(), toml::Value::Float(old * 0.5))],
+        ..Options::default()
+    };
+    let by_override = Simulation::from_file_with(&scene, options)
+        .unwrap()
+        .run(&RunSettings::in_memory(), &mut [])
+        .unwrap();
+    let plain = Simulation::from_file(&scene)
+        .unwrap()
+        .run(&RunSettings::in_memory(), &mut [])
+        .unwrap();
+    let r = |x: &junta::RunResults| x.curve.get("reaction").unwrap().to_vec();
+    assert_eq!(r(&by_file), r(&by_override));
+    assert_ne!(
+        r(&plain),
+        r(&by_override),
+        "halving {path} changes the curve"
+    );
+    // unknown keys
+    for bad in ["laws.no_such_law.d", "nosuchtable.x"] {
+        let options = Options {
+            overrides: vec![(bad.to_string(), toml::Value::Float(1.0))],
+            ..Options::default()
+        };
+        let e = Simulation::from_file_with(&scene, options).unwrap_err();
+        let msg = e.chain();
+        assert!(msg.contains(bad) && msg.contains("beam_peel.toml"), "{msg}");
+        assert!(e.is_input());
+    }
+}
+
+/// Typed results: frames kept in memory have the model's shapes, the
+/// displacement of the last frame is the one `summary.json` reports, and
+/// the check report is the data `junta check` prints.
+#[test]
+fn frames_and_check_report_are_typed_values() {
+    let scene = repo().join("examples/paper/beam_peel.toml");
+    let sim = Simulation::from_file(&scene).unwrap();
+    let report = sim.check().unwrap();
+    let out = junta().arg("check").arg(&scene).output().unwrap();
+    assert_eq!(String::from_utf8_lossy(&out.stdout), report.to_string());
+    let nodes = sim.model().mesh.nodes.len();
+    let mut frames = FrameCollector::every(10);
+    let results = sim
+        .run(&RunSettings::in_memory(), &mut [&mut frames])
+        .unwrap();
+    assert!(frames.frames.len() >= 2);
+    let last = frames.frames.last().unwrap();
+    assert_eq!(last.increment, results.rows.last().unwrap().increment);
+    assert_eq!(last.displacement.len(), 3 * nodes);
+    let n_solid = last.solid.block.len();
+    assert_eq!(last.solid.stress.len(), 6 * n_solid);
+    let n_if = last.interface.block.len();
+    assert!(n_if > 0);
+    assert_eq!(last.interface.traction.len(), 3 * n_if);
+    assert_eq!(last.interface.outputs["failed"].len(), n_if);
+    // failed points in the frame = the curve's last row
+    let failed = last.interface.outputs["failed"]
+        .iter()
+        .filter(|f| **f > 0.5)
+        .count();
+    assert_eq!(failed, results.rows.last().unwrap().failed);
+    let umax = last
+        .displacement
+        .iter()
+        .map(|v| v.abs())
+        .fold(0.0, f64::max);
+    let reported = results.summary["displacement_max"].as_f64().unwrap();
+    assert!(
+        (umax - reported).abs() <= 1e-12 * reported.abs().max(1.0),
+        "{umax} {reported}"
+    );
+}
+
+/// A model built in code runs through the same API: the unit cube of
+/// BENCHMARKS.md section 1 (H20 n = 2) gives CalculiX 2.20's reaction.
+#[test]
+fn model_built_in_code_matches_calculix() {
+    use junta::core::mesh::generate::{box_mesh, BoxSpec};
+    use junta::core::topology::CellShape;
+    use junta::elements::{Integration, Isotropic, SolidElement};
+    use std::sync::Arc;
+    let mesh = box_mesh(
+        &BoxSpec::new([1.0; 3], [2; 3], CellShape::Hex20),
+        "cube",
+        "h20",
+        "steel",
+    )
+    .unwrap();
+    let steel = Arc::new(Isotropic::new(210_000.0, 0.3).unwrap());
+    let h20 = Arc::new(SolidElement::new(CellShape::Hex20, Integration::Full, steel).unwrap());
+    let mut constraints = Vec::new();
+    for &n in mesh.node_set("z0").unwrap() {
+        constraints.extend((0..3).map(|c| (3 * n + c, 0.0)));
+    }
+    for &n in mesh.node_set("z1").unwrap() {
+        constraints.push((3 * n + 2, -0.01));
+    }
+    let f_ext = vec![0.0; 3 * mesh.nodes.len()];
+    let model = junta::core::Model::new(
+        mesh,
+        vec![h20],
+        &constraints,
+        f_ext,
+        vec!["z0".into(), "z1".into()],
+    )
+    .unwrap();
+    let sim = Simulation::from_model(model, junta::scene::AnalysisSpec::default(), "auto").unwrap();
+    let results = sim.run(&RunSettings::in_memory(), &mut []).unwrap();
+    let fz = results.summary["reactions"]["z1"][2].as_f64().unwrap();
+    assert!((fz - (-2183.070)).abs() < 1e-3, "Fz = {fz}");
+    assert!(results.frame.is_some());
+}
+
+/// `docs/parameters.md` is what `junta list --markdown` prints today.
+#[test]
+fn parameter_reference_page_is_current() {
+    let page = std::fs::read_to_string(repo().join("docs/parameters.md")).unwrap_or_default();
+    let out = junta().args(["list", "--markdown"]).output().unwrap();
+    assert!(out.status.success());
+    let now = String::from_utf8(out.stdout).unwrap();
+    assert!(now.contains("### `bilinear`") && now.contains("| `G_Ic` |"));
+    assert!(
+        page == now,
+        "docs/parameters.md is stale: run `cargo run -p junta-cli -- list --markdown > docs/parameters.md`"
+    );
+}

@@ -1,0 +1,360 @@
+//! The load-displacement curve of an incremental run: one [`CurveRow`] per
+//! converged increment (`curve.csv`), the limit points along it, the hint
+//! a run that stops past a peak gives, and reference curves to compare.
+
+use crate::error::{bail, Context, Result};
+use serde_json::json;
+use std::path::Path;
+
+/// One row of `curve.csv`: one converged increment.
+#[derive(Debug, Clone)]
+pub struct CurveRow {
+    pub increment: usize,
+    pub step: usize,
+    pub lambda: f64,
+    pub reaction: Option<f64>,
+    pub displacement: Option<f64>,
+    pub failed: usize,
+    pub points: usize,
+    pub iterations: usize,
+    pub cutbacks: usize,
+    pub seconds: f64,
+    pub small: bool,
+    /// Fracture energy dissipated in all interfaces so far.
+    pub dissipated: f64,
+    /// Damaged area (damage >= 0.99) of all interfaces.
+    pub damaged_area: f64,
+    /// Negative pivots of the last factorised tangent (inertia), when the
+    /// back end knows it.
+    pub negative_pivots: Option<usize>,
+    /// Sign of the load-factor increment: 1, -1 or 0.
+    pub load_sign: i8,
+    /// What constrained the increment (`load`, `arc`, `dissipation`).
+    pub control: String,
+    /// `f_ext . u`: the displacement work-conjugate to the load factor of
+    /// the applied forces (with forces of a unit total load, the load
+    /// point's displacement, e.g. the lever's in a mixed-mode bending test).
+    pub conjugate: f64,
+    /// Energy dissipated by friction / interface plasticity so far.
+    pub frictional: f64,
+}
+
+pub const CURVE_HEADER: &str =
+    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation\n";
+
+fn opt(v: Option<f64>) -> String {
+    v.map(|x| format!("{x:e}")).unwrap_or_default()
+}
+
+impl CurveRow {
+    pub fn csv(&self) -> String {
+        format!(
+            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e}\n",
+            self.increment,
+            self.step,
+            self.lambda,
+            opt(self.reaction),
+            opt(self.displacement),
+            self.failed,
+            self.points,
+            self.iterations,
+            self.cutbacks,
+            self.seconds,
+            self.small as u8,
+            self.dissipated,
+            self.damaged_area,
+            self.negative_pivots
+                .map(|n| n.to_string())
+                .unwrap_or_default(),
+            self.load_sign,
+            self.control,
+            self.conjugate,
+            self.frictional
+        )
+    }
+    pub fn parse(line: &str) -> Option<CurveRow> {
+        let f: Vec<&str> = line.split(',').collect();
+        // 14 columns: a run written before the path-following and
+        // frictional columns
+        if ![14, 16, 17, 18].contains(&f.len()) {
+            return None;
+        }
+        Some(CurveRow {
+            increment: f[0].parse().ok()?,
+            step: f[1].parse().ok()?,
+            lambda: f[2].parse().ok()?,
+            reaction: f[3].parse().ok(),
+            displacement: f[4].parse().ok(),
+            failed: f[5].parse().ok()?,
+            points: f[6].parse().ok()?,
+            iterations: f[7].parse().ok()?,
+            cutbacks: f[8].parse().ok()?,
+            seconds: f[9].parse().ok()?,
+            small: f[10].trim() == "1",
+            dissipated: f[11].parse().ok()?,
+            damaged_area: f[12].parse().ok()?,
+            negative_pivots: f[13].trim().parse().ok(),
+            load_sign: f.get(14).and_then(|v| v.trim().parse().ok()).unwrap_or(0),
+            control: f.get(15).map_or("load", |v| v.trim()).to_string(),
+            conjugate: f.get(16).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
+            frictional: f.get(17).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
+        })
+    }
+}
+
+/// When a run of a softening model stops at or after a limit point, say so
+/// with the numbers: the reaction passed a maximum (a snap-back, an unstable
+/// drop of the load, e.g. an element separating, that load or displacement
+/// control cannot follow at any increment size), or, under load control,
+/// the curve flattened to a horizontal tangent (a load maximum).
+pub(crate) fn past_peak_hint(rows: &[CurveRow], kind: junta_core::MatrixKind) -> String {
+    if kind == junta_core::MatrixKind::SymmetricPositiveDefinite {
+        return String::new();
+    }
+    const REMEDY: &str = "use path following (`[analysis] control = \"arc_length\"`, which follows snap-backs through the dissipated energy), or add a small `viscosity` to the softening law (its energy is reported apart)";
+    let unstable = rows
+        .iter()
+        .filter(|r| r.negative_pivots.unwrap_or(0) > 0)
+        .count();
+    let Some((peak_row, peak)) = rows
+        .iter()
+        .filter_map(|r| Some((r, r.reaction?.abs())))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+    else {
+        return String::new();
+    };
+    let last = rows.last().and_then(|r| r.reaction).map_or(peak, f64::abs);
+    if last < peak * (1.0 - 1e-4) {
+        return format!(
+            ". Limit point: the reaction peaked at {peak:.6e} (increment {}, load factor {:.6e}) and the run stopped after that maximum, at {:.6e} ({} increments with a negative pivot so far): most likely a snap-back. To trace it, {REMEDY}",
+            peak_row.increment, peak_row.lambda, last, unstable
+        );
+    }
+    // stalled at the largest load so far: the increments shrank in each of
+    // the last increments (typically an element separating: a local
+    // snap-back that starts at this load)
+    let n = rows.len();
+    if n >= 3 && rows[n - 3..].iter().all(|r| r.cutbacks > 0) && last >= peak * (1.0 - 1e-3) {
+        return format!(
+            ". Limit point: the increments were cut back in each of the last three while the reaction peaked at {peak:.6e} (increment {}, load factor {:.6e}), its largest value so far: most likely a snap-back starting there (e.g. an element separating). To trace it, {REMEDY}",
+            peak_row.increment, peak_row.lambda
+        );
+    }
+    // load control: the slope of the curve at the end against the start
+    let slope = |a: &CurveRow, b: &CurveRow| -> Option<f64> {
+        let dp = b.reaction? - a.reaction?;
+        let du = b.displacement? - a.displacement?;
+        (du != 0.0).then(|| dp / du)
+    };
+    if n >= 3 {
+        if let (Some(k0), Some(k1)) = (slope(&rows[0], &rows[1]), slope(&rows[n - 2], &rows[n - 1]))
+        {
+            if k0 != 0.0 && (k1 / k0) < 0.05 {
+                return format!(
+                    ". Limit point: the load-displacement slope fell to {:.2} % of its initial value at reaction {last:.6e} (load factor {:.6e}): a load maximum, past which load control has no solution. To go past it, {REMEDY}",
+                    100.0 * k1 / k0,
+                    rows[n - 1].lambda
+                );
+            }
+        }
+    }
+    if rows.last().and_then(|r| r.negative_pivots).unwrap_or(0) > 0 {
+        return format!(
+            ". The tangent of the last converged increment is indefinite ({} negative pivots): the structure is past a limit point or a bifurcation. {REMEDY}",
+            rows.last().and_then(|r| r.negative_pivots).unwrap_or(0)
+        );
+    }
+    String::new()
+}
+
+/// Limit points and changes of stability along the converged increments:
+/// load maxima and minima (of the reaction, else of the load factor),
+/// displacement turning points (a snap-back starts at a displacement
+/// maximum), and increments where the number of negative pivots of the
+/// tangent changed (a limit point or a bifurcation was crossed).
+pub(crate) fn limit_points(rows: &[CurveRow]) -> serde_json::Value {
+    const MAX_LISTED: usize = 50;
+    let load = |r: &CurveRow| r.reaction.unwrap_or(r.lambda);
+    let mut points = Vec::new();
+    let mut counts = [0usize; 5];
+    let kinds = [
+        "load_maximum",
+        "load_minimum",
+        "displacement_maximum",
+        "displacement_minimum",
+        "stability_change",
+    ];
+    let mut push = |k: usize, r: &CurveRow, extra: Option<String>| {
+        counts[k] += 1;
+        if points.len() < MAX_LISTED {
+            let mut v = json!({
+                "kind": kinds[k],
+                "increment": r.increment,
+                "load_factor": r.lambda,
+                "load": load(r),
+                "displacement": r.displacement,
+            });
+            if let Some(e) = extra {
+                v["negative_pivots"] = json!(e);
+            }
+            points.push(v);
+        }
+    };
+    for w in rows.windows(3) {
+        let (a, b, c) = (&w[0], &w[1], &w[2]);
+        let (la, lb, lc) = (load(a), load(b), load(c));
+        if lb > la && lb > lc {
+            push(0, b, None);
+        } else if lb < la && lb < lc {
+            push(1, b, None);
+        }
+        if let (Some(da), Some(db), Some(dc)) = (a.displacement, b.displacement, c.displacement) {
+            if db > da && db > dc {
+                push(2, b, None);
+            } else if db < da && db < dc {
+                push(3, b, None);
+            }
+        }
+    }
+    for w in rows.windows(2) {
+        if let (Some(x), Some(y)) = (w[0].negative_pivots, w[1].negative_pivots) {
+            if x != y {
+                push(4, &w[1], Some(format!("{x} -> {y}")));
+            }
+        }
+    }
+    let mut count = serde_json::Map::new();
+    for (k, n) in kinds.iter().zip(counts) {
+        count.insert((*k).into(), json!(n));
+    }
+    json!({ "counts": count, "first": points })
+}
+
+/// Points `(x, y)` of a reference curve file: CSV, two numeric columns,
+/// `#` comments and a header line allowed; the path is relative to the
+/// scene's folder.
+pub(crate) fn read_reference_curve(input: &Path, file: &str) -> Result<Vec<(f64, f64)>> {
+    read_reference_points(&input.parent().unwrap_or(Path::new(".")).join(file))
+        .with_context(|| format!("{}: key `output.curve.reference.file`", input.display()))
+}
+
+/// Points `(x, y)` of the reference curve file `path` (see
+/// [`read_reference_curve`]).
+pub(crate) fn read_reference_points(path: &Path) -> Result<Vec<(f64, f64)>> {
+    let path = path.to_path_buf();
+    let text = std::fs::read_to_string(&path)
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    let mut pts = Vec::new();
+    for line in text.lines().map(str::trim) {
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let f: Vec<&str> = line.split(',').map(str::trim).collect();
+        match (
+            f.first().and_then(|v| v.parse().ok()),
+            f.get(1).and_then(|v| v.parse().ok()),
+        ) {
+            (Some(x), Some(y)) => pts.push((x, y)),
+            _ if pts.is_empty() => {} // header
+            _ => bail!("{}: `{line}` is not two numbers x, y", path.display()),
+        }
+    }
+    Ok(pts)
+}
+
+/// The curve as columns, named as the header of `curve.csv`: every column
+/// is `f64` (an empty cell is NaN) except `control`.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct Curve {
+    /// `(name, values)` in the order of `curve.csv`, `control` left out.
+    pub columns: Vec<(String, Vec<f64>)>,
+    /// What constrained each increment (`load`, `arc`, `dissipation`).
+    pub control: Vec<String>,
+}
+
+impl Curve {
+    /// The columns of `rows`.
+    pub fn from_rows(rows: &[CurveRow]) -> Curve {
+        let f = |o: Option<f64>| o.unwrap_or(f64::NAN);
+        let cols: Vec<(&str, Box<dyn Fn(&CurveRow) -> f64>)> = vec![
+            ("increment", Box::new(|r| r.increment as f64)),
+            ("step", Box::new(|r| r.step as f64)),
+            ("load_factor", Box::new(|r| r.lambda)),
+            ("reaction", Box::new(move |r| f(r.reaction))),
+            ("displacement", Box::new(move |r| f(r.displacement))),
+            ("failed_points", Box::new(|r| r.failed as f64)),
+            ("interface_points", Box::new(|r| r.points as f64)),
+            ("newton_iterations", Box::new(|r| r.iterations as f64)),
+            ("cutbacks", Box::new(|r| r.cutbacks as f64)),
+            ("seconds", Box::new(|r| r.seconds)),
+            ("small_increment", Box::new(|r| r.small as u8 as f64)),
+            ("dissipated_energy", Box::new(|r| r.dissipated)),
+            ("damaged_area", Box::new(|r| r.damaged_area)),
+            (
+                "negative_pivots",
+                Box::new(|r| r.negative_pivots.map_or(f64::NAN, |n| n as f64)),
+            ),
+            ("load_increment_sign", Box::new(|r| r.load_sign as f64)),
+            ("conjugate_displacement", Box::new(|r| r.conjugate)),
+            ("frictional_dissipation", Box::new(|r| r.frictional)),
+        ];
+        Curve {
+            columns: cols
+                .into_iter()
+                .map(|(n, get)| (n.to_string(), rows.iter().map(|r| get(r)).collect()))
+                .collect(),
+            control: rows.iter().map(|r| r.control.clone()).collect(),
+        }
+    }
+
+    /// The column `name`, if there is one.
+    pub fn get(&self, name: &str) -> Option<&[f64]> {
+        self.columns
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.as_slice())
+    }
+
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        self.control.len()
+    }
+
+    /// True when no increment converged.
+    pub fn is_empty(&self) -> bool {
+        self.control.is_empty()
+    }
+
+    /// The rows of `DIR/curve.csv` up to increment `last` (a restart's past).
+    pub fn read_rows(dir: &std::path::Path, last: usize) -> Vec<CurveRow> {
+        let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap_or_default();
+        text.lines()
+            .skip(1)
+            .filter_map(CurveRow::parse)
+            .filter(|row| row.increment <= last)
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn columns_follow_the_csv_header_and_read_back_the_rows() {
+        let line = "3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0";
+        let row = CurveRow::parse(line).expect("18 columns");
+        assert_eq!(row.csv().trim_end(), line);
+        let c = Curve::from_rows(&[row]);
+        let header: Vec<&str> = CURVE_HEADER
+            .trim_end()
+            .split(',')
+            .filter(|h| *h != "control")
+            .collect();
+        let names: Vec<&str> = c.columns.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(names, header);
+        assert_eq!(c.get("reaction"), Some(&[150.0][..]));
+        assert!(c.get("negative_pivots").unwrap()[0].is_nan());
+        assert_eq!(c.control, vec!["arc".to_string()]);
+    }
+}

@@ -1,0 +1,680 @@
+//! Incremental-iterative runs (`[analysis] type = "static"`): the Newton or
+//! arc-length driver of `junta_solvers`, with one [`CurveRow`] per converged
+//! increment handed to the run's observers.
+//!
+//! The engine here computes what every observer needs from a converged
+//! increment (interface results, failed points, reaction and displacement
+//! of the curve, energies), keeps the [`RunLog`], applies the stops that
+//! belong to the input (a deck's `*STEP, INC=n`, `stop_when_separated`,
+//! `max_increments`), and at the end builds the summary. Files are written
+//! by observers (`crate::writers`): `curve.csv`, the VTU frames and
+//! `results.pvd`, `checkpoint.json`, the print tables, `summary.json` and
+//! `curve.svg`.
+
+use crate::checkpoint::{FirstFailure, RestartFile};
+use crate::curve::{limit_points, CurveRow};
+use crate::error::{err, Result};
+use crate::observer::{Flow, Increment, Observer, RunEnd, RunLog, Stop};
+use crate::prepare::Prepared;
+use crate::{output, scene};
+use junta_core::element::StepInfo;
+use junta_core::state::StateStore;
+use junta_core::Model;
+use junta_solvers::arc_length::{solve_arc_length, PathEnd};
+use junta_solvers::newton::{
+    solve_nonlinear, Checkpoint, Control, IncrementView, NonlinearError, NonlinearRun,
+};
+use serde_json::json;
+use std::path::Path;
+use std::time::Instant;
+
+/// How the curve's two columns are measured.
+#[derive(Debug, Clone)]
+pub(crate) struct CurveProbe {
+    reaction_set: String,
+    reaction_component: usize,
+    points: Vec<usize>,
+    point_component: usize,
+    relative_to: Vec<usize>,
+    sign: f64,
+    conjugate: bool,
+}
+
+impl CurveProbe {
+    /// The `[output.curve]` of a scene (or a deck's curve), its sets checked.
+    pub(crate) fn of(p: &Prepared, file: &str) -> Result<Option<CurveProbe>> {
+        let Some(c) = &p.curve else { return Ok(None) };
+        let mesh = &p.model.mesh;
+        let rc = scene::component(&c.reaction_component)
+            .ok_or_else(|| err!("{file}: key `output.curve.reaction_component`: use x, y or z"))?;
+        let pc = scene::component(&c.point_component)
+            .ok_or_else(|| err!("{file}: key `output.curve.point_component`: use x, y or z"))?;
+        mesh.node_set(&c.reaction_set)
+            .map_err(|e| err!("{file}: key `output.curve.reaction_set`: {e}"))?;
+        let points = mesh
+            .node_set(&c.point_set)
+            .map_err(|e| err!("{file}: key `output.curve.point_set`: {e}"))?
+            .to_vec();
+        let relative_to = match &c.relative_to {
+            Some(set) => mesh
+                .node_set(set)
+                .map_err(|e| err!("{file}: key `output.curve.relative_to`: {e}"))?
+                .to_vec(),
+            None => Vec::new(),
+        };
+        Ok(Some(CurveProbe {
+            reaction_set: c.reaction_set.clone(),
+            reaction_component: rc,
+            points,
+            point_component: pc,
+            relative_to,
+            sign: if c.negate { -1.0 } else { 1.0 },
+            conjugate: c.conjugate,
+        }))
+    }
+
+    /// `(reaction, displacement)` of the curve at a converged state.
+    fn measure(
+        &self,
+        model: &Model,
+        u: &[f64],
+        residual: &[f64],
+        lambda: f64,
+        conjugate: f64,
+    ) -> Result<(f64, f64)> {
+        if self.conjugate {
+            return Ok((self.sign * lambda, self.sign * conjugate));
+        }
+        let pc = self.point_component;
+        let mean = |nodes: &[usize]| {
+            nodes.iter().map(|&n| u[3 * n + pc]).sum::<f64>() / nodes.len().max(1) as f64
+        };
+        let base = if self.relative_to.is_empty() {
+            0.0
+        } else {
+            mean(&self.relative_to)
+        };
+        let rc = self.reaction_component;
+        // internal force on the set = reaction on supports, applied load on
+        // a loaded free set
+        let reaction = model.set_total(&self.reaction_set, residual)?[rc]
+            + lambda * model.set_total(&self.reaction_set, &model.f_ext)?[rc];
+        Ok((
+            self.sign * reaction,
+            self.sign * (mean(&self.points) - base),
+        ))
+    }
+}
+
+/// The stops that belong to the run's input and options.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Limits {
+    /// Stop after this many increments of this call.
+    pub max_increments: Option<usize>,
+    /// `[analysis] stop_when_separated`.
+    pub stop_when_separated: bool,
+    /// Per program step: a deck's `*STEP, INC=n` and the line of the `*STEP`.
+    pub increment_limits: Vec<Option<(usize, usize)>>,
+}
+
+/// The engine of one incremental run: everything the per-increment
+/// callback of the driver reads and updates.
+struct Engine<'a> {
+    model: &'a Model,
+    curve: Option<CurveProbe>,
+    limits: Limits,
+    log: RunLog,
+    /// The last converged `u` and committed state (what a failed run ends on).
+    last_u: Vec<f64>,
+    last_state: Option<StateStore>,
+    error: Option<crate::Error>,
+    /// (step, INC, line of its *STEP) when a deck's INC stopped the run.
+    inc_reached: Option<(usize, usize, usize)>,
+    /// Why an observer stopped the run.
+    stop: Option<Stop>,
+}
+
+impl Engine<'_> {
+    /// Called by the driver after each converged increment.
+    fn on_increment(
+        &mut self,
+        v: &IncrementView<'_>,
+        observers: &mut [&mut dyn Observer],
+    ) -> Control {
+        let r = v.report;
+        let flow = self.increment(v, observers);
+        self.log.last_increment = r.increment_index;
+        let flow = match flow {
+            Ok(f) => f,
+            Err(e) => {
+                self.error = Some(e);
+                return Control::Stop;
+            }
+        };
+        if let Some(stop) = flow.stop() {
+            self.stop.get_or_insert(stop);
+            return Control::Stop;
+        }
+        if self.increment_limit_reached(r) {
+            return Control::Stop;
+        }
+        let l = &self.limits;
+        if (l.stop_when_separated && self.log.separated)
+            || l.max_increments
+                .is_some_and(|m| r.increment_index - self.log.start_increment >= m)
+        {
+            return Control::Stop;
+        }
+        Control::Continue
+    }
+
+    /// The row of a converged increment, then every observer in order.
+    fn increment(
+        &mut self,
+        v: &IncrementView<'_>,
+        observers: &mut [&mut dyn Observer],
+    ) -> Result<Flow> {
+        let r = v.report;
+        let model = self.model;
+        let step = StepInfo {
+            increment: r.increment_index,
+            load_factor: r.lambda,
+            delta_load_factor: r.delta_lambda,
+            secant: false,
+        };
+        let ifs = output::interface_results_at(model, v.u, v.state, step)?;
+        let row = self.row_of(v, &ifs)?;
+        self.log.rows.push(row.clone());
+        self.last_u.clear();
+        self.last_u.extend_from_slice(v.u);
+        match &mut self.last_state {
+            Some(s) => s.committed.copy_from_slice(&v.state.committed),
+            None => self.last_state = Some(v.state.clone()),
+        }
+        let inc = Increment {
+            model,
+            report: r,
+            row: &row,
+            u: v.u,
+            residual: v.residual,
+            state: v.state,
+            interfaces: &ifs,
+            step,
+            view: v,
+        };
+        let mut flow = Flow::Continue;
+        for o in observers.iter_mut() {
+            let f = o.on_increment(&inc, &mut self.log)?;
+            if matches!(flow, Flow::Continue) {
+                flow = f;
+            }
+        }
+        Ok(flow)
+    }
+
+    /// The curve row of a converged increment; updates the first failure
+    /// and the separation flag.
+    fn row_of(
+        &mut self,
+        v: &IncrementView<'_>,
+        ifs: &[output::InterfaceResults],
+    ) -> Result<CurveRow> {
+        let (r, model) = (v.report, self.model);
+        let points: usize = ifs.iter().map(|i| i.points.len()).sum();
+        let failed: usize = ifs
+            .iter()
+            .flat_map(|i| i.points.iter())
+            .filter(|pt| pt.get("failed").is_some_and(|f| f[0] > 0.5))
+            .count();
+        let conjugate: f64 = model.f_ext.iter().zip(v.u).map(|(f, u)| f * u).sum();
+        let (reaction, displacement) = match &self.curve {
+            Some(c) => {
+                let (f, d) = c.measure(model, v.u, v.residual, r.lambda, conjugate)?;
+                (Some(f), Some(d))
+            }
+            None => (None, None),
+        };
+        if failed > 0 && self.log.first_failure.is_none() {
+            self.log.first_failure = Some(FirstFailure {
+                increment: r.increment_index,
+                load_factor: r.lambda,
+                reaction,
+                displacement,
+            });
+        }
+        // split: every point failed and none is still being released
+        self.log.separated = points > 0
+            && failed == points
+            && !model.mesh.blocks.iter().enumerate().any(|(b, block)| {
+                block.shape.is_interface()
+                    && (0..block.len()).any(|e| {
+                        model.elements[b]
+                            .wants_small_increments(&v.state.committed[v.state.range(b, e)])
+                    })
+            });
+        let energy = total_energy(ifs);
+        Ok(CurveRow {
+            increment: r.increment_index,
+            step: r.step,
+            lambda: r.lambda,
+            reaction,
+            displacement,
+            failed,
+            points,
+            iterations: r.iterations,
+            cutbacks: r.cutbacks,
+            seconds: r.seconds.total,
+            small: r.small_increment_mode,
+            dissipated: energy.dissipated_energy,
+            damaged_area: energy.damaged_area,
+            negative_pivots: r.negative_pivots,
+            load_sign: if r.delta_lambda > 0.0 {
+                1
+            } else if r.delta_lambda < 0.0 {
+                -1
+            } else {
+                0
+            },
+            control: r.control.name().to_string(),
+            conjugate,
+            frictional: energy.frictional_dissipation,
+        })
+    }
+
+    /// A deck's `*STEP, INC=n`: at most n increments in that step.
+    fn increment_limit_reached(&mut self, r: &junta_solvers::newton::IncrementReport) -> bool {
+        let limits = &self.limits.increment_limits;
+        let Some(&Some((n, line))) = limits.get(r.step) else {
+            return false;
+        };
+        // the deck step's program steps (one per amplitude segment) share
+        // its limit, identified by its line
+        let same = |k: usize| limits.get(k) == Some(&Some((n, line)));
+        let in_step = self.log.rows.iter().filter(|row| same(row.step)).count();
+        let last_segment = !same(r.step + 1);
+        if in_step >= n && !(last_segment && r.step_fraction >= 1.0 - 1e-12) {
+            self.inc_reached = Some((r.step, n, line));
+            return true;
+        }
+        false
+    }
+}
+
+/// Interface energies summed over the blocks.
+fn total_energy(ifs: &[output::InterfaceResults]) -> output::InterfaceEnergy {
+    ifs.iter()
+        .map(output::interface_energy)
+        .fold(output::InterfaceEnergy::default(), |a, e| {
+            output::InterfaceEnergy {
+                dissipated_energy: a.dissipated_energy + e.dissipated_energy,
+                viscous_energy: a.viscous_energy + e.viscous_energy,
+                damaged_area: a.damaged_area + e.damaged_area,
+                process_zone_area: a.process_zone_area + e.process_zone_area,
+                has_damage: a.has_damage || e.has_damage,
+                frictional_dissipation: a.frictional_dissipation + e.frictional_dissipation,
+                has_friction: a.has_friction || e.has_friction,
+            }
+        })
+}
+
+/// How an incremental run ended.
+pub(crate) struct Ending {
+    /// `completed`, `stopped: ...`, `failed: ...`, `interrupted (Ctrl-C)`.
+    pub status: String,
+    /// The driver's failure (an increment below the smallest size).
+    pub failure: Option<NonlinearError>,
+    /// Whether an observer interrupted the run (Ctrl-C).
+    pub interrupted: bool,
+}
+
+/// Run the incremental analysis of `p`, from the start or from `restart`
+/// (its rows in `past_rows`), reporting to `observers` in order.
+pub(crate) fn run_incremental(
+    input: &Path,
+    p: &mut Prepared,
+    restart: Option<(RestartFile, Vec<CurveRow>)>,
+    limits: Limits,
+    observers: &mut [&mut dyn Observer],
+) -> Result<(Ending, serde_json::Value, RunLog)> {
+    let t0 = Instant::now();
+    let file = input.display().to_string();
+    let curve = CurveProbe::of(p, &file)?;
+    let analysis = p.analysis.clone();
+    let (checkpoint, log) = match restart {
+        Some((r, rows)) => {
+            let start = r.checkpoint.increment_index;
+            let log = RunLog {
+                rows,
+                frames: r.frames,
+                first_failure: r.first_failure,
+                start_increment: start,
+                last_increment: start,
+                ..RunLog::default()
+            };
+            (Some(r.checkpoint), log)
+        }
+        None => (None, RunLog::default()),
+    };
+    for o in observers.iter_mut() {
+        o.on_start(p, &log)?;
+    }
+    // SAFETY of the borrow: the engine holds the observers for the run only
+    let model = &p.model;
+    let mut engine = Engine {
+        model,
+        curve,
+        limits,
+        log,
+        last_u: Vec::new(),
+        last_state: None,
+        error: None,
+        inc_reached: None,
+        stop: None,
+    };
+    let result = drive(
+        model,
+        p.solver.as_mut(),
+        &analysis,
+        checkpoint.as_ref(),
+        &mut engine,
+        observers,
+    );
+    if let Some(e) = engine.error.take() {
+        return Err(e.context("writing the results of an increment"));
+    }
+    let (run, path_end, failure) = match result {
+        Ok((run, end)) => (Some(run), end, None),
+        Err(e @ NonlinearError::IncrementTooSmall { .. }) => (None, None, Some(e)),
+        Err(e) => return Err(crate::Error::from(e).context(format!("solving {file}"))),
+    };
+    let ending = ending_of(&engine, &analysis, run.as_ref(), path_end, failure);
+    finish(input, p, engine, observers, run, ending, t0)
+}
+
+/// The driver the analysis asks for, with the engine as its callback.
+fn drive(
+    model: &Model,
+    solver: &mut dyn junta_core::LinearSolver,
+    analysis: &scene::AnalysisSpec,
+    checkpoint: Option<&Checkpoint>,
+    engine: &mut Engine<'_>,
+    observers: &mut [&mut dyn Observer],
+) -> Result<(NonlinearRun, Option<PathEnd>), NonlinearError> {
+    let mut callback = |v: &IncrementView<'_>| engine.on_increment(v, observers);
+    match analysis.control {
+        scene::Control::Load => solve_nonlinear(
+            model,
+            solver,
+            &analysis.steps,
+            &analysis.newton,
+            checkpoint,
+            &mut callback,
+        )
+        .map(|r| (r, None)),
+        scene::Control::ArcLength => solve_arc_length(
+            model,
+            solver,
+            &analysis.steps,
+            &analysis.newton,
+            &analysis.arc_length,
+            checkpoint,
+            &mut callback,
+        )
+        .map(|(r, end)| (r, Some(end))),
+    }
+}
+
+/// The status line of a run that returned from the driver (`run`), or
+/// failed with `failure`.
+fn ending_of(
+    engine: &Engine<'_>,
+    analysis: &scene::AnalysisSpec,
+    run: Option<&NonlinearRun>,
+    path_end: Option<PathEnd>,
+    failure: Option<NonlinearError>,
+) -> Ending {
+    let interrupted = matches!(engine.stop, Some(Stop::Interrupted));
+    let status = match (&failure, run) {
+        (Some(e), _) => format!("failed: {e}"),
+        (None, Some(run)) => {
+            if interrupted {
+                "interrupted (Ctrl-C)".to_string()
+            } else if let Some((_, n, line)) = engine.inc_reached {
+                format!(
+                    "stopped: the *STEP at line {line} reached its maximum number of increments INC={n} before its end; raise INC"
+                )
+            } else if let Some(Stop::Requested(why)) = &engine.stop {
+                format!("stopped: {why}")
+            } else if run.summary.stopped_by_observer && engine.log.separated {
+                "stopped: every interface point has failed".to_string()
+            } else if run.summary.stopped_by_observer {
+                "stopped after the requested number of increments".to_string()
+            } else if path_end == Some(PathEnd::Unloaded) {
+                "completed: the load factor fell back to zero after its maximum (the structure carries no load any more)".to_string()
+            } else if path_end == Some(PathEnd::IncrementLimit) {
+                format!(
+                    "stopped: [analysis.arc_length] max_increments = {} reached before the end load factor",
+                    analysis.arc_length.max_increments
+                )
+            } else {
+                "completed".to_string()
+            }
+        }
+        (None, None) => String::new(),
+    };
+    Ending {
+        status,
+        failure,
+        interrupted,
+    }
+}
+
+/// The summary of the run and the observers' `on_end`.
+fn finish(
+    input: &Path,
+    p: &Prepared,
+    engine: Engine<'_>,
+    observers: &mut [&mut dyn Observer],
+    run: Option<NonlinearRun>,
+    ending: Ending,
+    t0: Instant,
+) -> Result<(Ending, serde_json::Value, RunLog)> {
+    let Engine {
+        mut log,
+        last_u,
+        mut last_state,
+        ..
+    } = engine;
+    if let Some(s) = &mut last_state {
+        s.restore();
+    }
+    let model = &p.model;
+    let mut summary = base_summary(input, p, &log, &ending.status);
+    let step = StepInfo {
+        increment: log.last_increment,
+        load_factor: log.rows.last().map_or(0.0, |r| r.lambda),
+        delta_load_factor: 0.0,
+        secant: false,
+    };
+    // the state the run ends on: the driver's, else the last converged one
+    let converged_here = log.last_increment > log.start_increment;
+    let (u, state, residual) = match &run {
+        Some(run) => (Some(&run.u), Some(&run.state), Some(&run.residual)),
+        None if converged_here => (Some(&last_u), last_state.as_ref(), None),
+        None => (None, None, None),
+    };
+    let mut interfaces = Vec::new();
+    if let (Some(u), Some(state)) = (u, state) {
+        interfaces = output::interface_results_at(model, u, state, step)?;
+        summary["interfaces"] = output::interface_summary(model, &interfaces);
+    }
+    match &run {
+        Some(run) => run_totals(&mut summary, model, run, t0)?,
+        None => {
+            if let Some(last) = log.rows.last() {
+                summary["failed_points_at_last_increment"] = json!(last.failed);
+            }
+        }
+    }
+    advice_and_solver(&mut summary, p, &log)?;
+    let end = RunEnd {
+        model: &p.model,
+        u: u.map(|v| v.as_slice()),
+        state,
+        residual: residual.map(|v| v.as_slice()),
+        interfaces: &interfaces,
+        step,
+        converged_here,
+        status: &ending.status,
+        summary: &summary,
+    };
+    for o in observers.iter_mut() {
+        o.on_end(&end, &mut log)?;
+    }
+    Ok((ending, summary, log))
+}
+
+/// The summary fields every incremental run has.
+fn base_summary(input: &Path, p: &Prepared, log: &RunLog, status: &str) -> serde_json::Value {
+    let model = &p.model;
+    let rows = &log.rows;
+    let total_iterations: usize = rows.iter().map(|r| r.iterations).sum();
+    let max_iterations = rows.iter().map(|r| r.iterations).max().unwrap_or(0);
+    json!({
+        "input": input.display().to_string(),
+        "title": p.title,
+        "units": p.units,
+        "analysis": "static",
+        "status": status,
+        "nodes": model.mesh.nodes.len(),
+        "dofs": model.dofs.num_dofs(),
+        "equations": model.dofs.num_free,
+        "elements": output::element_counts(model),
+        "increments": log.last_increment,
+        "newton_iterations": {
+            "total": total_iterations,
+            "max_per_increment": max_iterations,
+            "mean_per_increment": total_iterations as f64 / rows.len().max(1) as f64,
+            "per_increment": rows.iter().map(|r| r.iterations).collect::<Vec<_>>(),
+        },
+        "load_factor": rows.last().map(|r| r.lambda),
+        "first_failure": log.first_failure,
+        "restarted_from_increment": if log.start_increment > 0 { Some(log.start_increment) } else { None },
+        "control": p.analysis.control,
+        "limit_points": limit_points(rows),
+    })
+}
+
+/// Reactions, timings and driver counts of a run the driver returned.
+fn run_totals(
+    summary: &mut serde_json::Value,
+    model: &Model,
+    run: &NonlinearRun,
+    t0: Instant,
+) -> Result<()> {
+    summary["reactions"] = output::reactions(model, &run.residual)?;
+    summary["displacement_max"] = json!(output::displacement_max(&run.u));
+    let t = run.summary.timings;
+    summary["timings"] = json!({
+        "assemble": t.assemble, "analyze": t.analyze, "factor": t.factor, "solve": t.solve,
+        "driver_total": t.total, "total": t0.elapsed().as_secs_f64(),
+    });
+    summary["symbolic_analyses"] = json!(run.summary.analyze_count);
+    summary["cutbacks"] = json!(run.summary.cutbacks);
+    // of this call (a restarted run counts from its restart)
+    summary["driver"] = json!({
+        "newton_iterations_with_failed_attempts": run.summary.newton_iterations_total,
+        "linear_solves": run.summary.linear_solves,
+        "secant_attempts": run.summary.secant_attempts,
+    });
+    Ok(())
+}
+
+/// Mesh advice, law warnings and the linear solver's report.
+fn advice_and_solver(summary: &mut serde_json::Value, p: &Prepared, log: &RunLog) -> Result<()> {
+    use junta_core::MatrixKind;
+    let model = &p.model;
+    let (zone, zone_lines, law_warnings) = output::cohesive_zone_advice(model)?;
+    if !zone_lines.is_empty() {
+        summary["mesh_advice"] = zone;
+    }
+    if !law_warnings.is_empty() {
+        summary["warnings"] = json!(law_warnings);
+    }
+    let report = p.solver.report();
+    let mut notes = p.notes.clone();
+    notes.extend(report.notes.iter().cloned());
+    let rows = &log.rows;
+    if model.matrix_kind() == MatrixKind::General {
+        summary["frictional_dissipation"] = json!(rows.last().map_or(0.0, |r| r.frictional));
+    }
+    summary["solver"] = json!({
+        "name": report.solver,
+        "ordering": report.ordering,
+        "predicted_factor_nonzeros": output::ordering_candidates(&report),
+        "precision": report.precision,
+        "factor_nonzeros": report.factor_nonzeros,
+        "factorizations": report.factorizations,
+        "partial_factorizations": report.partial_factorizations,
+        // mean share of a complete factorisation's work a partial one redid
+        "partial_work_mean": if report.partial_factorizations > 0 {
+            json!(report.refactored_work / report.partial_factorizations as f64)
+        } else {
+            json!(null)
+        },
+        "negative_pivots_max": rows.iter().filter_map(|r| r.negative_pivots).max(),
+        // solves whose residual ||b - A x|| the back end left to the
+        // driver's own force check (factor above doubt; `ldlt`
+        // `residual_check`)
+        "unchecked_solves": report.unchecked_solves,
+        "matrix_kind": model.matrix_kind().name(),
+        // a general tangent is assembled in full only for a back end that
+        // solves general matrices; otherwise its symmetric part is used
+        "tangent": if model.matrix_kind() != MatrixKind::General {
+            "symmetric"
+        } else if p.solver.accepts(MatrixKind::General) {
+            "consistent (nonsymmetric, full storage)"
+        } else {
+            "symmetric part of the nonsymmetric tangent (Newton converges linearly)"
+        },
+        "warnings": report.warnings,
+        "notes": notes,
+    });
+    Ok(())
+}
+
+/// The elements' internal force `f_int = r + lambda f_ext` from a run's
+/// residual `r = f_int - lambda f_ext`.
+pub(crate) fn internal_force_of(model: &Model, residual: &[f64], lambda: f64) -> Vec<f64> {
+    residual
+        .iter()
+        .zip(&model.f_ext)
+        .map(|(r, f)| r + lambda * f)
+        .collect()
+}
+
+/// The elements' internal force `f_int(u)` at a converged state (trial
+/// state from `state`'s committed values): the `RF` of a print table.
+pub(crate) fn internal_force_at(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+    step: StepInfo,
+) -> Result<Vec<f64>> {
+    use crate::error::Context;
+    let asm = model.assembler();
+    let mut f_int = vec![0.0; model.dofs.num_dofs()];
+    let mut state = state.clone();
+    asm.assemble(
+        &model.mesh,
+        &model.elements,
+        &model.dofs,
+        u,
+        &mut state,
+        step,
+        None,
+        &mut f_int,
+    )
+    .context("internal force of the last converged increment")?;
+    Ok(f_int)
+}

@@ -1,0 +1,305 @@
+//! Linear runs: one solve, or the steps of a deck as load cases sharing a
+//! factorisation, and the files and summary they leave.
+
+use crate::error::{err, Context, Result};
+use crate::observer::Observer;
+use crate::prepare::{build_solver, Prepared};
+use crate::simulation::{RunResults, Status};
+use crate::{deck, output};
+use junta_core::Model;
+use junta_solvers::linear_static::solve_linear_static;
+use serde_json::json;
+use std::path::Path;
+use std::time::Instant;
+
+/// Run the linear analysis of `p`: write the standard files into `dir`
+/// (when given) and hand the end state to the observers' `on_end`.
+pub(crate) fn run_linear(
+    input: &Path,
+    p: &mut Prepared,
+    dir: Option<&Path>,
+    observers: &mut [&mut dyn Observer],
+) -> Result<RunResults> {
+    let t0 = Instant::now();
+    let mut notes = p.notes.clone();
+    let mut warnings = Vec::new();
+    for o in observers.iter_mut() {
+        o.on_phase(&format!(
+            "solving {} equations ({} elements) with {}",
+            p.model.dofs.num_free,
+            p.model.mesh.num_elements(),
+            p.solver.key()
+        ));
+    }
+    let read_seconds = p.read_seconds;
+    let mut prints = std::mem::take(&mut p.prints);
+    let (res, steps_summary) = if p.deck_steps.len() > 1 {
+        let (res, steps) = solve_deck_steps(p, dir, observers, input, &mut prints)?;
+        (res, Some(steps))
+    } else {
+        let res = solve_linear_static(&p.model, p.solver.as_mut())
+            .with_context(|| format!("solving {}", input.display()))?;
+        if !prints.is_empty() {
+            prints.add_step(
+                &p.model,
+                0,
+                &res.u,
+                &res.residual,
+                &p.model.f_ext,
+                &res.state,
+            )?;
+        }
+        (res, None)
+    };
+    for w in &res.report.warnings {
+        warnings.push(w.clone());
+    }
+    for n in &res.report.notes {
+        notes.push(n.clone());
+    }
+    if res.free_residual > 1e-6 {
+        warnings.push(format!(
+            "equilibrium residual after the solve is {:.3e} (relative); the result has lost digits",
+            res.free_residual
+        ));
+    }
+    for o in observers.iter_mut() {
+        o.on_phase("writing results");
+    }
+    let t_out = Instant::now();
+    let interfaces = output::interface_results(&p.model, &res.u, &res.state)?;
+    let cells = output::cell_results(&p.model, &res.u, &res.state)?;
+    if let Some(dir) = dir {
+        write_result_files(dir, p, &res, &cells, &interfaces)?;
+        notes.extend(prints.write(dir)?);
+    }
+    let (advice, advice_lines) =
+        output::penalty_advice(&p.model, &|b| p.thickness.get(b).copied())?;
+    for l in advice_lines.iter().filter(|l| !l.contains(": good:")) {
+        warnings.push(l.clone());
+    }
+    let reference = match &p.reference {
+        Some((r, c)) => {
+            let computed = p
+                .model
+                .set_total(&r.set, &res.residual)
+                .context("key `reference.set`")?[*c];
+            json!({
+                "set": r.set, "component": r.component, "value": r.value, "source": r.source,
+                "computed": computed, "relative_error": (computed - r.value).abs() / r.value.abs(),
+            })
+        }
+        None => serde_json::Value::Null,
+    };
+    let output_seconds = t_out.elapsed().as_secs_f64();
+    let reactions = output::reactions(&p.model, &res.residual)?;
+    let probes = output::probes(&p.model, &p.probes, &res.u).context("[output] probes")?;
+    let summary = json!({
+        "input": input.display().to_string(),
+        "title": p.title,
+        "units": p.units,
+        "analysis": "linear_static",
+        "nodes": p.model.mesh.nodes.len(),
+        "dofs": p.model.dofs.num_dofs(),
+        "equations": p.model.dofs.num_free,
+        "elements": output::element_counts(&p.model),
+        "reactions": reactions,
+        "displacement_max": output::displacement_max(&res.u),
+        "probes": probes,
+        "solids": output::solid_summary(&cells),
+        "interfaces": output::interface_summary(&p.model, &interfaces),
+        "penalty_advice": advice,
+        "reference": reference,
+        "equilibrium_residual": res.free_residual,
+        "timings": {
+            "read": read_seconds,
+            "pattern": res.timings.pattern,
+            "assemble": res.timings.assemble,
+            "analyze": res.timings.analyze,
+            "factor": res.timings.factor,
+            "solve": res.timings.solve,
+            "output": output_seconds,
+            "total": read_seconds + t0.elapsed().as_secs_f64(),
+        },
+        "solver": {
+            "name": res.report.solver,
+            "iterations": res.report.iterations,
+            "residual": res.report.residual,
+            "factor_nonzeros": res.report.factor_nonzeros,
+            "ordering": res.report.ordering,
+            "predicted_factor_nonzeros": output::ordering_candidates(&res.report),
+            "precision": res.report.precision,
+            "refinement_steps": res.report.refinement_steps,
+            "warnings": res.report.warnings,
+            "notes": res.report.notes,
+        },
+        "notes": p.notes,
+    });
+    let mut summary = summary;
+    if let Some(steps) = steps_summary {
+        summary["steps"] = json!(steps);
+    }
+    if let Some(dir) = dir {
+        output::write_json(&dir.join("summary.json"), &summary)?;
+    }
+    let frame = crate::simulation::end_linear(&p.model, &res, &summary, observers)?;
+    Ok(RunResults {
+        status: Status::Completed,
+        status_line: "completed".into(),
+        summary,
+        curve: Default::default(),
+        rows: Vec::new(),
+        output: dir.map(Path::to_path_buf),
+        notes,
+        warnings,
+        failure: None,
+        frame,
+    })
+}
+
+/// `results.vtu`, the interface files and the fractions of a linear run.
+fn write_result_files(
+    dir: &Path,
+    p: &Prepared,
+    res: &junta_solvers::linear_static::LinearStaticResult,
+    cells: &output::CellResults,
+    interfaces: &[output::InterfaceResults],
+) -> Result<()> {
+    if p.vtu {
+        output::write_vtu(&dir.join("results.vtu"), &p.model, &res.u, cells)?;
+        output::write_interface_vtu(dir, &p.model, &res.u, interfaces)?;
+        if !p.fractions.is_empty() {
+            output::write_fractions(dir, &p.model, &res.u, &res.state, &p.fractions)?;
+        }
+    }
+    Ok(())
+}
+
+/// The steps of a deck as linear load cases: steps that constrain the same
+/// dofs share one factorisation; a step that changes the constrained dofs
+/// starts a new model. Writes `results_stepN.vtu` per step and
+/// `results.pvd`; returns the last step's result (with the timings of all
+/// steps) and one summary object per step. On return `p.model` is the model
+/// of the last step.
+#[allow(clippy::too_many_arguments)]
+fn solve_deck_steps(
+    p: &mut Prepared,
+    dir: Option<&Path>,
+    observers: &mut [&mut dyn Observer],
+    input: &Path,
+    prints: &mut crate::deck_print::PrintTables,
+) -> Result<(
+    junta_solvers::linear_static::LinearStaticResult,
+    Vec<serde_json::Value>,
+)> {
+    use junta_solvers::linear_static::{solve_linear_static_cases, LoadCase, Timings};
+    let file = input.display().to_string();
+    let steps = std::mem::take(&mut p.deck_steps);
+    let dofs_of = |s: &deck::DeckStep| s.constraints.iter().map(|c| c.0).collect::<Vec<_>>();
+    let mut summaries = Vec::with_capacity(steps.len());
+    let mut frames = Vec::new();
+    let mut total = Timings::default();
+    let mut last = None;
+    let mut k = 0;
+    while k < steps.len() {
+        let mut end = k + 1;
+        while end < steps.len() && dofs_of(&steps[end]) == dofs_of(&steps[k]) {
+            end += 1;
+        }
+        if k > 0 {
+            // other constrained dofs: another dof map, pattern and factor
+            let m = &p.model;
+            p.model = Model::new(
+                m.mesh.clone(),
+                m.elements.clone(),
+                &steps[k].constraints,
+                steps[k].f_ext.clone(),
+                m.reaction_sets.clone(),
+            )
+            .and_then(|mut new| {
+                new.add_equations(&m.equations)?;
+                Ok(new)
+            })
+            .map_err(|e| err!("{file}: {} (line {}): {e}", steps[k].name, steps[k].line))?;
+            p.solver = build_solver(&p.solver_key, &p.solver_table, &file)?;
+        }
+        let ndof = p.model.dofs.num_dofs();
+        let prescribed: Vec<Vec<f64>> = steps[k..end]
+            .iter()
+            .map(|s| {
+                let mut v = vec![0.0; ndof];
+                for &(d, x) in &s.constraints {
+                    v[d] = x;
+                }
+                v
+            })
+            .collect();
+        let cases: Vec<LoadCase<'_>> = steps[k..end]
+            .iter()
+            .zip(&prescribed)
+            .map(|(s, pr)| LoadCase {
+                prescribed: pr,
+                f_ext: &s.f_ext,
+            })
+            .collect();
+        let phase = format!(
+            "solving steps {}..{} of {} ({} equations, one factorisation)",
+            k + 1,
+            end,
+            steps.len(),
+            p.model.dofs.num_free
+        );
+        for o in observers.iter_mut() {
+            o.on_phase(&phase);
+        }
+        let results =
+            solve_linear_static_cases(&p.model, p.solver.as_mut(), &cases).with_context(|| {
+                format!("solving {file}, {} (line {})", steps[k].name, steps[k].line)
+            })?;
+        for (i, mut res) in results.into_iter().enumerate() {
+            let s = &steps[k + i];
+            let t = res.timings;
+            total.pattern += t.pattern;
+            total.assemble += t.assemble;
+            total.analyze += t.analyze;
+            total.factor += t.factor;
+            total.solve += t.solve;
+            total.total += t.total;
+            // the step's own load vector, for its reactions
+            p.model.f_ext.clone_from(&s.f_ext);
+            if !prints.is_empty() {
+                prints.add_step(&p.model, k + i, &res.u, &res.residual, &s.f_ext, &res.state)?;
+            }
+            if let (true, Some(dir)) = (p.vtu, dir) {
+                let name = format!("results_step{}.vtu", k + i + 1);
+                let cells = output::cell_results(&p.model, &res.u, &res.state)?;
+                output::write_vtu(&dir.join(&name), &p.model, &res.u, &cells)?;
+                frames.push(((k + i + 1) as f64, name));
+            }
+            summaries.push(json!({
+                "name": s.name,
+                "line": s.line,
+                "reactions": output::reactions(&p.model, &res.residual)?,
+                "displacement_max": output::displacement_max(&res.u),
+                "equilibrium_residual": res.free_residual,
+                "shares_factorisation_with_previous": i > 0,
+                "timings": {
+                    "assemble": t.assemble, "analyze": t.analyze, "factor": t.factor,
+                    "solve": t.solve, "total": t.total,
+                },
+                "solver": {
+                    "residual": res.report.residual,
+                    "precision": res.report.precision,
+                    "refinement_steps": res.report.refinement_steps,
+                },
+            }));
+            res.timings = total;
+            last = Some(res);
+        }
+        k = end;
+    }
+    if let (true, Some(dir)) = (p.vtu, dir) {
+        output::write_pvd(&dir.join("results.pvd"), &frames)?;
+    }
+    Ok((last.expect("at least one step"), summaries))
+}

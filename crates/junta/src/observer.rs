@@ -1,0 +1,204 @@
+//! Observers: what a run reports to after each converged increment.
+//!
+//! An incremental run calls [`Observer::on_start`] once, then
+//! [`Observer::on_increment`] after every converged increment, in the order
+//! the observers were given, then [`Observer::on_end`] once, whatever ended
+//! the run (the end of the load program, a stop, a failed increment). Any
+//! observer can end the run by returning [`Flow::Stop`] or
+//! [`Flow::Interrupt`]: the driver stops cleanly after that increment, so
+//! the files the writers left are a valid restart point.
+//!
+//! The writers of `curve.csv`, the VTU frames, `checkpoint.json` and
+//! `summary.json` (`crate::writers`) are observers like any other; so are the
+//! command line's progress bar, the Python callback and
+//! [`FrameCollector`], which keeps typed fields in memory.
+//!
+//! Observers share one [`RunLog`]: the rows of the curve so far, the frames
+//! written, the first failure. A writer that needs what another one did
+//! (the checkpoint lists the frames) reads it there, so the order of the
+//! observers matters: frames before the checkpoint.
+
+use crate::checkpoint::FirstFailure;
+use crate::curve::CurveRow;
+use crate::error::Result;
+use crate::frame::Frame;
+use crate::output::InterfaceResults;
+use crate::prepare::Prepared;
+use junta_core::element::StepInfo;
+use junta_core::state::StateStore;
+use junta_core::Model;
+use junta_solvers::newton::{Checkpoint, IncrementReport, IncrementView};
+
+/// What an observer tells the run after an increment.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Flow {
+    /// Go on.
+    Continue,
+    /// End the run after this increment; the reason is the run's status
+    /// (`stopped: REASON`).
+    Stop(String),
+    /// The user interrupted the run (Ctrl-C): it ends after this increment
+    /// with the status `interrupted (Ctrl-C)`.
+    Interrupt,
+}
+
+/// Why an observer ended the run.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Stop {
+    Requested(String),
+    Interrupted,
+}
+
+impl Flow {
+    pub(crate) fn stop(self) -> Option<Stop> {
+        match self {
+            Flow::Continue => None,
+            Flow::Stop(why) => Some(Stop::Requested(why)),
+            Flow::Interrupt => Some(Stop::Interrupted),
+        }
+    }
+}
+
+/// What the run keeps across increments, shared by its observers.
+#[derive(Debug, Clone, Default)]
+pub struct RunLog {
+    /// One row per converged increment (with a restarted run's past rows).
+    pub rows: Vec<CurveRow>,
+    /// Frames written so far `(load factor, file relative to the output
+    /// directory)`.
+    pub frames: Vec<(f64, String)>,
+    /// When the first interface point failed.
+    pub first_failure: Option<FirstFailure>,
+    /// Every interface point failed and none is still being released.
+    pub separated: bool,
+    /// Increment the run started from (0, or a restart's checkpoint).
+    pub start_increment: usize,
+    /// The last converged increment.
+    pub last_increment: usize,
+}
+
+/// A converged increment, as the observers see it.
+pub struct Increment<'a> {
+    /// The model.
+    pub model: &'a Model,
+    /// The driver's report (load factor, iterations, cut-backs, timings).
+    pub report: &'a IncrementReport,
+    /// The increment's curve row (also the last row of the log).
+    pub row: &'a CurveRow,
+    /// Full displacement vector, node-major (`3 * node + component`).
+    pub u: &'a [f64],
+    /// Full residual `f_int - lambda f_ext` (reactions on constrained dofs).
+    pub residual: &'a [f64],
+    /// Integration-point state.
+    pub state: &'a StateStore,
+    /// Interface results per interface block (traction, jump, law outputs).
+    pub interfaces: &'a [InterfaceResults],
+    /// The increment as the elements saw it.
+    pub step: StepInfo,
+    pub(crate) view: &'a IncrementView<'a>,
+}
+
+impl Increment<'_> {
+    /// A restart point after this increment.
+    pub fn checkpoint(&self) -> Checkpoint {
+        self.view.checkpoint()
+    }
+
+    /// The typed fields of this increment (allocates: call it for the
+    /// increments you keep).
+    pub fn frame(&self) -> Result<Frame> {
+        Frame::at(self.model, self.u, self.state, self.interfaces, self.step)
+    }
+}
+
+/// The end of a run, as the observers see it.
+pub struct RunEnd<'a> {
+    /// The model.
+    pub model: &'a Model,
+    /// Displacement the run ends on (the last converged increment), if any
+    /// increment converged.
+    pub u: Option<&'a [f64]>,
+    /// State the run ends on.
+    pub state: Option<&'a StateStore>,
+    /// Residual the run ends on (None after a failed increment).
+    pub residual: Option<&'a [f64]>,
+    /// Interface results at the end state.
+    pub interfaces: &'a [InterfaceResults],
+    /// The last converged increment.
+    pub step: StepInfo,
+    /// Whether this call (not only a restarted run's past) converged an
+    /// increment.
+    pub converged_here: bool,
+    /// The status line (`completed`, `stopped: ...`, `failed: ...`).
+    pub status: &'a str,
+    /// The summary (what `summary.json` holds).
+    pub summary: &'a serde_json::Value,
+}
+
+/// Something a run reports to. Every method but `on_increment` has a
+/// default that does nothing.
+pub trait Observer {
+    /// Before the first increment (after a restart: the log holds the past
+    /// rows and frames).
+    fn on_start(&mut self, _prepared: &Prepared, _log: &RunLog) -> Result<()> {
+        Ok(())
+    }
+    /// After each converged increment. An error ends the run (the
+    /// increments before stay on disk).
+    fn on_increment(&mut self, inc: &Increment<'_>, log: &mut RunLog) -> Result<Flow>;
+    /// Once, at the end, whatever ended the run.
+    fn on_end(&mut self, _end: &RunEnd<'_>, _log: &mut RunLog) -> Result<()> {
+        Ok(())
+    }
+    /// A phase of a run begins (`reading`, `solving`, `writing results`):
+    /// for progress displays.
+    fn on_phase(&mut self, _phase: &str) {}
+}
+
+/// A closure as an observer: `|inc| Flow::Continue`.
+pub struct FnObserver<F>(pub F);
+
+impl<F: FnMut(&Increment<'_>) -> Flow> Observer for FnObserver<F> {
+    fn on_increment(&mut self, inc: &Increment<'_>, _log: &mut RunLog) -> Result<Flow> {
+        Ok((self.0)(inc))
+    }
+}
+
+/// Keeps the typed fields of every `every`-th increment, and of the last
+/// one, in memory.
+#[derive(Debug, Default)]
+pub struct FrameCollector {
+    /// Keep one increment in `every` (0 or 1: all).
+    pub every: usize,
+    /// The frames kept, in increment order.
+    pub frames: Vec<Frame>,
+}
+
+impl FrameCollector {
+    /// Keep every `every`-th increment.
+    pub fn every(every: usize) -> Self {
+        FrameCollector {
+            every,
+            frames: Vec::new(),
+        }
+    }
+}
+
+impl Observer for FrameCollector {
+    fn on_increment(&mut self, inc: &Increment<'_>, _log: &mut RunLog) -> Result<Flow> {
+        if inc.step.increment.is_multiple_of(self.every.max(1)) {
+            self.frames.push(inc.frame()?);
+        }
+        Ok(Flow::Continue)
+    }
+    fn on_end(&mut self, end: &RunEnd<'_>, _log: &mut RunLog) -> Result<()> {
+        let kept = self.frames.last().map(|f| f.increment);
+        if let (Some(u), Some(state)) = (end.u, end.state) {
+            if end.converged_here && kept != Some(end.step.increment) {
+                self.frames
+                    .push(Frame::at(end.model, u, state, end.interfaces, end.step)?);
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,546 @@
+//! From an input file to a model ready to run: read the scene (`.toml`) or
+//! the deck (`.inp`), build the model, apply the solver overrides, choose the
+//! linear back end, and check what can only be checked on the built model.
+
+use crate::error::{bail, err, Context, Result};
+use crate::{deck, scene};
+use junta_core::registry::{self, SolverEntry};
+use junta_core::{LinearSolver, MatrixKind, Model};
+use std::path::{Path, PathBuf};
+
+/// A model ready to run, from a scene or a deck.
+pub struct Prepared {
+    pub model: Model,
+    pub solver: Box<dyn LinearSolver>,
+    pub title: String,
+    pub units: Option<String>,
+    pub output_dir: Option<PathBuf>,
+    pub vtu: bool,
+    pub probes: Vec<String>,
+    pub fractions: Vec<f64>,
+    pub reference: Option<(scene::ReferenceSpec, usize)>,
+    pub analysis: scene::AnalysisSpec,
+    pub curve: Option<scene::CurveSpec>,
+    pub every: usize,
+    pub thickness: std::collections::BTreeMap<String, f64>,
+    pub notes: Vec<String>,
+    /// The `--solver KEY=VALUE` overrides applied (kept for restarts).
+    pub solver_overrides: Vec<String>,
+    /// Registry key and parameters of the solver (to build another one).
+    pub solver_key: String,
+    pub solver_table: toml::Table,
+    /// The load cases of a linear deck with several `*STEP`s (empty
+    /// otherwise).
+    pub deck_steps: Vec<deck::DeckStep>,
+    /// Per step of the load program: the deck's `*STEP, INC=n` and the
+    /// line of that `*STEP` (empty for scenes).
+    pub increment_limits: Vec<Option<(usize, usize)>>,
+    /// Per step of the load program: the deck step it belongs to (empty
+    /// for scenes).
+    pub program_deck_steps: Vec<usize>,
+    /// A deck's print requests (empty for a scene).
+    pub prints: crate::deck_print::PrintTables,
+    /// Seconds spent reading the input and building the model.
+    pub read_seconds: f64,
+}
+
+pub fn build_solver(key: &str, table: &toml::Table, where_: &str) -> Result<Box<dyn LinearSolver>> {
+    let entry =
+        registry::find::<SolverEntry>(key).map_err(|e| err!("{where_}: key `solver.type`: {e}"))?;
+    (entry.build)(table).map_err(|e| err!("{where_}: key `solver`: {e}"))
+}
+
+/// Resolve the solver `type = "auto"` (the default) from the model's
+/// matrix kind: `cholesky` for symmetric positive-definite tangents, `ldlt`
+/// when a law can soften (symmetric indefinite), `lu` when a law's tangent
+/// is nonsymmetric (general). The choice, or a back end
+/// the user forced that does not accept the model's kind, is a note.
+pub fn resolve_solver(
+    key: &mut String,
+    table: &toml::Table,
+    model: &Model,
+    where_: &str,
+    notes: &mut Vec<String>,
+) -> Result<Box<dyn LinearSolver>> {
+    let kind = model.matrix_kind();
+    if key == "auto" && kind != MatrixKind::General {
+        if let Some(reason) =
+            crate::auto::prefer_amg(model, kind == MatrixKind::SymmetricPositiveDefinite)
+        {
+            let method = if kind == MatrixKind::SymmetricPositiveDefinite {
+                "cg"
+            } else {
+                "gmres"
+            };
+            notes.push(format!(
+                "{reason}: using {method} with the smoothed-aggregation AMG preconditioner{}",
+                if method == "gmres" {
+                    " (GMRES: the tangent can be indefinite, a softening law)"
+                } else {
+                    ""
+                }
+            ));
+            *key = method.to_string();
+            let mut t = toml::Table::new();
+            t.insert("preconditioner".into(), "amg".into());
+            return build_solver(key, &t, where_);
+        }
+    }
+    if key == "auto" {
+        *key = match kind {
+            MatrixKind::SymmetricPositiveDefinite => "cholesky",
+            MatrixKind::SymmetricIndefinite => "ldlt",
+            MatrixKind::General => "lu",
+        }
+        .to_string();
+        if kind == MatrixKind::General {
+            notes.push(format!(
+                "solver auto: the tangent is {} (friction or non-associated plasticity), so the direct back end is `lu` (supernodal LU, row interchanges within panels)",
+                kind.name()
+            ));
+        } else if kind != MatrixKind::SymmetricPositiveDefinite {
+            notes.push(format!(
+                "solver auto: the tangent can be {} (a softening interface law), so the direct back end is `{key}` (LDL^T with Bunch-Kaufman pivots, reports the negative pivots)",
+                kind.name()
+            ));
+        }
+    }
+    let solver = build_solver(key, table, where_)?;
+    if kind == MatrixKind::General && !solver.accepts(kind) {
+        notes.push(format!(
+            "solver `{key}` solves symmetric matrices only, but the tangent is {}: the symmetric part of the tangent is assembled instead, so Newton loses its quadratic convergence (see the iterations per increment in curve.csv and summary.json); use [solver] type = \"auto\" or \"lu\" for the consistent tangent",
+            kind.name()
+        ));
+    } else if !solver.accepts(kind) {
+        notes.push(format!(
+            "solver `{key}` accepts symmetric positive-definite matrices only, but the tangent can be {}: it will stop where the tangent stops being positive definite; use [solver] type = \"auto\" or \"ldlt\"",
+            kind.name()
+        ));
+    }
+    Ok(solver)
+}
+
+/// Apply `--solver KEY=VALUE` overrides to the solver key and table. A
+/// value is read as a TOML value (`1e-10`, `true`, `"amd"`), or else as a
+/// bare string (`precision=double`); `type=...` changes the back end.
+fn apply_solver_overrides(
+    key: &mut String,
+    table: &mut toml::Table,
+    overrides: &[String],
+) -> Result<()> {
+    let mut parsed = Vec::with_capacity(overrides.len());
+    for o in overrides {
+        let Some((k, v)) = o.split_once('=') else {
+            bail!("--solver {o}: expected KEY=VALUE, e.g. --solver precision=double");
+        };
+        let (k, v) = (k.trim(), v.trim());
+        let value = toml::from_str::<toml::Table>(&format!("v = {v}"))
+            .ok()
+            .and_then(|mut t| t.remove("v"))
+            .unwrap_or_else(|| toml::Value::String(v.to_string()));
+        parsed.push((o, k, value));
+    }
+    // `type` first, wherever it is given: the other keys are parameters of
+    // the back end it selects
+    for (o, k, value) in &parsed {
+        if *k == "type" {
+            let toml::Value::String(name) = value else {
+                bail!("--solver {o}: the solver type is a name such as cholesky or cg");
+            };
+            if name != key {
+                // parameters of the scene's back end do not apply to another
+                table.clear();
+                *key = name.clone();
+            }
+        }
+    }
+    for (_, k, value) in parsed {
+        if k != "type" {
+            table.insert(k.to_string(), value);
+        }
+    }
+    Ok(())
+}
+
+/// Read a scene (`.toml`) or a deck (`.inp`) and build the model;
+/// `solver_overrides` are `--solver KEY=VALUE` options.
+pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
+    prepare_with(
+        input,
+        &crate::Options {
+            solver: solver_overrides.to_vec(),
+            overrides: Vec::new(),
+        },
+    )
+}
+
+/// [`prepare`] with scene overrides (`laws.cz.G_Ic = 0.5`).
+pub fn prepare_with(input: &Path, options: &crate::Options) -> Result<Prepared> {
+    let t0 = std::time::Instant::now();
+    let mut p = prepare_unchecked(input, options)?;
+    p.read_seconds = t0.elapsed().as_secs_f64();
+    check_prepared(&input.display().to_string(), &p)?;
+    Ok(p)
+}
+
+/// A scene given as text (named `input` in messages).
+pub fn prepare_scene_text(
+    input: &Path,
+    text: String,
+    solver_overrides: &[String],
+) -> Result<Prepared> {
+    let sf = scene::SceneFile::parse(input, text)?;
+    crate::validate::scene(&sf)?;
+    let p = prepare_scene(input, &sf, solver_overrides)?;
+    check_prepared(&input.display().to_string(), &p)?;
+    Ok(p)
+}
+
+/// A model built in code, run as `analysis` with the solver `key`.
+pub fn prepare_model(model: Model, analysis: scene::AnalysisSpec, key: &str) -> Result<Prepared> {
+    let where_ = "(model built in code)";
+    crate::validate::analysis(where_, &analysis)?;
+    let mut key = key.to_string();
+    let table = toml::Table::new();
+    let mut notes = Vec::new();
+    let solver = resolve_solver(&mut key, &table, &model, where_, &mut notes)?;
+    Ok(Prepared {
+        model,
+        solver,
+        title: String::new(),
+        units: None,
+        output_dir: None,
+        vtu: true,
+        probes: Vec::new(),
+        fractions: Vec::new(),
+        reference: None,
+        analysis,
+        curve: None,
+        every: 1,
+        thickness: Default::default(),
+        notes,
+        solver_overrides: Vec::new(),
+        solver_key: key,
+        solver_table: table,
+        deck_steps: Vec::new(),
+        increment_limits: Vec::new(),
+        program_deck_steps: Vec::new(),
+        prints: Default::default(),
+        read_seconds: 0.0,
+    })
+}
+
+/// Set `path` (dotted; an array index is a number, `boundary.1.value`) of
+/// a scene table to `value`. The parent must exist; the leaf may be new
+/// (the scene's own checks then say whether it is a valid key).
+pub fn apply_override(table: &mut toml::Table, path: &str, value: toml::Value) -> Result<()> {
+    let keys: Vec<&str> = path.split('.').collect();
+    let mut root = toml::Value::Table(std::mem::take(table));
+    let r = set_path(&mut root, &keys, value, path, 0);
+    if let toml::Value::Table(t) = root {
+        *table = t;
+    }
+    r
+}
+
+/// [`apply_override`] below `node`, which is `keys[..depth]` of `path`.
+fn set_path(
+    node: &mut toml::Value,
+    keys: &[&str],
+    value: toml::Value,
+    path: &str,
+    depth: usize,
+) -> Result<()> {
+    let at = || keys[..depth + 1].join(".");
+    let Some((k, rest)) = keys[depth..].split_first() else {
+        bail!("override `{path}`: empty key");
+    };
+    let _ = rest;
+    let last = depth + 1 == keys.len();
+    match node {
+        toml::Value::Table(t) if last => {
+            t.insert(k.to_string(), value);
+            Ok(())
+        }
+        toml::Value::Table(t) => match t.get_mut(*k) {
+            Some(child) => set_path(child, keys, value, path, depth + 1),
+            None => bail!("override `{path}`: the scene has no `{}`", at()),
+        },
+        toml::Value::Array(a) => match k.parse::<usize>().ok().and_then(|i| a.get_mut(i)) {
+            Some(slot) if last => {
+                *slot = value;
+                Ok(())
+            }
+            Some(child) => set_path(child, keys, value, path, depth + 1),
+            None => bail!(
+                "override `{path}`: the scene has no `{}` (`{}` has {} entries, indexed from 0)",
+                at(),
+                keys[..depth].join("."),
+                a.len()
+            ),
+        },
+        _ => bail!(
+            "override `{path}`: `{}` is a value, not a table",
+            keys[..depth].join(".")
+        ),
+    }
+}
+
+/// The text of a scene with `overrides` applied.
+fn overridden_scene(
+    input: &Path,
+    text: String,
+    overrides: &[(String, toml::Value)],
+) -> Result<String> {
+    if overrides.is_empty() {
+        return Ok(text);
+    }
+    let mut table: toml::Table = toml::from_str(&text)
+        .map_err(|e| err!("{}: {}", input.display(), e.to_string().trim_end()))?;
+    for (path, value) in overrides {
+        apply_override(&mut table, path, value.clone())
+            .map_err(|e| err!("{}: {e}", input.display()))?;
+    }
+    toml::to_string(&table).map_err(|e| err!("{}: {e}", input.display()))
+}
+
+fn prepare_unchecked(input: &Path, options: &crate::Options) -> Result<Prepared> {
+    let solver_overrides = &options.solver;
+    let ext = input
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    if ext.as_deref() != Some("toml") && !options.overrides.is_empty() {
+        bail!(
+            "{}: overrides apply to TOML scenes; edit the deck instead",
+            input.display()
+        );
+    }
+    match ext.as_deref() {
+        Some("toml") => {
+            let text = std::fs::read_to_string(input)
+                .with_context(|| format!("cannot read scene file {}", input.display()))?;
+            let text = overridden_scene(input, text, &options.overrides)?;
+            let sf = scene::SceneFile::parse(input, text)?;
+            crate::validate::scene(&sf)?;
+            prepare_scene(input, &sf, solver_overrides)
+        }
+        Some("inp") => {
+            let d = deck::build_model(input)?;
+            let mut notes = d.notes;
+            let mut key = d.solver.clone().unwrap_or_else(|| "auto".to_string());
+            let mut table = toml::Table::new();
+            apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
+            let solver = resolve_solver(
+                &mut key,
+                &table,
+                &d.model,
+                &input.display().to_string(),
+                &mut notes,
+            )?;
+            let (analysis, (increment_limits, program_deck_steps), deck_steps) = match d.incremental
+            {
+                // the load program holds the steps
+                Some(inc) => (
+                    inc.analysis,
+                    (inc.increment_limits, inc.deck_steps),
+                    Vec::new(),
+                ),
+                None => (
+                    Default::default(),
+                    (Vec::new(), Vec::new()),
+                    if d.steps.len() > 1 {
+                        d.steps
+                    } else {
+                        Vec::new()
+                    },
+                ),
+            };
+            Ok(Prepared {
+                model: d.model,
+                solver,
+                title: d.title,
+                units: None,
+                output_dir: None,
+                vtu: true,
+                probes: Vec::new(),
+                fractions: Vec::new(),
+                analysis,
+                curve: d.curve,
+                every: d.every.unwrap_or(1),
+                reference: None,
+                thickness: Default::default(),
+                notes,
+                solver_overrides: solver_overrides.to_vec(),
+                solver_key: key,
+                solver_table: table,
+                deck_steps,
+                increment_limits,
+                program_deck_steps,
+                prints: d.prints,
+                read_seconds: 0.0,
+            })
+        }
+        _ => bail!(
+            "{}: unknown input type; give a TOML scene (.toml) or an Abaqus/CalculiX deck (.inp)",
+            input.display()
+        ),
+    }
+}
+
+/// The model, solver and output options of a parsed, checked scene.
+fn prepare_scene(
+    input: &Path,
+    sf: &scene::SceneFile,
+    solver_overrides: &[String],
+) -> Result<Prepared> {
+    check_path_following(input, &sf.scene.analysis)?;
+    let model = scene::build_model(sf)?;
+    let (mut key, mut table) = scene::solver_table(sf);
+    apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
+    let mut notes = Vec::new();
+    let solver = resolve_solver(
+        &mut key,
+        &table,
+        &model,
+        &sf.path.display().to_string(),
+        &mut notes,
+    )?;
+    let (solver_key, solver_table) = (key, table);
+    Ok(Prepared {
+        model,
+        solver,
+        title: sf.scene.model.title.clone().unwrap_or_default(),
+        units: sf.scene.model.units.clone(),
+        output_dir: sf.scene.output.directory.clone(),
+        vtu: sf.scene.output.vtu,
+        probes: sf.scene.output.probes.clone(),
+        fractions: sf.scene.output.fractions.clone(),
+        analysis: sf.scene.analysis.clone(),
+        curve: sf.scene.output.curve.clone(),
+        every: sf.scene.output.every,
+        reference: match &sf.scene.reference {
+            Some(r) => Some((r.clone(), r.component_index(&sf.path)?)),
+            None => None,
+        },
+        thickness: sf
+            .scene
+            .interface
+            .iter()
+            .filter_map(|f| f.thickness.map(|t| (f.name.clone(), t)))
+            .collect(),
+        notes,
+        solver_overrides: solver_overrides.to_vec(),
+        solver_key,
+        solver_table,
+        deck_steps: Vec::new(),
+        increment_limits: Vec::new(),
+        program_deck_steps: Vec::new(),
+        prints: Default::default(),
+        read_seconds: 0.0,
+    })
+}
+
+/// `out/<file stem><suffix>`.
+pub fn default_dir(input: &Path, suffix: &str) -> PathBuf {
+    let stem = input.file_stem().and_then(|s| s.to_str()).unwrap_or("run");
+    PathBuf::from("out").join(format!("{stem}{suffix}"))
+}
+
+fn check_path_following(input: &Path, a: &scene::AnalysisSpec) -> Result<()> {
+    if a.control != scene::Control::ArcLength {
+        return Ok(());
+    }
+    let file = input.display();
+    if a.kind != "static" {
+        bail!("{file}: key `analysis.control`: \"arc_length\" needs `analysis.type = \"static\"`");
+    }
+    if a.steps.len() != 1 || !a.steps[0].is_finite() || a.steps[0] == 0.0 {
+        bail!(
+            "{file}: key `analysis.steps`: path following runs one step to a finite, non-zero end load factor (`steps = [lambda_end]`), got {:?}",
+            a.steps
+        );
+    }
+    a.arc_length
+        .validate()
+        .map_err(|e| err!("{file}: key `analysis.arc_length`: {e}"))
+}
+
+/// What needs the model: probe, reference and curve sets, curve components.
+pub fn check_prepared(file: &str, p: &Prepared) -> Result<()> {
+    crate::validate::analysis(file, &p.analysis)?;
+    let mesh = &p.model.mesh;
+    for s in &p.probes {
+        mesh.node_set(s)
+            .map_err(|e| crate::error::err!("{file}: key `output.probes`: {e}"))?;
+    }
+    if let Some((r, _)) = &p.reference {
+        mesh.node_set(&r.set)
+            .map_err(|e| crate::error::err!("{file}: key `reference.set`: {e}"))?;
+    }
+    if let Some(c) = &p.curve {
+        for (k, v) in [
+            ("reaction_component", &c.reaction_component),
+            ("point_component", &c.point_component),
+        ] {
+            if scene::component(v).is_none() {
+                bail!("{file}: key `output.curve.{k}`: `{v}` is not valid; use x, y or z");
+            }
+        }
+        for (k, v) in [
+            ("reaction_set", Some(&c.reaction_set)),
+            ("point_set", Some(&c.point_set)),
+            ("relative_to", c.relative_to.as_ref()),
+        ] {
+            if let Some(v) = v {
+                mesh.node_set(v)
+                    .map_err(|e| crate::error::err!("{file}: key `output.curve.{k}`: {e}"))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::apply_solver_overrides;
+
+    fn apply(key: &str, table: &str, overrides: &[&str]) -> (String, toml::Table) {
+        let mut key = key.to_string();
+        let mut table: toml::Table = toml::from_str(table).unwrap();
+        let o: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+        apply_solver_overrides(&mut key, &mut table, &o).unwrap();
+        (key, table)
+    }
+
+    #[test]
+    fn solver_overrides_parse_values_and_apply_type_first() {
+        let (key, t) = apply(
+            "cholesky",
+            "ordering = \"amd\"",
+            &[
+                "refine_tol=1e-10",
+                "precision=double",
+                "max_refinements = 5",
+            ],
+        );
+        assert_eq!(key, "cholesky");
+        assert_eq!(t["refine_tol"].as_float(), Some(1e-10));
+        assert_eq!(t["precision"].as_str(), Some("double"));
+        assert_eq!(t["max_refinements"].as_integer(), Some(5));
+        assert_eq!(t["ordering"].as_str(), Some("amd"));
+        // a new back end drops the scene's parameters but keeps the other
+        // overrides, whatever their order
+        let (key, t) = apply("cg", "tol = 1e-12", &["precision=double", "type=cholesky"]);
+        assert_eq!(key, "cholesky");
+        assert_eq!(t.len(), 1);
+        assert_eq!(t["precision"].as_str(), Some("double"));
+        // the same back end keeps them
+        let (_, t) = apply("cg", "tol = 1e-12", &["type=cg"]);
+        assert_eq!(t["tol"].as_float(), Some(1e-12));
+        let mut key = "cholesky".to_string();
+        let mut t = toml::Table::new();
+        assert!(apply_solver_overrides(&mut key, &mut t, &["novalue".into()]).is_err());
+        assert!(apply_solver_overrides(&mut key, &mut t, &["type=3".into()]).is_err());
+    }
+}

@@ -1,0 +1,461 @@
+//! The run API: a [`Simulation`] read from a file (a TOML scene or an
+//! Abaqus/CalculiX deck) or built in code, checked, and run with observers.
+//!
+//! ```no_run
+//! use junta::{Flow, FnObserver, RunSettings, Simulation};
+//! let sim = Simulation::from_file("examples/delamination/dcb.toml")?;
+//! let report = sim.check()?;
+//! println!("{} equations", report.equations);
+//! // stop once the crack has failed 100 interface points
+//! let mut watch = FnObserver(|inc: &junta::Increment<'_>| {
+//!     if inc.row.failed >= 100 { Flow::Stop("100 points failed".into()) } else { Flow::Continue }
+//! });
+//! let results = sim.run(&RunSettings::in_memory(), &mut [&mut watch])?;
+//! let peak = results.curve.get("reaction").unwrap().iter().cloned().fold(0.0, f64::max);
+//! println!("{}: peak {peak}", results.status_line);
+//! # Ok::<(), junta::Error>(())
+//! ```
+//!
+//! A run writes the files of the command line (`curve.csv`, frames,
+//! `checkpoint.json`, `summary.json`) when [`RunSettings::output`] names a
+//! directory, and only reports to the observers otherwise. A run that ends
+//! early (a stop, an increment below the smallest size, an interrupt)
+//! returns `Ok` with its [`Status`]; [`RunResults::failure`] holds the
+//! error the command line exits with.
+
+use crate::check::CheckReport;
+use crate::checkpoint::{check_fields, check_inputs, read_restart, RestartFile};
+use crate::curve::{past_peak_hint, Curve, CurveRow};
+use crate::error::{bail, err, Context, Error, Result};
+use crate::frame::Frame;
+use crate::incremental::{run_incremental, Limits};
+use crate::observer::{Observer, RunEnd, RunLog};
+use crate::prepare::{prepare_with, Prepared};
+use crate::writers;
+use std::path::{Path, PathBuf};
+
+/// Options of reading an input.
+#[derive(Debug, Clone, Default)]
+pub struct Options {
+    /// `KEY=VALUE` overrides of the linear solver (`type=cg`,
+    /// `precision=double`), as `junta run --solver`.
+    pub solver: Vec<String>,
+    /// Overrides of scene keys by dotted path (`laws.cz.G_Ic`,
+    /// `analysis.arc_length.max_increments`, `boundary.1.value`) with their
+    /// new value; TOML scenes only. A path whose parent is not in the scene
+    /// is an error naming it.
+    pub overrides: Vec<(String, toml::Value)>,
+}
+
+/// Where and how long a run goes.
+#[derive(Debug, Clone, Default)]
+pub struct RunSettings {
+    /// Output directory for the standard files; `None`: observers only.
+    pub output: Option<PathBuf>,
+    /// Incremental runs: stop after this many increments of this call (a
+    /// restart point is kept).
+    pub max_increments: Option<usize>,
+}
+
+impl RunSettings {
+    /// Write the standard files into `dir`.
+    pub fn into_dir(dir: impl Into<PathBuf>) -> Self {
+        RunSettings {
+            output: Some(dir.into()),
+            ..Self::default()
+        }
+    }
+    /// Write no file: results and observers only.
+    pub fn in_memory() -> Self {
+        Self::default()
+    }
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Status {
+    /// The load program ran to its end.
+    Completed,
+    /// A stop ended the run early (an observer, `max_increments`, a deck's
+    /// `INC`, separation): the run can be restarted.
+    Stopped,
+    /// An increment fell below the smallest size.
+    Failed,
+    /// The user interrupted the run.
+    Interrupted,
+}
+
+/// What a run returns.
+#[derive(Debug)]
+pub struct RunResults {
+    /// How the run ended.
+    pub status: Status,
+    /// The status line (`completed`, `stopped: ...`, `failed: ...`).
+    pub status_line: String,
+    /// The summary (what `summary.json` holds).
+    pub summary: serde_json::Value,
+    /// The curve of an incremental run, as columns (empty for linear runs).
+    pub curve: Curve,
+    /// The rows of the curve.
+    pub rows: Vec<CurveRow>,
+    /// The output directory, when the run wrote files.
+    pub output: Option<PathBuf>,
+    /// Notes for the user (solver choice, print tables, edited inputs).
+    pub notes: Vec<String>,
+    /// Warnings for the user (penalty advice, residual after the solve).
+    pub warnings: Vec<String>,
+    /// The error the command line exits with after a failed or
+    /// interrupted run (the files are written).
+    pub failure: Option<Error>,
+    /// The typed fields of the end state (linear runs; incremental runs
+    /// keep frames with a [`crate::FrameCollector`]).
+    pub frame: Option<Frame>,
+}
+
+impl RunResults {
+    /// The summary as text (pretty JSON).
+    pub fn summary_json(&self) -> String {
+        serde_json::to_string_pretty(&self.summary).unwrap_or_default()
+    }
+}
+
+/// A model ready to run.
+pub struct Simulation {
+    input: PathBuf,
+    prepared: Prepared,
+    options: Options,
+}
+
+impl std::fmt::Debug for Simulation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Simulation")
+            .field("input", &self.input)
+            .field("equations", &self.prepared.model.dofs.num_free)
+            .finish()
+    }
+}
+
+impl Simulation {
+    /// Read a scene (`.toml`) or a deck (`.inp`) and build its model.
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Simulation> {
+        Self::from_file_with(path, Options::default())
+    }
+
+    /// [`Simulation::from_file`] with solver and scene overrides.
+    pub fn from_file_with(path: impl AsRef<Path>, options: Options) -> Result<Simulation> {
+        let input = path.as_ref().to_path_buf();
+        let prepared = prepare_with(&input, &options)?;
+        Ok(Simulation {
+            input,
+            prepared,
+            options,
+        })
+    }
+
+    /// A scene given as TOML text; `path` names it in messages and
+    /// relative file names (mesh, reference curve) are read next to it.
+    pub fn from_scene_text(text: &str, path: impl AsRef<Path>) -> Result<Simulation> {
+        let input = path.as_ref().to_path_buf();
+        let prepared = crate::prepare::prepare_scene_text(&input, text.to_string(), &[])?;
+        Ok(Simulation {
+            input,
+            prepared,
+            options: Options::default(),
+        })
+    }
+
+    /// A model built in code, run as `analysis` (linear when
+    /// `analysis.kind == "linear"`) with the linear solver `solver`
+    /// (`"auto"` chooses from the model).
+    pub fn from_model(
+        model: junta_core::Model,
+        analysis: crate::scene::AnalysisSpec,
+        solver: &str,
+    ) -> Result<Simulation> {
+        let prepared = crate::prepare::prepare_model(model, analysis, solver)?;
+        Ok(Simulation {
+            input: PathBuf::from("(model built in code)"),
+            prepared,
+            options: Options::default(),
+        })
+    }
+
+    /// The input file.
+    pub fn input(&self) -> &Path {
+        &self.input
+    }
+
+    /// The prepared model, solver and output options.
+    pub fn prepared(&self) -> &Prepared {
+        &self.prepared
+    }
+
+    /// The model.
+    pub fn model(&self) -> &junta_core::Model {
+        &self.prepared.model
+    }
+
+    /// Notes from reading the input (solver choice, ignored keywords).
+    pub fn notes(&self) -> &[String] {
+        &self.prepared.notes
+    }
+
+    /// True for an incremental run (`[analysis] type = "static"`, a deck
+    /// with a softening law or amplitudes).
+    pub fn is_incremental(&self) -> bool {
+        self.prepared.analysis.kind == "static"
+    }
+
+    /// What `junta check` prints, as data.
+    pub fn check(&self) -> Result<CheckReport> {
+        CheckReport::of(&self.input, &self.prepared)
+    }
+
+    /// The default output directory: the scene's `[output] directory`,
+    /// else `out/<file stem>`.
+    pub fn default_output(&self) -> PathBuf {
+        self.prepared
+            .output_dir
+            .clone()
+            .unwrap_or_else(|| crate::prepare::default_dir(&self.input, ""))
+    }
+
+    /// Run, reporting to `observers` (after the standard writers when
+    /// `settings.output` names a directory).
+    pub fn run(
+        mut self,
+        settings: &RunSettings,
+        observers: &mut [&mut dyn Observer],
+    ) -> Result<RunResults> {
+        let dir = create_output(settings.output.as_deref())?;
+        match self.prepared.analysis.kind.as_str() {
+            "linear" => crate::linear::run_linear(
+                &self.input,
+                &mut self.prepared,
+                dir.as_deref(),
+                observers,
+            ),
+            "static" => run_static(
+                &self.input,
+                &mut self.prepared,
+                dir,
+                None,
+                settings,
+                observers,
+            ),
+            other => bail!(
+                "{}: key `analysis.type`: `{other}` is not valid; use \"linear\" or \"static\"",
+                self.input.display()
+            ),
+        }
+    }
+
+    /// The `--solver` overrides the simulation was read with.
+    pub fn options(&self) -> &Options {
+        &self.options
+    }
+}
+
+/// Create the output directory, if any.
+fn create_output(dir: Option<&Path>) -> Result<Option<PathBuf>> {
+    let Some(dir) = dir else { return Ok(None) };
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("cannot create output directory {}", dir.display()))?;
+    Ok(Some(dir.to_path_buf()))
+}
+
+/// A restart read from an output directory, checked against its inputs.
+pub struct Restart {
+    /// The checkpoint file.
+    pub file: RestartFile,
+    /// Edits of the inputs accepted with `allow_edited` (for the user).
+    pub edits: Vec<String>,
+}
+
+/// Read `DIR/checkpoint.json` and check the inputs it was made from (an
+/// edited input is an error unless `allow_edited`). `Ok(None)`: the run
+/// already finished, nothing to restart.
+pub fn read_checkpoint(dir: &Path, allow_edited: bool) -> Result<Option<Restart>> {
+    let r = read_restart(dir)?;
+    if r.finished.is_some() {
+        return Ok(None);
+    }
+    let edits = check_inputs(&r, allow_edited)?;
+    Ok(Some(Restart { file: r, edits }))
+}
+
+/// The status line of a run that already finished (for
+/// [`read_checkpoint`] returning `None`).
+pub fn finished_message(dir: &Path) -> Result<String> {
+    let r = read_restart(dir)?;
+    Ok(format!(
+        "{}: the run already finished ({}) at increment {}; nothing to restart, {} left unchanged",
+        r.input.display(),
+        r.finished.as_deref().unwrap_or("finished"),
+        r.checkpoint.increment_index,
+        dir.display()
+    ))
+}
+
+/// Continue the incremental run whose output directory is `dir` from its
+/// last converged increment, with the run's own solver overrides.
+pub fn restart(
+    dir: &Path,
+    restart: Restart,
+    settings: &RunSettings,
+    observers: &mut [&mut dyn Observer],
+) -> Result<RunResults> {
+    let r = restart.file;
+    let input = r.input.clone();
+    let options = Options {
+        solver: r.solver_overrides.clone(),
+        overrides: Vec::new(),
+    };
+    let mut p = prepare_with(&input, &options)?;
+    if p.analysis.kind != "static" {
+        bail!(
+            "{}: only incremental runs ([analysis] type = \"static\") can be restarted",
+            input.display()
+        );
+    }
+    check_fields(
+        &r,
+        &dir.join("checkpoint.json"),
+        p.analysis.steps.len(),
+        p.model.dofs.num_dofs(),
+    )?;
+    let mut results = run_static(
+        &input,
+        &mut p,
+        Some(dir.to_path_buf()),
+        Some(r),
+        settings,
+        observers,
+    )?;
+    let mut notes: Vec<String> = restart
+        .edits
+        .into_iter()
+        .map(|c| format!("continuing with an edited input (--allow-edited): {c}"))
+        .collect();
+    notes.append(&mut results.notes);
+    results.notes = notes;
+    Ok(results)
+}
+
+/// An incremental run with the standard writers (when `dir` is given) in
+/// front of the caller's observers.
+fn run_static(
+    input: &Path,
+    p: &mut Prepared,
+    dir: Option<PathBuf>,
+    restart: Option<RestartFile>,
+    settings: &RunSettings,
+    observers: &mut [&mut dyn Observer],
+) -> Result<RunResults> {
+    let past = match (&restart, &dir) {
+        (Some(r), Some(d)) => Curve::read_rows(d, r.checkpoint.increment_index),
+        _ => Vec::new(),
+    };
+    let mut standard = dir
+        .as_deref()
+        .map(|d| writers::standard(d, input, p, restart.as_ref().map(|r| &r.checkpoint)));
+    let mut all: Vec<&mut dyn Observer> = Vec::new();
+    if let Some(s) = &mut standard {
+        all.extend(s.observers());
+    }
+    all.extend(observers.iter_mut().map(|o| &mut **o as &mut dyn Observer));
+    let limits = Limits {
+        max_increments: settings.max_increments,
+        stop_when_separated: p.analysis.stop_when_separated,
+        increment_limits: p.increment_limits.clone(),
+    };
+    let (ending, summary, log) =
+        run_incremental(input, p, restart.map(|r| (r, past)), limits, &mut all)?;
+    let notes = standard.map(|s| s.prints.notes).unwrap_or_default();
+    let status = if ending.interrupted {
+        Status::Interrupted
+    } else if ending.failure.is_some() {
+        Status::Failed
+    } else if ending.status.starts_with("completed") {
+        Status::Completed
+    } else {
+        Status::Stopped
+    };
+    let failure = failure_of(
+        input,
+        p,
+        &log,
+        dir.as_deref(),
+        ending.failure,
+        ending.interrupted,
+    );
+    Ok(RunResults {
+        status,
+        status_line: ending.status,
+        summary,
+        curve: Curve::from_rows(&log.rows),
+        rows: log.rows,
+        output: dir,
+        notes,
+        warnings: Vec::new(),
+        failure,
+        frame: None,
+    })
+}
+
+/// The error a failed or interrupted run ends with.
+fn failure_of(
+    input: &Path,
+    p: &Prepared,
+    log: &RunLog,
+    dir: Option<&Path>,
+    failure: Option<junta_solvers::newton::NonlinearError>,
+    interrupted: bool,
+) -> Option<Error> {
+    let where_ = dir.map_or("memory".to_string(), |d| d.display().to_string());
+    if let Some(e) = failure {
+        return Some(Error::from(e).context(format!(
+            "{}: the run stopped; the {} converged increments are in {where_} (restart with `junta run --restart {where_}` after changing [analysis.newton]){}",
+            input.display(),
+            log.last_increment,
+            past_peak_hint(&log.rows, p.model.matrix_kind())
+        )));
+    }
+    interrupted.then(|| err!("interrupted; the converged increments are in {where_}"))
+}
+
+/// Observers' `on_end` for a linear run (its one state).
+pub(crate) fn end_linear(
+    model: &junta_core::Model,
+    res: &junta_solvers::linear_static::LinearStaticResult,
+    summary: &serde_json::Value,
+    observers: &mut [&mut dyn Observer],
+) -> Result<Option<Frame>> {
+    let step = junta_core::element::StepInfo {
+        load_factor: 1.0,
+        ..Default::default()
+    };
+    let interfaces = crate::output::interface_results(model, &res.u, &res.state)?;
+    let end = RunEnd {
+        model,
+        u: Some(&res.u),
+        state: Some(&res.state),
+        residual: Some(&res.residual),
+        interfaces: &interfaces,
+        step,
+        converged_here: true,
+        status: "completed",
+        summary,
+    };
+    let mut log = RunLog::default();
+    for o in observers.iter_mut() {
+        o.on_end(&end, &mut log)?;
+    }
+    Ok(Some(Frame::at(
+        model,
+        &res.u,
+        &res.state,
+        &interfaces,
+        step,
+    )?))
+}

@@ -1,0 +1,437 @@
+//! The files of an incremental run, each written by an observer:
+//!
+//! - [`CurveCsv`]: `curve.csv`, one row per converged increment (increment,
+//!   step, load factor, reaction, displacement, failed points, Newton
+//!   iterations, cut-backs, wall time, dissipated energy, damaged area,
+//!   negative pivots of the tangent, sign of the load-factor increment, the
+//!   constraint of the increment and the displacement conjugate to the
+//!   applied forces, frictional dissipation);
+//! - [`VtuFrames`]: `frames/results_NNNN.vtu`, `frames/interfaces_NNNN.vtu`,
+//!   `frames/interface_points_NNNN.vtu` and `results.pvd` (ParaView plays
+//!   the crack growing), every `[output] every` increments, at separation,
+//!   and for the last converged increment whatever ends the run;
+//! - [`Checkpoints`]: `checkpoint.json`, the restart point after every
+//!   increment (`junta run --restart DIR`), marked finished at the end of
+//!   the program;
+//! - [`PrintTables`]: a deck's `node_print.csv` / `el_print.csv`, rows at
+//!   the end of each deck step;
+//! - [`SummaryJson`]: `summary.json` and `curve.svg` at the end (also after
+//!   a failure or an interrupt).
+//!
+//! [`standard`] gives them in the order they depend on each other (frames
+//! before the checkpoint, which lists them).
+
+use crate::checkpoint::{read_restart, write_atomic, InputHash, RestartFile};
+use crate::curve::{read_reference_curve, CurveRow, CURVE_HEADER};
+use crate::deck_print;
+use crate::error::{Context, Result};
+use crate::incremental::{internal_force_at, internal_force_of};
+use crate::observer::{Flow, Increment, Observer, RunEnd, RunLog};
+use crate::output::{self, InterfaceResults};
+use crate::prepare::Prepared;
+use crate::scene::CurveSpec;
+use junta_core::element::StepInfo;
+use junta_core::state::StateStore;
+use junta_core::Model;
+use junta_solvers::newton::Checkpoint;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// `curve.csv`.
+pub struct CurveCsv {
+    path: PathBuf,
+    file: Option<std::fs::File>,
+}
+
+impl CurveCsv {
+    /// Write `dir/curve.csv`.
+    pub fn new(dir: &Path) -> Self {
+        CurveCsv {
+            path: dir.join("curve.csv"),
+            file: None,
+        }
+    }
+}
+
+impl Observer for CurveCsv {
+    fn on_start(&mut self, _p: &Prepared, log: &RunLog) -> Result<()> {
+        // a restart keeps the rows up to its checkpoint
+        let mut text = String::from(CURVE_HEADER);
+        for r in &log.rows {
+            text += &r.csv();
+        }
+        let path = &self.path;
+        std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))?;
+        let file = std::fs::OpenOptions::new()
+            .append(true)
+            .open(path)
+            .with_context(|| format!("cannot open {}", path.display()))?;
+        self.file = Some(file);
+        Ok(())
+    }
+    fn on_increment(&mut self, inc: &Increment<'_>, _log: &mut RunLog) -> Result<Flow> {
+        if let Some(f) = &mut self.file {
+            f.write_all(inc.row.csv().as_bytes())?;
+            f.flush()?;
+        }
+        Ok(Flow::Continue)
+    }
+}
+
+/// `frames/results_NNNN.vtu` of increment `increment`.
+fn frame_name(increment: usize) -> String {
+    format!("frames/results_{increment:04}.vtu")
+}
+
+/// The VTU frames and `results.pvd`.
+pub struct VtuFrames {
+    dir: PathBuf,
+    every: usize,
+}
+
+impl VtuFrames {
+    /// Frames of every `every`-th increment into `dir/frames`.
+    pub fn new(dir: &Path, every: usize) -> Self {
+        VtuFrames {
+            dir: dir.to_path_buf(),
+            every: every.max(1),
+        }
+    }
+
+    /// Write the frame of increment `step.increment` (solid and interface
+    /// VTU files) and list it in `results.pvd`.
+    fn write(
+        &self,
+        model: &Model,
+        step: StepInfo,
+        frames: &mut Vec<(f64, String)>,
+        u: &[f64],
+        state: &StateStore,
+        ifs: &[InterfaceResults],
+    ) -> Result<()> {
+        let name = frame_name(step.increment);
+        let cells = output::cell_results_at(model, u, state, step)?;
+        output::write_vtu(&self.dir.join(&name), model, u, &cells)?;
+        let tag = format!("_{:04}", step.increment);
+        output::write_interface_vtu_named(&self.dir.join("frames"), &tag, model, u, ifs)?;
+        frames.push((step.load_factor, name));
+        output::write_pvd(&self.dir.join("results.pvd"), frames)
+    }
+}
+
+impl Observer for VtuFrames {
+    fn on_start(&mut self, _p: &Prepared, _log: &RunLog) -> Result<()> {
+        let frames_dir = self.dir.join("frames");
+        std::fs::create_dir_all(&frames_dir)
+            .with_context(|| format!("cannot create {}", frames_dir.display()))
+    }
+    fn on_increment(&mut self, inc: &Increment<'_>, log: &mut RunLog) -> Result<Flow> {
+        if inc.step.increment.is_multiple_of(self.every) || log.separated {
+            self.write(
+                inc.model,
+                inc.step,
+                &mut log.frames,
+                inc.u,
+                inc.state,
+                inc.interfaces,
+            )?;
+        }
+        Ok(Flow::Continue)
+    }
+    /// The last converged increment is always a frame, whatever stopped
+    /// the run (end of the program, Ctrl-C, a stop, an increment below
+    /// min_increment), so that nothing computed is lost.
+    fn on_end(&mut self, end: &RunEnd<'_>, log: &mut RunLog) -> Result<()> {
+        let last = end.step.increment;
+        let (Some(u), Some(state)) = (end.u, end.state) else {
+            return Ok(());
+        };
+        if !end.converged_here || log.frames.last().map(|f| &f.1) == Some(&frame_name(last)) {
+            return Ok(());
+        }
+        self.write(
+            end.model,
+            end.step,
+            &mut log.frames,
+            u,
+            state,
+            end.interfaces,
+        )
+    }
+}
+
+/// `checkpoint.json` after every increment.
+pub struct Checkpoints {
+    dir: PathBuf,
+    input: PathBuf,
+    solver_overrides: Vec<String>,
+    inputs: Vec<InputHash>,
+    scene_text: Option<String>,
+}
+
+impl Checkpoints {
+    /// Restart points of the run of `input` (prepared with
+    /// `solver_overrides`) into `dir/checkpoint.json`.
+    pub fn new(dir: &Path, input: &Path, solver_overrides: &[String]) -> Self {
+        let scene_text = input
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
+            .then(|| std::fs::read_to_string(input).ok())
+            .flatten();
+        Checkpoints {
+            dir: dir.to_path_buf(),
+            input: std::fs::canonicalize(input).unwrap_or_else(|_| input.to_path_buf()),
+            solver_overrides: solver_overrides.to_vec(),
+            inputs: crate::checkpoint::hash_inputs(input),
+            scene_text,
+        }
+    }
+}
+
+impl Observer for Checkpoints {
+    fn on_increment(&mut self, inc: &Increment<'_>, log: &mut RunLog) -> Result<Flow> {
+        let restart = RestartFile {
+            input: self.input.clone(),
+            checkpoint: inc.checkpoint(),
+            first_failure: log.first_failure.clone(),
+            frames: log.frames.clone(),
+            solver_overrides: self.solver_overrides.clone(),
+            inputs: self.inputs.clone(),
+            scene_text: self.scene_text.clone(),
+            finished: None,
+        };
+        write_atomic(
+            &self.dir.join("checkpoint.json"),
+            &serde_json::to_vec(&restart)?,
+        )?;
+        Ok(Flow::Continue)
+    }
+    /// Keep the frame list in step with the final frame, and mark a run
+    /// that ended for good: a restart then has nothing to do.
+    fn on_end(&mut self, end: &RunEnd<'_>, log: &mut RunLog) -> Result<()> {
+        let path = self.dir.join("checkpoint.json");
+        if !path.exists() {
+            return Ok(());
+        }
+        let mut restart = read_restart(&self.dir)?;
+        let ended =
+            end.status == "completed" || end.status.starts_with("stopped: every interface point");
+        let frames_changed = restart.frames != log.frames;
+        if !ended && !frames_changed {
+            return Ok(());
+        }
+        restart.frames = log.frames.clone();
+        if ended {
+            restart.finished = Some(end.status.to_string());
+        }
+        write_atomic(&path, &serde_json::to_vec(&restart)?)
+    }
+}
+
+/// A deck's `*NODE PRINT` / `*EL PRINT` tables.
+pub struct PrintTables {
+    dir: PathBuf,
+    tables: deck_print::PrintTables,
+    /// Per program step: the deck step it belongs to.
+    deck_step_of: Vec<usize>,
+    /// Deck steps whose rows are in the tables.
+    printed_steps: usize,
+    /// Notes of the tables (the command line shows them).
+    pub notes: Vec<String>,
+}
+
+impl PrintTables {
+    /// The print requests of `p` (taken out of it), resumed after
+    /// `checkpoint` on a restart.
+    pub fn new(dir: &Path, p: &mut Prepared, checkpoint: Option<&Checkpoint>) -> Self {
+        let mut w = PrintTables {
+            dir: dir.to_path_buf(),
+            tables: std::mem::take(&mut p.prints),
+            deck_step_of: p.program_deck_steps.clone(),
+            printed_steps: 0,
+            notes: Vec::new(),
+        };
+        if let Some(c) = checkpoint.filter(|_| !w.tables.is_empty()) {
+            w.printed_steps = match w.deck_step_ends(c.step, c.step_fraction) {
+                Some(ds) => ds + 1,
+                None => w.deck_step_of.get(c.step).copied().unwrap_or(0),
+            };
+            w.tables.resume_from(dir, w.printed_steps);
+        }
+        w
+    }
+
+    /// The deck step that ends with program step `step` at `fraction`
+    /// (a deck step with an amplitude spans several program steps).
+    fn deck_step_ends(&self, step: usize, fraction: f64) -> Option<usize> {
+        let ds = *self.deck_step_of.get(step)?;
+        (fraction >= 1.0 - 1e-12 && self.deck_step_of.get(step + 1) != Some(&ds)).then_some(ds)
+    }
+}
+
+impl Observer for PrintTables {
+    fn on_increment(&mut self, inc: &Increment<'_>, _log: &mut RunLog) -> Result<Flow> {
+        let r = inc.report;
+        if let Some(ds) = self.deck_step_ends(r.step, r.step_fraction) {
+            if !self.tables.is_empty() {
+                let f_int = internal_force_of(inc.model, inc.residual, r.lambda);
+                self.tables
+                    .add_step_with_internal_force(inc.model, ds, inc.u, &f_int, inc.state)?;
+                self.tables.save(&self.dir)?;
+            }
+            self.printed_steps = ds + 1;
+        }
+        Ok(Flow::Continue)
+    }
+    /// A deck step the run did not finish: its rows at the last converged
+    /// increment, with a note.
+    fn on_end(&mut self, end: &RunEnd<'_>, log: &mut RunLog) -> Result<()> {
+        if self.tables.is_empty() {
+            return Ok(());
+        }
+        if let (Some(last), Some(u), Some(state)) = (log.rows.last(), end.u, end.state) {
+            let ds = self.deck_step_of.get(last.step).copied().unwrap_or(0);
+            if ds >= self.printed_steps && end.converged_here {
+                let f_int = match end.residual {
+                    Some(r) => internal_force_of(end.model, r, last.lambda),
+                    None => internal_force_at(end.model, u, state, end.step)?,
+                };
+                self.tables
+                    .add_step_with_internal_force(end.model, ds, u, &f_int, state)?;
+                self.tables.note(format!(
+                    "step {} did not finish: its *NODE PRINT / *EL PRINT rows are at the last converged increment ({}, load factor {:.6e})",
+                    ds + 1,
+                    last.increment,
+                    last.lambda
+                ));
+            }
+        }
+        let tables = std::mem::take(&mut self.tables);
+        self.notes.extend(tables.write(&self.dir)?);
+        Ok(())
+    }
+}
+
+/// `summary.json` and `curve.svg` at the end of the run.
+pub struct SummaryJson {
+    dir: PathBuf,
+    input: PathBuf,
+    title: String,
+    curve: Option<CurveSpec>,
+}
+
+impl SummaryJson {
+    /// The summary of the run of `input` into `dir`.
+    pub fn new(dir: &Path, input: &Path, p: &Prepared) -> Self {
+        SummaryJson {
+            dir: dir.to_path_buf(),
+            input: input.to_path_buf(),
+            title: p.title.clone(),
+            curve: p.curve.clone(),
+        }
+    }
+}
+
+impl Observer for SummaryJson {
+    fn on_increment(&mut self, _inc: &Increment<'_>, _log: &mut RunLog) -> Result<Flow> {
+        Ok(Flow::Continue)
+    }
+    fn on_end(&mut self, end: &RunEnd<'_>, log: &mut RunLog) -> Result<()> {
+        output::write_json(&self.dir.join("summary.json"), end.summary)?;
+        match &self.curve {
+            Some(c) if log.rows.len() >= 2 => write_curve_svg(
+                &self.dir.join("curve.svg"),
+                &self.input,
+                &self.title,
+                c,
+                &log.rows,
+            ),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// The load-displacement chart, with the scene's reference curve.
+fn write_curve_svg(
+    path: &Path,
+    input: &Path,
+    title: &str,
+    c: &CurveSpec,
+    rows: &[CurveRow],
+) -> Result<()> {
+    use crate::plot;
+    let pts: Vec<(f64, f64)> = rows
+        .iter()
+        .filter_map(|r| Some((r.displacement?, r.reaction?)))
+        .collect();
+    let mut series = vec![plot::Series {
+        name: "Junta: converged increments".into(),
+        points: pts,
+        color: 0,
+        markers_only: false,
+    }];
+    if let Some(r) = &c.reference {
+        series.push(plot::Series {
+            name: r.label.clone(),
+            points: read_reference_curve(input, &r.file)?,
+            color: 1,
+            markers_only: false,
+        });
+    }
+    plot::write_svg(
+        path,
+        &[plot::Panel {
+            title: format!("{title}: load-displacement"),
+            x_label: format!("displacement of {} ({})", c.point_set, c.point_component),
+            y_label: format!("reaction on {} ({})", c.reaction_set, c.reaction_component),
+            log_x: false,
+            log_y: false,
+            series,
+            vlines: vec![],
+        }],
+    )
+}
+
+/// The writers of a standard run directory, in the order they depend on
+/// each other: curve, print tables, frames, checkpoint, summary.
+pub struct Standard {
+    /// `curve.csv`.
+    pub curve: CurveCsv,
+    /// Print tables (decks).
+    pub prints: PrintTables,
+    /// VTU frames.
+    pub frames: VtuFrames,
+    /// `checkpoint.json`.
+    pub checkpoints: Checkpoints,
+    /// `summary.json`, `curve.svg`.
+    pub summary: SummaryJson,
+}
+
+/// The standard writers of the run of `input` into `dir`.
+pub fn standard(
+    dir: &Path,
+    input: &Path,
+    p: &mut Prepared,
+    checkpoint: Option<&Checkpoint>,
+) -> Standard {
+    Standard {
+        curve: CurveCsv::new(dir),
+        prints: PrintTables::new(dir, p, checkpoint),
+        frames: VtuFrames::new(dir, p.every),
+        checkpoints: Checkpoints::new(dir, input, &p.solver_overrides),
+        summary: SummaryJson::new(dir, input, p),
+    }
+}
+
+impl Standard {
+    /// The writers as observers, in order.
+    pub fn observers(&mut self) -> [&mut dyn Observer; 5] {
+        [
+            &mut self.curve,
+            &mut self.prints,
+            &mut self.frames,
+            &mut self.checkpoints,
+            &mut self.summary,
+        ]
+    }
+}
