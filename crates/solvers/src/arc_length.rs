@@ -140,9 +140,9 @@
 
 use crate::linear_static::Timings;
 use crate::newton::{
-    any_wants_small, check_checkpoint_fits, increment_timings, is_element_error, Checkpoint,
-    Control, Cursor, IncrementFailure, IncrementReport, IncrementView, NewtonSettings,
-    NonlinearError, NonlinearRun, NonlinearSummary, Work,
+    any_wants_small, check_checkpoint_fits, increment_timings, is_element_error, Abort, Checkpoint,
+    Control, Cursor, Eval, IncrementFailure, IncrementReport, IncrementView, NewtonSettings,
+    NonlinearError, NonlinearRun, NonlinearSummary, SolveClock, Work,
 };
 use junta_core::dof::CONSTRAINED;
 use junta_core::element::{ElementContext, StepInfo};
@@ -485,6 +485,17 @@ struct Base {
     p: f64,
 }
 
+impl Base {
+    /// `ΔD = ½ (lambda_0 Δa - Δlambda a_0 + p_0 Δlambda - lambda_0 Δp)`:
+    /// the energy dissipated from this state to one with the measures `a`,
+    /// `p` at the load factor `lambda` (module doc).
+    fn dissipation(&self, a: f64, p: f64, lambda: f64) -> f64 {
+        0.5 * (self.lambda * (a - self.a) - (lambda - self.lambda) * self.a
+            + self.p * (lambda - self.lambda)
+            - self.lambda * (p - self.p))
+    }
+}
+
 /// The constraint of one attempt.
 #[derive(Debug, Clone, Copy)]
 enum Constraint {
@@ -496,21 +507,6 @@ enum Constraint {
     Arc(f64, Option<f64>),
     /// Dissipation `tau`.
     Dissipation(f64),
-}
-
-/// Outcome of one attempt.
-enum Attempt {
-    Converged {
-        iterations: usize,
-        rel: f64,
-        scale_now: f64,
-        dissipation: f64,
-    },
-    Failed {
-        iterations: usize,
-        rel: f64,
-        reason: IncrementFailure,
-    },
 }
 
 /// Work vectors of the path-following iteration (by equation).
@@ -529,6 +525,36 @@ struct PathWork {
     /// step of the previous increment (set per attempt by the increment
     /// loop from [`PathState::last_tau`]).
     extrapolate_from: Option<f64>,
+}
+
+/// What a converged attempt reached.
+#[derive(Debug, Clone, Copy)]
+struct Convergence {
+    iterations: usize,
+    /// Relative force residual.
+    rel: f64,
+    /// Force scale `max(|lambda f_ext,f|, |reactions|)`.
+    scale_now: f64,
+    /// `ΔD` of the energy balance (module doc).
+    dissipation: f64,
+}
+
+/// Outcome of one attempt.
+enum Attempt {
+    Converged(Convergence),
+    Failed {
+        iterations: usize,
+        rel: f64,
+        reason: IncrementFailure,
+    },
+}
+
+fn failed(iterations: usize, rel: f64, reason: IncrementFailure) -> Attempt {
+    Attempt::Failed {
+        iterations,
+        rel,
+        reason,
+    }
 }
 
 /// Run the single-step load program `program` (its end load factor) on
@@ -561,18 +587,59 @@ where
     }
     settings.validate()?;
     let end = program[0];
+    let (state, u_start, cur, path) = path_start(model, settings, end, restart)?;
+    let (w, timings) = Work::for_run(model, solver, u_start, settings);
+    let mut run = PathRun::new(w, state, cur, path, settings, arc, end)?;
+    let mut end_reason = PathEnd::Completed;
+    while run.cur.t < 1.0 {
+        if run.cur.increment_index >= arc.max_increments {
+            end_reason = PathEnd::IncrementLimit;
+            break;
+        }
+        let before = run.w.timings;
+        let Some(inc) = run.converge_increment(solver)? else {
+            end_reason = PathEnd::Unloaded;
+            break;
+        };
+        let committed = run.commit(&inc)?;
+        run.next_size(&inc, &committed);
+        let report = run.report(solver, &inc, &committed, before);
+        let view = IncrementView {
+            report: &report,
+            u: &run.w.u,
+            residual: &run.w.res,
+            state: &run.state,
+            residual_history: &run.w.history,
+            cursor: run.cur,
+            path: Some(&run.path),
+        };
+        if observer(&view) == Control::Stop {
+            run.summary.stopped_by_observer = true;
+            end_reason = PathEnd::Observer;
+            break;
+        }
+        if run.path.lambda_max > 0.0 && run.cur.lambda * end.signum() <= 1e-6 * run.path.lambda_max
+        {
+            end_reason = PathEnd::Unloaded;
+            break;
+        }
+    }
+    run.finish(end_reason, timings, t_run)
+}
+
+/// The starting point of a path-following run: state, full displacement,
+/// cursor and path state, from the unloaded state (the first increment
+/// load-controlled with `initial_increment`) or from a checkpoint of a
+/// path-following run, checked against the model.
+fn path_start(
+    model: &Model,
+    settings: &NewtonSettings,
+    end: f64,
+    restart: Option<&Checkpoint>,
+) -> Result<(StateStore, Vec<f64>, Cursor, PathState), NonlinearError> {
     let ndof = model.dofs.num_dofs();
     let mut state = model.initial_state();
     let mut u_start = model.dofs.expand(None, 0.0);
-    let nf = model.dofs.num_free;
-    let mut free_dofs = vec![0; nf];
-    for (d, &e) in model.dofs.eq.iter().enumerate() {
-        if e != CONSTRAINED {
-            free_dofs[e] = d;
-        }
-    }
-    let mut cur;
-    let mut path;
     match restart {
         Some(c) => {
             check_checkpoint_fits(c, ndof, &state)?;
@@ -591,11 +658,10 @@ where
             state.committed.copy_from_slice(&c.state_committed);
             state.restore();
             u_start.copy_from_slice(&c.u);
-            cur = c.cursor();
-            path = p.clone();
+            Ok((state, u_start, c.cursor(), p.clone()))
         }
         None => {
-            cur = Cursor {
+            let cur = Cursor {
                 step: 0,
                 t: 0.0,
                 lambda: 0.0,
@@ -604,7 +670,7 @@ where
                 small: false,
                 force_peak: 0.0,
             };
-            path = PathState {
+            let path = PathState {
                 mode: PathMode::Load,
                 size: settings.initial_increment.min(settings.max_increment) * end.abs(),
                 arc0: 0.0,
@@ -616,297 +682,388 @@ where
                 stored_max: 0.0,
                 last_tau: 0.0,
             };
+            Ok((state, u_start, cur, path))
         }
     }
-    let t = Instant::now();
-    let asm = model.assembler();
-    let mut timings = Timings {
-        pattern: t.elapsed().as_secs_f64(),
-        ..Default::default()
-    };
-    let mut w = Work::new(model, asm, free_dofs, u_start, settings);
-    // nonsymmetric tangents stored in full when the back end solves them
-    w.k.set_general(
-        model.matrix_kind() == junta_core::MatrixKind::General
-            && solver.accepts(junta_core::MatrixKind::General),
-    );
-    let mut coupling = Coupling::new(model);
-    let mut pw = PathWork {
-        q: vec![0.0; nf],
-        g: vec![0.0; nf],
-        du2: vec![0.0; nf],
-        pair: vec![0.0; 2 * nf],
-        delta: vec![0.0; nf],
-        delta_prev: vec![0.0; nf],
-        delta_lambda_prev: cur.lambda - path.previous_lambda,
-        extrapolate_from: None,
-    };
-    for (e, &d) in w.free_dofs.iter().enumerate() {
-        pw.delta_prev[e] = w.u_conv[d] - path.previous_u[d];
-    }
-    let mut summary = NonlinearSummary {
-        final_lambda: cur.lambda,
-        ..Default::default()
-    };
-    // state and measures of the starting point
-    let step0 = StepInfo {
-        increment: cur.increment_index,
-        load_factor: cur.lambda,
-        delta_load_factor: 0.0,
-        secant: false,
-    };
-    w.evaluate(&mut state, step0, cur.lambda, cur.force_peak)?;
-    state.restore();
-    let (a0, p0) = work_measures(model, &coupling, &w.u, &w.f_int);
-    let mut base = Base {
-        lambda: cur.lambda,
-        a: a0,
-        p: p0,
-    };
-    let mut dissipated_laws = model.dissipated_energy(&w.u_conv, &state)?;
-    let mut end_reason = PathEnd::Completed;
+}
 
-    'path: while cur.t < 1.0 {
-        if cur.increment_index >= arc.max_increments {
-            end_reason = PathEnd::IncrementLimit;
-            break;
-        }
-        let before = w.timings;
-        let mut cutbacks = 0;
-        let mut mode = path.mode;
-        let mut size = path.size;
-        let first_size = match mode {
-            PathMode::Load => path.size,
-            PathMode::Arc => path.arc0,
-            PathMode::Dissipation => path.tau0,
+/// A path-following run in progress.
+struct PathRun<'a> {
+    model: &'a Model,
+    settings: &'a NewtonSettings,
+    arc: &'a ArcLengthSettings,
+    /// End load factor of the program.
+    end: f64,
+    w: Work<'a>,
+    pw: PathWork,
+    coupling: Coupling,
+    state: StateStore,
+    cur: Cursor,
+    path: PathState,
+    /// The converged state the next increment starts from.
+    base: Base,
+    /// Energy the laws' state reports dissipated at the last converged
+    /// increment.
+    dissipated_laws: f64,
+    summary: NonlinearSummary,
+}
+
+/// What is being tried for one increment: the constraint and its size, and
+/// what was tried already.
+struct Retry {
+    mode: PathMode,
+    size: f64,
+    /// First size of the constraint's phase (the cut-backs' floor is
+    /// `min_step` times it).
+    first_size: f64,
+    cutbacks: usize,
+    /// The dissipation constraint could not be met: the arc length took
+    /// over.
+    fell_back: bool,
+    /// The dissipation rescue of a failed arc was tried.
+    rescued: bool,
+    /// Start dissipation attempts from the secant prediction.
+    extrapolate: bool,
+}
+
+/// A converged increment: its attempt, what constrained it, the size that
+/// converged, its cut-backs, and whether the arc length took over from the
+/// dissipation constraint.
+struct PathIncrement {
+    conv: Convergence,
+    control: PathMode,
+    size: f64,
+    cutbacks: usize,
+    fell_back: bool,
+}
+
+/// Measures of a committed increment for the next size and the report.
+struct Committed {
+    delta_lambda: f64,
+    /// `sqrt(|Δu|^2 + c Δlambda^2)`.
+    arc_len: f64,
+    /// Stored energy `½ lambda (a + p)` (floored by the largest met).
+    stored: f64,
+    /// The laws' own dissipated energy grew.
+    laws_dissipate: bool,
+}
+
+impl<'a> PathRun<'a> {
+    /// The run's work vectors, coupling terms and the energy measures of
+    /// the starting point.
+    fn new(
+        mut w: Work<'a>,
+        mut state: StateStore,
+        cur: Cursor,
+        path: PathState,
+        settings: &'a NewtonSettings,
+        arc: &'a ArcLengthSettings,
+        end: f64,
+    ) -> Result<Self, NonlinearError> {
+        let model = w.model;
+        let nf = model.dofs.num_free;
+        let coupling = Coupling::new(model);
+        let mut pw = PathWork {
+            q: vec![0.0; nf],
+            g: vec![0.0; nf],
+            du2: vec![0.0; nf],
+            pair: vec![0.0; 2 * nf],
+            delta: vec![0.0; nf],
+            delta_prev: vec![0.0; nf],
+            delta_lambda_prev: cur.lambda - path.previous_lambda,
+            extrapolate_from: None,
         };
-        let mut fell_back = false;
-        let mut rescued = false;
-        let mut extrapolate = arc.predictor == Predictor::Secant;
-        let (iterations, rel, scale_now, dissipation, control) = loop {
-            let constraint = match mode {
-                PathMode::Load => {
-                    let l = cur.lambda + size.copysign(end);
-                    Constraint::Load(if (l - end) * end.signum() > 0.0 {
-                        end
-                    } else {
-                        l
-                    })
+        for (e, &d) in w.free_dofs.iter().enumerate() {
+            pw.delta_prev[e] = w.u_conv[d] - path.previous_u[d];
+        }
+        let summary = NonlinearSummary {
+            final_lambda: cur.lambda,
+            ..Default::default()
+        };
+        // state and measures of the starting point
+        w.evaluate_at_rest(&mut state, &cur)?;
+        let (a0, p0) = work_measures(model, &coupling, &w.u, &w.f_int);
+        let base = Base {
+            lambda: cur.lambda,
+            a: a0,
+            p: p0,
+        };
+        let dissipated_laws = model.dissipated_energy(&w.u_conv, &state)?;
+        Ok(PathRun {
+            model,
+            settings,
+            arc,
+            end,
+            w,
+            pw,
+            coupling,
+            state,
+            cur,
+            path,
+            base,
+            dissipated_laws,
+            summary,
+        })
+    }
+
+    /// The next increment under the path state's constraint and size. A
+    /// failed attempt is retried: from the converged state after a failed
+    /// secant start; under the dissipation constraint from the failed
+    /// arc's last iterate once ([`PathRun::rescue`]); else cut back
+    /// ([`PathRun::cut_back`]). `None`: the load has all but vanished (the
+    /// run ends unloaded).
+    fn converge_increment(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+    ) -> Result<Option<PathIncrement>, NonlinearError> {
+        let path = &self.path;
+        let mut r = Retry {
+            mode: path.mode,
+            size: path.size,
+            first_size: match path.mode {
+                PathMode::Load => path.size,
+                PathMode::Arc => path.arc0,
+                PathMode::Dissipation => path.tau0,
+            },
+            cutbacks: 0,
+            fell_back: false,
+            rescued: false,
+            extrapolate: self.arc.predictor == Predictor::Secant,
+        };
+        loop {
+            let (outcome, control) = self.try_increment(solver, &r)?;
+            let (iterations, rel, reason) = match outcome {
+                Attempt::Converged(conv) => {
+                    return Ok(Some(PathIncrement {
+                        conv,
+                        control,
+                        size: r.size,
+                        cutbacks: r.cutbacks,
+                        fell_back: r.fell_back,
+                    }))
                 }
-                // back on the arc after a dissipation phase: nothing more
-                // dissipates on this path, so it goes on by loading
-                // elastically (unloading would retrace the path)
-                PathMode::Arc => Constraint::Arc(size, (path.tau0 > 0.0).then_some(end.signum())),
-                PathMode::Dissipation => Constraint::Dissipation(size),
-            };
-            pw.extrapolate_from =
-                (extrapolate && mode == PathMode::Dissipation && path.last_tau > 0.0)
-                    .then_some(path.last_tau);
-            let mut outcome = attempt(
-                &mut w,
-                &mut pw,
-                &mut coupling,
-                solver,
-                &mut state,
-                &cur,
-                base,
-                constraint,
-                false,
-            )?;
-            // crossing the end of the program: redo under load control to
-            // end exactly there
-            if let Attempt::Converged { .. } = outcome {
-                let lam = lambda_now(&w);
-                if mode != PathMode::Load && (lam - end) * end.signum() > 0.0 {
-                    restore(&mut w, &mut state);
-                    outcome = attempt(
-                        &mut w,
-                        &mut pw,
-                        &mut coupling,
-                        solver,
-                        &mut state,
-                        &cur,
-                        base,
-                        Constraint::Load(end),
-                        false,
-                    )?;
-                    if let Attempt::Converged {
-                        iterations,
-                        rel,
-                        scale_now,
-                        dissipation,
-                    } = outcome
-                    {
-                        break (iterations, rel, scale_now, dissipation, PathMode::Load);
-                    }
-                }
-            }
-            // a long arc that dissipates much may have jumped to another
-            // branch across a snap-back: shorten it
-            if let Attempt::Converged {
-                iterations,
-                rel,
-                dissipation,
-                ..
-            } = outcome
-            {
-                let (a1, p1) = work_measures(model, &coupling, &w.u, &w.f_int);
-                let stored = (0.5 * lambda_now(&w) * (a1 + p1))
-                    .abs()
-                    .max(1e-9 * path.stored_max);
-                if mode != PathMode::Dissipation && dissipation > arc.max_arc_dissipation * stored {
-                    outcome = Attempt::Failed {
-                        iterations,
-                        rel,
-                        reason: IncrementFailure::Element(format!(
-                            "the increment dissipated {dissipation:.3e}, {:.1} % of the stored \
-                             energy {stored:.3e} (limit max_arc_dissipation = {}): shorter arc",
-                            100.0 * dissipation / stored.abs().max(f64::MIN_POSITIVE),
-                            arc.max_arc_dissipation
-                        )),
-                    };
-                }
-            }
-            match outcome {
-                Attempt::Converged {
-                    iterations,
-                    rel,
-                    scale_now,
-                    dissipation,
-                } => break (iterations, rel, scale_now, dissipation, mode),
                 Attempt::Failed {
                     iterations,
                     rel,
                     reason,
-                } => {
-                    // a failed secant start: the same step again from the
-                    // converged state before any cut-back
-                    if pw.extrapolate_from.is_some() {
-                        tracing::info!(
-                            lambda = cur.lambda,
-                            size,
-                            "path increment failed from the secant prediction ({reason}); retrying from the converged state"
-                        );
-                        restore(&mut w, &mut state);
-                        extrapolate = false;
-                        continue;
-                    }
-                    // An arc that failed at a sharp turn of the path (a
-                    // snap-back right at damage onset: the loading and the
-                    // softening branches meet at an angle above 90 degrees,
-                    // so the arc's root selection keeps pointing forward)
-                    // but whose last iterate is damaging: from there, the
-                    // dissipation constraint is well posed (the tangent is
-                    // no longer the secant), so try it once, warm.
-                    if mode == PathMode::Arc && !rescued {
-                        rescued = true;
-                        let (a1, p1) = work_measures(model, &coupling, &w.u, &w.f_int);
-                        let lam = lambda_now(&w);
-                        let d_try = 0.5
-                            * (base.lambda * (a1 - base.a) - (lam - base.lambda) * base.a
-                                + base.p * (lam - base.lambda)
-                                - base.lambda * (p1 - base.p));
-                        let stored = 0.5 * base.lambda * (base.a + base.p);
-                        if d_try.is_finite() && d_try > arc.switch_dissipation * stored.abs() {
-                            let tau = d_try.min(arc.max_arc_dissipation * stored.abs());
-                            let rescue = attempt(
-                                &mut w,
-                                &mut pw,
-                                &mut coupling,
-                                solver,
-                                &mut state,
-                                &cur,
-                                base,
-                                Constraint::Dissipation(tau),
-                                true,
-                            )?;
-                            if let Attempt::Converged {
-                                iterations,
-                                rel,
-                                scale_now,
-                                dissipation,
-                            } = rescue
-                            {
-                                tracing::info!(
-                                    tau,
-                                    "arc length failed at a sharp turn: continued under dissipation control"
-                                );
-                                size = tau;
-                                break (
-                                    iterations,
-                                    rel,
-                                    scale_now,
-                                    dissipation,
-                                    PathMode::Dissipation,
-                                );
-                            }
-                        }
-                    }
-                    restore(&mut w, &mut state);
-                    summary.cutbacks += 1;
-                    cutbacks += 1;
-                    tracing::warn!(
-                        lambda = cur.lambda,
-                        iterations,
-                        residual = rel,
-                        control = mode.name(),
-                        size,
-                        "path increment failed ({reason}); cutting back"
-                    );
-                    // the dissipation constraint cannot be met: go back to
-                    // the arc length once, with the last increment's length
-                    if mode == PathMode::Dissipation
-                        && !fell_back
-                        && (size * settings.cutback < 1e-3 * path.tau0
-                            || matches!(reason, IncrementFailure::NonFinite))
-                        && path.arc_last > 0.0
-                    {
-                        fell_back = true;
-                        mode = PathMode::Arc;
-                        size = path.arc_last;
-                        continue;
-                    }
-                    size *= settings.cutback;
-                    let floor = match mode {
-                        PathMode::Load => settings.min_increment * end.abs(),
-                        PathMode::Arc if fell_back => path.arc0 * arc.min_step,
-                        _ => first_size * arc.min_step,
-                    };
-                    if size < floor {
-                        // the load has all but vanished after its maximum:
-                        // the structure has come apart (e.g. a fully cracked
-                        // interface under force control, where no
-                        // equilibrium carries a load any more)
-                        if path.lambda_max > 0.0
-                            && cur.lambda * end.signum() <= 1e-3 * path.lambda_max
-                        {
-                            end_reason = PathEnd::Unloaded;
-                            break 'path;
-                        }
-                        return Err(NonlinearError::IncrementTooSmall {
-                            step: 0,
-                            lambda: cur.lambda,
-                            increment: size,
-                            last_residual: rel,
-                            iterations,
-                            reason,
-                        });
-                    }
+                } => (iterations, rel, reason),
+            };
+            // a failed secant start: the same step again from the
+            // converged state before any cut-back
+            if self.pw.extrapolate_from.is_some() {
+                tracing::info!(
+                    lambda = self.cur.lambda,
+                    size = r.size,
+                    "path increment failed from the secant prediction ({reason}); retrying from the converged state"
+                );
+                restore(&mut self.w, &mut self.state);
+                r.extrapolate = false;
+                continue;
+            }
+            if r.mode == PathMode::Arc && !r.rescued {
+                r.rescued = true;
+                if let Some((conv, tau)) = self.rescue(solver)? {
+                    return Ok(Some(PathIncrement {
+                        conv,
+                        control: PathMode::Dissipation,
+                        size: tau,
+                        cutbacks: r.cutbacks,
+                        fell_back: r.fell_back,
+                    }));
                 }
             }
+            if !self.cut_back(&mut r, iterations, rel, reason)? {
+                return Ok(None);
+            }
+        }
+    }
+
+    /// The constraint of an attempt of size `r.size`: a load step (ending
+    /// on the end of the program at the latest), the arc length (loading,
+    /// `dlambda` of the sign of the end, after a dissipation phase: nothing
+    /// more dissipates on this path, and unloading would retrace it), or
+    /// the dissipation.
+    fn constraint(&self, r: &Retry) -> Constraint {
+        let end = self.end;
+        match r.mode {
+            PathMode::Load => {
+                let l = self.cur.lambda + r.size.copysign(end);
+                Constraint::Load(if (l - end) * end.signum() > 0.0 {
+                    end
+                } else {
+                    l
+                })
+            }
+            PathMode::Arc => {
+                Constraint::Arc(r.size, (self.path.tau0 > 0.0).then_some(end.signum()))
+            }
+            PathMode::Dissipation => Constraint::Dissipation(r.size),
+        }
+    }
+
+    /// One attempt of the increment `r`, and what constrained it. A
+    /// converged increment that crosses the end of the program is redone
+    /// under load control to end exactly there; an arc-length or load
+    /// increment that dissipated more than `max_arc_dissipation` times the
+    /// stored energy counts as failed (a long arc may have jumped to
+    /// another branch across a snap-back: a shorter one follows).
+    fn try_increment(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+        r: &Retry,
+    ) -> Result<(Attempt, PathMode), NonlinearError> {
+        let end = self.end;
+        let constraint = self.constraint(r);
+        self.pw.extrapolate_from =
+            (r.extrapolate && r.mode == PathMode::Dissipation && self.path.last_tau > 0.0)
+                .then_some(self.path.last_tau);
+        let mut outcome = self.attempt(solver, constraint, false)?;
+        if let Attempt::Converged(_) = outcome {
+            let lam = lambda_now(&self.w);
+            if r.mode != PathMode::Load && (lam - end) * end.signum() > 0.0 {
+                restore(&mut self.w, &mut self.state);
+                outcome = self.attempt(solver, Constraint::Load(end), false)?;
+                if let Attempt::Converged(_) = outcome {
+                    return Ok((outcome, PathMode::Load));
+                }
+            }
+        }
+        if let Attempt::Converged(c) = outcome {
+            let (a1, p1) = work_measures(self.model, &self.coupling, &self.w.u, &self.w.f_int);
+            let stored = (0.5 * lambda_now(&self.w) * (a1 + p1))
+                .abs()
+                .max(1e-9 * self.path.stored_max);
+            let dissipation = c.dissipation;
+            if r.mode != PathMode::Dissipation
+                && dissipation > self.arc.max_arc_dissipation * stored
+            {
+                outcome = failed(
+                    c.iterations,
+                    c.rel,
+                    IncrementFailure::Element(format!(
+                        "the increment dissipated {dissipation:.3e}, {:.1} % of the stored \
+                         energy {stored:.3e} (limit max_arc_dissipation = {}): shorter arc",
+                        100.0 * dissipation / stored.abs().max(f64::MIN_POSITIVE),
+                        self.arc.max_arc_dissipation
+                    )),
+                );
+            }
+        }
+        Ok((outcome, r.mode))
+    }
+
+    /// An arc that failed at a sharp turn of the path (a snap-back right
+    /// at damage onset: the loading and the softening branches meet at an
+    /// angle above 90 degrees, so the arc's root selection keeps pointing
+    /// forward) but whose last iterate is damaging: from there the
+    /// dissipation constraint is well posed (the tangent is no longer the
+    /// secant), so it is tried once, warm, with `tau` = the iterate's
+    /// dissipation (at most `max_arc_dissipation` times the stored energy).
+    /// Returns the converged increment and `tau`.
+    fn rescue(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+    ) -> Result<Option<(Convergence, f64)>, NonlinearError> {
+        let base = self.base;
+        let (a1, p1) = work_measures(self.model, &self.coupling, &self.w.u, &self.w.f_int);
+        let d_try = base.dissipation(a1, p1, lambda_now(&self.w));
+        let stored = 0.5 * base.lambda * (base.a + base.p);
+        if d_try.is_finite() && d_try > self.arc.switch_dissipation * stored.abs() {
+            let tau = d_try.min(self.arc.max_arc_dissipation * stored.abs());
+            if let Attempt::Converged(conv) =
+                self.attempt(solver, Constraint::Dissipation(tau), true)?
+            {
+                tracing::info!(
+                    tau,
+                    "arc length failed at a sharp turn: continued under dissipation control"
+                );
+                return Ok(Some((conv, tau)));
+            }
+        }
+        Ok(None)
+    }
+
+    /// After a failed attempt: restore the converged state and shorten the
+    /// step. A dissipation constraint that cannot be met (its correction
+    /// not finite, or `tau` below 1e-3 of its first value) gives way once to
+    /// the arc length, with the last increment's length; otherwise the size
+    /// is multiplied by `cutback`. Below `min_step` times the first size
+    /// (`min_increment` under load control) the run ends: `Ok(false)` when
+    /// the load has all but vanished after its maximum (the structure came
+    /// apart), else [`NonlinearError::IncrementTooSmall`].
+    fn cut_back(
+        &mut self,
+        r: &mut Retry,
+        iterations: usize,
+        rel: f64,
+        reason: IncrementFailure,
+    ) -> Result<bool, NonlinearError> {
+        let (settings, arc, end) = (self.settings, self.arc, self.end);
+        let (path, cur) = (&self.path, &self.cur);
+        restore(&mut self.w, &mut self.state);
+        self.summary.cutbacks += 1;
+        r.cutbacks += 1;
+        tracing::warn!(
+            lambda = cur.lambda,
+            iterations,
+            residual = rel,
+            control = r.mode.name(),
+            size = r.size,
+            "path increment failed ({reason}); cutting back"
+        );
+        if r.mode == PathMode::Dissipation
+            && !r.fell_back
+            && (r.size * settings.cutback < 1e-3 * path.tau0
+                || matches!(reason, IncrementFailure::NonFinite))
+            && path.arc_last > 0.0
+        {
+            r.fell_back = true;
+            r.mode = PathMode::Arc;
+            r.size = path.arc_last;
+            return Ok(true);
+        }
+        r.size *= settings.cutback;
+        let floor = match r.mode {
+            PathMode::Load => settings.min_increment * end.abs(),
+            PathMode::Arc if r.fell_back => path.arc0 * arc.min_step,
+            _ => r.first_size * arc.min_step,
         };
-        // converged: commit
-        state.commit();
-        let lambda_new = lambda_now(&w);
+        if r.size < floor {
+            // e.g. a fully cracked interface under force control, where
+            // no equilibrium carries a load any more
+            if path.lambda_max > 0.0 && cur.lambda * end.signum() <= 1e-3 * path.lambda_max {
+                return Ok(false);
+            }
+            return Err(NonlinearError::IncrementTooSmall {
+                step: 0,
+                lambda: cur.lambda,
+                increment: r.size,
+                last_residual: rel,
+                iterations,
+                reason,
+            });
+        }
+        Ok(true)
+    }
+
+    /// Commit a converged increment: the state, `u_conv` and the previous
+    /// increment (for the predictor's sign and the secant start), the
+    /// energy measures of the new base state, the cursor and the path's
+    /// records (last arc length, largest load factor and stored energy).
+    fn commit(&mut self, inc: &PathIncrement) -> Result<Committed, NonlinearError> {
+        let (model, end) = (self.model, self.end);
+        let (w, pw, path, cur) = (&mut self.w, &mut self.pw, &mut self.path, &mut self.cur);
+        self.state.commit();
+        let lambda_new = lambda_now(w);
         for (e, &d) in w.free_dofs.iter().enumerate() {
             pw.delta_prev[e] = w.u[d] - w.u_conv[d];
         }
         let arc_len = (pw.delta_prev.iter().map(|v| v * v).sum::<f64>()
-            + coupling.c * (lambda_new - cur.lambda).powi(2))
+            + self.coupling.c * (lambda_new - cur.lambda).powi(2))
         .sqrt();
         pw.delta_lambda_prev = lambda_new - cur.lambda;
-        path.last_tau = if control == PathMode::Dissipation {
-            size
+        path.last_tau = if inc.control == PathMode::Dissipation {
+            inc.size
         } else {
             0.0
         };
@@ -914,40 +1071,63 @@ where
         path.previous_lambda = cur.lambda;
         w.u_conv.copy_from_slice(&w.u);
         let delta_lambda = lambda_new - cur.lambda;
-        let (a1, p1) = work_measures(model, &coupling, &w.u, &w.f_int);
+        let (a1, p1) = work_measures(model, &self.coupling, &w.u, &w.f_int);
         let stored = (0.5 * lambda_new * (a1 + p1)).abs();
         path.stored_max = path.stored_max.max(stored);
         let stored = stored.max(1e-9 * path.stored_max);
-        let d_laws = model.dissipated_energy(&w.u, &state)?;
-        let laws_dissipate = d_laws > dissipated_laws;
-        dissipated_laws = d_laws;
-        base = Base {
+        let d_laws = model.dissipated_energy(&w.u, &self.state)?;
+        let laws_dissipate = d_laws > self.dissipated_laws;
+        self.dissipated_laws = d_laws;
+        self.base = Base {
             lambda: lambda_new,
             a: a1,
             p: p1,
         };
         cur.lambda = lambda_new;
-        cur.t = if control == PathMode::Load && lambda_new == end {
+        cur.t = if inc.control == PathMode::Load && lambda_new == end {
             1.0
         } else {
             (lambda_new / end).clamp(-1.0, 1.0 - 1e-12)
         };
         cur.increment_index += 1;
-        cur.force_peak = cur.force_peak.max(scale_now);
-        cur.small = any_wants_small(model, &state);
+        cur.force_peak = cur.force_peak.max(inc.conv.scale_now);
+        cur.small = any_wants_small(model, &self.state);
         path.arc_last = arc_len;
         path.lambda_max = path.lambda_max.max(lambda_new * end.signum());
-        // next constraint and size
-        let scale = ((arc.target_iterations as f64) / (iterations.max(1) as f64))
+        Ok(Committed {
+            delta_lambda,
+            arc_len,
+            stored,
+            laws_dissipate,
+        })
+    }
+
+    /// The constraint and size of the next increment. The size is scaled by
+    /// `sqrt(target_iterations / iterations)` within `[1/growth, growth]`
+    /// (not above 1 after a cut-back). The first, load-controlled increment
+    /// sets the first arc length; an increment that dissipated more than
+    /// `switch_dissipation` times the stored energy, with the laws
+    /// reporting dissipation, switches to the dissipation constraint (`tau`
+    /// = that dissipation, at most `max_dissipation`); an arc that took
+    /// over from the dissipation constraint stays until the laws dissipate
+    /// again.
+    fn next_size(&mut self, inc: &PathIncrement, c: &Committed) {
+        let (settings, arc, path) = (self.settings, self.arc, &mut self.path);
+        let (control, size, dissipation) = (inc.control, inc.size, inc.conv.dissipation);
+        let scale = ((arc.target_iterations as f64) / (inc.conv.iterations.max(1) as f64))
             .sqrt()
             .clamp(1.0 / settings.growth.max(1.0 + 1e-9), settings.growth);
-        let scale = if cutbacks > 0 { scale.min(1.0) } else { scale };
+        let scale = if inc.cutbacks > 0 {
+            scale.min(1.0)
+        } else {
+            scale
+        };
         match control {
             PathMode::Load if path.mode == PathMode::Load => {
                 // first increment: it sets the arc length
-                path.arc0 = arc_len;
+                path.arc0 = c.arc_len;
                 path.mode = PathMode::Arc;
-                path.size = arc_len;
+                path.size = c.arc_len;
             }
             PathMode::Load => {}
             PathMode::Arc => {
@@ -967,8 +1147,8 @@ where
             }
         }
         if control != PathMode::Dissipation
-            && laws_dissipate
-            && dissipation > arc.switch_dissipation * stored.abs()
+            && c.laws_dissipate
+            && dissipation > arc.switch_dissipation * c.stored.abs()
         {
             path.mode = PathMode::Dissipation;
             path.tau0 = dissipation;
@@ -977,100 +1157,128 @@ where
                 path.size = path.size.min(m);
             }
         }
-        if control == PathMode::Arc && fell_back {
+        if control == PathMode::Arc && inc.fell_back {
             // stay on the arc length until the laws dissipate again
             path.mode = PathMode::Arc;
             path.size = size;
-            if laws_dissipate && dissipation > arc.switch_dissipation * stored.abs() {
+            if c.laws_dissipate && dissipation > arc.switch_dissipation * c.stored.abs() {
                 path.mode = PathMode::Dissipation;
                 path.tau0 = dissipation;
                 path.size = dissipation;
             }
         }
+    }
+
+    /// Count a committed increment in the totals and report it (`before`:
+    /// the timings when it started).
+    fn report(
+        &mut self,
+        solver: &dyn LinearSolver,
+        inc: &PathIncrement,
+        c: &Committed,
+        before: Timings,
+    ) -> IncrementReport {
+        let (cur, conv) = (&self.cur, &inc.conv);
+        let summary = &mut self.summary;
         summary.increments += 1;
-        summary.newton_iterations_max = summary.newton_iterations_max.max(iterations);
+        summary.newton_iterations_max = summary.newton_iterations_max.max(conv.iterations);
         summary.final_lambda = cur.lambda;
-        let now = w.timings;
-        let seconds = increment_timings(now, before);
         let report = IncrementReport {
             step: 0,
             increment_index: cur.increment_index,
             lambda: cur.lambda,
-            delta_lambda,
+            delta_lambda: c.delta_lambda,
             step_fraction: cur.t,
-            iterations,
-            residual: rel,
+            iterations: conv.iterations,
+            residual: conv.rel,
             energy: 0.0,
-            cutbacks,
-            seconds,
+            cutbacks: inc.cutbacks,
+            seconds: increment_timings(self.w.timings, before),
             small_increment_mode: false,
             negative_pivots: solver.report().negative_pivots,
-            control,
-            dissipation: Some(dissipation),
+            control: inc.control,
+            dissipation: Some(conv.dissipation),
         };
         tracing::info!(
             increment = report.increment_index,
             lambda = report.lambda,
-            delta_lambda,
-            iterations,
-            control = control.name(),
-            dissipation,
+            delta_lambda = c.delta_lambda,
+            iterations = conv.iterations,
+            control = inc.control.name(),
+            dissipation = conv.dissipation,
             "path increment converged"
         );
-        let view = IncrementView {
-            report: &report,
-            u: &w.u,
-            residual: &w.res,
-            state: &state,
-            residual_history: &w.history,
-            cursor: cur,
-            path: Some(&path),
+        report
+    }
+
+    /// The end of the run: the residual (reactions) of the last converged
+    /// state (an attempt that failed after it may have left its own in the
+    /// buffers) and the totals.
+    fn finish(
+        self,
+        end_reason: PathEnd,
+        timings: Timings,
+        t_run: Instant,
+    ) -> Result<(NonlinearRun, PathEnd), NonlinearError> {
+        let PathRun {
+            mut w,
+            mut state,
+            cur,
+            path,
+            mut summary,
+            ..
+        } = self;
+        w.u.copy_from_slice(&w.u_conv);
+        w.evaluate_at_rest(&mut state, &cur)?;
+        w.close(&mut summary, timings, t_run);
+        Ok((
+            NonlinearRun {
+                summary,
+                u: w.u,
+                residual: w.res,
+                state,
+                cursor: cur,
+                path: Some(path),
+            },
+            end_reason,
+        ))
+    }
+
+    /// One attempt of an increment from the converged state (`w.u_conv`,
+    /// `cur.lambda`) under `constraint` ([`PathAttempt`]); `warm`: from the
+    /// current trial instead. On success `w.u`, `w.lambda_trial`, `w.res`,
+    /// `w.f_int` and the trial state hold the converged increment.
+    fn attempt(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+        constraint: Constraint,
+        warm: bool,
+    ) -> Result<Attempt, NonlinearError> {
+        let mut a = PathAttempt {
+            w: &mut self.w,
+            pw: &mut self.pw,
+            coupling: &mut self.coupling,
+            solver,
+            state: &mut self.state,
+            cur: &self.cur,
+            base: self.base,
+            constraint,
+            lambda: 0.0,
+            secant: false,
+            ev: Eval {
+                abs: f64::NAN,
+                rel: f64::NAN,
+                scale_now: 0.0,
+            },
         };
-        if observer(&view) == Control::Stop {
-            summary.stopped_by_observer = true;
-            end_reason = PathEnd::Observer;
-            break;
-        }
-        if path.lambda_max > 0.0 && cur.lambda * end.signum() <= 1e-6 * path.lambda_max {
-            end_reason = PathEnd::Unloaded;
-            break;
+        match a.run(warm) {
+            Ok(outcome) | Err(Abort::Failed(outcome)) => Ok(outcome),
+            Err(Abort::Fatal(e)) => Err(e),
         }
     }
-    // the residual (reactions) of the last converged state: an attempt
-    // that failed after it may have left its own in the buffers
-    w.u.copy_from_slice(&w.u_conv);
-    let step_end = StepInfo {
-        increment: cur.increment_index,
-        load_factor: cur.lambda,
-        delta_load_factor: 0.0,
-        secant: false,
-    };
-    w.evaluate(&mut state, step_end, cur.lambda, cur.force_peak)?;
-    state.restore();
-    summary.newton_iterations_total = w.iterations;
-    summary.analyze_count = usize::from(w.analyzed);
-    summary.secant_attempts = w.secant_attempts;
-    summary.linear_solves = w.solves;
-    timings.assemble = w.timings.assemble;
-    timings.analyze = w.timings.analyze;
-    timings.factor = w.timings.factor;
-    timings.solve = w.timings.solve;
-    timings.total = t_run.elapsed().as_secs_f64();
-    summary.timings = timings;
-    Ok((
-        NonlinearRun {
-            summary,
-            u: w.u,
-            residual: w.res,
-            state,
-            cursor: cur,
-            path: Some(path),
-        },
-        end_reason,
-    ))
 }
 
-/// The load factor of the current trial (set by [`attempt`]).
+/// The load factor of the current trial (set by [`PathRun::attempt`]).
 fn lambda_now(w: &Work<'_>) -> f64 {
     w.lambda_trial
 }
@@ -1080,244 +1288,336 @@ fn restore(w: &mut Work<'_>, state: &mut StateStore) {
     w.u.copy_from_slice(&w.u_conv);
 }
 
-/// One attempt of an increment from the converged state (`w.u_conv`,
-/// `cur.lambda`) under `constraint`. On success `w.u`, `w.lambda_trial`,
-/// `w.res`, `w.f_int` and the trial state hold the converged increment.
-#[allow(clippy::too_many_arguments)]
-fn attempt(
-    w: &mut Work<'_>,
-    pw: &mut PathWork,
-    coupling: &mut Coupling,
-    solver: &mut dyn LinearSolver,
-    state: &mut StateStore,
-    cur: &Cursor,
+/// One attempt in progress: the run's buffers, the constraint, and the
+/// trial point (`w.u`, `lambda`) with its residual.
+struct PathAttempt<'r, 'm> {
+    w: &'r mut Work<'m>,
+    pw: &'r mut PathWork,
+    coupling: &'r mut Coupling,
+    solver: &'r mut dyn LinearSolver,
+    state: &'r mut StateStore,
+    /// The converged state the increment starts from.
+    cur: &'r Cursor,
     base: Base,
     constraint: Constraint,
-    warm: bool,
-) -> Result<Attempt, NonlinearError> {
-    let st = w.settings.clone();
-    let model = w.model;
-    let fail = |iterations, rel, reason| Attempt::Failed {
-        iterations,
-        rel,
-        reason,
-    };
-    // start: converged displacements, load factor unchanged (predictor in
-    // the first iteration) or the prescribed one
-    // (warm: from the current trial `w.u`, `w.lambda_trial`)
-    let mut lambda = match constraint {
-        Constraint::Load(l) => l,
-        _ if warm => w.lambda_trial,
-        _ => cur.lambda,
-    };
-    if !warm {
-        w.u.copy_from_slice(&w.u_conv);
-        if let Constraint::Dissipation(tau) = constraint {
-            if let Some(last_tau) = pw.extrapolate_from {
-                // the last increment, scaled to this one's dissipation
-                let s = tau / last_tau;
-                for (e, &d) in w.free_dofs.iter().enumerate() {
-                    w.u[d] += s * pw.delta_prev[e];
-                }
-                lambda = cur.lambda + s * pw.delta_lambda_prev;
+    /// Load factor of the trial point.
+    lambda: f64,
+    /// The laws' secant tangent is in use (fallback).
+    secant: bool,
+    /// Residual at the trial point.
+    ev: Eval,
+}
+
+impl PathAttempt<'_, '_> {
+    /// The attempt: the start ([`PathAttempt::start`]), then iterations of
+    /// tangent, the two solves, `dlambda` from the constraint, line search
+    /// and the secant fallback, until the force criterion (and under the
+    /// dissipation constraint `|ΔD - tau| <= 1e-6 tau`) holds or the
+    /// attempt fails (iteration limit, divergence past `divergence_ratio`
+    /// times the first iteration's residual, solver or element failure,
+    /// no real root of the arc length, a non-finite correction).
+    fn run(&mut self, warm: bool) -> Result<Attempt, Abort<Attempt>> {
+        self.start(warm);
+        self.evaluate(0)?;
+        self.w.history.push(self.ev.rel);
+        let rho0 = self.ev.abs.max(f64::MIN_POSITIVE);
+        let nf = self.w.free_dofs.len();
+        let mut rho_first = 0.0;
+        let mut rho_prev = f64::INFINITY;
+        let max_iterations = self.w.settings.max_iterations;
+        for it in 1..=max_iterations {
+            self.w.iterations += 1;
+            let h = self.tangent(it)?;
+            self.solve(it)?;
+            let dl = self.dlambda(it, h)?;
+            // du = du_I + dlambda du_II
+            for e in 0..nf {
+                self.w.du[e] += dl * self.pw.du2[e];
+            }
+            if !self.w.du.iter().all(|v| v.is_finite()) {
+                return Err(self.fail(it, IncrementFailure::NonFinite));
+            }
+            self.line_search(it, dl)?;
+            self.secant_fallback(it, rho_prev)?;
+            rho_prev = self.ev.abs;
+            if it == 1 {
+                rho_first = self.ev.abs.max(rho0);
+            }
+            if let Some(done) = self.checks(it, rho_first) {
+                return Ok(done);
             }
         }
+        Ok(failed(
+            max_iterations,
+            self.ev.rel,
+            IncrementFailure::IterationLimit,
+        ))
     }
-    let set_prescribed = |w: &mut Work<'_>, lambda: f64| {
-        for (d, u) in w.u.iter_mut().enumerate() {
-            if model.dofs.eq[d] == CONSTRAINED {
-                *u = lambda * model.dofs.prescribed[d];
-            }
-        }
-        // dependents of linear equations follow their free and
-        // prescribed terms
-        model.dofs.fill_dependents(&mut w.u);
-    };
-    set_prescribed(w, lambda);
-    w.lambda_trial = lambda;
-    for (e, &d) in w.free_dofs.iter().enumerate() {
-        pw.delta[e] = w.u[d] - w.u_conv[d];
-    }
-    w.history.clear();
-    let mut secant = false;
-    let step_info = |lambda: f64, secant: bool| StepInfo {
-        increment: cur.increment_index + 1,
-        load_factor: lambda,
-        delta_load_factor: lambda - cur.lambda,
-        secant,
-    };
-    let mut ev = match w.evaluate(state, step_info(lambda, secant), lambda, cur.force_peak) {
-        Ok(e) => e,
-        Err(e) if is_element_error(&e) => {
-            return Ok(fail(0, f64::NAN, IncrementFailure::Element(e.to_string())))
-        }
-        Err(e) => return Err(e.into()),
-    };
-    w.history.push(ev.rel);
-    let rho0 = ev.abs.max(f64::MIN_POSITIVE);
-    let nf = w.free_dofs.len();
-    let dissipation_of = |w: &Work<'_>, coupling: &Coupling, lambda: f64| {
-        let (a, p) = work_measures(model, coupling, &w.u, &w.f_int);
-        0.5 * (base.lambda * (a - base.a) - (lambda - base.lambda) * base.a
-            + base.p * (lambda - base.lambda)
-            - base.lambda * (p - base.p))
-    };
-    let mut rho_first = 0.0;
-    let mut rho_prev = f64::INFINITY;
-    for it in 1..=st.max_iterations {
-        w.iterations += 1;
-        if !w.analyzed {
-            let t = Instant::now();
-            // every update is checked through the out-of-balance forces
-            solver.set_caller_checks_residual(true);
-            solver.set_layout(&w.layout);
-            solver.analyze(&w.k, Some(&w.coords))?;
-            w.timings.analyze += t.elapsed().as_secs_f64();
-            w.analyzed = true;
-        }
-        let t = Instant::now();
-        let r = solver.factorize(&w.k);
-        w.timings.factor += t.elapsed().as_secs_f64();
-        if let Err(e) = r {
-            return Ok(fail(it, ev.rel, IncrementFailure::Solver(e)));
-        }
-        // q, g, h at the current iterate (element matrices at the trial u)
-        let h = if matches!(constraint, Constraint::Load(_)) {
-            0.0
-        } else {
-            match coupling.compute(
-                model,
-                &w.u,
-                state,
-                step_info(lambda, secant),
-                &mut pw.q,
-                &mut pw.g,
-            ) {
-                Ok(h) => h,
-                Err(e) if is_element_error(&e) => {
-                    return Ok(fail(it, ev.rel, IncrementFailure::Element(e.to_string())))
-                }
-                Err(e) => return Err(e.into()),
-            }
+
+    /// The first trial point: the converged displacements with the load
+    /// factor unchanged (the first iteration's constraint gives the
+    /// predictor) or the prescribed one. With the secant predictor under
+    /// the dissipation constraint: the last increment scaled to this one's
+    /// dissipation step, `u = u_n + (tau / tau_n) Δu_n`, `lambda = lambda_n
+    /// + (tau / tau_n) Δlambda_n`. `warm`: the current trial (`w.u`,
+    /// `w.lambda_trial`).
+    fn start(&mut self, warm: bool) {
+        let cur_lambda = self.cur.lambda;
+        self.lambda = match self.constraint {
+            Constraint::Load(l) => l,
+            _ if warm => self.w.lambda_trial,
+            _ => cur_lambda,
         };
+        if !warm {
+            self.w.u.copy_from_slice(&self.w.u_conv);
+            if let Constraint::Dissipation(tau) = self.constraint {
+                if let Some(last_tau) = self.pw.extrapolate_from {
+                    // the last increment, scaled to this one's dissipation
+                    let s = tau / last_tau;
+                    for (e, &d) in self.w.free_dofs.iter().enumerate() {
+                        self.w.u[d] += s * self.pw.delta_prev[e];
+                    }
+                    self.lambda = cur_lambda + s * self.pw.delta_lambda_prev;
+                }
+            }
+        }
+        self.set_prescribed();
+        self.w.lambda_trial = self.lambda;
+        for (e, &d) in self.w.free_dofs.iter().enumerate() {
+            self.pw.delta[e] = self.w.u[d] - self.w.u_conv[d];
+        }
+        self.w.history.clear();
+    }
+
+    /// The prescribed dofs at `lambda * ubar`; the dependents of linear
+    /// equations follow their free and prescribed terms.
+    fn set_prescribed(&mut self) {
+        let model = self.w.model;
+        for (d, u) in self.w.u.iter_mut().enumerate() {
+            if model.dofs.eq[d] == CONSTRAINED {
+                *u = self.lambda * model.dofs.prescribed[d];
+            }
+        }
+        model.dofs.fill_dependents(&mut self.w.u);
+    }
+
+    /// The trial point `u = u_base + s du`, `lambda = lambda_base + s
+    /// dlambda`.
+    fn move_to(&mut self, s: f64, lambda_base: f64, dl: f64) {
+        for (e, &d) in self.w.free_dofs.iter().enumerate() {
+            self.w.u[d] = self.w.u_base[d] + s * self.w.du[e];
+        }
+        self.lambda = lambda_base + s * dl;
+        self.set_prescribed();
+    }
+
+    fn step(&self) -> StepInfo {
+        StepInfo {
+            increment: self.cur.increment_index + 1,
+            load_factor: self.lambda,
+            delta_load_factor: self.lambda - self.cur.lambda,
+            secant: self.secant,
+        }
+    }
+
+    /// The attempt failed at iteration `it` (with the last residual).
+    fn fail(&self, it: usize, reason: IncrementFailure) -> Abort<Attempt> {
+        Abort::Failed(failed(it, self.ev.rel, reason))
+    }
+
+    /// Assemble and evaluate the residual at the trial point into `ev`. An
+    /// element error fails the attempt (iteration `it`), any other error is
+    /// fatal.
+    fn evaluate(&mut self, it: usize) -> Result<(), Abort<Attempt>> {
+        let step = self.step();
+        match self
+            .w
+            .evaluate(self.state, step, self.lambda, self.cur.force_peak)
+        {
+            Ok(e) => {
+                self.ev = e;
+                Ok(())
+            }
+            Err(e) if is_element_error(&e) => {
+                Err(self.fail(it, IncrementFailure::Element(e.to_string())))
+            }
+            Err(e) => Err(e.into()),
+        }
+    }
+
+    /// Factorise the tangent at the trial point and, off load control,
+    /// compute `q`, `g` and `h` there (element matrices at the trial `u`;
+    /// module doc). Returns `h`.
+    fn tangent(&mut self, it: usize) -> Result<f64, Abort<Attempt>> {
+        self.w.analyze_once(self.solver)?;
+        if let Err(e) = self.w.factorize(self.solver) {
+            return Err(self.fail(it, IncrementFailure::Solver(e)));
+        }
+        if matches!(self.constraint, Constraint::Load(_)) {
+            return Ok(0.0);
+        }
+        let step = self.step();
+        match self.coupling.compute(
+            self.w.model,
+            &self.w.u,
+            self.state,
+            step,
+            &mut self.pw.q,
+            &mut self.pw.g,
+        ) {
+            Ok(h) => Ok(h),
+            Err(e) if is_element_error(&e) => {
+                Err(self.fail(it, IncrementFailure::Element(e.to_string())))
+            }
+            Err(e) => Err(e.into()),
+        }
+    }
+
+    /// `du_I = -K^-1 r` into `w.du` and, off load control, `du_II = K^-1 q`
+    /// into `pw.du2` (both right-hand sides in one pass over the factor).
+    fn solve(&mut self, it: usize) -> Result<(), Abort<Attempt>> {
+        let (w, pw) = (&mut *self.w, &mut *self.pw);
         for (du, &r) in w.du.iter_mut().zip(&w.res_f) {
             *du = -r;
         }
-        let t = Instant::now();
-        let factor_before = solver.report().factor_seconds;
-        let r = if matches!(constraint, Constraint::Load(_)) {
+        let clock = SolveClock::start(self.solver);
+        let r = if matches!(self.constraint, Constraint::Load(_)) {
             w.solves += 1;
-            solver.solve_in_place(&w.k, &mut w.du)
+            self.solver.solve_in_place(&w.k, &mut w.du)
         } else {
-            // both right-hand sides in one pass over the factor
+            let nf = w.free_dofs.len();
             let (p1, p2) = pw.pair.split_at_mut(nf);
             p1.copy_from_slice(&w.du);
             p2.copy_from_slice(&pw.q);
             w.solves += 2;
-            let r = solver.solve_many_in_place(&w.k, &mut pw.pair);
+            let r = self.solver.solve_many_in_place(&w.k, &mut pw.pair);
             let (p1, p2) = pw.pair.split_at(nf);
             w.du.copy_from_slice(p1);
             pw.du2.copy_from_slice(p2);
             r
         };
-        let refactor = (solver.report().factor_seconds - factor_before).max(0.0);
-        w.timings.factor += refactor;
-        w.timings.solve += t.elapsed().as_secs_f64() - refactor;
+        clock.stop(self.solver, &mut w.timings);
         if let Err(e) = r {
-            return Ok(fail(it, ev.rel, IncrementFailure::Solver(e)));
+            return Err(self.fail(it, IncrementFailure::Solver(e)));
         }
-        // dlambda from the constraint
-        let dl = match constraint {
-            Constraint::Load(_) => 0.0,
-            Constraint::Arc(len, forward) => {
-                let c = coupling.c;
-                let dlam0 = lambda - cur.lambda;
-                if it == 1 {
-                    // predictor: along du_II with the sign of the path
-                    let norm = (dot(&pw.du2, &pw.du2) + c).sqrt();
-                    let dir = dot(&pw.du2, &pw.delta_prev) + c * pw.delta_lambda_prev;
-                    let sign = match forward {
-                        Some(s) => s,
-                        None if dir < 0.0 => -1.0,
-                        None => 1.0,
-                    };
-                    // du_I is round-off here; keep it in the quadratic below
-                    let (a1, a2, a3) = quadratic(&pw.delta, &w.du, &pw.du2, c, dlam0, len);
-                    match roots(a1, a2, a3) {
-                        Some((r1, r2)) => {
-                            if (r1 - sign * len / norm).abs() < (r2 - sign * len / norm).abs() {
-                                r1
-                            } else {
-                                r2
-                            }
-                        }
-                        None => sign * len / norm,
-                    }
-                } else {
-                    let (a1, a2, a3) = quadratic(&pw.delta, &w.du, &pw.du2, c, dlam0, len);
-                    match roots(a1, a2, a3) {
-                        Some((r1, r2)) => {
-                            // the root whose increment is closest in angle
-                            // to the current one
-                            let cos = |dl: f64| {
-                                let mut s = c * dlam0 * (dlam0 + dl);
-                                for e in 0..nf {
-                                    s += pw.delta[e] * (pw.delta[e] + w.du[e] + dl * pw.du2[e]);
-                                }
-                                s
-                            };
-                            if cos(r1) >= cos(r2) {
-                                r1
-                            } else {
-                                r2
-                            }
-                        }
-                        None => {
-                            return Ok(fail(
-                                it,
-                                ev.rel,
-                                IncrementFailure::Element(
-                                    "arc-length constraint has no real root".into(),
-                                ),
-                            ))
-                        }
+        Ok(())
+    }
+
+    /// `dlambda` of iteration `it` from the constraint: 0 under load
+    /// control, else [`PathAttempt::arc_dlambda`] or
+    /// [`PathAttempt::dissipation_dlambda`].
+    fn dlambda(&self, it: usize, h: f64) -> Result<f64, Abort<Attempt>> {
+        match self.constraint {
+            Constraint::Load(_) => Ok(0.0),
+            Constraint::Arc(len, forward) => self.arc_dlambda(it, len, forward),
+            Constraint::Dissipation(tau) => self.dissipation_dlambda(it, tau, h),
+        }
+    }
+
+    /// The cylindrical arc length `|Δu + du_I + dlambda du_II|^2 + c
+    /// (Δlambda + dlambda)^2 = Δl^2`, quadratic in `dlambda`. First
+    /// iteration (predictor): the root nearest `sign Δl / |(du_II, sqrt
+    /// c)|`, the sign `forward` or else that of the previous increment's
+    /// direction (that value itself without a real root). Later iterations:
+    /// the root whose increment makes the smaller angle with the current
+    /// one; no real root fails the attempt.
+    fn arc_dlambda(
+        &self,
+        it: usize,
+        len: f64,
+        forward: Option<f64>,
+    ) -> Result<f64, Abort<Attempt>> {
+        let (w, pw) = (&*self.w, &*self.pw);
+        let c = self.coupling.c;
+        let dlam0 = self.lambda - self.cur.lambda;
+        let nf = w.free_dofs.len();
+        if it == 1 {
+            // predictor: along du_II with the sign of the path
+            let norm = (dot(&pw.du2, &pw.du2) + c).sqrt();
+            let dir = dot(&pw.du2, &pw.delta_prev) + c * pw.delta_lambda_prev;
+            let sign = match forward {
+                Some(s) => s,
+                None if dir < 0.0 => -1.0,
+                None => 1.0,
+            };
+            // du_I is round-off here; keep it in the quadratic below
+            let (a1, a2, a3) = quadratic(&pw.delta, &w.du, &pw.du2, c, dlam0, len);
+            return Ok(match roots(a1, a2, a3) {
+                Some((r1, r2)) => {
+                    if (r1 - sign * len / norm).abs() < (r2 - sign * len / norm).abs() {
+                        r1
+                    } else {
+                        r2
                     }
                 }
-            }
-            Constraint::Dissipation(tau) => {
-                let phi = dissipation_of(w, coupling, lambda) - tau;
-                // dphi = w . du + c_l dlambda
-                let mut wdu1 = 0.0;
-                let mut wdu2 = 0.0;
-                for e in 0..nf {
-                    let wv = 0.5 * base.lambda * (w.fext_f[e] - pw.g[e]);
-                    wdu1 += wv * w.du[e];
-                    wdu2 += wv * pw.du2[e];
-                }
-                let c_l = 0.5 * (base.p - base.a - base.lambda * h);
-                let den = wdu2 + c_l;
-                let dl = -(phi + wdu1) / den;
-                if !dl.is_finite() || den.abs() <= 1e-14 * (wdu2.abs() + c_l.abs()) {
-                    return Ok(fail(it, ev.rel, IncrementFailure::NonFinite));
-                }
-                dl
-            }
-        };
-        for e in 0..nf {
-            w.du[e] += dl * pw.du2[e];
+                None => sign * len / norm,
+            });
         }
-        if !w.du.iter().all(|v| v.is_finite()) {
-            return Ok(fail(it, ev.rel, IncrementFailure::NonFinite));
+        let (a1, a2, a3) = quadratic(&pw.delta, &w.du, &pw.du2, c, dlam0, len);
+        match roots(a1, a2, a3) {
+            Some((r1, r2)) => {
+                // the root whose increment is closest in angle to the
+                // current one
+                let cos = |dl: f64| {
+                    let mut s = c * dlam0 * (dlam0 + dl);
+                    for e in 0..nf {
+                        s += pw.delta[e] * (pw.delta[e] + w.du[e] + dl * pw.du2[e]);
+                    }
+                    s
+                };
+                Ok(if cos(r1) >= cos(r2) { r1 } else { r2 })
+            }
+            None => Err(self.fail(
+                it,
+                IncrementFailure::Element("arc-length constraint has no real root".into()),
+            )),
         }
-        // Backtracking line search on |r_f| along (du, dlambda), from the
-        // second iteration on (the predictor starts from equilibrium, so
-        // any step raises the residual). A damped step leaves the
-        // constraint unmet; the next iteration's constraint, written on the
-        // accumulated increment, restores it. This breaks the two-cycle of
-        // Newton across the kink of a softening law (elastic <-> damaging).
-        w.u_base.copy_from_slice(&w.u);
-        let lambda_base = lambda;
-        let rho_before = ev.abs;
+    }
+
+    /// The dissipation constraint `phi = ΔD - tau = 0`, linearised: `phi +
+    /// w . du + c_l dlambda = 0` with `w = ½ lambda_0 (f_ext,f - g)` and
+    /// `c_l = ½ (p_0 - a_0 - lambda_0 h)` (module doc). A non-finite or
+    /// degenerate solution fails the attempt.
+    fn dissipation_dlambda(&self, it: usize, tau: f64, h: f64) -> Result<f64, Abort<Attempt>> {
+        let (w, pw, base) = (&*self.w, &*self.pw, self.base);
+        let phi = self.dissipation() - tau;
+        // dphi = w . du + c_l dlambda
+        let mut wdu1 = 0.0;
+        let mut wdu2 = 0.0;
+        for e in 0..w.free_dofs.len() {
+            let wv = 0.5 * base.lambda * (w.fext_f[e] - pw.g[e]);
+            wdu1 += wv * w.du[e];
+            wdu2 += wv * pw.du2[e];
+        }
+        let c_l = 0.5 * (base.p - base.a - base.lambda * h);
+        let den = wdu2 + c_l;
+        let dl = -(phi + wdu1) / den;
+        if !dl.is_finite() || den.abs() <= 1e-14 * (wdu2.abs() + c_l.abs()) {
+            return Err(self.fail(it, IncrementFailure::NonFinite));
+        }
+        Ok(dl)
+    }
+
+    /// `ΔD` from the base state to the trial point.
+    fn dissipation(&self) -> f64 {
+        let (a, p) = work_measures(self.w.model, self.coupling, &self.w.u, &self.w.f_int);
+        self.base.dissipation(a, p, self.lambda)
+    }
+
+    /// Backtracking line search on `|r_f|` along `(du, dlambda)`, from the
+    /// second iteration on (the predictor starts from equilibrium, so any
+    /// step raises the residual): the first `s = 1, 1/2, ...` (at most
+    /// `max_line_search` halvings) with `|r_f| <= (1 - 1e-4 s) |r_f|` of
+    /// the start, else the `s` of the smallest finite residual. A damped
+    /// step leaves the constraint unmet; the next iteration's constraint,
+    /// written on the accumulated increment, restores it. This breaks the
+    /// two-cycle of Newton across the kink of a softening law (elastic <->
+    /// damaging). The trial point and `Δu` move by `s (du, dlambda)`.
+    fn line_search(&mut self, it: usize, dl: f64) -> Result<(), Abort<Attempt>> {
+        self.w.u_base.copy_from_slice(&self.w.u);
+        let lambda_base = self.lambda;
+        let rho_before = self.ev.abs;
+        let st = &self.w.settings;
         let tries = if st.line_search && it >= 2 {
             st.max_line_search + 1
         } else {
@@ -1327,19 +1627,10 @@ fn attempt(
         let mut best: Option<(f64, f64)> = None;
         let mut last = f64::NAN;
         for _ in 0..tries {
-            for (e, &d) in w.free_dofs.iter().enumerate() {
-                w.u[d] = w.u_base[d] + step_len * w.du[e];
-            }
-            lambda = lambda_base + step_len * dl;
-            set_prescribed(w, lambda);
+            self.move_to(step_len, lambda_base, dl);
             last = step_len;
-            ev = match w.evaluate(state, step_info(lambda, secant), lambda, cur.force_peak) {
-                Ok(e) => e,
-                Err(e) if is_element_error(&e) => {
-                    return Ok(fail(it, ev.rel, IncrementFailure::Element(e.to_string())))
-                }
-                Err(e) => return Err(e.into()),
-            };
+            self.evaluate(it)?;
+            let ev = self.ev;
             if ev.abs.is_finite() {
                 if !matches!(best, Some((_, b)) if b <= ev.abs) {
                     best = Some((step_len, ev.abs));
@@ -1353,75 +1644,71 @@ fn attempt(
         if let Some((sb, _)) = best {
             if sb != last {
                 step_len = sb;
-                for (e, &d) in w.free_dofs.iter().enumerate() {
-                    w.u[d] = w.u_base[d] + step_len * w.du[e];
-                }
-                lambda = lambda_base + step_len * dl;
-                set_prescribed(w, lambda);
-                ev = match w.evaluate(state, step_info(lambda, secant), lambda, cur.force_peak) {
-                    Ok(e) => e,
-                    Err(e) if is_element_error(&e) => {
-                        return Ok(fail(it, ev.rel, IncrementFailure::Element(e.to_string())))
-                    }
-                    Err(e) => return Err(e.into()),
-                };
+                self.move_to(step_len, lambda_base, dl);
+                self.evaluate(it)?;
             } else {
                 step_len = last;
             }
         }
-        for e in 0..nf {
-            pw.delta[e] += step_len * w.du[e];
+        for e in 0..self.w.free_dofs.len() {
+            self.pw.delta[e] += step_len * self.w.du[e];
         }
-        w.lambda_trial = lambda;
-        w.history.push(ev.rel);
-        if !ev.abs.is_finite() {
-            return Ok(fail(it, ev.rel, IncrementFailure::NonFinite));
+        self.w.lambda_trial = self.lambda;
+        self.w.history.push(self.ev.rel);
+        if !self.ev.abs.is_finite() {
+            return Err(self.fail(it, IncrementFailure::NonFinite));
         }
-        // The consistent tangent did not reduce the residual: Newton is
-        // cycling between the branches of a softening point (elastic and
-        // damaging). As in the Newton driver, use the laws' secant tangent
-        // for the rest of the attempt (linear, monotone convergence).
-        // (Not under the dissipation constraint: with secant tangents its
-        // linearisation degenerates, as on an elastic branch.)
+        Ok(())
+    }
+
+    /// The consistent tangent did not reduce the residual: Newton is
+    /// cycling between the branches of a softening point (elastic and
+    /// damaging). As in the Newton driver, the laws' secant tangent is used
+    /// for the rest of the attempt (linear, monotone convergence),
+    /// reassembled at the trial point. (Not under the dissipation
+    /// constraint: with secant tangents its linearisation degenerates, as
+    /// on an elastic branch.)
+    fn secant_fallback(&mut self, it: usize, rho_prev: f64) -> Result<(), Abort<Attempt>> {
+        let st = &self.w.settings;
         if it >= 2
-            && !secant
+            && !self.secant
             && st.secant_fallback
-            && !matches!(constraint, Constraint::Dissipation(_))
-            && ev.abs >= rho_prev
-            && ev.rel > st.tol_force
+            && !matches!(self.constraint, Constraint::Dissipation(_))
+            && self.ev.abs >= rho_prev
+            && self.ev.rel > st.tol_force
         {
-            secant = true;
-            w.secant_attempts += 1;
-            ev = match w.evaluate(state, step_info(lambda, secant), lambda, cur.force_peak) {
-                Ok(e) => e,
-                Err(e) if is_element_error(&e) => {
-                    return Ok(fail(it, ev.rel, IncrementFailure::Element(e.to_string())))
-                }
-                Err(e) => return Err(e.into()),
-            };
+            self.secant = true;
+            self.w.secant_attempts += 1;
+            self.evaluate(it)?;
         }
-        rho_prev = ev.abs;
-        if it == 1 {
-            rho_first = ev.abs.max(rho0);
-        }
-        let constraint_ok = match constraint {
-            Constraint::Dissipation(tau) => {
-                (dissipation_of(w, coupling, lambda) - tau).abs() <= 1e-6 * tau.abs()
-            }
+        Ok(())
+    }
+
+    /// The tests after iteration `it`: converged (force criterion, and the
+    /// dissipation constraint met to 1e-6), diverging (residual above
+    /// `divergence_ratio` times `rho_first`), or `None`: iterate on.
+    fn checks(&self, it: usize, rho_first: f64) -> Option<Attempt> {
+        let (st, ev) = (&self.w.settings, self.ev);
+        let constraint_ok = match self.constraint {
+            Constraint::Dissipation(tau) => (self.dissipation() - tau).abs() <= 1e-6 * tau.abs(),
             _ => true,
         };
-        tracing::debug!(iteration = it, residual = ev.rel, lambda, "path iteration");
+        tracing::debug!(
+            iteration = it,
+            residual = ev.rel,
+            lambda = self.lambda,
+            "path iteration"
+        );
         if ev.rel <= st.tol_force && constraint_ok {
-            let dissipation = dissipation_of(w, coupling, lambda);
-            return Ok(Attempt::Converged {
+            return Some(Attempt::Converged(Convergence {
                 iterations: it,
                 rel: ev.rel,
                 scale_now: ev.scale_now,
-                dissipation,
-            });
+                dissipation: self.dissipation(),
+            }));
         }
         if ev.abs > st.divergence_ratio * rho_first {
-            return Ok(fail(
+            return Some(failed(
                 it,
                 ev.rel,
                 IncrementFailure::Diverging {
@@ -1430,12 +1717,8 @@ fn attempt(
                 },
             ));
         }
+        None
     }
-    Ok(fail(
-        st.max_iterations,
-        ev.rel,
-        IncrementFailure::IterationLimit,
-    ))
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {

@@ -623,6 +623,40 @@ impl<'m> Work<'m> {
         }
     }
 
+    /// The buffers of a run from the full displacement `u_start`, and the
+    /// run's timings with the time of the sparsity pattern (the assembler)
+    /// as `pattern`.
+    pub(crate) fn for_run(
+        model: &'m Model,
+        solver: &dyn LinearSolver,
+        u_start: Vec<f64>,
+        settings: &NewtonSettings,
+    ) -> (Self, Timings) {
+        let t = Instant::now();
+        let asm = model.assembler();
+        let timings = Timings {
+            pattern: t.elapsed().as_secs_f64(),
+            ..Default::default()
+        };
+        let nf = model.dofs.num_free;
+        let mut free_dofs = vec![0; nf];
+        for (d, &e) in model.dofs.eq.iter().enumerate() {
+            if e != CONSTRAINED {
+                free_dofs[e] = d;
+            }
+        }
+        let mut w = Work::new(model, asm, free_dofs, u_start, settings);
+        // A nonsymmetric tangent (a law with a general tangent) is stored in
+        // full when the back end can solve it; a symmetric back end the user
+        // forced gets the symmetric part (Newton then loses its quadratic
+        // convergence: the iterations per increment show it).
+        w.k.set_general(
+            model.matrix_kind() == junta_core::MatrixKind::General
+                && solver.accepts(junta_core::MatrixKind::General),
+        );
+        (w, timings)
+    }
+
     /// Assemble at `self.u` and fill the residual.
     pub(crate) fn evaluate(
         &mut self,
@@ -681,7 +715,76 @@ impl<'m> Work<'m> {
         self.model.dofs.fill_dependents(&mut self.u);
     }
 
-    /// One attempt of an increment from the converged state in `u_conv`.
+    /// The solver's symbolic analysis, on the run's first tangent only.
+    pub(crate) fn analyze_once(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+    ) -> Result<(), SolverError> {
+        if !self.analyzed {
+            let t = Instant::now();
+            // every update is checked through the out-of-balance forces
+            solver.set_caller_checks_residual(true);
+            solver.set_layout(&self.layout);
+            solver.analyze(&self.k, Some(&self.coords))?;
+            self.timings.analyze += t.elapsed().as_secs_f64();
+            self.analyzed = true;
+        }
+        Ok(())
+    }
+
+    /// Numeric factorisation of the current tangent (timed).
+    pub(crate) fn factorize(&mut self, solver: &mut dyn LinearSolver) -> Result<(), SolverError> {
+        let t = Instant::now();
+        let r = solver.factorize(&self.k);
+        self.timings.factor += t.elapsed().as_secs_f64();
+        r
+    }
+
+    /// Residual at `u` with the cursor's load factor and no increment (the
+    /// starting point of a run, or its last converged state); the trial
+    /// state is reset to the committed one afterwards.
+    pub(crate) fn evaluate_at_rest(
+        &mut self,
+        state: &mut StateStore,
+        cur: &Cursor,
+    ) -> Result<Eval, CoreError> {
+        let step = StepInfo {
+            increment: cur.increment_index,
+            load_factor: cur.lambda,
+            delta_load_factor: 0.0,
+            secant: false,
+        };
+        let ev = self.evaluate(state, step, cur.lambda, cur.force_peak)?;
+        state.restore();
+        Ok(ev)
+    }
+
+    /// The run's totals: the counters and phase timings of these buffers,
+    /// `pattern` from `timings`, the wall time since `t_run`.
+    pub(crate) fn close(
+        &self,
+        summary: &mut NonlinearSummary,
+        mut timings: Timings,
+        t_run: Instant,
+    ) {
+        summary.newton_iterations_total = self.iterations;
+        summary.analyze_count = usize::from(self.analyzed);
+        summary.secant_attempts = self.secant_attempts;
+        summary.linear_solves = self.solves;
+        timings.assemble = self.timings.assemble;
+        timings.analyze = self.timings.analyze;
+        timings.factor = self.timings.factor;
+        timings.solve = self.timings.solve;
+        timings.total = t_run.elapsed().as_secs_f64();
+        summary.timings = timings;
+    }
+
+    /// One attempt of an increment from the converged state in `u_conv`:
+    /// the residual at the new load factor ([`Work::first_residual`]), then
+    /// Newton iterations, each a correction ([`Work::newton_correction`]),
+    /// an update along it ([`Work::newton_update`]) and the tests of the
+    /// module doc ([`Work::newton_checks`]), until the attempt converges or
+    /// fails.
     fn attempt(
         &mut self,
         solver: &mut dyn LinearSolver,
@@ -689,9 +792,62 @@ impl<'m> Work<'m> {
         step: StepInfo,
         force_peak: f64,
     ) -> Result<Attempt, NonlinearError> {
-        let st = self.settings.clone();
-        let mut step = step;
-        let lambda = step.load_factor;
+        let mut a = NewtonAttempt {
+            step,
+            lambda: step.load_factor,
+            force_peak,
+            ev: Eval {
+                abs: f64::NAN,
+                rel: f64::NAN,
+                scale_now: 0.0,
+            },
+            rho0: 0.0,
+            e_ref: 0.0,
+            best_rel: 0.0,
+            best_at: 0,
+        };
+        match self.iterate(solver, state, &mut a) {
+            Ok(outcome) | Err(Abort::Failed(outcome)) => Ok(outcome),
+            Err(Abort::Fatal(e)) => Err(e),
+        }
+    }
+
+    /// The body of [`Work::attempt`]; a failed attempt comes back as
+    /// [`Abort::Failed`].
+    fn iterate(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+        state: &mut StateStore,
+        a: &mut NewtonAttempt,
+    ) -> Result<Attempt, Abort<Attempt>> {
+        if let Some(done) = self.first_residual(state, a)? {
+            return Ok(done);
+        }
+        let max_iterations = self.settings.max_iterations;
+        for it in 1..=max_iterations {
+            self.newton_correction(solver, a, it)?;
+            let s = self.newton_update(state, a, it)?;
+            if let Some(done) = self.newton_checks(a, it, s) {
+                return Ok(done);
+            }
+        }
+        Ok(failed(
+            max_iterations,
+            a.ev.rel,
+            IncrementFailure::IterationLimit,
+        ))
+    }
+
+    /// Start of an attempt: `u` = the converged free displacements with the
+    /// constrained dofs at `lambda * prescribed` (dependents follow), and
+    /// its residual. `Some` when there is nothing to iterate: no free dofs,
+    /// or a zero load-factor increment already in balance.
+    fn first_residual(
+        &mut self,
+        state: &mut StateStore,
+        a: &mut NewtonAttempt,
+    ) -> Result<Option<Attempt>, Abort<Attempt>> {
+        let lambda = a.lambda;
         let m = self.model;
         for (d, u) in self.u.iter_mut().enumerate() {
             *u = if m.dofs.eq[d] == CONSTRAINED {
@@ -702,208 +858,351 @@ impl<'m> Work<'m> {
         }
         m.dofs.fill_dependents(&mut self.u);
         self.history.clear();
-        let fail = |iterations, rel, reason| Attempt::Failed {
-            iterations,
-            rel,
-            reason,
-        };
-        let mut ev = match self.evaluate(state, step, lambda, force_peak) {
-            Ok(e) => e,
-            Err(e) if is_element_error(&e) => {
-                return Ok(fail(0, f64::NAN, IncrementFailure::Element(e.to_string())))
-            }
-            Err(e) => return Err(e.into()),
-        };
-        if !ev.abs.is_finite() {
-            return Ok(fail(0, ev.rel, IncrementFailure::NonFinite));
+        a.ev = self.attempt_evaluate(state, a, 0)?;
+        if !a.ev.abs.is_finite() {
+            return Err(Abort::Failed(failed(
+                0,
+                a.ev.rel,
+                IncrementFailure::NonFinite,
+            )));
         }
-        self.history.push(ev.rel);
+        self.history.push(a.ev.rel);
         let nf = self.free_dofs.len();
-        if nf == 0 || (step.delta_load_factor == 0.0 && ev.rel <= st.tol_force) {
-            return Ok(Attempt::Converged {
+        if nf == 0 || (a.step.delta_load_factor == 0.0 && a.ev.rel <= self.settings.tol_force) {
+            return Ok(Some(Attempt::Converged {
                 iterations: 0,
-                eval: ev,
+                eval: a.ev,
                 energy: 0.0,
-            });
+            }));
         }
-        let rho0 = ev.abs;
-        let mut e_ref = 0.0;
-        // stagnation: the best relative residual and when it last fell by 1 %
-        let mut best_rel = ev.rel;
-        let mut best_at = 0;
-        for it in 1..=st.max_iterations {
-            self.iterations += 1;
-            if !self.analyzed {
-                let t = Instant::now();
-                // every update is checked through the out-of-balance forces
-                solver.set_caller_checks_residual(true);
-                solver.set_layout(&self.layout);
-                solver.analyze(&self.k, Some(&self.coords))?;
-                self.timings.analyze += t.elapsed().as_secs_f64();
-                self.analyzed = true;
-            }
-            let t = Instant::now();
-            let r = solver.factorize(&self.k);
-            self.timings.factor += t.elapsed().as_secs_f64();
-            if let Err(e) = r {
-                return Ok(fail(it, ev.rel, IncrementFailure::Solver(e)));
-            }
-            for (e, &r) in self.res_f.iter().enumerate() {
-                self.r_prev[e] = r;
-                self.du[e] = -r;
-            }
-            let t = Instant::now();
-            // a back end may refactorise inside a solve (the mixed-precision
-            // Cholesky falling back to double): book that as factor time
-            let factor_before = solver.report().factor_seconds;
-            let r = solver.solve_in_place(&self.k, &mut self.du);
-            self.solves += 1;
-            let refactor = (solver.report().factor_seconds - factor_before).max(0.0);
-            self.timings.factor += refactor;
-            self.timings.solve += t.elapsed().as_secs_f64() - refactor;
-            if let Err(e) = r {
-                return Ok(fail(it, ev.rel, IncrementFailure::Solver(e)));
-            }
-            if !self.du.iter().all(|v| v.is_finite()) {
-                return Ok(fail(it, ev.rel, IncrementFailure::NonFinite));
-            }
-            self.u_base.copy_from_slice(&self.u);
-            // backtracking line search on |r_f|
-            let rho_prev = ev.abs;
-            let tries = if st.line_search {
-                st.max_line_search + 1
-            } else {
-                1
-            };
-            let mut s = 1.0;
-            let mut best: Option<(f64, Eval)> = None;
-            let mut last_s = f64::NAN;
-            let mut last_err: Option<CoreError> = None;
-            let mut decreased = false;
-            for _ in 0..tries {
-                self.set_trial(s);
-                last_s = s;
-                match self.evaluate(state, step, lambda, force_peak) {
-                    Ok(e) if e.abs.is_finite() => {
-                        if !matches!(best, Some((_, b)) if b.abs <= e.abs) {
-                            best = Some((s, e));
-                        }
-                        if e.abs <= (1.0 - 1e-4 * s) * rho_prev {
-                            decreased = true;
-                            break;
-                        }
-                    }
-                    Ok(_) => {}
-                    Err(e) if is_element_error(&e) => last_err = Some(e),
-                    Err(e) => return Err(e.into()),
-                }
-                s *= 0.5;
-            }
-            let Some((s, e)) = best else {
-                let reason = match last_err {
-                    Some(e) => IncrementFailure::Element(e.to_string()),
-                    None => IncrementFailure::NonFinite,
-                };
-                return Ok(fail(it, ev.rel, reason));
-            };
-            // The consistent tangent did not reduce the residual: Newton is
-            // cycling between the branches of a softening point. Ask the
-            // laws for their secant tangent for the rest of this attempt
-            // (linear but monotone convergence) and reassemble it.
-            // (Only while the force residual is above its tolerance: a
-            // residual already at round-off level need not decrease.)
-            let switch_to_secant =
-                !decreased && !step.secant && st.secant_fallback && ev.rel > st.tol_force;
-            if switch_to_secant {
-                step.secant = true;
-                self.secant_attempts += 1;
-                tracing::debug!(
-                    iteration = it,
-                    "no decrease with the consistent tangent: secant tangent from here"
-                );
-            }
-            if s != last_s || switch_to_secant {
-                self.set_trial(s);
-                match self.evaluate(state, step, lambda, force_peak) {
-                    Ok(e2) => ev = e2,
-                    Err(e) if is_element_error(&e) => {
-                        return Ok(fail(it, ev.rel, IncrementFailure::Element(e.to_string())))
-                    }
-                    Err(e) => return Err(e.into()),
-                }
-            } else {
-                ev = e;
-            }
-            self.history.push(ev.rel);
-            if !ev.abs.is_finite() {
-                return Ok(fail(it, ev.rel, IncrementFailure::NonFinite));
-            }
-            let (mut w_new, mut w_old) = (0.0, 0.0);
-            for (e, &r) in self.res_f.iter().enumerate() {
-                w_new += s * self.du[e] * r;
-                w_old += s * self.du[e] * self.r_prev[e];
-            }
-            if it == 1 {
-                e_ref = w_old.abs();
-            }
-            let energy = if e_ref > 0.0 {
-                w_new.abs() / e_ref
-            } else {
-                0.0
-            };
+        a.rho0 = a.ev.abs;
+        a.e_ref = 0.0;
+        a.best_rel = a.ev.rel;
+        a.best_at = 0;
+        Ok(None)
+    }
+
+    /// Evaluate at `u` for the attempt `a`: an element error fails the
+    /// attempt (at iteration `it`, with the last residual), any other error
+    /// is fatal.
+    fn attempt_evaluate(
+        &mut self,
+        state: &mut StateStore,
+        a: &NewtonAttempt,
+        it: usize,
+    ) -> Result<Eval, Abort<Attempt>> {
+        match self.evaluate(state, a.step, a.lambda, a.force_peak) {
+            Ok(e) => Ok(e),
+            Err(e) if is_element_error(&e) => Err(Abort::Failed(failed(
+                it,
+                a.ev.rel,
+                IncrementFailure::Element(e.to_string()),
+            ))),
+            Err(e) => Err(e.into()),
+        }
+    }
+
+    /// The correction of iteration `it`: `K_ff(u_i) du = -r_f(u_i)` with the
+    /// tangent assembled at the current iterate (`r_prev` keeps `r_f(u_i)`
+    /// for the energy criterion).
+    fn newton_correction(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+        a: &NewtonAttempt,
+        it: usize,
+    ) -> Result<(), Abort<Attempt>> {
+        self.iterations += 1;
+        self.analyze_once(solver)?;
+        if let Err(e) = self.factorize(solver) {
+            return Err(Abort::Failed(failed(
+                it,
+                a.ev.rel,
+                IncrementFailure::Solver(e),
+            )));
+        }
+        for (e, &r) in self.res_f.iter().enumerate() {
+            self.r_prev[e] = r;
+            self.du[e] = -r;
+        }
+        let clock = SolveClock::start(solver);
+        let r = solver.solve_in_place(&self.k, &mut self.du);
+        self.solves += 1;
+        clock.stop(solver, &mut self.timings);
+        if let Err(e) = r {
+            return Err(Abort::Failed(failed(
+                it,
+                a.ev.rel,
+                IncrementFailure::Solver(e),
+            )));
+        }
+        if !self.du.iter().all(|v| v.is_finite()) {
+            return Err(Abort::Failed(failed(
+                it,
+                a.ev.rel,
+                IncrementFailure::NonFinite,
+            )));
+        }
+        Ok(())
+    }
+
+    /// The update of iteration `it`: `u = u_i + s du` with the step length
+    /// `s` of the line search ([`Work::line_search`]), and its residual in
+    /// `a.ev`. When the consistent tangent did not reduce the residual
+    /// (Newton cycling between the branches of a softening point) the laws'
+    /// secant tangent is used for the rest of the attempt (linear but
+    /// monotone convergence) and reassembled at the new `u`. Returns `s`.
+    fn newton_update(
+        &mut self,
+        state: &mut StateStore,
+        a: &mut NewtonAttempt,
+        it: usize,
+    ) -> Result<f64, Abort<Attempt>> {
+        self.u_base.copy_from_slice(&self.u);
+        let ls = self.line_search(state, a, it)?;
+        // (Only while the force residual is above its tolerance: a
+        // residual already at round-off level need not decrease.)
+        let switch_to_secant = !ls.decreased
+            && !a.step.secant
+            && self.settings.secant_fallback
+            && a.ev.rel > self.settings.tol_force;
+        if switch_to_secant {
+            a.step.secant = true;
+            self.secant_attempts += 1;
             tracing::debug!(
                 iteration = it,
-                residual = ev.rel,
-                energy,
-                step_length = s,
-                "Newton iteration"
+                "no decrease with the consistent tangent: secant tangent from here"
             );
-            if ev.rel <= st.tol_force && energy <= st.tol_energy {
-                return Ok(Attempt::Converged {
-                    iterations: it,
-                    eval: ev,
-                    energy,
-                });
-            }
-            // (stagnation of the force residual only: once it meets
-            // tol_force, the energy criterion needs a step or two more)
-            if ev.rel < 0.99 * best_rel {
-                best_rel = ev.rel;
-                best_at = it;
-            } else if ev.rel > st.tol_force
-                && it - best_at
-                    >= if step.secant {
-                        4 * STAGNATION_ITERATIONS
-                    } else {
-                        STAGNATION_ITERATIONS
-                    }
-            {
-                return Ok(fail(
-                    it,
-                    ev.rel,
-                    IncrementFailure::Stagnated {
-                        best: best_rel,
-                        tolerance: st.tol_force,
-                        iterations: it - best_at,
-                    },
-                ));
-            }
-            if ev.abs > st.divergence_ratio * rho0 {
-                return Ok(fail(
-                    it,
-                    ev.rel,
-                    IncrementFailure::Diverging {
-                        residual: ev.abs,
-                        initial: rho0,
-                    },
-                ));
-            }
         }
-        Ok(fail(
-            st.max_iterations,
-            ev.rel,
-            IncrementFailure::IterationLimit,
-        ))
+        if ls.s != ls.last_s || switch_to_secant {
+            self.set_trial(ls.s);
+            a.ev = self.attempt_evaluate(state, a, it)?;
+        } else {
+            a.ev = ls.eval;
+        }
+        self.history.push(a.ev.rel);
+        if !a.ev.abs.is_finite() {
+            return Err(Abort::Failed(failed(
+                it,
+                a.ev.rel,
+                IncrementFailure::NonFinite,
+            )));
+        }
+        Ok(ls.s)
+    }
+
+    /// Backtracking line search on `|r_f|` from `u_base` along `du`:
+    /// `s = 1, 1/2, 1/4, ...` (at most `max_line_search` halvings; one try
+    /// without `line_search`), the first `s` with `|r_f(u_base + s du)| <=
+    /// (1 - 1e-4 s) |r_f(u_base)|`, else the `s` of the smallest finite
+    /// residual. Fails when no try gave a finite residual. `u` is left at
+    /// the last try.
+    fn line_search(
+        &mut self,
+        state: &mut StateStore,
+        a: &NewtonAttempt,
+        it: usize,
+    ) -> Result<LineSearch, Abort<Attempt>> {
+        let rho_prev = a.ev.abs;
+        let tries = if self.settings.line_search {
+            self.settings.max_line_search + 1
+        } else {
+            1
+        };
+        let mut s = 1.0;
+        let mut best: Option<(f64, Eval)> = None;
+        let mut last_s = f64::NAN;
+        let mut last_err: Option<CoreError> = None;
+        let mut decreased = false;
+        for _ in 0..tries {
+            self.set_trial(s);
+            last_s = s;
+            match self.evaluate(state, a.step, a.lambda, a.force_peak) {
+                Ok(e) if e.abs.is_finite() => {
+                    if !matches!(best, Some((_, b)) if b.abs <= e.abs) {
+                        best = Some((s, e));
+                    }
+                    if e.abs <= (1.0 - 1e-4 * s) * rho_prev {
+                        decreased = true;
+                        break;
+                    }
+                }
+                Ok(_) => {}
+                Err(e) if is_element_error(&e) => last_err = Some(e),
+                Err(e) => return Err(e.into()),
+            }
+            s *= 0.5;
+        }
+        let Some((s, eval)) = best else {
+            let reason = match last_err {
+                Some(e) => IncrementFailure::Element(e.to_string()),
+                None => IncrementFailure::NonFinite,
+            };
+            return Err(Abort::Failed(failed(it, a.ev.rel, reason)));
+        };
+        Ok(LineSearch {
+            s,
+            eval,
+            last_s,
+            decreased,
+        })
+    }
+
+    /// The tests after iteration `it` (step length `s`): converged when the
+    /// force and the energy criteria of the module doc hold; failed when
+    /// the relative residual stagnated (its best not lowered by 1 % for
+    /// [`STAGNATION_ITERATIONS`], four times as many with the secant
+    /// tangent) or grew past `divergence_ratio` times the first one.
+    /// `None`: iterate on.
+    fn newton_checks(&self, a: &mut NewtonAttempt, it: usize, s: f64) -> Option<Attempt> {
+        let st = &self.settings;
+        let ev = a.ev;
+        let (mut w_new, mut w_old) = (0.0, 0.0);
+        for (e, &r) in self.res_f.iter().enumerate() {
+            w_new += s * self.du[e] * r;
+            w_old += s * self.du[e] * self.r_prev[e];
+        }
+        if it == 1 {
+            a.e_ref = w_old.abs();
+        }
+        let energy = if a.e_ref > 0.0 {
+            w_new.abs() / a.e_ref
+        } else {
+            0.0
+        };
+        tracing::debug!(
+            iteration = it,
+            residual = ev.rel,
+            energy,
+            step_length = s,
+            "Newton iteration"
+        );
+        if ev.rel <= st.tol_force && energy <= st.tol_energy {
+            return Some(Attempt::Converged {
+                iterations: it,
+                eval: ev,
+                energy,
+            });
+        }
+        // (stagnation of the force residual only: once it meets
+        // tol_force, the energy criterion needs a step or two more)
+        if ev.rel < 0.99 * a.best_rel {
+            a.best_rel = ev.rel;
+            a.best_at = it;
+        } else if ev.rel > st.tol_force
+            && it - a.best_at
+                >= if a.step.secant {
+                    4 * STAGNATION_ITERATIONS
+                } else {
+                    STAGNATION_ITERATIONS
+                }
+        {
+            return Some(failed(
+                it,
+                ev.rel,
+                IncrementFailure::Stagnated {
+                    best: a.best_rel,
+                    tolerance: st.tol_force,
+                    iterations: it - a.best_at,
+                },
+            ));
+        }
+        if ev.abs > st.divergence_ratio * a.rho0 {
+            return Some(failed(
+                it,
+                ev.rel,
+                IncrementFailure::Diverging {
+                    residual: ev.abs,
+                    initial: a.rho0,
+                },
+            ));
+        }
+        None
+    }
+}
+
+/// Why the iterations of an attempt stop early: the attempt failed (`A`,
+/// the driver cuts back and retries) or the run cannot go on.
+pub(crate) enum Abort<A> {
+    Failed(A),
+    Fatal(NonlinearError),
+}
+
+impl<A> From<NonlinearError> for Abort<A> {
+    fn from(e: NonlinearError) -> Self {
+        Abort::Fatal(e)
+    }
+}
+
+impl<A> From<CoreError> for Abort<A> {
+    fn from(e: CoreError) -> Self {
+        Abort::Fatal(e.into())
+    }
+}
+
+impl<A> From<SolverError> for Abort<A> {
+    fn from(e: SolverError) -> Self {
+        Abort::Fatal(e.into())
+    }
+}
+
+fn failed(iterations: usize, rel: f64, reason: IncrementFailure) -> Attempt {
+    Attempt::Failed {
+        iterations,
+        rel,
+        reason,
+    }
+}
+
+/// The running state of one Newton attempt.
+struct NewtonAttempt {
+    /// The increment (`secant` set once the fallback is on).
+    step: StepInfo,
+    /// Load factor of the increment.
+    lambda: f64,
+    /// Largest force scale met so far (floor of the force criterion).
+    force_peak: f64,
+    /// Residual of the current iterate.
+    ev: Eval,
+    /// First residual norm of the attempt (divergence test).
+    rho0: f64,
+    /// Work of the first iteration (reference of the energy criterion).
+    e_ref: f64,
+    /// Best relative residual, and the iteration it last fell by 1 %
+    /// (stagnation test).
+    best_rel: f64,
+    best_at: usize,
+}
+
+/// Outcome of a line search: step length `s` and its residual, the last
+/// step length tried (where `u` is), and whether the residual decreased
+/// enough.
+struct LineSearch {
+    s: f64,
+    eval: Eval,
+    last_s: f64,
+    decreased: bool,
+}
+
+/// Wall time of a linear solve. A back end may refactorise inside a solve
+/// (the mixed-precision Cholesky falling back to double): that part is
+/// booked as factor time.
+pub(crate) struct SolveClock {
+    start: Instant,
+    factor_before: f64,
+}
+
+impl SolveClock {
+    pub(crate) fn start(solver: &dyn LinearSolver) -> Self {
+        SolveClock {
+            start: Instant::now(),
+            factor_before: solver.report().factor_seconds,
+        }
+    }
+
+    pub(crate) fn stop(self, solver: &dyn LinearSolver, timings: &mut Timings) {
+        let refactor = (solver.report().factor_seconds - self.factor_before).max(0.0);
+        timings.factor += refactor;
+        timings.solve += self.start.elapsed().as_secs_f64() - refactor;
     }
 }
 
@@ -982,12 +1281,76 @@ where
         )
         .into());
     }
+    let (state, u_start, cur) = load_start(model, program, settings, restart)?;
+    let (w, timings) = Work::for_run(model, solver, u_start, settings);
+    let mut run = LoadRun {
+        w,
+        state,
+        cur,
+        summary: NonlinearSummary {
+            final_lambda: cur.lambda,
+            ..Default::default()
+        },
+        program,
+        settings,
+        small_size: settings.small_increment(),
+        initial_size: settings.initial_increment.min(settings.max_increment),
+    };
+    // residual of the starting point, so that a run with nothing to do
+    // still returns a consistent residual
+    if restart.is_some() {
+        run.w.evaluate_at_rest(&mut run.state, &run.cur)?;
+    }
+    while run.advance_step() {
+        let before = run.w.timings;
+        let inc = run.converge_increment(solver)?;
+        let report = run.commit(solver, &inc, before);
+        let view = IncrementView {
+            report: &report,
+            u: &run.w.u,
+            residual: &run.w.res,
+            state: &run.state,
+            residual_history: &run.w.history,
+            cursor: run.cur,
+            path: None,
+        };
+        if observer(&view) == Control::Stop {
+            run.summary.stopped_by_observer = true;
+            break;
+        }
+    }
+    let LoadRun {
+        w,
+        state,
+        cur,
+        mut summary,
+        ..
+    } = run;
+    w.close(&mut summary, timings, t_run);
+    Ok(NonlinearRun {
+        summary,
+        u: w.u,
+        residual: w.res,
+        state,
+        cursor: cur,
+        path: None,
+    })
+}
+
+/// The starting point of a load-controlled run: state, full displacement
+/// and cursor, from the unloaded state (first size `small_increment` when
+/// an element already wants small increments, else `initial_increment`) or
+/// from a checkpoint, checked against the model and the program.
+fn load_start(
+    model: &Model,
+    program: &[f64],
+    settings: &NewtonSettings,
+    restart: Option<&Checkpoint>,
+) -> Result<(StateStore, Vec<f64>, Cursor), NonlinearError> {
     let ndof = model.dofs.num_dofs();
     let mut state = model.initial_state();
-    let small_size = settings.small_increment();
-    let initial_size = settings.initial_increment.min(settings.max_increment);
     let mut u_start = model.dofs.expand(None, 0.0);
-    let mut cur = match restart {
+    let cur = match restart {
         Some(c) => {
             check_checkpoint_fits(c, ndof, &state)?;
             if c.step >= program.len() {
@@ -1010,73 +1373,88 @@ where
                 t: 0.0,
                 lambda: 0.0,
                 increment_index: 0,
-                size: if small { small_size } else { initial_size },
+                size: if small {
+                    settings.small_increment()
+                } else {
+                    settings.initial_increment.min(settings.max_increment)
+                },
                 small,
                 force_peak: 0.0,
             }
         }
     };
+    Ok((state, u_start, cur))
+}
 
-    let t = Instant::now();
-    let asm = model.assembler();
-    let mut timings = Timings {
-        pattern: t.elapsed().as_secs_f64(),
-        ..Default::default()
-    };
-    let nf = model.dofs.num_free;
-    let mut free_dofs = vec![0; nf];
-    for (d, &e) in model.dofs.eq.iter().enumerate() {
-        if e != CONSTRAINED {
-            free_dofs[e] = d;
-        }
-    }
-    let mut w = Work::new(model, asm, free_dofs, u_start, settings);
-    // A nonsymmetric tangent (a law with a general tangent) is stored in
-    // full when the back end can solve it; a symmetric back end the user
-    // forced gets the symmetric part (Newton then loses its quadratic
-    // convergence: the iterations per increment show it).
-    w.k.set_general(
-        model.matrix_kind() == junta_core::MatrixKind::General
-            && solver.accepts(junta_core::MatrixKind::General),
-    );
-    let mut summary = NonlinearSummary {
-        final_lambda: cur.lambda,
-        ..Default::default()
-    };
-    // residual of the starting point, so that a run with nothing to do
-    // still returns a consistent residual
-    if restart.is_some() {
-        let step = StepInfo {
-            increment: cur.increment_index,
-            load_factor: cur.lambda,
-            delta_load_factor: 0.0,
-            secant: false,
-        };
-        w.evaluate(&mut state, step, cur.lambda, cur.force_peak)?;
-        state.restore();
-    }
+/// A load-controlled run in progress: buffers, state, position in the
+/// program and totals.
+struct LoadRun<'a> {
+    w: Work<'a>,
+    state: StateStore,
+    cur: Cursor,
+    summary: NonlinearSummary,
+    program: &'a [f64],
+    settings: &'a NewtonSettings,
+    /// Increment while an element wants small increments.
+    small_size: f64,
+    /// First increment of a step.
+    initial_size: f64,
+}
 
-    'program: loop {
-        if cur.t >= 1.0 {
-            if cur.step + 1 >= program.len() {
-                break 'program;
+/// A converged increment: where it ends (fraction of the step and load
+/// factor), its last attempt's iterations, residual and energy, the size
+/// that converged and the cut-backs it took.
+struct LoadIncrement {
+    t_new: f64,
+    lambda_new: f64,
+    iterations: usize,
+    eval: Eval,
+    energy: f64,
+    size: f64,
+    cutbacks: usize,
+}
+
+impl LoadRun<'_> {
+    /// Move on to the next step when the current one is done (its first
+    /// increment `initial_increment`, or `small_increment` under the
+    /// small-increment rule); false at the end of the program.
+    fn advance_step(&mut self) -> bool {
+        let cur = &mut self.cur;
+        while cur.t >= 1.0 {
+            if cur.step + 1 >= self.program.len() {
+                return false;
             }
             cur.step += 1;
             cur.t = 0.0;
-            cur.size = if cur.small { small_size } else { initial_size };
-            continue;
+            cur.size = if cur.small {
+                self.small_size
+            } else {
+                self.initial_size
+            };
         }
+        true
+    }
+
+    /// The next increment from the cursor: attempts of the cursor's size
+    /// (the last one of a step shortened to end on the step's load factor),
+    /// each failure restoring the converged state and multiplying the size
+    /// by `cutback`; below `min_increment` the run stops with
+    /// [`NonlinearError::IncrementTooSmall`].
+    fn converge_increment(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+    ) -> Result<LoadIncrement, NonlinearError> {
+        let cur = self.cur;
         let start = if cur.step == 0 {
             0.0
         } else {
-            program[cur.step - 1]
+            self.program[cur.step - 1]
         };
-        let end = program[cur.step];
+        let end = self.program[cur.step];
         let span = end - start;
-        let before = w.timings;
         let mut size = cur.size;
         let mut cutbacks = 0;
-        let (t_new, lambda_new, iterations, eval, energy) = loop {
+        loop {
             let t_new = if span == 0.0 || cur.t + size >= 1.0 - 1e-9 {
                 1.0
             } else {
@@ -1093,22 +1471,35 @@ where
                 delta_load_factor: lambda_new - cur.lambda,
                 secant: false,
             };
-            match w.attempt(solver, &mut state, step, cur.force_peak)? {
+            match self
+                .w
+                .attempt(solver, &mut self.state, step, cur.force_peak)?
+            {
                 Attempt::Converged {
                     iterations,
                     eval,
                     energy,
-                } => break (t_new, lambda_new, iterations, eval, energy),
+                } => {
+                    return Ok(LoadIncrement {
+                        t_new,
+                        lambda_new,
+                        iterations,
+                        eval,
+                        energy,
+                        size,
+                        cutbacks,
+                    })
+                }
                 Attempt::Failed {
                     iterations,
                     rel,
                     reason,
                 } => {
-                    state.restore();
-                    w.u.copy_from_slice(&w.u_conv);
-                    summary.cutbacks += 1;
+                    self.state.restore();
+                    self.w.u.copy_from_slice(&self.w.u_conv);
+                    self.summary.cutbacks += 1;
                     cutbacks += 1;
-                    let next = (t_new - cur.t) * settings.cutback;
+                    let next = (t_new - cur.t) * self.settings.cutback;
                     tracing::warn!(
                         lambda = lambda_new,
                         iterations,
@@ -1116,7 +1507,7 @@ where
                         next_increment = next,
                         "increment failed ({reason}); cutting back"
                     );
-                    if next < settings.min_increment || span == 0.0 {
+                    if next < self.settings.min_increment || span == 0.0 {
                         return Err(NonlinearError::IncrementTooSmall {
                             step: cur.step,
                             lambda: cur.lambda,
@@ -1129,41 +1520,56 @@ where
                     size = next;
                 }
             }
-        };
-        state.commit();
-        w.u_conv.copy_from_slice(&w.u);
-        let delta_lambda = lambda_new - cur.lambda;
+        }
+    }
+
+    /// Commit a converged increment: state, `u_conv`, cursor and totals.
+    /// The next size: `small_increment` while an element wants small
+    /// increments, `growth` times larger (at most `max_increment`) after an
+    /// increment without cut-back in at most `growth_iterations`
+    /// iterations, else unchanged. Returns the increment's report
+    /// (`before`: the timings when it started).
+    fn commit(
+        &mut self,
+        solver: &dyn LinearSolver,
+        inc: &LoadIncrement,
+        before: Timings,
+    ) -> IncrementReport {
+        let settings = self.settings;
+        self.state.commit();
+        self.w.u_conv.copy_from_slice(&self.w.u);
+        let cur = &mut self.cur;
+        let delta_lambda = inc.lambda_new - cur.lambda;
         let was_small = cur.small;
-        cur.t = t_new;
-        cur.lambda = lambda_new;
+        cur.t = inc.t_new;
+        cur.lambda = inc.lambda_new;
         cur.increment_index += 1;
-        cur.force_peak = cur.force_peak.max(eval.scale_now);
-        cur.small = any_wants_small(model, &state);
+        cur.force_peak = cur.force_peak.max(inc.eval.scale_now);
+        cur.small = any_wants_small(self.w.model, &self.state);
         cur.size = if cur.small {
-            small_size
-        } else if cutbacks == 0 && iterations <= settings.growth_iterations {
-            (size * settings.growth).min(settings.max_increment)
+            self.small_size
+        } else if inc.cutbacks == 0 && inc.iterations <= settings.growth_iterations {
+            (inc.size * settings.growth).min(settings.max_increment)
         } else {
-            size
+            inc.size
         };
+        let summary = &mut self.summary;
         summary.increments += 1;
-        summary.newton_iterations_max = summary.newton_iterations_max.max(iterations);
+        summary.newton_iterations_max = summary.newton_iterations_max.max(inc.iterations);
         summary.final_lambda = cur.lambda;
-        let now = w.timings;
-        let seconds = increment_timings(now, before);
         let report = IncrementReport {
             step: cur.step,
             increment_index: cur.increment_index,
             lambda: cur.lambda,
             delta_lambda,
             step_fraction: cur.t,
-            iterations,
-            residual: eval.rel,
-            energy,
-            cutbacks,
-            seconds,
+            iterations: inc.iterations,
+            residual: inc.eval.rel,
+            energy: inc.energy,
+            cutbacks: inc.cutbacks,
+            seconds: increment_timings(self.w.timings, before),
             small_increment_mode: was_small,
-            negative_pivots: if iterations > 0 {
+            negative_pivots: if inc.iterations > 0 {
                 solver.report().negative_pivots
             } else {
                 None
@@ -1176,42 +1582,12 @@ where
             step = report.step,
             lambda = report.lambda,
             delta_lambda,
-            iterations,
+            iterations = inc.iterations,
             residual = report.residual,
-            cutbacks,
+            cutbacks = inc.cutbacks,
             small = was_small,
             "increment converged"
         );
-        let view = IncrementView {
-            report: &report,
-            u: &w.u,
-            residual: &w.res,
-            state: &state,
-            residual_history: &w.history,
-            cursor: cur,
-            path: None,
-        };
-        if observer(&view) == Control::Stop {
-            summary.stopped_by_observer = true;
-            break 'program;
-        }
+        report
     }
-    summary.newton_iterations_total = w.iterations;
-    summary.analyze_count = usize::from(w.analyzed);
-    summary.secant_attempts = w.secant_attempts;
-    summary.linear_solves = w.solves;
-    timings.assemble = w.timings.assemble;
-    timings.analyze = w.timings.analyze;
-    timings.factor = w.timings.factor;
-    timings.solve = w.timings.solve;
-    timings.total = t_run.elapsed().as_secs_f64();
-    summary.timings = timings;
-    Ok(NonlinearRun {
-        summary,
-        u: w.u,
-        residual: w.res,
-        state,
-        cursor: cur,
-        path: None,
-    })
 }

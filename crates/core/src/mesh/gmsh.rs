@@ -225,225 +225,287 @@ fn face_normal(p: &[[f64; 3]]) -> [f64; 3] {
     }
 }
 
+/// The sections of a MSH file as read, before the mesh is built.
+#[derive(Default)]
+struct Sections {
+    /// `(dimension, physical tag)` -> name.
+    physical_names: HashMap<(usize, i64), String>,
+    /// `(dimension, entity tag)` -> its physical groups.
+    entity_phys: HashMap<(usize, i64), Vec<i64>>,
+    nodes: Vec<[f64; 3]>,
+    /// The file's node tags.
+    labels: Vec<usize>,
+    /// Node tag -> node index.
+    node_id: HashMap<usize, usize>,
+    blocks: Vec<ElemBlock>,
+}
+
 /// Parse the text of a MSH 4.1 ASCII file; `file_name` is used in messages.
+/// Reads the sections, then builds the blocks of the volume elements and
+/// the node and face sets of the lower-dimensional groups.
 pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
     let mut c = Cursor {
         lines: text.lines().collect(),
         pos: 0,
         file: file_name,
     };
-    let mut seen_format = false;
-    let mut physical_names: HashMap<(usize, i64), String> = HashMap::new();
-    let mut entity_phys: HashMap<(usize, i64), Vec<i64>> = HashMap::new();
-    let mut nodes: Vec<[f64; 3]> = Vec::new();
-    let mut labels: Vec<usize> = Vec::new();
-    let mut node_id: HashMap<usize, usize> = HashMap::new();
-    let mut blocks: Vec<ElemBlock> = Vec::new();
+    let mut s = Sections::read(&mut c)?;
+    let mut mesh = Mesh {
+        nodes: std::mem::take(&mut s.nodes),
+        node_labels: std::mem::take(&mut s.labels),
+        ..Mesh::default()
+    };
+    volume_blocks(&c, &s, &mut mesh)?;
+    group_sets(&c, &s, &mut mesh)?;
+    mesh.validate().map_err(|e| c.err(0, e.to_string()))?;
+    Ok(mesh)
+}
 
-    while c.pos < c.lines.len() {
-        let (n, l) = c.next("a section")?;
-        if l.is_empty() {
-            continue;
+impl Sections {
+    /// Read every section: `$MeshFormat` first, then `$PhysicalNames`,
+    /// `$Entities`, `$Nodes` and `$Elements`; other sections are skipped.
+    fn read(c: &mut Cursor<'_>) -> Result<Sections, GmshError> {
+        let mut s = Sections::default();
+        let mut seen_format = false;
+        while c.pos < c.lines.len() {
+            let (n, l) = c.next("a section")?;
+            if l.is_empty() {
+                continue;
+            }
+            match l {
+                "$MeshFormat" => {
+                    mesh_format(c)?;
+                    seen_format = true;
+                }
+                _ if !seen_format => {
+                    return Err(c.err(n, format!("expected `$MeshFormat` first, found `{l}`")));
+                }
+                "$PhysicalNames" => s.read_physical_names(c)?,
+                "$Entities" => s.read_entities(c)?,
+                "$Nodes" => s.read_nodes(c)?,
+                "$Elements" => s.read_elements(c)?,
+                h if h.starts_with('$') && !h.starts_with("$End") => {
+                    // skip an unknown section
+                    let end = format!("$End{}", &h[1..]);
+                    loop {
+                        let (_, l) = c.next(&end)?;
+                        if l == end {
+                            break;
+                        }
+                    }
+                }
+                _ => {
+                    return Err(c.err(n, format!("expected a section header `$Name`, found `{l}`")))
+                }
+            }
         }
-        match l {
-            "$MeshFormat" => {
-                let (ln, t) = c.tokens("$MeshFormat")?;
-                let version = t.first().copied().unwrap_or("");
-                let ftype = t.get(1).copied().unwrap_or("");
-                if ftype == "1" {
-                    return Err(GmshError::Binary {
-                        file: file_name.into(),
-                        line: ln,
-                    });
-                }
-                if version != "4.1" {
-                    return Err(GmshError::Version {
-                        file: file_name.into(),
-                        line: ln,
-                        version: version.into(),
-                    });
-                }
-                if ftype != "0" {
-                    return Err(c.err(ln, format!("bad file type `{ftype}`; valid: 0 (ASCII)")));
-                }
-                c.expect_end("MeshFormat")?;
-                seen_format = true;
-            }
-            _ if !seen_format => {
-                return Err(c.err(n, format!("expected `$MeshFormat` first, found `{l}`")));
-            }
-            "$PhysicalNames" => {
-                let (ln, t) = c.tokens("$PhysicalNames")?;
-                let count: usize = c.num(ln, t.first(), "number of physical names")?;
-                for _ in 0..count {
-                    let (ln, l) = c.next("a physical name")?;
-                    let mut it = l.splitn(3, char::is_whitespace);
-                    let dim: usize = c.num(ln, it.next().as_ref(), "physical dimension")?;
-                    let tag: i64 = c.num(ln, it.next().as_ref(), "physical tag")?;
-                    let name = it.next().unwrap_or("").trim().trim_matches('"').to_string();
-                    physical_names.insert((dim, tag), name);
-                }
-                c.expect_end("PhysicalNames")?;
-            }
-            "$Entities" => {
-                let (ln, t) = c.tokens("$Entities")?;
-                let mut counts = [0usize; 4];
-                for (d, cnt) in counts.iter_mut().enumerate() {
-                    *cnt = c.num(ln, t.get(d), "entity count")?;
-                }
-                c.enough_lines(
-                    ln,
-                    "entities",
-                    counts.iter().fold(0usize, |a, &b| a.saturating_add(b)),
-                    1,
-                )?;
-                for (dim, &cnt) in counts.iter().enumerate() {
-                    for _ in 0..cnt {
-                        let (ln, t) = c.tokens("an entity")?;
-                        let tag: i64 = c.num(ln, t.first(), "entity tag")?;
-                        // points: tag x y z nPhys ...; others: tag 6 bbox values nPhys ...
-                        let at = if dim == 0 { 4 } else { 7 };
-                        let np: usize = c.num(ln, t.get(at), "number of physical tags")?;
-                        if np > t.len() {
-                            return Err(c.err(
-                                ln,
-                                format!(
-                                    "{np} physical tags declared, {} values on the line",
-                                    t.len()
-                                ),
-                            ));
-                        }
-                        let mut phys = Vec::with_capacity(np);
-                        for k in 0..np {
-                            let p: i64 = c.num(ln, t.get(at + 1 + k), "physical tag")?;
-                            phys.push(p.abs());
-                        }
-                        entity_phys.insert((dim, tag), phys);
-                    }
-                }
-                c.expect_end("Entities")?;
-            }
-            "$Nodes" => {
-                let (ln, t) = c.tokens("$Nodes")?;
-                let nblocks: usize = c.num(ln, t.first(), "number of node blocks")?;
-                let total: usize = c.num(ln, t.get(1), "number of nodes")?;
-                c.enough_lines(ln, "node blocks", nblocks, 1)?;
-                c.enough_lines(ln, "nodes", total, 2)?;
-                nodes.reserve(total);
-                labels.reserve(total);
-                for _ in 0..nblocks {
-                    let (ln, t) = c.tokens("a node block")?;
-                    let _parametric: usize = c.num(ln, t.get(2), "parametric flag")?;
-                    let count: usize = c.num(ln, t.get(3), "number of nodes in block")?;
-                    c.enough_lines(ln, "nodes", count, 2)?;
-                    let mut tags = Vec::with_capacity(count);
-                    for _ in 0..count {
-                        let (ln, t) = c.tokens("a node tag")?;
-                        tags.push((ln, c.num::<usize>(ln, t.first(), "node tag")?));
-                    }
-                    for (tln, tag) in tags {
-                        let (ln, t) = c.tokens("node coordinates")?;
-                        // parametric nodes (flag != 0) carry u [v [w]] after x y z: ignored
-                        if t.len() < 3 {
-                            return Err(c.err(ln, "expected x y z"));
-                        }
-                        let mut x = [0.0; 3];
-                        for (d, xd) in x.iter_mut().enumerate() {
-                            *xd = c.num(ln, t.get(d), "coordinate")?;
-                        }
-                        if node_id.insert(tag, nodes.len()).is_some() {
-                            return Err(c.err(tln, format!("node tag {tag} defined twice")));
-                        }
-                        nodes.push(x);
-                        labels.push(tag);
-                    }
-                }
-                c.expect_end("Nodes")?;
-            }
-            "$Elements" => {
-                let (ln, t) = c.tokens("$Elements")?;
-                let nblocks: usize = c.num(ln, t.first(), "number of element blocks")?;
-                c.enough_lines(ln, "element blocks", nblocks, 1)?;
-                for _ in 0..nblocks {
-                    let (ln, t) = c.tokens("an element block")?;
-                    let dim: usize = c.num(ln, t.first(), "entity dimension")?;
-                    let entity: i64 = c.num(ln, t.get(1), "entity tag")?;
-                    let code: usize = c.num(ln, t.get(2), "element type")?;
-                    let count: usize = c.num(ln, t.get(3), "number of elements")?;
-                    c.enough_lines(ln, "elements", count, 1)?;
-                    let (_, npe) = shape_of(code).ok_or_else(|| GmshError::ElementType {
-                        file: file_name.into(),
-                        line: ln,
-                        code,
-                    })?;
-                    let mut b = ElemBlock {
-                        dim,
-                        entity,
-                        code,
-                        line: ln,
-                        elements: Vec::with_capacity(count),
-                    };
-                    for _ in 0..count {
-                        let (eln, t) = c.tokens("an element")?;
-                        if t.len() != npe + 1 {
-                            return Err(c.err(
-                                eln,
-                                format!("element of type {code} needs a tag and {npe} nodes, found {} values", t.len()),
-                            ));
-                        }
-                        let tag: usize = c.num(eln, t.first(), "element tag")?;
-                        let mut conn = Vec::with_capacity(npe);
-                        for k in 0..npe {
-                            conn.push(c.num::<usize>(eln, t.get(k + 1), "node tag")?);
-                        }
-                        b.elements.push((tag, conn));
-                    }
-                    blocks.push(b);
-                }
-                c.expect_end("Elements")?;
-            }
-            s if s.starts_with('$') && !s.starts_with("$End") => {
-                // skip an unknown section
-                let end = format!("$End{}", &s[1..]);
-                loop {
-                    let (_, l) = c.next(&end)?;
-                    if l == end {
-                        break;
-                    }
-                }
-            }
-            _ => return Err(c.err(n, format!("expected a section header `$Name`, found `{l}`"))),
+        if !seen_format {
+            return Err(c.err(1, "no `$MeshFormat` section: not a Gmsh MSH file"));
         }
-    }
-    if !seen_format {
-        return Err(c.err(1, "no `$MeshFormat` section: not a Gmsh MSH file"));
+        Ok(s)
     }
 
-    let phys_name = |dim: usize, tag: i64| -> String {
-        physical_names
+    /// `$PhysicalNames`: `dim tag "name"` lines.
+    fn read_physical_names(&mut self, c: &mut Cursor<'_>) -> Result<(), GmshError> {
+        let (ln, t) = c.tokens("$PhysicalNames")?;
+        let count: usize = c.num(ln, t.first(), "number of physical names")?;
+        for _ in 0..count {
+            let (ln, l) = c.next("a physical name")?;
+            let mut it = l.splitn(3, char::is_whitespace);
+            let dim: usize = c.num(ln, it.next().as_ref(), "physical dimension")?;
+            let tag: i64 = c.num(ln, it.next().as_ref(), "physical tag")?;
+            let name = it.next().unwrap_or("").trim().trim_matches('"').to_string();
+            self.physical_names.insert((dim, tag), name);
+        }
+        c.expect_end("PhysicalNames")
+    }
+
+    /// `$Entities`: the physical groups of each point, curve, surface and
+    /// volume entity.
+    fn read_entities(&mut self, c: &mut Cursor<'_>) -> Result<(), GmshError> {
+        let (ln, t) = c.tokens("$Entities")?;
+        let mut counts = [0usize; 4];
+        for (d, cnt) in counts.iter_mut().enumerate() {
+            *cnt = c.num(ln, t.get(d), "entity count")?;
+        }
+        c.enough_lines(
+            ln,
+            "entities",
+            counts.iter().fold(0usize, |a, &b| a.saturating_add(b)),
+            1,
+        )?;
+        for (dim, &cnt) in counts.iter().enumerate() {
+            for _ in 0..cnt {
+                let (ln, t) = c.tokens("an entity")?;
+                let tag: i64 = c.num(ln, t.first(), "entity tag")?;
+                // points: tag x y z nPhys ...; others: tag 6 bbox values nPhys ...
+                let at = if dim == 0 { 4 } else { 7 };
+                let np: usize = c.num(ln, t.get(at), "number of physical tags")?;
+                if np > t.len() {
+                    return Err(c.err(
+                        ln,
+                        format!(
+                            "{np} physical tags declared, {} values on the line",
+                            t.len()
+                        ),
+                    ));
+                }
+                let mut phys = Vec::with_capacity(np);
+                for k in 0..np {
+                    let p: i64 = c.num(ln, t.get(at + 1 + k), "physical tag")?;
+                    phys.push(p.abs());
+                }
+                self.entity_phys.insert((dim, tag), phys);
+            }
+        }
+        c.expect_end("Entities")
+    }
+
+    /// `$Nodes`: blocks of node tags followed by their coordinates (a tag
+    /// defined twice is an error).
+    fn read_nodes(&mut self, c: &mut Cursor<'_>) -> Result<(), GmshError> {
+        let (ln, t) = c.tokens("$Nodes")?;
+        let nblocks: usize = c.num(ln, t.first(), "number of node blocks")?;
+        let total: usize = c.num(ln, t.get(1), "number of nodes")?;
+        c.enough_lines(ln, "node blocks", nblocks, 1)?;
+        c.enough_lines(ln, "nodes", total, 2)?;
+        self.nodes.reserve(total);
+        self.labels.reserve(total);
+        for _ in 0..nblocks {
+            let (ln, t) = c.tokens("a node block")?;
+            let _parametric: usize = c.num(ln, t.get(2), "parametric flag")?;
+            let count: usize = c.num(ln, t.get(3), "number of nodes in block")?;
+            c.enough_lines(ln, "nodes", count, 2)?;
+            let mut tags = Vec::with_capacity(count);
+            for _ in 0..count {
+                let (ln, t) = c.tokens("a node tag")?;
+                tags.push((ln, c.num::<usize>(ln, t.first(), "node tag")?));
+            }
+            for (tln, tag) in tags {
+                let (ln, t) = c.tokens("node coordinates")?;
+                // parametric nodes (flag != 0) carry u [v [w]] after x y z: ignored
+                if t.len() < 3 {
+                    return Err(c.err(ln, "expected x y z"));
+                }
+                let mut x = [0.0; 3];
+                for (d, xd) in x.iter_mut().enumerate() {
+                    *xd = c.num(ln, t.get(d), "coordinate")?;
+                }
+                if self.node_id.insert(tag, self.nodes.len()).is_some() {
+                    return Err(c.err(tln, format!("node tag {tag} defined twice")));
+                }
+                self.nodes.push(x);
+                self.labels.push(tag);
+            }
+        }
+        c.expect_end("Nodes")
+    }
+
+    /// `$Elements`: blocks of elements of one type on one entity (element
+    /// tag and node tags, Gmsh order).
+    fn read_elements(&mut self, c: &mut Cursor<'_>) -> Result<(), GmshError> {
+        let (ln, t) = c.tokens("$Elements")?;
+        let nblocks: usize = c.num(ln, t.first(), "number of element blocks")?;
+        c.enough_lines(ln, "element blocks", nblocks, 1)?;
+        for _ in 0..nblocks {
+            let (ln, t) = c.tokens("an element block")?;
+            let dim: usize = c.num(ln, t.first(), "entity dimension")?;
+            let entity: i64 = c.num(ln, t.get(1), "entity tag")?;
+            let code: usize = c.num(ln, t.get(2), "element type")?;
+            let count: usize = c.num(ln, t.get(3), "number of elements")?;
+            c.enough_lines(ln, "elements", count, 1)?;
+            let (_, npe) = shape_of(code).ok_or_else(|| GmshError::ElementType {
+                file: c.file.into(),
+                line: ln,
+                code,
+            })?;
+            let mut b = ElemBlock {
+                dim,
+                entity,
+                code,
+                line: ln,
+                elements: Vec::with_capacity(count),
+            };
+            for _ in 0..count {
+                let (eln, t) = c.tokens("an element")?;
+                if t.len() != npe + 1 {
+                    return Err(c.err(
+                        eln,
+                        format!(
+                            "element of type {code} needs a tag and {npe} nodes, found {} values",
+                            t.len()
+                        ),
+                    ));
+                }
+                let tag: usize = c.num(eln, t.first(), "element tag")?;
+                let mut conn = Vec::with_capacity(npe);
+                for k in 0..npe {
+                    conn.push(c.num::<usize>(eln, t.get(k + 1), "node tag")?);
+                }
+                b.elements.push((tag, conn));
+            }
+            self.blocks.push(b);
+        }
+        c.expect_end("Elements")
+    }
+
+    /// Name of a physical group (`physical<dim>d_<tag>` when unnamed).
+    fn phys_name(&self, dim: usize, tag: i64) -> String {
+        self.physical_names
             .get(&(dim, tag))
             .cloned()
             .unwrap_or_else(|| format!("physical{dim}d_{tag}"))
-    };
-    let groups_of = |dim: usize, entity: i64| -> Vec<i64> {
-        entity_phys.get(&(dim, entity)).cloned().unwrap_or_default()
-    };
-    let resolve = |c: &Cursor, line: usize, tag: usize| -> Result<usize, GmshError> {
-        node_id
+    }
+
+    /// Physical groups of an entity.
+    fn groups_of(&self, dim: usize, entity: i64) -> Vec<i64> {
+        self.entity_phys
+            .get(&(dim, entity))
+            .cloned()
+            .unwrap_or_default()
+    }
+
+    /// Node index of a node tag.
+    fn resolve(&self, c: &Cursor, line: usize, tag: usize) -> Result<usize, GmshError> {
+        self.node_id
             .get(&tag)
             .copied()
             .ok_or_else(|| c.err(line, format!("element refers to undefined node tag {tag}")))
-    };
+    }
+}
 
-    let mut mesh = Mesh {
-        nodes,
-        node_labels: labels,
-        ..Mesh::default()
-    };
-    // volume elements -> blocks
+/// `$MeshFormat`: version 4.1, ASCII.
+fn mesh_format(c: &mut Cursor<'_>) -> Result<(), GmshError> {
+    let (ln, t) = c.tokens("$MeshFormat")?;
+    let version = t.first().copied().unwrap_or("");
+    let ftype = t.get(1).copied().unwrap_or("");
+    if ftype == "1" {
+        return Err(GmshError::Binary {
+            file: c.file.into(),
+            line: ln,
+        });
+    }
+    if version != "4.1" {
+        return Err(GmshError::Version {
+            file: c.file.into(),
+            line: ln,
+            version: version.into(),
+        });
+    }
+    if ftype != "0" {
+        return Err(c.err(ln, format!("bad file type `{ftype}`; valid: 0 (ASCII)")));
+    }
+    c.expect_end("MeshFormat")
+}
+
+/// Volume elements -> blocks: one per physical volume and shape (named
+/// after the group, `volume<tag>` outside any group, `<name>_<shape>` for a
+/// second shape), connectivity in our node order, element labels, and one
+/// element set per physical volume.
+fn volume_blocks(c: &Cursor, s: &Sections, mesh: &mut Mesh) -> Result<(), GmshError> {
     let mut block_index: HashMap<(String, CellShape), usize> = HashMap::new();
     let mut element_sets: BTreeMap<String, Vec<ElementRef>> = BTreeMap::new();
-    for b in blocks.iter().filter(|b| b.dim == 3) {
+    for b in s.blocks.iter().filter(|b| b.dim == 3) {
         let (shape, npe) = shape_of(b.code).unwrap();
         if !shape.is_solid() {
             return Err(c.err(
@@ -451,9 +513,9 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
                 format!("element type {} is not a volume element", b.code),
             ));
         }
-        let groups = groups_of(3, b.entity);
+        let groups = s.groups_of(3, b.entity);
         let name = match groups.first() {
-            Some(&g) => phys_name(3, g),
+            Some(&g) => s.phys_name(3, g),
             None => format!("volume{}", b.entity),
         };
         let key = (name.clone(), shape);
@@ -498,12 +560,12 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
                 _ => &GMSH_TO_OURS_HEX27[..npe],
             };
             for &k in order {
-                let id = resolve(&c, b.line, conn[k])?;
+                let id = s.resolve(c, b.line, conn[k])?;
                 mesh.blocks[bi].connectivity.push(id);
             }
             for &g in &groups {
                 element_sets
-                    .entry(phys_name(3, g))
+                    .entry(s.phys_name(3, g))
                     .or_default()
                     .push(ElementRef {
                         block: bi,
@@ -513,7 +575,14 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
         }
     }
     mesh.element_sets = element_sets;
+    Ok(())
+}
 
+/// Lower-dimensional physical groups -> node sets (all nodes of their
+/// elements), and for surfaces also face sets: each quadrangle or triangle
+/// is matched by its corners to a face of a volume element
+/// ([`surface_face`]).
+fn group_sets(c: &Cursor, s: &Sections, mesh: &mut Mesh) -> Result<(), GmshError> {
     // faces of volume elements keyed by sorted corner nodes
     let mut faces: HashMap<[usize; 4], Vec<FaceRef>> = HashMap::new();
     for (bi, b) in mesh.blocks.iter().enumerate() {
@@ -532,12 +601,10 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
             }
         }
     }
-
-    // lower-dimensional groups -> node sets (+ face sets for surfaces)
     let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
     let mut face_sets: BTreeMap<String, Vec<FaceRef>> = BTreeMap::new();
-    for b in blocks.iter().filter(|b| b.dim < 3) {
-        let groups = groups_of(b.dim, b.entity);
+    for b in s.blocks.iter().filter(|b| b.dim < 3) {
+        let groups = s.groups_of(b.dim, b.entity);
         if groups.is_empty() {
             continue;
         }
@@ -556,50 +623,15 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
         for (tag, conn) in &b.elements {
             let ids: Vec<usize> = conn
                 .iter()
-                .map(|&t| resolve(&c, b.line, t))
+                .map(|&t| s.resolve(c, b.line, t))
                 .collect::<Result<_, _>>()?;
             let face = if b.dim == 2 {
-                // the face key of Mesh::face_key: sorted corners, a
-                // triangle's padded with usize::MAX
-                let mut key = [usize::MAX; 4];
-                key[..corners].copy_from_slice(&ids[..corners]);
-                key.sort_unstable();
-                let what = if corners == 4 {
-                    "quadrangle"
-                } else {
-                    "triangle"
-                };
-                let cands = faces.get(&key).ok_or_else(|| {
-                    let hint = if corners == 3 {
-                        " (triangles match the end faces of wedge elements)"
-                    } else {
-                        ""
-                    };
-                    c.err(
-                        b.line,
-                        format!(
-                            "{what} {tag} of surface {} is not a face of any volume element{hint}",
-                            b.entity
-                        ),
-                    )
-                })?;
-                let p: Vec<[f64; 3]> = ids[..corners].iter().map(|&i| mesh.nodes[i]).collect();
-                let nq = face_normal(&p);
-                let pick = cands
-                    .iter()
-                    .find(|&&f| {
-                        let fnodes = mesh.face_nodes(f);
-                        let q: Vec<[f64; 3]> =
-                            fnodes[..corners].iter().map(|&i| mesh.nodes[i]).collect();
-                        dot(face_normal(&q), nq) > 0.0
-                    })
-                    .unwrap_or(&cands[0]);
-                Some(*pick)
+                Some(surface_face(c, mesh, &faces, b, *tag, &ids[..corners])?)
             } else {
                 None
             };
             for &g in &groups {
-                let name = phys_name(b.dim, g);
+                let name = s.phys_name(b.dim, g);
                 node_sets
                     .entry(name.clone())
                     .or_default()
@@ -616,8 +648,52 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
     }
     mesh.node_sets = node_sets;
     mesh.face_sets = face_sets;
-    mesh.validate().map_err(|e| c.err(0, e.to_string()))?;
-    Ok(mesh)
+    Ok(())
+}
+
+/// The volume face under surface element `tag` of block `b`, whose corner
+/// node indices are `corners`: the face with the same corners (the face
+/// key of [`Mesh::face_key`]: sorted corners, a triangle's padded with
+/// `usize::MAX`); of two (an internal surface), the one whose outward
+/// normal agrees with the surface element's right-hand normal.
+fn surface_face(
+    c: &Cursor,
+    mesh: &Mesh,
+    faces: &HashMap<[usize; 4], Vec<FaceRef>>,
+    b: &ElemBlock,
+    tag: usize,
+    corners: &[usize],
+) -> Result<FaceRef, GmshError> {
+    let n = corners.len();
+    let mut key = [usize::MAX; 4];
+    key[..n].copy_from_slice(corners);
+    key.sort_unstable();
+    let what = if n == 4 { "quadrangle" } else { "triangle" };
+    let cands = faces.get(&key).ok_or_else(|| {
+        let hint = if n == 3 {
+            " (triangles match the end faces of wedge elements)"
+        } else {
+            ""
+        };
+        c.err(
+            b.line,
+            format!(
+                "{what} {tag} of surface {} is not a face of any volume element{hint}",
+                b.entity
+            ),
+        )
+    })?;
+    let p: Vec<[f64; 3]> = corners.iter().map(|&i| mesh.nodes[i]).collect();
+    let nq = face_normal(&p);
+    let pick = cands
+        .iter()
+        .find(|&&f| {
+            let fnodes = mesh.face_nodes(f);
+            let q: Vec<[f64; 3]> = fnodes[..n].iter().map(|&i| mesh.nodes[i]).collect();
+            dot(face_normal(&q), nq) > 0.0
+        })
+        .unwrap_or(&cands[0]);
+    Ok(*pick)
 }
 
 #[cfg(test)]

@@ -1383,6 +1383,9 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// Walk the keywords in order, each with its data lines, to its reader
+    /// ([`Parser::keyword`]). A material is complete at the first keyword
+    /// that is not one of its options; a step must be closed at the end.
     fn run(&mut self, items: &[Item<'_>]) -> Result<(), InpError> {
         let mut i = 0;
         // data lines before any keyword
@@ -1393,7 +1396,6 @@ impl<'a> Parser<'a> {
             let Item::Keyword { line, name, params } = &items[i] else {
                 unreachable!("data lines are consumed by their keyword")
             };
-            let (line, kw) = (*line, name.as_str());
             i += 1;
             let start = i;
             while i < items.len() && matches!(items[i], Item::Data { .. }) {
@@ -1412,7 +1414,7 @@ impl<'a> Parser<'a> {
                 })
                 .collect();
             if !matches!(
-                kw,
+                name.as_str(),
                 "ELASTIC"
                     | "DENSITY"
                     | "DAMAGE INITIATION"
@@ -1421,402 +1423,520 @@ impl<'a> Parser<'a> {
             ) {
                 self.finish_material()?;
             }
-            match kw {
-                "HEADING" => {
-                    self.check_params(line, kw, params, &[])?;
-                    let text: Vec<&str> = items[start..i]
-                        .iter()
-                        .filter_map(|it| match it {
-                            Item::Data { raw, .. } => Some(*raw),
-                            Item::Keyword { .. } => None,
-                        })
-                        .collect();
-                    self.deck.heading = text.join("\n");
-                }
-                "NODE" => self.node(line, params, &data)?,
-                "ELEMENT" => self.element(line, params, &data)?,
-                "NSET" | "ELSET" => self.set(line, kw, params, &data)?,
-                "MATERIAL" => {
-                    self.model_data_only(line, kw)?;
-                    self.check_params(line, kw, params, &["NAME"])?;
-                    let name = self.required(line, kw, params, "NAME")?;
-                    if let Some(&m) = self.material_index.get(&name.to_uppercase()) {
-                        return Err(self.invalid(
-                            line,
-                            kw,
-                            format!(
-                                "material `{name}` already defined at line {}",
-                                self.deck.materials[m].line
-                            ),
-                        ));
-                    }
-                    if let Some(&(d, _, _)) = data.first() {
-                        return Err(self.invalid(d, kw, "*MATERIAL takes no data lines"));
-                    }
-                    self.current_material = Some(PendingMaterial {
-                        name,
-                        line,
-                        elastic: None,
-                        density: None,
-                        initiation: None,
-                        evolution: None,
-                        stabilization: None,
-                    });
-                }
-                "ELASTIC" => self.elastic(line, params, &data)?,
-                "DAMAGE INITIATION" => self.damage_initiation(line, params, &data)?,
-                "DAMAGE EVOLUTION" => self.damage_evolution(line, params, &data)?,
-                "DAMAGE STABILIZATION" => self.damage_stabilization(line, params, &data)?,
-                "DENSITY" => {
-                    self.check_params(line, kw, params, &[])?;
-                    if self.current_material.is_none() {
-                        return Err(self.invalid(line, kw, "*DENSITY must follow *MATERIAL"));
-                    }
-                    let (dl, f, _) = *data.first().ok_or_else(|| {
-                        self.invalid(line, kw, "expected a data line with the density")
-                    })?;
-                    let rho = self.float(dl, kw, "density", f.first().copied().unwrap_or(""))?;
-                    let name = self
-                        .current_material
-                        .as_ref()
-                        .map(|m| m.name.clone())
-                        .unwrap_or_default();
-                    if let Some(m) = self.current_material.as_mut() {
-                        m.density = Some(rho);
-                    }
-                    self.deck
-                        .notes
-                        .push(format!("line {line}: *DENSITY of material `{name}` read but unused (static analysis)"));
-                }
-                "SOLID SECTION" => {
-                    self.model_data_only(line, kw)?;
-                    self.check_params(line, kw, params, &["ELSET", "MATERIAL", "ORIENTATION"])?;
-                    let elset = self.required(line, kw, params, "ELSET")?;
-                    let material = self.required(line, kw, params, "MATERIAL")?;
-                    let orientation = match Self::param(params, "ORIENTATION") {
-                        None => None,
-                        Some(_) => Some(self.required(line, kw, params, "ORIENTATION")?),
-                    };
-                    if data.len() > 1 {
-                        return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
-                    }
-                    self.deck.solid_sections.push(InpSolidSection {
-                        elset,
-                        material,
-                        orientation,
-                        line,
-                    });
-                }
-                "COHESIVE SECTION" => {
-                    self.model_data_only(line, kw)?;
-                    self.check_params(
-                        line,
-                        kw,
-                        params,
-                        &["ELSET", "MATERIAL", "RESPONSE", "THICKNESS"],
-                    )?;
-                    let elset = self.required(line, kw, params, "ELSET")?;
-                    let material = self.required(line, kw, params, "MATERIAL")?;
-                    let response = norm_key(&self.required(line, kw, params, "RESPONSE")?);
-                    if response != "TRACTION SEPARATION" {
-                        return Err(InpError::Parameter {
-                            file: self.file.into(),
-                            line,
-                            keyword: kw.into(),
-                            parameter: format!("RESPONSE={response}"),
-                            valid: "RESPONSE=TRACTION SEPARATION".into(),
-                        });
-                    }
-                    match Self::param(params, "THICKNESS").map(|(_, v)| v.as_deref().map(norm_key)) {
-                        None => {}
-                        Some(Some(v)) if v == "SPECIFIED" => {}
-                        Some(v) => {
-                            return Err(self.bad_param(
-                                line,
-                                kw,
-                                format!("THICKNESS={}", v.unwrap_or_default()),
-                                "THICKNESS=SPECIFIED (the default: the constitutive thickness is the data line's, 1 when not given); GEOMETRY would take the element's geometric thickness, which is zero for Junta's interface elements",
-                            ))
-                        }
-                    }
-                    if data.len() > 1 {
-                        return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
-                    }
-                    let thickness = match data.first() {
-                        Some((dl, f, _)) if !f.is_empty() && !f[0].is_empty() => {
-                            let t = self.float(*dl, kw, "initial thickness", f[0])?;
-                            if t <= 0.0 {
-                                return Err(self.invalid(
-                                    *dl,
-                                    kw,
-                                    format!("constitutive thickness {t} must be positive (leave the field empty for the default 1)"),
-                                ));
-                            }
-                            Some(t)
-                        }
-                        _ => None,
-                    };
-                    self.deck.cohesive_sections.push(InpCohesiveSection {
-                        elset,
-                        material,
-                        response,
-                        thickness,
-                        line,
-                    });
-                }
-                "ORIENTATION" => self.orientation(line, params, &data)?,
-                "BOUNDARY" => self.boundary(line, params, &data)?,
-                "CLOAD" => self.cload(line, params, &data)?,
-                "AMPLITUDE" => self.amplitude(line, params, &data)?,
-                "EQUATION" => self.equation(line, params, &data)?,
-                "SURFACE" => self.surface(line, params, &data)?,
-                "DLOAD" => self.dload(line, params, &data)?,
-                "DSLOAD" => self.dsload(line, params, &data)?,
-                "STEP" => {
-                    self.check_params(line, kw, params, &["NAME", "NLGEOM", "INC"])?;
-                    if let Some(s) = self.step_open {
-                        return Err(self.invalid(
-                            line,
-                            kw,
-                            format!("*STEP inside the *STEP of line {s}; close it with *END STEP"),
-                        ));
-                    }
-                    let nlgeom = match Self::param(params, "NLGEOM") {
-                        None => false,
-                        Some((_, None)) => true,
-                        Some((_, Some(v))) => match v.to_uppercase().as_str() {
-                            "YES" => true,
-                            "NO" => false,
-                            _ => {
-                                return Err(InpError::Parameter {
-                                    file: self.file.into(),
-                                    line,
-                                    keyword: kw.into(),
-                                    parameter: format!("NLGEOM={v}"),
-                                    valid: "NLGEOM, NLGEOM=YES, NLGEOM=NO".into(),
-                                })
-                            }
-                        },
-                    };
-                    let max_increments = match Self::param(params, "INC") {
-                        Some((_, Some(v))) => Some(self.label(line, kw, "INC", v)?),
-                        Some((_, None)) => {
-                            return Err(self.invalid(line, kw, "INC needs a value, e.g. INC=100"))
-                        }
-                        None => None,
-                    };
-                    let name = Self::param(params, "NAME").and_then(|(_, v)| v.clone());
-                    if let Some((dl, _, _)) = data.first() {
-                        // Abaqus allows a step description line
-                        self.deck
-                            .notes
-                            .push(format!("line {dl}: *STEP description skipped"));
-                    }
-                    self.deck.steps.push(InpStep {
-                        name,
-                        nlgeom,
-                        max_increments,
-                        static_procedure: None,
-                        line,
-                    });
-                    self.step_open = Some(line);
-                }
-                "STATIC" => {
-                    let mut valid = vec!["DIRECT", "SOLVER", "RIKS"];
-                    valid.extend(STATIC_NOTED);
-                    valid.extend(STATIC_REFUSED.iter().map(|(k, _)| *k));
-                    self.check_params(line, kw, params, &valid)?;
-                    for (k, what) in STATIC_REFUSED {
-                        if Self::param(params, k).is_some() {
-                            return Err(self.invalid(
-                                line,
-                                kw,
-                                format!("*STATIC, {k} ({what}) is not supported"),
-                            ));
-                        }
-                    }
-                    for k in STATIC_NOTED {
-                        if Self::param(params, k).is_some() {
-                            self.deck.notes.push(format!(
-                                "line {line}: *STATIC, {k} does not change Junta's results; skipped"
-                            ));
-                        }
-                    }
-                    let solver = match Self::param(params, "SOLVER") {
-                        None => None,
-                        Some((_, Some(v))) if !v.is_empty() => Some(v.to_uppercase()),
-                        Some(_) => {
-                            return Err(self.invalid(
-                                line,
-                                kw,
-                                "SOLVER needs a value (SPOOLES, PARDISO, PASTIX, ITERATIVE SCALING, ITERATIVE CHOLESKY)",
-                            ))
-                        }
-                    };
-                    if self.step_open.is_none() {
-                        return Err(self.invalid(
-                            line,
-                            kw,
-                            "*STATIC must be inside *STEP ... *END STEP",
-                        ));
-                    }
-                    if data.len() > 1 {
-                        return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
-                    }
-                    let riks = Self::param(params, "RIKS").is_some();
-                    let mut v = [None; 8];
-                    if let Some((dl, f, _)) = data.first() {
-                        let most = if riks { 8 } else { 4 };
-                        if f.len() > most {
-                            return Err(self.invalid(
-                                *dl,
-                                kw,
-                                if riks {
-                                    "expected at most 8 values: initial arc length, period, minimum, maximum arc length, maximum load factor, node, dof, displacement"
-                                } else {
-                                    "expected at most 4 values: initial increment, period, minimum, maximum increment"
-                                },
-                            ));
-                        }
-                        let names = [
-                            "initial increment",
-                            "time period",
-                            "minimum increment",
-                            "maximum increment",
-                            "maximum load proportionality factor",
-                            "monitored node",
-                            "monitored degree of freedom",
-                            "finishing displacement",
-                        ];
-                        for (k, t) in f.iter().enumerate() {
-                            if !t.is_empty() {
-                                v[k] = Some(self.float(*dl, kw, names[k], t)?);
-                            }
-                        }
-                    }
-                    if riks && v[5..].iter().any(Option::is_some) {
-                        self.deck.notes.push(format!(
-                            "line {line}: *STATIC, RIKS: the stop on a node's displacement (values 6-8) is not supported; the run ends at the maximum load factor or after INC increments"
-                        ));
-                    }
-                    let step = self.deck.steps.last_mut().unwrap();
-                    step.static_procedure = Some(InpStatic {
-                        initial_increment: v[0],
-                        period: v[1],
-                        min_increment: v[2],
-                        max_increment: v[3],
-                        direct: Self::param(params, "DIRECT").is_some(),
-                        solver,
-                        riks: riks.then_some(InpRiks {
-                            max_load_factor: v[4],
-                        }),
-                        line,
-                    });
-                }
-                "END STEP" => {
-                    self.check_params(line, kw, params, &[])?;
-                    if self.step_open.take().is_none() {
-                        return Err(self.invalid(line, kw, "*END STEP without *STEP"));
-                    }
-                }
-                "NODE PRINT" => {
-                    let nset = self.required(line, kw, params, "NSET")?;
-                    let totals = match Self::param(params, "TOTALS") {
-                        None => "NO".to_string(),
-                        Some((_, Some(v))) => v.to_uppercase(),
-                        Some((_, None)) => "YES".to_string(),
-                    };
-                    if !["NO", "YES", "ONLY"].contains(&totals.as_str()) {
-                        return Err(self.invalid(
-                            line,
-                            kw,
-                            format!("TOTALS={totals}: valid are YES, ONLY, NO"),
-                        ));
-                    }
-                    let variables = data
-                        .iter()
-                        .flat_map(|(_, f, _)| f.iter())
-                        .filter(|t| !t.is_empty())
-                        .map(|t| t.to_uppercase())
-                        .collect::<Vec<_>>();
-                    let variables = if variables.is_empty() {
-                        vec!["U".to_string()]
-                    } else {
-                        variables
-                    };
-                    self.deck.node_prints.push(InpNodePrint {
-                        nset,
-                        variables,
-                        totals,
-                        step: self.step_open.map(|_| self.deck.steps.len() - 1),
-                        line,
-                    });
-                }
-                "EL PRINT" => {
-                    let elset = self.required(line, kw, params, "ELSET")?;
-                    // CalculiX prints oriented elements in their material
-                    // axes unless GLOBAL=YES
-                    let global = match Self::param(params, "GLOBAL")
-                        .and_then(|(_, v)| v.as_deref())
-                        .map(norm_key)
-                        .as_deref()
-                    {
-                        None | Some("NO") => false,
-                        Some("YES") => true,
-                        Some(v) => {
-                            return Err(InpError::Parameter {
-                                file: self.file.into(),
-                                line,
-                                keyword: kw.into(),
-                                parameter: format!("GLOBAL={v}"),
-                                valid: "GLOBAL=YES or GLOBAL=NO".into(),
-                            })
-                        }
-                    };
-                    let mut variables = data
-                        .iter()
-                        .flat_map(|(_, f, _)| f.iter())
-                        .filter(|t| !t.is_empty())
-                        .map(|t| t.to_uppercase())
-                        .collect::<Vec<_>>();
-                    if variables.is_empty() {
-                        variables.push("S".to_string());
-                    }
-                    self.deck.el_prints.push(InpElPrint {
-                        elset,
-                        variables,
-                        global,
-                        step: self.step_open.map(|_| self.deck.steps.len() - 1),
-                        line,
-                    });
-                }
-                "INCLUDE" => {
-                    return Err(self.invalid(
-                        line,
-                        "INCLUDE",
-                        "an included file is read in place only when the deck is read from a file (read_inp); this text was given without one",
-                    ))
-                }
-                k if OUTPUT_KEYWORDS.contains(&k) => {
-                    self.deck.notes.push(format!(
-                        "line {line}: *{k} ignored (outputs are chosen in the scene); {} data line(s) skipped",
-                        data.len()
-                    ));
-                }
-                _ => {
-                    return Err(InpError::UnknownKeyword {
-                        file: self.file.into(),
-                        line,
-                        keyword: kw.into(),
-                        valid: SUPPORTED_KEYWORDS.into(),
-                    })
-                }
-            }
+            self.keyword(*line, name, params, &items[start..i], &data)?;
         }
         self.finish_material()?;
         if let Some(s) = self.step_open {
             return Err(self.invalid(s, "STEP", "missing *END STEP at the end of the deck"));
         }
+        Ok(())
+    }
+
+    /// One keyword (`kw` at `line`) with its data `items` (as `data`
+    /// fields): dispatch to its reader.
+    fn keyword(
+        &mut self,
+        line: usize,
+        kw: &str,
+        params: &Params,
+        items: &[Item<'_>],
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        match kw {
+            "HEADING" => self.heading(line, params, items),
+            "NODE" => self.node(line, params, data),
+            "ELEMENT" => self.element(line, params, data),
+            "NSET" | "ELSET" => self.set(line, kw, params, data),
+            "MATERIAL" => self.material(line, params, data),
+            "ELASTIC" => self.elastic(line, params, data),
+            "DAMAGE INITIATION" => self.damage_initiation(line, params, data),
+            "DAMAGE EVOLUTION" => self.damage_evolution(line, params, data),
+            "DAMAGE STABILIZATION" => self.damage_stabilization(line, params, data),
+            "DENSITY" => self.density(line, params, data),
+            "SOLID SECTION" => self.solid_section(line, params, data),
+            "COHESIVE SECTION" => self.cohesive_section(line, params, data),
+            "ORIENTATION" => self.orientation(line, params, data),
+            "BOUNDARY" => self.boundary(line, params, data),
+            "CLOAD" => self.cload(line, params, data),
+            "AMPLITUDE" => self.amplitude(line, params, data),
+            "EQUATION" => self.equation(line, params, data),
+            "SURFACE" => self.surface(line, params, data),
+            "DLOAD" => self.dload(line, params, data),
+            "DSLOAD" => self.dsload(line, params, data),
+            "STEP" => self.step(line, params, data),
+            "STATIC" => self.static_procedure(line, params, data),
+            "END STEP" => {
+                self.check_params(line, kw, params, &[])?;
+                if self.step_open.take().is_none() {
+                    return Err(self.invalid(line, kw, "*END STEP without *STEP"));
+                }
+                Ok(())
+            }
+            "NODE PRINT" => self.node_print(line, params, data),
+            "EL PRINT" => self.el_print(line, params, data),
+            "INCLUDE" => Err(self.invalid(
+                line,
+                "INCLUDE",
+                "an included file is read in place only when the deck is read from a file (read_inp); this text was given without one",
+            )),
+            k if OUTPUT_KEYWORDS.contains(&k) => {
+                self.deck.notes.push(format!(
+                    "line {line}: *{k} ignored (outputs are chosen in the scene); {} data line(s) skipped",
+                    data.len()
+                ));
+                Ok(())
+            }
+            _ => Err(InpError::UnknownKeyword {
+                file: self.file.into(),
+                line,
+                keyword: kw.into(),
+                valid: SUPPORTED_KEYWORDS.into(),
+            }),
+        }
+    }
+
+    /// `*HEADING`: its data lines, as written, are the deck's heading.
+    fn heading(
+        &mut self,
+        line: usize,
+        params: &Params,
+        items: &[Item<'_>],
+    ) -> Result<(), InpError> {
+        self.check_params(line, "HEADING", params, &[])?;
+        let text: Vec<&str> = items
+            .iter()
+            .filter_map(|it| match it {
+                Item::Data { raw, .. } => Some(*raw),
+                Item::Keyword { .. } => None,
+            })
+            .collect();
+        self.deck.heading = text.join("\n");
+        Ok(())
+    }
+
+    /// `*MATERIAL, NAME=`: opens a material; its options follow.
+    fn material(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "MATERIAL";
+        self.model_data_only(line, kw)?;
+        self.check_params(line, kw, params, &["NAME"])?;
+        let name = self.required(line, kw, params, "NAME")?;
+        if let Some(&m) = self.material_index.get(&name.to_uppercase()) {
+            return Err(self.invalid(
+                line,
+                kw,
+                format!(
+                    "material `{name}` already defined at line {}",
+                    self.deck.materials[m].line
+                ),
+            ));
+        }
+        if let Some(&(d, _, _)) = data.first() {
+            return Err(self.invalid(d, kw, "*MATERIAL takes no data lines"));
+        }
+        self.current_material = Some(PendingMaterial {
+            name,
+            line,
+            elastic: None,
+            density: None,
+            initiation: None,
+            evolution: None,
+            stabilization: None,
+        });
+        Ok(())
+    }
+
+    /// `*DENSITY`: kept on the material, noted as unused.
+    fn density(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "DENSITY";
+        self.check_params(line, kw, params, &[])?;
+        if self.current_material.is_none() {
+            return Err(self.invalid(line, kw, "*DENSITY must follow *MATERIAL"));
+        }
+        let (dl, f, _) = *data
+            .first()
+            .ok_or_else(|| self.invalid(line, kw, "expected a data line with the density"))?;
+        let rho = self.float(dl, kw, "density", f.first().copied().unwrap_or(""))?;
+        let name = self
+            .current_material
+            .as_ref()
+            .map(|m| m.name.clone())
+            .unwrap_or_default();
+        if let Some(m) = self.current_material.as_mut() {
+            m.density = Some(rho);
+        }
+        self.deck.notes.push(format!(
+            "line {line}: *DENSITY of material `{name}` read but unused (static analysis)"
+        ));
+        Ok(())
+    }
+
+    /// `*SOLID SECTION, ELSET=, MATERIAL= [, ORIENTATION=]` (resolved in
+    /// [`Parser::assign_sections`]).
+    fn solid_section(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "SOLID SECTION";
+        self.model_data_only(line, kw)?;
+        self.check_params(line, kw, params, &["ELSET", "MATERIAL", "ORIENTATION"])?;
+        let elset = self.required(line, kw, params, "ELSET")?;
+        let material = self.required(line, kw, params, "MATERIAL")?;
+        let orientation = match Self::param(params, "ORIENTATION") {
+            None => None,
+            Some(_) => Some(self.required(line, kw, params, "ORIENTATION")?),
+        };
+        if data.len() > 1 {
+            return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
+        }
+        self.deck.solid_sections.push(InpSolidSection {
+            elset,
+            material,
+            orientation,
+            line,
+        });
+        Ok(())
+    }
+
+    /// `*COHESIVE SECTION, ELSET=, MATERIAL=, RESPONSE=TRACTION SEPARATION
+    /// [, THICKNESS=SPECIFIED]`, data line: the constitutive thickness.
+    fn cohesive_section(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "COHESIVE SECTION";
+        self.model_data_only(line, kw)?;
+        self.check_params(
+            line,
+            kw,
+            params,
+            &["ELSET", "MATERIAL", "RESPONSE", "THICKNESS"],
+        )?;
+        let elset = self.required(line, kw, params, "ELSET")?;
+        let material = self.required(line, kw, params, "MATERIAL")?;
+        let response = norm_key(&self.required(line, kw, params, "RESPONSE")?);
+        if response != "TRACTION SEPARATION" {
+            return Err(InpError::Parameter {
+                file: self.file.into(),
+                line,
+                keyword: kw.into(),
+                parameter: format!("RESPONSE={response}"),
+                valid: "RESPONSE=TRACTION SEPARATION".into(),
+            });
+        }
+        match Self::param(params, "THICKNESS").map(|(_, v)| v.as_deref().map(norm_key)) {
+            None => {}
+            Some(Some(v)) if v == "SPECIFIED" => {}
+            Some(v) => {
+                return Err(self.bad_param(
+                    line,
+                    kw,
+                    format!("THICKNESS={}", v.unwrap_or_default()),
+                    "THICKNESS=SPECIFIED (the default: the constitutive thickness is the data line's, 1 when not given); GEOMETRY would take the element's geometric thickness, which is zero for Junta's interface elements",
+                ))
+            }
+        }
+        if data.len() > 1 {
+            return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
+        }
+        let thickness = match data.first() {
+            Some((dl, f, _)) if !f.is_empty() && !f[0].is_empty() => {
+                let t = self.float(*dl, kw, "initial thickness", f[0])?;
+                if t <= 0.0 {
+                    return Err(self.invalid(
+                        *dl,
+                        kw,
+                        format!("constitutive thickness {t} must be positive (leave the field empty for the default 1)"),
+                    ));
+                }
+                Some(t)
+            }
+            _ => None,
+        };
+        self.deck.cohesive_sections.push(InpCohesiveSection {
+            elset,
+            material,
+            response,
+            thickness,
+            line,
+        });
+        Ok(())
+    }
+
+    /// `*STEP [, NAME=] [, NLGEOM[=YES|NO]] [, INC=]`: opens a step (a
+    /// description line is skipped).
+    fn step(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "STEP";
+        self.check_params(line, kw, params, &["NAME", "NLGEOM", "INC"])?;
+        if let Some(s) = self.step_open {
+            return Err(self.invalid(
+                line,
+                kw,
+                format!("*STEP inside the *STEP of line {s}; close it with *END STEP"),
+            ));
+        }
+        let nlgeom = match Self::param(params, "NLGEOM") {
+            None => false,
+            Some((_, None)) => true,
+            Some((_, Some(v))) => match v.to_uppercase().as_str() {
+                "YES" => true,
+                "NO" => false,
+                _ => {
+                    return Err(InpError::Parameter {
+                        file: self.file.into(),
+                        line,
+                        keyword: kw.into(),
+                        parameter: format!("NLGEOM={v}"),
+                        valid: "NLGEOM, NLGEOM=YES, NLGEOM=NO".into(),
+                    })
+                }
+            },
+        };
+        let max_increments = match Self::param(params, "INC") {
+            Some((_, Some(v))) => Some(self.label(line, kw, "INC", v)?),
+            Some((_, None)) => {
+                return Err(self.invalid(line, kw, "INC needs a value, e.g. INC=100"))
+            }
+            None => None,
+        };
+        let name = Self::param(params, "NAME").and_then(|(_, v)| v.clone());
+        if let Some((dl, _, _)) = data.first() {
+            // Abaqus allows a step description line
+            self.deck
+                .notes
+                .push(format!("line {dl}: *STEP description skipped"));
+        }
+        self.deck.steps.push(InpStep {
+            name,
+            nlgeom,
+            max_increments,
+            static_procedure: None,
+            line,
+        });
+        self.step_open = Some(line);
+        Ok(())
+    }
+
+    /// `*STATIC [, DIRECT] [, SOLVER=] [, RIKS]` inside a step: parameters
+    /// that change nothing are noted, unsupported ones refused; the data
+    /// line is read by [`Parser::static_values`].
+    fn static_procedure(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "STATIC";
+        let mut valid = vec!["DIRECT", "SOLVER", "RIKS"];
+        valid.extend(STATIC_NOTED);
+        valid.extend(STATIC_REFUSED.iter().map(|(k, _)| *k));
+        self.check_params(line, kw, params, &valid)?;
+        for (k, what) in STATIC_REFUSED {
+            if Self::param(params, k).is_some() {
+                return Err(self.invalid(
+                    line,
+                    kw,
+                    format!("*STATIC, {k} ({what}) is not supported"),
+                ));
+            }
+        }
+        for k in STATIC_NOTED {
+            if Self::param(params, k).is_some() {
+                self.deck.notes.push(format!(
+                    "line {line}: *STATIC, {k} does not change Junta's results; skipped"
+                ));
+            }
+        }
+        let solver = match Self::param(params, "SOLVER") {
+            None => None,
+            Some((_, Some(v))) if !v.is_empty() => Some(v.to_uppercase()),
+            Some(_) => {
+                return Err(self.invalid(
+                    line,
+                    kw,
+                    "SOLVER needs a value (SPOOLES, PARDISO, PASTIX, ITERATIVE SCALING, ITERATIVE CHOLESKY)",
+                ))
+            }
+        };
+        if self.step_open.is_none() {
+            return Err(self.invalid(line, kw, "*STATIC must be inside *STEP ... *END STEP"));
+        }
+        let riks = Self::param(params, "RIKS").is_some();
+        let v = self.static_values(line, riks, data)?;
+        let step = self.deck.steps.last_mut().unwrap();
+        step.static_procedure = Some(InpStatic {
+            initial_increment: v[0],
+            period: v[1],
+            min_increment: v[2],
+            max_increment: v[3],
+            direct: Self::param(params, "DIRECT").is_some(),
+            solver,
+            riks: riks.then_some(InpRiks {
+                max_load_factor: v[4],
+            }),
+            line,
+        });
+        Ok(())
+    }
+
+    /// The data line of `*STATIC`: initial increment, period, minimum and
+    /// maximum increment; with RIKS also the maximum load factor and the
+    /// (noted, unsupported) monitored node, dof and displacement. Empty
+    /// fields are `None`.
+    fn static_values(
+        &mut self,
+        line: usize,
+        riks: bool,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<[Option<f64>; 8], InpError> {
+        let kw = "STATIC";
+        if data.len() > 1 {
+            return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
+        }
+        let mut v = [None; 8];
+        if let Some((dl, f, _)) = data.first() {
+            let most = if riks { 8 } else { 4 };
+            if f.len() > most {
+                return Err(self.invalid(
+                    *dl,
+                    kw,
+                    if riks {
+                        "expected at most 8 values: initial arc length, period, minimum, maximum arc length, maximum load factor, node, dof, displacement"
+                    } else {
+                        "expected at most 4 values: initial increment, period, minimum, maximum increment"
+                    },
+                ));
+            }
+            let names = [
+                "initial increment",
+                "time period",
+                "minimum increment",
+                "maximum increment",
+                "maximum load proportionality factor",
+                "monitored node",
+                "monitored degree of freedom",
+                "finishing displacement",
+            ];
+            for (k, t) in f.iter().enumerate() {
+                if !t.is_empty() {
+                    v[k] = Some(self.float(*dl, kw, names[k], t)?);
+                }
+            }
+        }
+        if riks && v[5..].iter().any(Option::is_some) {
+            self.deck.notes.push(format!(
+                "line {line}: *STATIC, RIKS: the stop on a node's displacement (values 6-8) is not supported; the run ends at the maximum load factor or after INC increments"
+            ));
+        }
+        Ok(v)
+    }
+
+    /// `*NODE PRINT, NSET= [, TOTALS=]`: variables of the data lines (`U`
+    /// when none).
+    fn node_print(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "NODE PRINT";
+        let nset = self.required(line, kw, params, "NSET")?;
+        let totals = match Self::param(params, "TOTALS") {
+            None => "NO".to_string(),
+            Some((_, Some(v))) => v.to_uppercase(),
+            Some((_, None)) => "YES".to_string(),
+        };
+        if !["NO", "YES", "ONLY"].contains(&totals.as_str()) {
+            return Err(self.invalid(
+                line,
+                kw,
+                format!("TOTALS={totals}: valid are YES, ONLY, NO"),
+            ));
+        }
+        let variables = data
+            .iter()
+            .flat_map(|(_, f, _)| f.iter())
+            .filter(|t| !t.is_empty())
+            .map(|t| t.to_uppercase())
+            .collect::<Vec<_>>();
+        let variables = if variables.is_empty() {
+            vec!["U".to_string()]
+        } else {
+            variables
+        };
+        self.deck.node_prints.push(InpNodePrint {
+            nset,
+            variables,
+            totals,
+            step: self.step_open.map(|_| self.deck.steps.len() - 1),
+            line,
+        });
+        Ok(())
+    }
+
+    /// `*EL PRINT, ELSET= [, GLOBAL=]`: variables of the data lines (`S`
+    /// when none).
+    fn el_print(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "EL PRINT";
+        let elset = self.required(line, kw, params, "ELSET")?;
+        // CalculiX prints oriented elements in their material
+        // axes unless GLOBAL=YES
+        let global = match Self::param(params, "GLOBAL")
+            .and_then(|(_, v)| v.as_deref())
+            .map(norm_key)
+            .as_deref()
+        {
+            None | Some("NO") => false,
+            Some("YES") => true,
+            Some(v) => {
+                return Err(InpError::Parameter {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    parameter: format!("GLOBAL={v}"),
+                    valid: "GLOBAL=YES or GLOBAL=NO".into(),
+                })
+            }
+        };
+        let mut variables = data
+            .iter()
+            .flat_map(|(_, f, _)| f.iter())
+            .filter(|t| !t.is_empty())
+            .map(|t| t.to_uppercase())
+            .collect::<Vec<_>>();
+        if variables.is_empty() {
+            variables.push("S".to_string());
+        }
+        self.deck.el_prints.push(InpElPrint {
+            elset,
+            variables,
+            global,
+            step: self.step_open.map(|_| self.deck.steps.len() - 1),
+            line,
+        });
         Ok(())
     }
 
@@ -2055,6 +2175,10 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
+    /// `*ELASTIC [, TYPE=]` of the current material: the constants of the
+    /// type ([`Parser::elastic_type`], [`Parser::elastic_values`]); an
+    /// orthotropic stiffness becomes engineering constants
+    /// ([`Parser::ortho_to_engineering`]).
     fn elastic(
         &mut self,
         line: usize,
@@ -2070,7 +2194,48 @@ impl<'a> Parser<'a> {
             .and_then(|(_, v)| v.as_deref())
             .map(norm_key)
             .unwrap_or_else(|| "ISOTROPIC".into());
-        let (count, names): (usize, &[&str]) = match ty.as_str() {
+        let (count, names) = self.elastic_type(line, &ty)?;
+        let mut v = self.elastic_values(line, &ty, count, names, data)?;
+        if ty == "ORTHO" || ty == "ORTHOTROPIC" {
+            v = self.ortho_to_engineering(data[0].0, &v)?;
+        }
+        let kind = match count {
+            2 => InpMaterialKind::Isotropic { e: v[0], nu: v[1] },
+            3 => InpMaterialKind::Traction([v[0], v[1], v[2]]),
+            21 => {
+                let mut a = [0.0; 21];
+                a.copy_from_slice(&v);
+                InpMaterialKind::Anisotropic(Box::new(a))
+            }
+            _ => {
+                let mut a = [0.0; 9];
+                a.copy_from_slice(&v);
+                InpMaterialKind::EngineeringConstants(a)
+            }
+        };
+        if let Some(m) = &self.current_material {
+            if m.elastic.is_some() {
+                return Err(self.invalid(
+                    line,
+                    kw,
+                    format!("material `{}` has two *ELASTIC", m.name),
+                ));
+            }
+        }
+        let data_line = data[0].0;
+        if let Some(m) = self.current_material.as_mut() {
+            m.elastic = Some((kind, data_line));
+        }
+        Ok(())
+    }
+
+    /// Number and names of the constants of `*ELASTIC, TYPE=ty`.
+    fn elastic_type(
+        &self,
+        line: usize,
+        ty: &str,
+    ) -> Result<(usize, &'static [&'static str]), InpError> {
+        Ok(match ty {
             "ISOTROPIC" | "ISO" => (2, &["E", "nu"]),
             "ENGINEERING CONSTANTS" => (
                 9,
@@ -2097,15 +2262,27 @@ impl<'a> Parser<'a> {
                 return Err(InpError::Parameter {
                     file: self.file.into(),
                     line,
-                    keyword: kw.into(),
+                    keyword: "ELASTIC".into(),
                     parameter: format!("TYPE={ty}"),
                     valid: "TYPE=ISOTROPIC, TYPE=ENGINEERING CONSTANTS, TYPE=ORTHO, TYPE=ANISO, TYPE=TRACTION"
                         .into(),
                 })
             }
-        };
-        // 8 values per line: ENGINEERING CONSTANTS and ORTHO on 2 lines,
-        // ANISO on 3
+        })
+    }
+
+    /// The `count` constants (`names`) of `*ELASTIC, TYPE=ty`, 8 per data
+    /// line (ENGINEERING CONSTANTS and ORTHO on 2 lines, ANISO on 3); more
+    /// lines (temperature dependence) are refused.
+    fn elastic_values(
+        &self,
+        line: usize,
+        ty: &str,
+        count: usize,
+        names: &[&str],
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<Vec<f64>, InpError> {
+        let kw = "ELASTIC";
         let lines_needed = count.div_ceil(8);
         if data.len() < lines_needed {
             return Err(self.invalid(
@@ -2149,72 +2326,49 @@ impl<'a> Parser<'a> {
                 ),
             ));
         }
-        if ty == "ORTHO" || ty == "ORTHOTROPIC" {
-            // stiffness -> engineering constants: S = inverse of the normal
-            // block [[D1111 D1122 D1133] [D1122 D2222 D2233] [D1133 D2233
-            // D3333]]; E_i = 1 / S_ii, nu_ij = -S_ij / S_ii (S_ij = -nu_ij /
-            // E_i), G_ij = D_ijij (Abaqus Analysis User's Guide, "Linear
-            // elastic behavior", orthotropic D_ijkl)
-            let d = [[v[0], v[1], v[3]], [v[1], v[2], v[4]], [v[3], v[4], v[5]]];
-            let det = d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1])
-                - d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0])
-                + d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
-            let pos = d[0][0] > 0.0 && d[0][0] * d[1][1] - d[0][1] * d[0][1] > 0.0 && det > 0.0;
-            if !(pos && v[6] > 0.0 && v[7] > 0.0 && v[8] > 0.0) {
-                return Err(self.invalid(
-                    data[0].0,
-                    kw,
-                    "TYPE=ORTHO: the stiffness is not positive definite",
-                ));
-            }
-            let cof = |i: usize, j: usize| {
-                let (r, c) = ([(i + 1) % 3, (i + 2) % 3], [(j + 1) % 3, (j + 2) % 3]);
-                d[r[0]][c[0]] * d[r[1]][c[1]] - d[r[0]][c[1]] * d[r[1]][c[0]]
-            };
-            // symmetric: S_ij = cof(j, i) / det = cof(i, j) / det
-            let sm = |i: usize, j: usize| cof(j, i) / det;
-            let e = [1.0 / sm(0, 0), 1.0 / sm(1, 1), 1.0 / sm(2, 2)];
-            let (g12, g13, g23) = (v[6], v[7], v[8]);
-            v = vec![
-                e[0],
-                e[1],
-                e[2],
-                -sm(0, 1) / sm(0, 0),
-                -sm(0, 2) / sm(0, 0),
-                -sm(1, 2) / sm(1, 1),
-                g12,
-                g13,
-                g23,
-            ];
+        Ok(v)
+    }
+
+    /// Orthotropic stiffness `D1111 D1122 D2222 D1133 D2233 D3333 D1212
+    /// D1313 D2323` -> engineering constants `E1 E2 E3 nu12 nu13 nu23 G12
+    /// G13 G23`: `S` = inverse of the normal block [[D1111 D1122 D1133]
+    /// [D1122 D2222 D2233] [D1133 D2233 D3333]]; `E_i = 1 / S_ii`, `nu_ij =
+    /// -S_ij / S_ii` (`S_ij = -nu_ij / E_i`), `G_ij = D_ijij` (Abaqus
+    /// Analysis User's Guide, "Linear elastic behavior", orthotropic
+    /// `D_ijkl`). A stiffness that is not positive definite is refused
+    /// (`data_line`).
+    fn ortho_to_engineering(&self, data_line: usize, v: &[f64]) -> Result<Vec<f64>, InpError> {
+        let d = [[v[0], v[1], v[3]], [v[1], v[2], v[4]], [v[3], v[4], v[5]]];
+        let det = d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1])
+            - d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0])
+            + d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
+        let pos = d[0][0] > 0.0 && d[0][0] * d[1][1] - d[0][1] * d[0][1] > 0.0 && det > 0.0;
+        if !(pos && v[6] > 0.0 && v[7] > 0.0 && v[8] > 0.0) {
+            return Err(self.invalid(
+                data_line,
+                "ELASTIC",
+                "TYPE=ORTHO: the stiffness is not positive definite",
+            ));
         }
-        let kind = match count {
-            2 => InpMaterialKind::Isotropic { e: v[0], nu: v[1] },
-            3 => InpMaterialKind::Traction([v[0], v[1], v[2]]),
-            21 => {
-                let mut a = [0.0; 21];
-                a.copy_from_slice(&v);
-                InpMaterialKind::Anisotropic(Box::new(a))
-            }
-            _ => {
-                let mut a = [0.0; 9];
-                a.copy_from_slice(&v);
-                InpMaterialKind::EngineeringConstants(a)
-            }
+        let cof = |i: usize, j: usize| {
+            let (r, c) = ([(i + 1) % 3, (i + 2) % 3], [(j + 1) % 3, (j + 2) % 3]);
+            d[r[0]][c[0]] * d[r[1]][c[1]] - d[r[0]][c[1]] * d[r[1]][c[0]]
         };
-        if let Some(m) = &self.current_material {
-            if m.elastic.is_some() {
-                return Err(self.invalid(
-                    line,
-                    kw,
-                    format!("material `{}` has two *ELASTIC", m.name),
-                ));
-            }
-        }
-        let data_line = data[0].0;
-        if let Some(m) = self.current_material.as_mut() {
-            m.elastic = Some((kind, data_line));
-        }
-        Ok(())
+        // symmetric: S_ij = cof(j, i) / det = cof(i, j) / det
+        let sm = |i: usize, j: usize| cof(j, i) / det;
+        let e = [1.0 / sm(0, 0), 1.0 / sm(1, 1), 1.0 / sm(2, 2)];
+        let (g12, g13, g23) = (v[6], v[7], v[8]);
+        Ok(vec![
+            e[0],
+            e[1],
+            e[2],
+            -sm(0, 1) / sm(0, 0),
+            -sm(0, 2) / sm(0, 0),
+            -sm(1, 2) / sm(1, 1),
+            g12,
+            g13,
+            g23,
+        ])
     }
 
     /// The material a damage keyword belongs to, or an error naming the
@@ -2351,7 +2505,9 @@ impl<'a> Parser<'a> {
     }
 
     /// `*DAMAGE EVOLUTION, TYPE=ENERGY [, SOFTENING=] [, MIXED MODE
-    /// BEHAVIOR=, POWER=]`.
+    /// BEHAVIOR=, POWER=]`: softening ([`Parser::evolution_softening`]),
+    /// mixed-mode rule ([`Parser::evolution_mixed_mode`]) and the fracture
+    /// energies of the data line.
     fn damage_evolution(
         &mut self,
         line: usize,
@@ -2389,89 +2545,8 @@ impl<'a> Parser<'a> {
                 "DEGRADATION",
             ],
         )?;
-        match norm_key(&self.required(line, kw, params, "TYPE")?).as_str() {
-            "ENERGY" => {}
-            other => {
-                return Err(self.bad_param(
-                    line,
-                    kw,
-                    format!("TYPE={other}"),
-                    "TYPE=ENERGY (fracture energies; TYPE=DISPLACEMENT is not supported)",
-                ))
-            }
-        }
-        let softening =
-            match Self::param(params, "SOFTENING").map(|(_, v)| v.as_deref().map(norm_key)) {
-                None => InpSoftening::Linear,
-                Some(Some(v)) if v == "LINEAR" => InpSoftening::Linear,
-                Some(Some(v)) if v == "EXPONENTIAL" => InpSoftening::Exponential,
-                Some(v) => return Err(self.bad_param(
-                    line,
-                    kw,
-                    format!("SOFTENING={}", v.unwrap_or_default()),
-                    "SOFTENING=LINEAR (default), SOFTENING=EXPONENTIAL (TABULAR is not supported)",
-                )),
-            };
-        match Self::param(params, "DEGRADATION").map(|(_, v)| v.as_deref().map(norm_key)) {
-            None => {}
-            Some(Some(v)) if v == "MAXIMUM" => {}
-            Some(v) => {
-                return Err(self.bad_param(
-                    line,
-                    kw,
-                    format!("DEGRADATION={}", v.unwrap_or_default()),
-                    "DEGRADATION=MAXIMUM (the default; one damage mechanism per material)",
-                ))
-            }
-        }
-        let power = match Self::param(params, "POWER") {
-            None => None,
-            Some((_, Some(v))) => {
-                let p = self.float(line, kw, "POWER", v)?;
-                if p <= 0.0 {
-                    return Err(self.invalid(line, kw, format!("POWER={p} must be positive")));
-                }
-                Some(p)
-            }
-            Some((_, None)) => {
-                return Err(self.invalid(line, kw, "POWER needs a value, e.g. POWER=2.284"))
-            }
-        };
-        let mixed = Self::param(params, "MIXED MODE BEHAVIOR")
-            .map(|(_, v)| v.as_deref().map(norm_key).unwrap_or_default());
-        let need_power = |what: &str| {
-            self.invalid(
-                line,
-                kw,
-                format!("MIXED MODE BEHAVIOR={what} needs POWER= (the exponent of the rule)"),
-            )
-        };
-        let mixed_mode = match mixed.as_deref() {
-            None | Some("MODE INDEPENDENT") => {
-                if power.is_some() {
-                    return Err(self.invalid(
-                        line,
-                        kw,
-                        "POWER= is only used with MIXED MODE BEHAVIOR=BK or POWER LAW",
-                    ));
-                }
-                InpMixedMode::ModeIndependent
-            }
-            Some("BK") => InpMixedMode::Bk {
-                power: power.ok_or_else(|| need_power("BK"))?,
-            },
-            Some("POWER LAW") => InpMixedMode::PowerLaw {
-                power: power.ok_or_else(|| need_power("POWER LAW"))?,
-            },
-            Some(other) => {
-                return Err(self.bad_param(
-                    line,
-                    kw,
-                    format!("MIXED MODE BEHAVIOR={other}"),
-                    "MIXED MODE BEHAVIOR=MODE INDEPENDENT (default), BK, POWER LAW (TABULAR is not supported)",
-                ))
-            }
-        };
+        let softening = self.evolution_softening(line, params)?;
+        let mixed_mode = self.evolution_mixed_mode(line, params)?;
         let (toughness, data_line) = if mixed_mode == InpMixedMode::ModeIndependent {
             let (v, dl) = self.damage_values(
                 line,
@@ -2515,6 +2590,103 @@ impl<'a> Parser<'a> {
             });
         }
         Ok(())
+    }
+
+    /// `TYPE=ENERGY` (required), `SOFTENING=LINEAR | EXPONENTIAL` and
+    /// `DEGRADATION=MAXIMUM` of `*DAMAGE EVOLUTION`.
+    fn evolution_softening(&self, line: usize, params: &Params) -> Result<InpSoftening, InpError> {
+        let kw = "DAMAGE EVOLUTION";
+        match norm_key(&self.required(line, kw, params, "TYPE")?).as_str() {
+            "ENERGY" => {}
+            other => {
+                return Err(self.bad_param(
+                    line,
+                    kw,
+                    format!("TYPE={other}"),
+                    "TYPE=ENERGY (fracture energies; TYPE=DISPLACEMENT is not supported)",
+                ))
+            }
+        }
+        let softening =
+            match Self::param(params, "SOFTENING").map(|(_, v)| v.as_deref().map(norm_key)) {
+                None => InpSoftening::Linear,
+                Some(Some(v)) if v == "LINEAR" => InpSoftening::Linear,
+                Some(Some(v)) if v == "EXPONENTIAL" => InpSoftening::Exponential,
+                Some(v) => return Err(self.bad_param(
+                    line,
+                    kw,
+                    format!("SOFTENING={}", v.unwrap_or_default()),
+                    "SOFTENING=LINEAR (default), SOFTENING=EXPONENTIAL (TABULAR is not supported)",
+                )),
+            };
+        match Self::param(params, "DEGRADATION").map(|(_, v)| v.as_deref().map(norm_key)) {
+            None => {}
+            Some(Some(v)) if v == "MAXIMUM" => {}
+            Some(v) => {
+                return Err(self.bad_param(
+                    line,
+                    kw,
+                    format!("DEGRADATION={}", v.unwrap_or_default()),
+                    "DEGRADATION=MAXIMUM (the default; one damage mechanism per material)",
+                ))
+            }
+        }
+        Ok(softening)
+    }
+
+    /// `MIXED MODE BEHAVIOR=MODE INDEPENDENT | BK | POWER LAW` of `*DAMAGE
+    /// EVOLUTION`, with the exponent `POWER=` that BK and POWER LAW need
+    /// (and MODE INDEPENDENT refuses).
+    fn evolution_mixed_mode(&self, line: usize, params: &Params) -> Result<InpMixedMode, InpError> {
+        let kw = "DAMAGE EVOLUTION";
+        let power = match Self::param(params, "POWER") {
+            None => None,
+            Some((_, Some(v))) => {
+                let p = self.float(line, kw, "POWER", v)?;
+                if p <= 0.0 {
+                    return Err(self.invalid(line, kw, format!("POWER={p} must be positive")));
+                }
+                Some(p)
+            }
+            Some((_, None)) => {
+                return Err(self.invalid(line, kw, "POWER needs a value, e.g. POWER=2.284"))
+            }
+        };
+        let mixed = Self::param(params, "MIXED MODE BEHAVIOR")
+            .map(|(_, v)| v.as_deref().map(norm_key).unwrap_or_default());
+        let need_power = |what: &str| {
+            self.invalid(
+                line,
+                kw,
+                format!("MIXED MODE BEHAVIOR={what} needs POWER= (the exponent of the rule)"),
+            )
+        };
+        Ok(match mixed.as_deref() {
+            None | Some("MODE INDEPENDENT") => {
+                if power.is_some() {
+                    return Err(self.invalid(
+                        line,
+                        kw,
+                        "POWER= is only used with MIXED MODE BEHAVIOR=BK or POWER LAW",
+                    ));
+                }
+                InpMixedMode::ModeIndependent
+            }
+            Some("BK") => InpMixedMode::Bk {
+                power: power.ok_or_else(|| need_power("BK"))?,
+            },
+            Some("POWER LAW") => InpMixedMode::PowerLaw {
+                power: power.ok_or_else(|| need_power("POWER LAW"))?,
+            },
+            Some(other) => {
+                return Err(self.bad_param(
+                    line,
+                    kw,
+                    format!("MIXED MODE BEHAVIOR={other}"),
+                    "MIXED MODE BEHAVIOR=MODE INDEPENDENT (default), BK, POWER LAW (TABULAR is not supported)",
+                ))
+            }
+        })
     }
 
     /// `*DAMAGE STABILIZATION`: one viscosity coefficient.
@@ -3450,9 +3622,44 @@ impl<'a> Parser<'a> {
         Ok(())
     }
 
-    /// Resolve targets, assign sections, build the mesh.
+    /// Resolve targets, assign sections, build the mesh: the `*EQUATION`
+    /// terms, the `AMPLITUDE=` names, the distributed loads' elements, the
+    /// boundary and load nodes, the sections ([`Parser::assign_sections`]),
+    /// the use of damage materials, the curve directive, then the blocks
+    /// ([`Parser::build_blocks`]) and the mesh with its sets
+    /// ([`Parser::into_deck`]).
     fn finish(mut self) -> Result<InpDeck, InpError> {
         self.resolve_equations()?;
+        self.resolve_amplitudes()?;
+        let dload_ids = self.resolve_dloads()?;
+        for (k, p) in self.boundary_targets.iter().enumerate() {
+            self.deck.boundaries[k].nodes = self.node_target(p.line, p.keyword, &p.target)?;
+        }
+        for (k, p) in self.cload_targets.iter().enumerate() {
+            self.deck.cloads[k].nodes = self.node_target(p.line, p.keyword, &p.target)?;
+        }
+        self.assign_sections()?;
+        for m in self.deck.materials.iter().filter(|m| m.has_damage()) {
+            if !self
+                .deck
+                .cohesive_sections
+                .iter()
+                .any(|c| c.material.eq_ignore_ascii_case(&m.name))
+            {
+                return Err(self.invalid(
+                    m.line,
+                    "MATERIAL",
+                    format!("material `{}` has damage options but no *COHESIVE SECTION uses it: damage is read for cohesive elements (COH3D8, COH3D6) only", m.name),
+                ));
+            }
+        }
+        self.resolve_curve()?;
+        let (refs, blocks, block_orientations) = self.build_blocks();
+        self.into_deck(refs, blocks, block_orientations, dload_ids)
+    }
+
+    /// Each `AMPLITUDE=` name to the index of its `*AMPLITUDE`.
+    fn resolve_amplitudes(&mut self) -> Result<(), InpError> {
         for (what, k, name, line) in std::mem::take(&mut self.amplitude_refs) {
             let Some(a) = self
                 .deck
@@ -3490,14 +3697,14 @@ impl<'a> Parser<'a> {
                 AmplitudeUse::Dload => self.deck.dloads[k].amplitude = Some(a),
             }
         }
-        let dload_ids = self.resolve_dloads()?;
-        for (k, p) in self.boundary_targets.iter().enumerate() {
-            self.deck.boundaries[k].nodes = self.node_target(p.line, p.keyword, &p.target)?;
-        }
-        for (k, p) in self.cload_targets.iter().enumerate() {
-            self.deck.cloads[k].nodes = self.node_target(p.line, p.keyword, &p.target)?;
-        }
-        // sections -> element materials
+        Ok(())
+    }
+
+    /// Sections -> element materials: every element of a section's set
+    /// gets the section's material (as the material is spelt) and
+    /// orientation ([`Parser::assign_section`]). Solid sections first, then
+    /// cohesive ones, each in input order.
+    fn assign_sections(&mut self) -> Result<(), InpError> {
         #[allow(clippy::type_complexity)]
         let mut sections: Vec<(String, String, usize, bool, Option<String>)> = self
             .deck
@@ -3522,34 +3729,7 @@ impl<'a> Parser<'a> {
         for (elset, material, line, cohesive, orientation) in sections {
             let orientation = match orientation {
                 None => None,
-                Some(o) => match self
-                    .deck
-                    .orientations
-                    .iter()
-                    .find(|x| x.name.eq_ignore_ascii_case(&o))
-                {
-                    Some(x) => Some(x.name.clone()),
-                    None => {
-                        let valid: Vec<&str> = self
-                            .deck
-                            .orientations
-                            .iter()
-                            .map(|x| x.name.as_str())
-                            .collect();
-                        return Err(InpError::UnknownName {
-                            file: self.file.into(),
-                            line,
-                            keyword: "SOLID SECTION".into(),
-                            kind: "orientation",
-                            name: o,
-                            valid: if valid.is_empty() {
-                                "(none)".into()
-                            } else {
-                                valid.join(", ")
-                            },
-                        });
-                    }
-                },
+                Some(o) => Some(self.section_orientation(line, o)?),
             };
             let kw = if cohesive {
                 "COHESIVE SECTION"
@@ -3560,29 +3740,7 @@ impl<'a> Parser<'a> {
                 Some(&s) => s,
                 None => return Err(self.unknown_set(line, kw, "element set", &elset)),
             };
-            let m = match self.material_index.get(&material.to_uppercase()) {
-                Some(&m) => m,
-                None => {
-                    let valid = if self.deck.materials.is_empty() {
-                        "(none)".to_string()
-                    } else {
-                        self.deck
-                            .materials
-                            .iter()
-                            .map(|m| m.name.as_str())
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    };
-                    return Err(InpError::UnknownName {
-                        file: self.file.into(),
-                        line,
-                        keyword: kw.into(),
-                        kind: "material",
-                        name: material,
-                        valid,
-                    });
-                }
-            };
+            let m = self.section_material(line, kw, material)?;
             let mname = self.deck.materials[m].name.clone();
             if !cohesive && self.deck.materials[m].has_damage() {
                 return Err(self.invalid(
@@ -3591,105 +3749,178 @@ impl<'a> Parser<'a> {
                     format!("material `{mname}` has damage options (a cohesive material): use it in a *COHESIVE SECTION for COH3D8 elements, not in a *SOLID SECTION"),
                 ));
             }
-            for &e in &self.elsets[set].members.clone() {
-                let el = &self.elems[e];
-                let shape = self.pre_blocks[el.pre_block].shape;
-                if shape.is_interface() != cohesive {
+            self.assign_section(set, &mname, line, kw, &orientation)?;
+        }
+        Ok(())
+    }
+
+    /// The `*ORIENTATION` a solid section names (as the orientation is
+    /// spelt).
+    fn section_orientation(&self, line: usize, o: String) -> Result<String, InpError> {
+        let orientations = &self.deck.orientations;
+        match orientations
+            .iter()
+            .find(|x| x.name.eq_ignore_ascii_case(&o))
+        {
+            Some(x) => Ok(x.name.clone()),
+            None => {
+                let valid: Vec<&str> = orientations.iter().map(|x| x.name.as_str()).collect();
+                Err(InpError::UnknownName {
+                    file: self.file.into(),
+                    line,
+                    keyword: "SOLID SECTION".into(),
+                    kind: "orientation",
+                    name: o,
+                    valid: if valid.is_empty() {
+                        "(none)".into()
+                    } else {
+                        valid.join(", ")
+                    },
+                })
+            }
+        }
+    }
+
+    /// Index of the material a section names.
+    fn section_material(&self, line: usize, kw: &str, material: String) -> Result<usize, InpError> {
+        match self.material_index.get(&material.to_uppercase()) {
+            Some(&m) => Ok(m),
+            None => {
+                let valid = if self.deck.materials.is_empty() {
+                    "(none)".to_string()
+                } else {
+                    self.deck
+                        .materials
+                        .iter()
+                        .map(|m| m.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                };
+                Err(InpError::UnknownName {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    kind: "material",
+                    name: material,
+                    valid,
+                })
+            }
+        }
+    }
+
+    /// Give the elements of element set `set` the material `mname` and the
+    /// orientation of the section of `line`: cohesive sections hold
+    /// interface elements only, solid sections solids only, and an element
+    /// keeps one material.
+    fn assign_section(
+        &mut self,
+        set: usize,
+        mname: &str,
+        line: usize,
+        kw: &str,
+        orientation: &Option<String>,
+    ) -> Result<(), InpError> {
+        let cohesive = kw == "COHESIVE SECTION";
+        for &e in &self.elsets[set].members.clone() {
+            let el = &self.elems[e];
+            let shape = self.pre_blocks[el.pre_block].shape;
+            if shape.is_interface() != cohesive {
+                return Err(self.invalid(
+                    line,
+                    kw,
+                    format!(
+                        "element {} is a {} element; use {} for it",
+                        el.label,
+                        shape.name(),
+                        if shape.is_interface() {
+                            "*COHESIVE SECTION"
+                        } else {
+                            "*SOLID SECTION"
+                        }
+                    ),
+                ));
+            }
+            match &el.material {
+                Some((other, oline)) if *other != mname => {
                     return Err(self.invalid(
                         line,
                         kw,
                         format!(
-                            "element {} is a {} element; use {} for it",
-                            el.label,
-                            shape.name(),
-                            if shape.is_interface() {
-                                "*COHESIVE SECTION"
-                            } else {
-                                "*SOLID SECTION"
-                            }
+                            "element {} already has material `{other}` from the section of line {oline}",
+                            el.label
                         ),
-                    ));
+                    ))
                 }
-                match &el.material {
-                    Some((other, oline)) if *other != mname => {
-                        return Err(self.invalid(
-                            line,
-                            kw,
-                            format!(
-                                "element {} already has material `{other}` from the section of line {oline}",
-                                el.label
-                            ),
-                        ))
-                    }
-                    _ => {
-                        self.elems[e].material = Some((mname.clone(), line));
-                        self.elems[e].orientation = orientation.clone();
-                    }
+                _ => {
+                    self.elems[e].material = Some((mname.to_string(), line));
+                    self.elems[e].orientation = orientation.clone();
                 }
             }
         }
-        for m in self.deck.materials.iter().filter(|m| m.has_damage()) {
-            if !self
-                .deck
-                .cohesive_sections
-                .iter()
-                .any(|c| c.material.eq_ignore_ascii_case(&m.name))
-            {
-                return Err(self.invalid(
-                    m.line,
-                    "MATERIAL",
-                    format!("material `{}` has damage options but no *COHESIVE SECTION uses it: damage is read for cohesive elements (COH3D8, COH3D6) only", m.name),
-                ));
+        Ok(())
+    }
+
+    /// The `** junta: curve` directive -> [`InpDeck::curve`]: its keys,
+    /// node sets (as spelt) and components checked.
+    fn resolve_curve(&mut self) -> Result<(), InpError> {
+        let Some((line, raw)) = self.curve_directive.take() else {
+            return Ok(());
+        };
+        let kw = "** junta: curve";
+        let get = |key: &str, required: bool| -> Result<Option<String>, InpError> {
+            match raw.iter().find(|(k, _)| k == key) {
+                Some((_, v)) => Ok(Some(v.clone())),
+                None if required => Err(InpError::Invalid {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    message: format!("missing `{key}=`; the directive is `** junta: curve reaction_set=NSET reaction_component=x|y|z point_set=NSET point_component=x|y|z [relative_to=NSET]`"),
+                }),
+                None => Ok(None),
             }
-        }
-        if let Some((line, raw)) = self.curve_directive.take() {
-            let kw = "** junta: curve";
-            let get = |key: &str, required: bool| -> Result<Option<String>, InpError> {
-                match raw.iter().find(|(k, _)| k == key) {
-                    Some((_, v)) => Ok(Some(v.clone())),
-                    None if required => Err(InpError::Invalid {
-                        file: self.file.into(),
-                        line,
-                        keyword: kw.into(),
-                        message: format!("missing `{key}=`; the directive is `** junta: curve reaction_set=NSET reaction_component=x|y|z point_set=NSET point_component=x|y|z [relative_to=NSET]`"),
-                    }),
-                    None => Ok(None),
-                }
-            };
-            let set_name = |name: String| -> Result<String, InpError> {
-                match self.nset_index.get(&name.to_uppercase()) {
-                    Some(&i) => Ok(self.nsets[i].name.clone()),
-                    None => Err(self.unknown_set(line, kw, "node set", &name)),
-                }
-            };
-            let component = |c: String| -> Result<String, InpError> {
-                let l = c.to_ascii_lowercase();
-                if matches!(l.as_str(), "x" | "y" | "z") {
-                    Ok(l)
-                } else {
-                    Err(InpError::Invalid {
-                        file: self.file.into(),
-                        line,
-                        keyword: kw.into(),
-                        message: format!("component `{c}`: use x, y or z"),
-                    })
-                }
-            };
-            let rs = get("reaction_set", true)?.unwrap_or_default();
-            let rc = get("reaction_component", true)?.unwrap_or_default();
-            let ps = get("point_set", true)?.unwrap_or_default();
-            let pc = get("point_component", true)?.unwrap_or_default();
-            let rel = get("relative_to", false)?;
-            self.deck.curve = Some(InpCurve {
-                reaction_set: set_name(rs)?,
-                reaction_component: component(rc)?,
-                point_set: set_name(ps)?,
-                point_component: component(pc)?,
-                relative_to: rel.map(set_name).transpose()?,
-                line,
-            });
-        }
-        // blocks: one per (pre-block, material), in input order
+        };
+        let set_name = |name: String| -> Result<String, InpError> {
+            match self.nset_index.get(&name.to_uppercase()) {
+                Some(&i) => Ok(self.nsets[i].name.clone()),
+                None => Err(self.unknown_set(line, kw, "node set", &name)),
+            }
+        };
+        let component = |c: String| -> Result<String, InpError> {
+            let l = c.to_ascii_lowercase();
+            if matches!(l.as_str(), "x" | "y" | "z") {
+                Ok(l)
+            } else {
+                Err(InpError::Invalid {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    message: format!("component `{c}`: use x, y or z"),
+                })
+            }
+        };
+        let rs = get("reaction_set", true)?.unwrap_or_default();
+        let rc = get("reaction_component", true)?.unwrap_or_default();
+        let ps = get("point_set", true)?.unwrap_or_default();
+        let pc = get("point_component", true)?.unwrap_or_default();
+        let rel = get("relative_to", false)?;
+        let curve = InpCurve {
+            reaction_set: set_name(rs)?,
+            reaction_component: component(rc)?,
+            point_set: set_name(ps)?,
+            point_component: component(pc)?,
+            relative_to: rel.map(set_name).transpose()?,
+            line,
+        };
+        self.deck.curve = Some(curve);
+        Ok(())
+    }
+
+    /// The blocks: one per (pre-block, material, orientation), in input
+    /// order, named after the pre-block or, when it splits,
+    /// `<name>_<material>[_<orientation>]` (`nosection` for elements
+    /// without a section, which are noted). Returns the element reference
+    /// of each flat element id, the blocks and each block's orientation.
+    fn build_blocks(&mut self) -> (Vec<ElementRef>, Vec<ElementBlock>, Vec<Option<usize>>) {
         let mut refs = vec![
             ElementRef {
                 block: 0,
@@ -3757,6 +3988,19 @@ impl<'a> Parser<'a> {
                 ));
             }
         }
+        (refs, blocks, block_orientations)
+    }
+
+    /// The mesh of `blocks` with the node and element sets, the element
+    /// labels and the distributed loads' elements (`refs`: the reference
+    /// of each flat element id), validated; the deck that holds it.
+    fn into_deck(
+        mut self,
+        refs: Vec<ElementRef>,
+        blocks: Vec<ElementBlock>,
+        block_orientations: Vec<Option<usize>>,
+        dload_ids: Vec<Vec<(usize, usize)>>,
+    ) -> Result<InpDeck, InpError> {
         let mut mesh = Mesh {
             nodes: self.nodes,
             node_labels: self.labels,

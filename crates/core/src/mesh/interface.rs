@@ -173,29 +173,8 @@ pub fn insert_interface(
     name: &str,
     law: &str,
 ) -> Result<InterfaceInsertion, CoreError> {
-    if bottom == top {
-        return Err(CoreError::Invalid(format!(
-            "interface `{name}`: bottom and top are the same element set `{bottom}`; give two different sets"
-        )));
-    }
-    if name.is_empty() {
-        return Err(CoreError::Invalid(format!(
-            "interface between `{bottom}` and `{top}` needs a non-empty name"
-        )));
-    }
-    if mesh.element_sets.contains_key(name) || mesh.blocks.iter().any(|b| b.name == name) {
-        return Err(CoreError::Invalid(format!(
-            "interface name `{name}` is already used by an element set or block; choose another name"
-        )));
-    }
-    for s in ["bottom", "top"] {
-        let n = format!("{name}.{s}");
-        if mesh.node_sets.contains_key(&n) {
-            return Err(CoreError::Invalid(format!(
-                "interface `{name}` would create node set `{n}`, which already exists; choose another name"
-            )));
-        }
-    }
+    let sides = Sides { bottom, top, name };
+    sides.check_names(mesh)?;
     let bot_el = solid_elements(mesh, bottom)?;
     let top_el = solid_elements(mesh, top)?;
     let top_lookup: HashSet<ElementRef> = top_el.iter().copied().collect();
@@ -205,64 +184,149 @@ pub fn insert_interface(
             describe(mesh, r)
         )));
     }
-
-    // faces of the top elements by corner key (internal top faces appear twice)
-    let mut top_faces: HashMap<[usize; 4], Vec<(ElementRef, usize)>> = HashMap::new();
-    for &r in &top_el {
-        for f in 0..mesh.blocks[r.block].shape.num_faces() {
-            top_faces
-                .entry(corner_key(mesh, r, f))
-                .or_default()
-                .push((r, f));
-        }
-    }
-
-    // shared faces in the order of the bottom elements and their faces
-    let mut shared: Vec<(ElementRef, usize)> = Vec::new();
-    let mut used_keys: HashSet<[usize; 4]> = HashSet::new();
-    for &r in &bot_el {
-        for f in 0..mesh.blocks[r.block].shape.num_faces() {
-            let key = corner_key(mesh, r, f);
-            let Some(cands) = top_faces.get(&key) else {
-                continue;
-            };
-            let (tr, tf) = cands[0];
-            if cands.len() > 1 || !used_keys.insert(key) {
-                return Err(CoreError::Invalid(format!(
-                    "face {f} of {} (set `{bottom}`) is shared by more than two elements of `{bottom}`/`{top}` (non-manifold surface, or duplicated elements); cannot insert interface `{name}`",
-                    describe(mesh, r)
-                )));
-            }
-            let (bf, tf_shape) = (face_shape(mesh, r, f), face_shape(mesh, tr, tf));
-            if bf != tf_shape {
-                let (a, b) = (
-                    mesh.blocks[r.block].shape.name(),
-                    mesh.blocks[tr.block].shape.name(),
-                );
-                return Err(CoreError::Invalid(format!(
-                    "mismatched element orders across `{bottom}`/`{top}`: {a} faces against {b} faces ({} against {}); interfaces need the same solid order on both sides ({} against {})",
-                    bf.name(),
-                    tf_shape.name(),
-                    describe(mesh, r),
-                    describe(mesh, tr)
-                )));
-            }
-            let mut bn = face_nodes(mesh, r, f);
-            let mut tn = face_nodes(mesh, tr, tf);
-            bn.sort_unstable();
-            tn.sort_unstable();
-            if bn != tn {
-                return Err(CoreError::Invalid(format!(
-                    "face {f} of {} (set `{bottom}`) and face {tf} of {} (set `{top}`) share their corners but not their mid-side/centre nodes; the mesh is not conforming there (merge the parts with a tolerance?)",
-                    describe(mesh, r),
-                    describe(mesh, tr)
-                )));
-            }
-            shared.push((r, f));
-        }
-    }
-
+    let shared = sides.shared_faces(mesh, &bot_el, &top_el)?;
     if shared.is_empty() {
+        return Err(sides.no_shared_face(mesh, &bot_el, &top_el));
+    }
+    let shapes = sides.face_shapes(mesh, &shared)?;
+
+    // --- all checks passed: modify the mesh ---
+    let bottom_faces: Vec<Vec<usize>> = shared
+        .iter()
+        .map(|&(r, f)| face_nodes(mesh, r, f))
+        .collect();
+    let n0 = mesh.nodes.len();
+    let (surface, copy) = duplicate_surface(mesh, &bottom_faces, &top_el);
+    update_node_sets(mesh, &copy);
+    let elements = bottom_faces.len();
+    let blocks = add_interface_blocks(mesh, &shapes, &shared, &bottom_faces, &copy, name, law);
+    mesh.node_sets
+        .insert(format!("{name}.top"), (n0..n0 + surface.len()).collect());
+    mesh.node_sets.insert(format!("{name}.bottom"), surface);
+    mesh.validate()?;
+    Ok(InterfaceInsertion {
+        block: blocks[0],
+        blocks,
+        elements,
+        duplicated_nodes: mesh.nodes.len() - n0,
+    })
+}
+
+/// The element sets and the name of one insertion (for the checks and
+/// their messages).
+struct Sides<'s> {
+    bottom: &'s str,
+    top: &'s str,
+    name: &'s str,
+}
+
+impl Sides<'_> {
+    /// Two different sets, a non-empty name, and no element set, block or
+    /// node set (`name.bottom`, `name.top`) of the names to be created.
+    fn check_names(&self, mesh: &Mesh) -> Result<(), CoreError> {
+        let Sides { bottom, top, name } = *self;
+        if bottom == top {
+            return Err(CoreError::Invalid(format!(
+                "interface `{name}`: bottom and top are the same element set `{bottom}`; give two different sets"
+            )));
+        }
+        if name.is_empty() {
+            return Err(CoreError::Invalid(format!(
+                "interface between `{bottom}` and `{top}` needs a non-empty name"
+            )));
+        }
+        if mesh.element_sets.contains_key(name) || mesh.blocks.iter().any(|b| b.name == name) {
+            return Err(CoreError::Invalid(format!(
+                "interface name `{name}` is already used by an element set or block; choose another name"
+            )));
+        }
+        for s in ["bottom", "top"] {
+            let n = format!("{name}.{s}");
+            if mesh.node_sets.contains_key(&n) {
+                return Err(CoreError::Invalid(format!(
+                    "interface `{name}` would create node set `{n}`, which already exists; choose another name"
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// The faces `(bottom element, face)` shared by a bottom and a top
+    /// element, in the order of the bottom elements and their faces,
+    /// matched by corner key; each must be shared by exactly two elements,
+    /// with the same face shape and the same nodes on both sides.
+    fn shared_faces(
+        &self,
+        mesh: &Mesh,
+        bot_el: &[ElementRef],
+        top_el: &[ElementRef],
+    ) -> Result<Vec<(ElementRef, usize)>, CoreError> {
+        let Sides { bottom, top, name } = *self;
+        // faces of the top elements by corner key (internal top faces appear twice)
+        let mut top_faces: HashMap<[usize; 4], Vec<(ElementRef, usize)>> = HashMap::new();
+        for &r in top_el {
+            for f in 0..mesh.blocks[r.block].shape.num_faces() {
+                top_faces
+                    .entry(corner_key(mesh, r, f))
+                    .or_default()
+                    .push((r, f));
+            }
+        }
+        let mut shared: Vec<(ElementRef, usize)> = Vec::new();
+        let mut used_keys: HashSet<[usize; 4]> = HashSet::new();
+        for &r in bot_el {
+            for f in 0..mesh.blocks[r.block].shape.num_faces() {
+                let key = corner_key(mesh, r, f);
+                let Some(cands) = top_faces.get(&key) else {
+                    continue;
+                };
+                let (tr, tf) = cands[0];
+                if cands.len() > 1 || !used_keys.insert(key) {
+                    return Err(CoreError::Invalid(format!(
+                        "face {f} of {} (set `{bottom}`) is shared by more than two elements of `{bottom}`/`{top}` (non-manifold surface, or duplicated elements); cannot insert interface `{name}`",
+                        describe(mesh, r)
+                    )));
+                }
+                let (bf, tf_shape) = (face_shape(mesh, r, f), face_shape(mesh, tr, tf));
+                if bf != tf_shape {
+                    let (a, b) = (
+                        mesh.blocks[r.block].shape.name(),
+                        mesh.blocks[tr.block].shape.name(),
+                    );
+                    return Err(CoreError::Invalid(format!(
+                        "mismatched element orders across `{bottom}`/`{top}`: {a} faces against {b} faces ({} against {}); interfaces need the same solid order on both sides ({} against {})",
+                        bf.name(),
+                        tf_shape.name(),
+                        describe(mesh, r),
+                        describe(mesh, tr)
+                    )));
+                }
+                let mut bn = face_nodes(mesh, r, f);
+                let mut tn = face_nodes(mesh, tr, tf);
+                bn.sort_unstable();
+                tn.sort_unstable();
+                if bn != tn {
+                    return Err(CoreError::Invalid(format!(
+                        "face {f} of {} (set `{bottom}`) and face {tf} of {} (set `{top}`) share their corners but not their mid-side/centre nodes; the mesh is not conforming there (merge the parts with a tolerance?)",
+                        describe(mesh, r),
+                        describe(mesh, tr)
+                    )));
+                }
+                shared.push((r, f));
+            }
+        }
+        Ok(shared)
+    }
+
+    /// The error for two sets without a shared face: whether they touch at
+    /// a few nodes or not at all (with a hint).
+    fn no_shared_face(
+        &self,
+        mesh: &Mesh,
+        bot_el: &[ElementRef],
+        top_el: &[ElementRef],
+    ) -> CoreError {
+        let Sides { bottom, top, name } = *self;
         let bot_nodes: HashSet<usize> = bot_el
             .iter()
             .flat_map(|r| mesh.blocks[r.block].element(r.element).iter().copied())
@@ -290,76 +354,90 @@ pub fn insert_interface(
                 common.len()
             )
         };
-        return Err(CoreError::Invalid(format!(
+        CoreError::Invalid(format!(
             "element sets `{bottom}` ({} elements, {} faces) and `{top}` ({} elements, {} faces) share no face, so interface `{name}` would be empty: {touch}",
             bot_el.len(),
-            faces(&bot_el),
+            faces(bot_el),
             top_el.len(),
-            faces(&top_el)
-        )));
+            faces(top_el)
+        ))
     }
 
-    // one face shape, or triangles and quadrilaterals of one order (wedges
-    // next to hexahedra): one interface block per face shape
-    let (r0, f0) = shared[0];
-    let shape = face_shape(mesh, r0, f0);
-    let conforming = |a: CellShape, b: CellShape| {
-        a == b
-            || matches!(
-                (a, b),
-                (CellShape::Tri3, CellShape::Quad4)
-                    | (CellShape::Quad4, CellShape::Tri3)
-                    | (CellShape::Tri6, CellShape::Quad8)
-                    | (CellShape::Quad8, CellShape::Tri6)
-            )
-    };
-    if let Some(&(r, f)) = shared
-        .iter()
-        .find(|&&(r, f)| !conforming(face_shape(mesh, r, f), shape))
-    {
-        let other = face_shape(mesh, r, f);
-        return Err(CoreError::Invalid(format!(
-            "the surface between `{bottom}` and `{top}` mixes {} faces ({} elements, e.g. {}) and {} faces ({} elements, e.g. {}); interface `{name}` cannot mix element orders: insert one interface per element order (split the sets)",
-            shape.name(),
-            mesh.blocks[r0.block].shape.name(),
-            describe(mesh, r0),
-            other.name(),
-            mesh.blocks[r.block].shape.name(),
-            describe(mesh, r)
-        )));
-    }
-    // the face shapes met, quadrilaterals first
-    let mut shapes: Vec<CellShape> = Vec::with_capacity(2);
-    for &(r, f) in &shared {
-        let s = face_shape(mesh, r, f);
-        if !shapes.contains(&s) {
-            shapes.push(s);
-        }
-    }
-    shapes.sort_by_key(|s| std::cmp::Reverse(s.num_corners()));
-    let mixed_name = format!("{name}.tri");
-    if shapes.len() > 1
-        && (mesh.element_sets.contains_key(&mixed_name)
-            || mesh.blocks.iter().any(|b| b.name == mixed_name))
-    {
-        return Err(CoreError::Invalid(format!(
-            "interface `{name}` mixes triangles and quadrilaterals and would put the triangles in block `{mixed_name}`, a name already in use; choose another name"
-        )));
-    }
-    for s in &shapes {
-        if s.matching_interface().is_none() {
+    /// The face shapes of the shared faces, quadrilaterals first: one
+    /// shape, or triangles and quadrilaterals of one order (wedges next to
+    /// hexahedra), each with a matching interface element; the triangles'
+    /// block name `name.tri` must be free.
+    fn face_shapes(
+        &self,
+        mesh: &Mesh,
+        shared: &[(ElementRef, usize)],
+    ) -> Result<Vec<CellShape>, CoreError> {
+        let Sides { bottom, top, name } = *self;
+        let (r0, f0) = shared[0];
+        let shape = face_shape(mesh, r0, f0);
+        let conforming = |a: CellShape, b: CellShape| {
+            a == b
+                || matches!(
+                    (a, b),
+                    (CellShape::Tri3, CellShape::Quad4)
+                        | (CellShape::Quad4, CellShape::Tri3)
+                        | (CellShape::Tri6, CellShape::Quad8)
+                        | (CellShape::Quad8, CellShape::Tri6)
+                )
+        };
+        if let Some(&(r, f)) = shared
+            .iter()
+            .find(|&&(r, f)| !conforming(face_shape(mesh, r, f), shape))
+        {
+            let other = face_shape(mesh, r, f);
             return Err(CoreError::Invalid(format!(
-                "no interface element matches {} faces",
-                s.name()
+                "the surface between `{bottom}` and `{top}` mixes {} faces ({} elements, e.g. {}) and {} faces ({} elements, e.g. {}); interface `{name}` cannot mix element orders: insert one interface per element order (split the sets)",
+                shape.name(),
+                mesh.blocks[r0.block].shape.name(),
+                describe(mesh, r0),
+                other.name(),
+                mesh.blocks[r.block].shape.name(),
+                describe(mesh, r)
             )));
         }
+        let mut shapes: Vec<CellShape> = Vec::with_capacity(2);
+        for &(r, f) in shared {
+            let s = face_shape(mesh, r, f);
+            if !shapes.contains(&s) {
+                shapes.push(s);
+            }
+        }
+        shapes.sort_by_key(|s| std::cmp::Reverse(s.num_corners()));
+        let mixed_name = format!("{name}.tri");
+        if shapes.len() > 1
+            && (mesh.element_sets.contains_key(&mixed_name)
+                || mesh.blocks.iter().any(|b| b.name == mixed_name))
+        {
+            return Err(CoreError::Invalid(format!(
+                "interface `{name}` mixes triangles and quadrilaterals and would put the triangles in block `{mixed_name}`, a name already in use; choose another name"
+            )));
+        }
+        for s in &shapes {
+            if s.matching_interface().is_none() {
+                return Err(CoreError::Invalid(format!(
+                    "no interface element matches {} faces",
+                    s.name()
+                )));
+            }
+        }
+        Ok(shapes)
     }
+}
 
-    // --- all checks passed: modify the mesh ---
-    let bottom_faces: Vec<Vec<usize>> = shared
-        .iter()
-        .map(|&(r, f)| face_nodes(mesh, r, f))
-        .collect();
+/// Copy every node of the surface (the nodes of `bottom_faces`) at the same
+/// position (labels continue after the largest), and move the elements of
+/// `top_el` to the copies. Returns the surface nodes (sorted) and the map
+/// node -> copy.
+fn duplicate_surface(
+    mesh: &mut Mesh,
+    bottom_faces: &[Vec<usize>],
+    top_el: &[ElementRef],
+) -> (Vec<usize>, HashMap<usize, usize>) {
     let mut surface: Vec<usize> = bottom_faces.iter().flatten().copied().collect();
     surface.sort_unstable();
     surface.dedup();
@@ -378,7 +456,7 @@ pub fn insert_interface(
         mesh.node_labels.resize(n0, 0);
         mesh.node_labels.extend(next..next + surface.len());
     }
-    for r in &top_el {
+    for r in top_el {
         let b = &mut mesh.blocks[r.block];
         let n = b.nodes_per_element();
         for i in &mut b.connectivity[r.element * n..(r.element + 1) * n] {
@@ -387,15 +465,27 @@ pub fn insert_interface(
             }
         }
     }
-    update_node_sets(mesh, &copy);
+    (surface, copy)
+}
 
-    let elements = bottom_faces.len();
+/// One interface block per face shape (`name`, then `name.tri`): each
+/// shared face's bottom nodes followed by their copies; element set `name`
+/// holds them all. Returns the new blocks.
+fn add_interface_blocks(
+    mesh: &mut Mesh,
+    shapes: &[CellShape],
+    shared: &[(ElementRef, usize)],
+    bottom_faces: &[Vec<usize>],
+    copy: &HashMap<usize, usize>,
+    name: &str,
+    law: &str,
+) -> Vec<usize> {
     let mut blocks = Vec::with_capacity(shapes.len());
-    let mut set = Vec::with_capacity(elements);
+    let mut set = Vec::with_capacity(bottom_faces.len());
     for (k, &fshape) in shapes.iter().enumerate() {
         let ishape = fshape.matching_interface().expect("checked above");
         let mut connectivity = Vec::new();
-        for (face, &(r, f)) in bottom_faces.iter().zip(&shared) {
+        for (face, &(r, f)) in bottom_faces.iter().zip(shared) {
             if face_shape(mesh, r, f) == fshape {
                 connectivity.extend_from_slice(face);
                 connectivity.extend(face.iter().map(|i| copy[i]));
@@ -408,7 +498,7 @@ pub fn insert_interface(
             name: if k == 0 {
                 name.to_string()
             } else {
-                mixed_name.clone()
+                format!("{name}.tri")
             },
             shape: ishape,
             connectivity,
@@ -418,16 +508,7 @@ pub fn insert_interface(
         blocks.push(block);
     }
     mesh.element_sets.insert(name.to_string(), set);
-    mesh.node_sets
-        .insert(format!("{name}.top"), (n0..n0 + surface.len()).collect());
-    mesh.node_sets.insert(format!("{name}.bottom"), surface);
-    mesh.validate()?;
-    Ok(InterfaceInsertion {
-        block: blocks[0],
-        blocks,
-        elements,
-        duplicated_nodes: mesh.nodes.len() - n0,
-    })
+    blocks
 }
 
 /// The element set a node set belongs to: the set's own name or its longest
