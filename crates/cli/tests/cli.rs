@@ -598,7 +598,7 @@ fn wedge_cantilever_decks_match_calculix() {
     }
 }
 
-/// A Gmsh wedge mesh (crates/core/tests/data/prism_stack_o1.msh and _o2,
+/// A Gmsh wedge mesh (crates/junta/tests/data/prism_stack_o1.msh and _o2,
 /// written by Gmsh 4.15.2 from make_prism_msh.py: the unit square in
 /// triangles, extruded into two volumes of one wedge layer each), the two
 /// volumes bonded by INTER6 (prism6) or INTER12 (prism15) inserted on
@@ -627,7 +627,7 @@ fn gmsh_wedge_stack_with_triangle_surfaces_matches_the_bonded_stack() {
 }
 
 /// A Gmsh mesh whose volumes hold hexahedra and wedges side by side
-/// (crates/core/tests/data/mixed_stack_o1.msh and _o2, written by Gmsh
+/// (crates/junta/tests/data/mixed_stack_o1.msh and _o2, written by Gmsh
 /// 4.15.2 from make_prism_msh.py: the left half of the square in
 /// quadrangles, the right half in triangles), so the bonded surface mixes
 /// quadrilaterals and triangles: the interface gets INTER8 + INTER6
@@ -666,7 +666,7 @@ fn stack_sigma() -> f64 {
     delta / (2.0 * 0.5 / m + 1.0 / d)
 }
 
-/// Run the Gmsh mesh `file` (from crates/core/tests/data) with its solid
+/// Run the Gmsh mesh `file` (from crates/junta/tests/data) with its solid
 /// blocks `(name, element)`, the volumes `lower` / `upper` bonded by a
 /// linear penalty, clamped on `bottom`, held laterally on `sides` and
 /// pulled on `top` ([`STACK`]); returns the summary.
@@ -674,7 +674,7 @@ fn bonded_stack(file: &str, blocks: &[(&str, &str)]) -> serde_json::Value {
     let (e, nu, d, delta) = STACK;
     let dir = tempfile::tempdir().unwrap();
     std::fs::copy(
-        repo().join("crates/core/tests/data").join(file),
+        repo().join("crates/junta/tests/data").join(file),
         dir.path().join(file),
     )
     .unwrap();

@@ -130,7 +130,7 @@ fn nan_and_out_of_range_numbers_are_refused_with_their_key() {
     }
     // a NaN node coordinate in an imported Gmsh mesh
     let dir = tempfile::tempdir().unwrap();
-    let msh = std::fs::read_to_string(common::repo().join("crates/core/tests/data/box_hex20.msh"))
+    let msh = std::fs::read_to_string(common::repo().join("crates/junta/tests/data/box_hex20.msh"))
         .unwrap();
     let mut lines: Vec<String> = msh.lines().map(String::from).collect();
     let at = lines.iter().position(|l| l.trim() == "$Nodes").unwrap();
@@ -202,7 +202,7 @@ fn sweep_refuses_bad_per_decade_and_a_nan_reference() {
 fn empty_deck_and_deck_without_step_are_reported_as_such() {
     let dir = tempfile::tempdir().unwrap();
     let deck =
-        std::fs::read_to_string(common::repo().join("crates/core/tests/data/cube_h8_n2.inp"))
+        std::fs::read_to_string(common::repo().join("crates/junta/tests/data/cube_h8_n2.inp"))
             .unwrap();
     let no_step = deck.split("*STEP").next().unwrap().to_string();
     for (name, text, part) in [
@@ -298,7 +298,7 @@ fn mutated_scenes_never_crash_check() {
 fn an_inverted_element_is_named_by_its_deck_label() {
     let dir = tempfile::tempdir().unwrap();
     let deck =
-        std::fs::read_to_string(common::repo().join("crates/core/tests/data/cube_h8_n2.inp"))
+        std::fs::read_to_string(common::repo().join("crates/junta/tests/data/cube_h8_n2.inp"))
             .unwrap();
     let mut lines: Vec<String> = deck.lines().map(String::from).collect();
     let at = lines
@@ -336,7 +336,7 @@ fn mutated_decks_never_crash_check() {
     ];
     let dir = tempfile::tempdir().unwrap();
     let deck =
-        std::fs::read_to_string(common::repo().join("crates/core/tests/data/cube_h8_n2.inp"))
+        std::fs::read_to_string(common::repo().join("crates/junta/tests/data/cube_h8_n2.inp"))
             .unwrap();
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     for case in 0..40 {

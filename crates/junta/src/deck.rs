@@ -1,5 +1,5 @@
 //! Abaqus/CalculiX decks (`.inp`) to a [`Model`]: the reader lives in
-//! `junta_core::mesh::inp`; here its materials become registry materials
+//! `crate::readers::inp`; here its materials become registry materials
 //! (`*ELASTIC` isotropic -> `isotropic`, ENGINEERING CONSTANTS ->
 //! `orthotropic`), its cohesive materials interface laws (below), its
 //! `*BOUNDARY` lines constraints and its `*CLOAD` lines nodal forces.
@@ -77,7 +77,7 @@
 //! # Amplitudes
 //!
 //! A load or prescribed displacement with `AMPLITUDE=` is multiplied by the
-//! amplitude ([`junta_core::mesh::inp::InpAmplitude`]) at the end of the
+//! amplitude ([`crate::readers::inp::InpAmplitude`]) at the end of the
 //! step it is given in (step time, or total time: the sum of the periods
 //! up to that step's end); carried into a later step that does not give it
 //! again, it keeps that value (CalculiX 2.20 does the same). In an
@@ -93,10 +93,10 @@
 //! increments of all segments of the step.
 
 use crate::error::{bail, err, Result};
-use crate::scene::{AnalysisSpec, CurveSpec};
-use junta_core::mesh::inp::{
+use crate::readers::inp::{
     read_inp, InpDeck, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening,
 };
+use crate::scene::{AnalysisSpec, CurveSpec};
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
 use junta_core::Model;
 use junta_elements::Orientation;
@@ -954,7 +954,7 @@ fn add_distributed_loads(
     scale: &dyn Fn(Option<usize>, Option<usize>) -> f64,
     f_ext: &mut [f64],
 ) -> Result<()> {
-    use junta_core::mesh::inp::InpDloadKind;
+    use crate::readers::inp::InpDloadKind;
     use junta_core::mesh::{ElementRef, FaceRef};
     use junta_elements::body_load::{add_body_load, BodyLoad};
     use junta_elements::face_load::{add_face_load, FaceLoad};
@@ -1172,7 +1172,7 @@ fn deck_steps_scaled(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use junta_core::mesh::inp::parse_inp;
+    use crate::readers::inp::parse_inp;
 
     /// Two bricks glued by one COH3D8 with cohesive material `material`
     /// (the lines after `*MATERIAL, NAME=CZ`) and section data `section`.

@@ -41,7 +41,7 @@
 //! written. The same step rules as `*NODE PRINT` apply.
 
 use crate::error::{err, Context, Result};
-use junta_core::mesh::inp::{InpElPrint, InpNodePrint};
+use crate::readers::inp::{InpElPrint, InpNodePrint};
 use junta_core::state::StateStore;
 use junta_core::Model;
 use junta_elements::material::Axes;

@@ -36,10 +36,10 @@ pub enum Error {
     Element(#[from] junta_core::element::ElementError),
     /// A deck could not be read.
     #[error(transparent)]
-    Deck(#[from] junta_core::mesh::inp::InpError),
+    Deck(#[from] crate::readers::inp::InpError),
     /// A Gmsh mesh could not be read.
     #[error(transparent)]
-    Gmsh(#[from] junta_core::mesh::gmsh::GmshError),
+    Gmsh(#[from] crate::readers::gmsh::GmshError),
     /// A file could not be read or written.
     #[error(transparent)]
     Io(#[from] std::io::Error),

@@ -55,6 +55,7 @@ pub mod observer;
 pub mod output;
 pub mod plot;
 pub mod prepare;
+pub mod readers;
 pub mod scene;
 pub mod simulation;
 pub mod sweep;

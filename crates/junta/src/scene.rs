@@ -727,11 +727,11 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
         }
         "gmsh" => {
             let p = sf.relative(m.file.as_ref().ok_or_else(|| missing("file"))?);
-            junta_core::mesh::gmsh::read_msh(&p).map_err(|e| err!("{at}: key `mesh.file`: {e}"))?
+            crate::readers::gmsh::read_msh(&p).map_err(|e| err!("{at}: key `mesh.file`: {e}"))?
         }
         _ => {
             let p = sf.relative(m.file.as_ref().ok_or_else(|| missing("file"))?);
-            junta_core::mesh::inp::read_inp(&p)
+            crate::readers::inp::read_inp(&p)
                 .map_err(|e| err!("{at}: key `mesh.file`: {e}"))?
                 .mesh
         }

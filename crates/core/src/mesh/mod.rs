@@ -4,8 +4,6 @@
 //! user's labels and keep them in [`Mesh::node_labels`] for messages.
 
 pub mod generate;
-pub mod gmsh;
-pub mod inp;
 pub mod interface;
 pub mod merge;
 

@@ -1,7 +1,7 @@
-//! Integration tests of the mesh / deck readers (`mesh::inp`, `mesh::gmsh`).
+//! Integration tests of the mesh / deck readers (`junta::readers::inp`, `junta::readers::gmsh`).
 
-use junta_core::mesh::gmsh::{parse_msh, read_msh, GmshError};
-use junta_core::mesh::inp::{
+use junta::readers::gmsh::{parse_msh, read_msh, GmshError};
+use junta::readers::inp::{
     parse_inp, read_inp, InpDeck, InpError, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening,
 };
 use junta_core::mesh::Mesh;

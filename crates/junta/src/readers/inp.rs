@@ -94,8 +94,8 @@
 //! | COH3D6 | Inter6 | `inter6`       | none: bottom triangle 1-3 then top triangle 4-6 (normal from 1-2-3 towards 4-6 by the right-hand rule) |
 //!
 //! Faces for `*DLOAD` `P1..P6` and `*SURFACE` `S1..S6`: hexahedra have six
-//! ([`crate::topology::HEX_FACES`]), wedges five
-//! ([`crate::topology::WEDGE_FACES`]: 1 = 1-2-3, 2 = 4-5-6, 3 = 1-2-5-4,
+//! ([`junta_core::topology::HEX_FACES`]), wedges five
+//! ([`junta_core::topology::WEDGE_FACES`]: 1 = 1-2-3, 2 = 4-5-6, 3 = 1-2-5-4,
 //! 4 = 2-3-6-5, 5 = 3-1-4-6, as in the Abaqus and CalculiX manuals); a
 //! pressure on a face the element does not have (`P6` on a wedge) is an
 //! error naming the line.
@@ -106,8 +106,8 @@
 //! `<name>_<material>` blocks. Element labels map to [`ElementRef`]s in
 //! [`InpDeck::element_labels`].
 
-use super::{ElementBlock, ElementRef, Mesh};
-use crate::topology::CellShape;
+use junta_core::mesh::{ElementBlock, ElementRef, Mesh};
+use junta_core::topology::CellShape;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 use thiserror::Error;
@@ -119,7 +119,7 @@ use thiserror::Error;
 /// "Three-dimensional solid element library", face numbering of brick
 /// elements): 1 = 1-2-3-4 (z-), 2 = 5-8-7-6 (z+), 3 = 1-5-6-2 (y-),
 /// 4 = 2-6-7-3 (x+), 5 = 3-7-8-4 (y+), 6 = 4-8-5-1 (x-). The same face
-/// order is the S1..S6 order of [`crate::topology::HEX_FACES`]. Ours puts
+/// order is the S1..S6 order of [`junta_core::topology::HEX_FACES`]. Ours puts
 /// the face centres in VTK order x-, x+, y-, y+, z-, z+.
 pub const C3D27_TO_OURS: [usize; 27] = [
     0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, //
@@ -4075,7 +4075,7 @@ pub fn parse_inp(text: &str, file_name: &str) -> Result<InpDeck, InpError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::topology::HEX27_NODES;
+    use junta_core::topology::HEX27_NODES;
 
     #[test]
     fn c3d27_permutation_is_geometric() {

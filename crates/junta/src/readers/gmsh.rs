@@ -31,11 +31,11 @@
 //! 20: (0,3,2,1) z-, 21: (0,1,5,4) y-, 22: (0,4,7,3) x-, 23: (1,2,6,5) x+,
 //! 24: (2,3,7,6) y+, 25: (4,5,6,7) z+, 26: body centre.
 //! [`GMSH_TO_OURS_HEX27`] converts; a unit test checks it geometrically
-//! against [`crate::topology::HEX27_NODES`]. Quadrilaterals (4, 8, 9 nodes)
+//! against [`junta_core::topology::HEX27_NODES`]. Quadrilaterals (4, 8, 9 nodes)
 //! are in our order already.
 
-use super::{ElementBlock, ElementRef, FaceRef, Mesh};
-use crate::topology::CellShape;
+use junta_core::mesh::{ElementBlock, ElementRef, FaceRef, Mesh};
+use junta_core::topology::CellShape;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 use thiserror::Error;
@@ -699,7 +699,7 @@ fn surface_face(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::topology::HEX27_NODES;
+    use junta_core::topology::HEX27_NODES;
 
     /// Natural coordinates of the 27 Gmsh hexahedron nodes, written from the
     /// manual's picture (not from our table).
@@ -777,7 +777,7 @@ mod tests {
 
     #[test]
     fn prism15_order_maps_to_ours_geometrically() {
-        use crate::topology::WEDGE15_NODES;
+        use junta_core::topology::WEDGE15_NODES;
         // Gmsh's reference prism: corners as ours, edges 0-1, 0-2, 0-3, 1-2,
         // 1-4, 2-5, 3-4, 3-5, 4-5 (Gmsh manual, node ordering)
         let mut g: Vec<[f64; 3]> = WEDGE15_NODES[..6].to_vec();
