@@ -642,39 +642,3 @@ fn advice_and_solver(summary: &mut serde_json::Value, p: &Prepared, log: &RunLog
     });
     Ok(())
 }
-
-/// The elements' internal force `f_int = r + lambda f_ext` from a run's
-/// residual `r = f_int - lambda f_ext`.
-pub(crate) fn internal_force_of(model: &Model, residual: &[f64], lambda: f64) -> Vec<f64> {
-    residual
-        .iter()
-        .zip(&model.f_ext)
-        .map(|(r, f)| r + lambda * f)
-        .collect()
-}
-
-/// The elements' internal force `f_int(u)` at a converged state (trial
-/// state from `state`'s committed values): the `RF` of a print table.
-pub(crate) fn internal_force_at(
-    model: &Model,
-    u: &[f64],
-    state: &StateStore,
-    step: StepInfo,
-) -> Result<Vec<f64>> {
-    use crate::error::Context;
-    let asm = model.assembler();
-    let mut f_int = vec![0.0; model.dofs.num_dofs()];
-    let mut state = state.clone();
-    asm.assemble(
-        &model.mesh,
-        &model.elements,
-        &model.dofs,
-        u,
-        &mut state,
-        step,
-        None,
-        &mut f_int,
-    )
-    .context("internal force of the last converged increment")?;
-    Ok(f_int)
-}

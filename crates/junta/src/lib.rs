@@ -30,6 +30,8 @@
 //! Nothing here prints: messages are values ([`RunResults::notes`],
 //! [`CheckReport`]) and progress goes to observers and `tracing`.
 
+#![warn(missing_docs)]
+
 // Keep every plugin crate linked so that its `inventory` registrations exist.
 use junta_criteria as _;
 use junta_elements as _;
@@ -56,6 +58,7 @@ pub mod output;
 pub mod plot;
 pub mod prepare;
 pub mod readers;
+pub mod results;
 pub mod scene;
 pub mod simulation;
 pub mod sweep;

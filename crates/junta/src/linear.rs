@@ -4,7 +4,8 @@
 use crate::error::{err, Context, Result};
 use crate::observer::Observer;
 use crate::prepare::{build_solver, Prepared};
-use crate::simulation::{RunResults, Status};
+use crate::observer::{RunEnd, RunLog};
+use crate::results::{RunResults, Status};
 use crate::{deck, output};
 use junta_core::Model;
 use junta_solvers::linear_static::solve_linear_static;
@@ -142,7 +143,7 @@ pub(crate) fn run_linear(
     if let Some(dir) = dir {
         output::write_json(&dir.join("summary.json"), &summary)?;
     }
-    let frame = crate::simulation::end_linear(&p.model, &res, &summary, observers)?;
+    let frame = end_linear(&p.model, &res, &summary, observers)?;
     Ok(RunResults {
         status: Status::Completed,
         status_line: "completed".into(),
@@ -302,4 +303,40 @@ fn solve_deck_steps(
         output::write_pvd(&dir.join("results.pvd"), &frames)?;
     }
     Ok((last.expect("at least one step"), summaries))
+}
+
+/// Observers' `on_end` for a linear run (its one state).
+fn end_linear(
+    model: &junta_core::Model,
+    res: &junta_solvers::linear_static::LinearStaticResult,
+    summary: &serde_json::Value,
+    observers: &mut [&mut dyn Observer],
+) -> Result<Option<crate::frame::Frame>> {
+    let step = junta_core::element::StepInfo {
+        load_factor: 1.0,
+        ..Default::default()
+    };
+    let interfaces = crate::output::interface_results(model, &res.u, &res.state)?;
+    let end = RunEnd {
+        model,
+        u: Some(&res.u),
+        state: Some(&res.state),
+        residual: Some(&res.residual),
+        interfaces: &interfaces,
+        step,
+        converged_here: true,
+        status: "completed",
+        summary,
+    };
+    let mut log = RunLog::default();
+    for o in observers.iter_mut() {
+        o.on_end(&end, &mut log)?;
+    }
+    Ok(Some(crate::frame::Frame::at(
+        model,
+        &res.u,
+        &res.state,
+        &interfaces,
+        step,
+    )?))
 }

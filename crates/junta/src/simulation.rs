@@ -27,9 +27,9 @@ use crate::check::CheckReport;
 use crate::checkpoint::{check_fields, check_inputs, read_restart, RestartFile};
 use crate::curve::{past_peak_hint, Curve, CurveRow};
 use crate::error::{bail, err, Context, Error, Result};
-use crate::frame::Frame;
 use crate::incremental::{run_incremental, Limits};
-use crate::observer::{Observer, RunEnd, RunLog};
+use crate::observer::{Observer, RunLog};
+pub use crate::results::{RunResults, Status};
 use crate::prepare::{prepare_with, Prepared};
 use crate::writers;
 use std::path::{Path, PathBuf};
@@ -68,54 +68,6 @@ impl RunSettings {
     /// Write no file: results and observers only.
     pub fn in_memory() -> Self {
         Self::default()
-    }
-}
-
-/// How a run ended.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Status {
-    /// The load program ran to its end.
-    Completed,
-    /// A stop ended the run early (an observer, `max_increments`, a deck's
-    /// `INC`, separation): the run can be restarted.
-    Stopped,
-    /// An increment fell below the smallest size.
-    Failed,
-    /// The user interrupted the run.
-    Interrupted,
-}
-
-/// What a run returns.
-#[derive(Debug)]
-pub struct RunResults {
-    /// How the run ended.
-    pub status: Status,
-    /// The status line (`completed`, `stopped: ...`, `failed: ...`).
-    pub status_line: String,
-    /// The summary (what `summary.json` holds).
-    pub summary: serde_json::Value,
-    /// The curve of an incremental run, as columns (empty for linear runs).
-    pub curve: Curve,
-    /// The rows of the curve.
-    pub rows: Vec<CurveRow>,
-    /// The output directory, when the run wrote files.
-    pub output: Option<PathBuf>,
-    /// Notes for the user (solver choice, print tables, edited inputs).
-    pub notes: Vec<String>,
-    /// Warnings for the user (penalty advice, residual after the solve).
-    pub warnings: Vec<String>,
-    /// The error the command line exits with after a failed or
-    /// interrupted run (the files are written).
-    pub failure: Option<Error>,
-    /// The typed fields of the end state (linear runs; incremental runs
-    /// keep frames with a [`crate::FrameCollector`]).
-    pub frame: Option<Frame>,
-}
-
-impl RunResults {
-    /// The summary as text (pretty JSON).
-    pub fn summary_json(&self) -> String {
-        serde_json::to_string_pretty(&self.summary).unwrap_or_default()
     }
 }
 
@@ -422,40 +374,4 @@ fn failure_of(
         )));
     }
     interrupted.then(|| err!("interrupted; the converged increments are in {where_}"))
-}
-
-/// Observers' `on_end` for a linear run (its one state).
-pub(crate) fn end_linear(
-    model: &junta_core::Model,
-    res: &junta_solvers::linear_static::LinearStaticResult,
-    summary: &serde_json::Value,
-    observers: &mut [&mut dyn Observer],
-) -> Result<Option<Frame>> {
-    let step = junta_core::element::StepInfo {
-        load_factor: 1.0,
-        ..Default::default()
-    };
-    let interfaces = crate::output::interface_results(model, &res.u, &res.state)?;
-    let end = RunEnd {
-        model,
-        u: Some(&res.u),
-        state: Some(&res.state),
-        residual: Some(&res.residual),
-        interfaces: &interfaces,
-        step,
-        converged_here: true,
-        status: "completed",
-        summary,
-    };
-    let mut log = RunLog::default();
-    for o in observers.iter_mut() {
-        o.on_end(&end, &mut log)?;
-    }
-    Ok(Some(Frame::at(
-        model,
-        &res.u,
-        &res.state,
-        &interfaces,
-        step,
-    )?))
 }

@@ -25,7 +25,6 @@ use crate::checkpoint::{read_restart, write_atomic, InputHash, RestartFile};
 use crate::curve::{read_reference_curve, CurveRow, CURVE_HEADER};
 use crate::deck_print;
 use crate::error::{Context, Result};
-use crate::incremental::{internal_force_at, internal_force_of};
 use crate::observer::{Flow, Increment, Observer, RunEnd, RunLog};
 use crate::output::{self, InterfaceResults};
 use crate::prepare::Prepared;
@@ -434,4 +433,40 @@ impl Standard {
             &mut self.summary,
         ]
     }
+}
+
+/// The elements' internal force `f_int = r + lambda f_ext` from a run's
+/// residual `r = f_int - lambda f_ext`.
+fn internal_force_of(model: &Model, residual: &[f64], lambda: f64) -> Vec<f64> {
+    residual
+        .iter()
+        .zip(&model.f_ext)
+        .map(|(r, f)| r + lambda * f)
+        .collect()
+}
+
+/// The elements' internal force `f_int(u)` at a converged state (trial
+/// state from `state`'s committed values): the `RF` of a print table.
+fn internal_force_at(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+    step: StepInfo,
+) -> Result<Vec<f64>> {
+    use crate::error::Context;
+    let asm = model.assembler();
+    let mut f_int = vec![0.0; model.dofs.num_dofs()];
+    let mut state = state.clone();
+    asm.assemble(
+        &model.mesh,
+        &model.elements,
+        &model.dofs,
+        u,
+        &mut state,
+        step,
+        None,
+        &mut f_int,
+    )
+    .context("internal force of the last converged increment")?;
+    Ok(f_int)
 }
