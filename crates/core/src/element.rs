@@ -10,15 +10,31 @@ use thiserror::Error;
 pub enum ElementError {
     /// det J <= 0 at an integration point: the element is inverted or degenerate.
     #[error("non-positive Jacobian determinant {det:.6e} at integration point {point} (inverted or degenerate element; check the node order)")]
-    NegativeJacobian { point: usize, det: f64 },
+    NegativeJacobian {
+        /// Integration point (0-based, in the element's rule order).
+        point: usize,
+        /// The determinant of `J = dx/dxi` there (non-positive or NaN).
+        det: f64,
+    },
     /// A zero-area interface (coincident nodes across the face).
     #[error(
         "degenerate interface surface: |V_xi x V_eta| = {area:.3e} at integration point {point}"
     )]
-    DegenerateSurface { point: usize, area: f64 },
+    DegenerateSurface {
+        /// Integration point (0-based, in the element's rule order).
+        point: usize,
+        /// The surface Jacobian `|V_xi x V_eta|` of the mid-surface there
+        /// (at most `1e-12 |V_xi| |V_eta|`, or not finite).
+        area: f64,
+    },
     /// The constitutive law failed.
     #[error("law failed at integration point {point}: {message}")]
-    Law { point: usize, message: String },
+    Law {
+        /// Integration point (0-based, in the element's rule order).
+        point: usize,
+        /// The law's (or the kernel's) message.
+        message: String,
+    },
 }
 
 /// Increment information handed down to elements and laws.

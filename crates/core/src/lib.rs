@@ -13,6 +13,8 @@
 //! Dependencies point one way: every other Junta crate depends on this one,
 //! and this one on none of them.
 
+#![warn(missing_docs)]
+
 pub use inventory;
 
 pub mod assembly;

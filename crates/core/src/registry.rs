@@ -48,27 +48,39 @@ pub struct ElementBuild<'a> {
 
 /// Registry entry of an element type.
 pub struct ElementEntry {
+    /// Registry key, by which scenes name it (e.g. `h20`).
     pub key: &'static str,
+    /// One-line description, for listings (`junta list`).
     pub description: &'static str,
+    /// Documentation of each key of its parameter table.
     pub params: &'static [ParamDoc],
     /// Cell shape the element expects.
     pub shape: CellShape,
+    /// Builds the element from its material or law and its options.
     pub build: fn(&ElementBuild<'_>) -> Result<Arc<dyn Element>, CoreError>,
 }
 
 /// Registry entry of a solid material.
 pub struct MaterialEntry {
+    /// Registry key, by which scenes name it (e.g. `isotropic`).
     pub key: &'static str,
+    /// One-line description, for listings (`junta list`).
     pub description: &'static str,
+    /// Documentation of each key of its parameter table.
     pub params: &'static [ParamDoc],
+    /// Builds the material from its parameter table.
     pub build: fn(&toml::Table) -> Result<Arc<dyn Material>, CoreError>,
 }
 
 /// Registry entry of an interface law.
 pub struct LawEntry {
+    /// Registry key, by which scenes name it (e.g. `linear_penalty`).
     pub key: &'static str,
+    /// One-line description, for listings (`junta list`).
     pub description: &'static str,
+    /// Documentation of each key of its parameter table.
     pub params: &'static [ParamDoc],
+    /// Builds the law from its parameter table (without `type`).
     pub build: fn(&toml::Table) -> Result<Arc<dyn InterfaceLaw>, CoreError>,
 }
 
@@ -150,17 +162,25 @@ pub fn build_law(key: &str, params: &toml::Table) -> Result<Arc<dyn InterfaceLaw
 
 /// Registry entry of a failure criterion.
 pub struct CriterionEntry {
+    /// Registry key, by which scenes name it (e.g. `quadratic`).
     pub key: &'static str,
+    /// One-line description, for listings (`junta list`).
     pub description: &'static str,
+    /// Documentation of each key of its parameter table.
     pub params: &'static [ParamDoc],
+    /// Builds the criterion from its parameter table.
     pub build: fn(&toml::Table) -> Result<Arc<dyn FailureCriterion>, CoreError>,
 }
 
 /// Registry entry of a linear solver back end.
 pub struct SolverEntry {
+    /// Registry key, by which scenes name it (e.g. `cholesky`).
     pub key: &'static str,
+    /// One-line description, for listings (`junta list`).
     pub description: &'static str,
+    /// Documentation of each key of its parameter table.
     pub params: &'static [ParamDoc],
+    /// Builds the back end from its settings table.
     pub build: fn(&toml::Table) -> Result<Box<dyn LinearSolver>, CoreError>,
 }
 
@@ -174,8 +194,11 @@ inventory::collect!(SolverEntry);
 pub trait Entry: 'static {
     /// Kind name used in messages ("element", "material", ...).
     const KIND: &'static str;
+    /// The entry's registry key.
     fn key(&self) -> &'static str;
+    /// The entry's one-line description.
     fn description(&self) -> &'static str;
+    /// Documentation of the entry's parameters.
     fn params(&self) -> &'static [ParamDoc];
 }
 

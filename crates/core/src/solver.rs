@@ -10,22 +10,39 @@ use thiserror::Error;
 pub enum SolverError {
     /// The matrix is not positive definite (singular or unconstrained model).
     #[error("matrix is not positive definite: factorisation failed{detail} (is the model constrained against rigid-body motion?)")]
-    NotPositiveDefinite { detail: String },
+    NotPositiveDefinite {
+        /// Where and why it failed (the pivot or diagonal entry and its
+        /// equation), starting with `": "` to follow the message; may be
+        /// empty.
+        detail: String,
+    },
     /// An iterative method did not reach its tolerance.
     #[error("{method} did not converge: relative residual {residual:.3e} after {iterations} iterations (tolerance {tolerance:.1e})")]
     NotConverged {
+        /// The method and its set-up (e.g. `"cg (Jacobi preconditioner)"`).
         method: String,
+        /// Iterations done.
         iterations: usize,
+        /// Relative residual `||b - A x|| / ||b||` reached.
         residual: f64,
+        /// Relative residual that was asked for.
         tolerance: f64,
     },
     /// The solution contains NaN or infinity.
     #[error("solution is not finite (NaN or infinity) after {method}")]
-    NonFinite { method: String },
+    NonFinite {
+        /// The back end and stage that met it (e.g. `"cg"`, `"ldlt solve"`),
+        /// with the offending entry or equation when known.
+        method: String,
+    },
     /// The factor (or another large buffer) does not fit in the memory
     /// available; the detail gives the bytes needed and available.
     #[error("not enough memory: {detail}")]
-    OutOfMemory { detail: String },
+    OutOfMemory {
+        /// What could not be allocated (back end and buffer), with the
+        /// bytes needed and available when known.
+        detail: String,
+    },
     /// `factorize`/`solve` called before `analyze`, or with a different pattern.
     #[error("solver misuse: {0}")]
     Usage(String),
@@ -120,7 +137,7 @@ impl MatrixKind {
 /// its mesh node, its displacement component (0, 1, 2) and the body it
 /// belongs to (solids connected through solid elements; interface
 /// elements do not connect bodies). Built by
-/// [`crate::DofMap::equation_layout`].
+/// [`crate::dof::DofMap::equation_layout`].
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct EquationLayout {
     /// Node of each equation (equations of a node are consecutive).

@@ -55,14 +55,26 @@
 /// Every cell shape Junta knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum CellShape {
+    /// 4-node bilinear quadrilateral (a face of Hex8, a side of INTER8).
     Quad4,
+    /// 8-node serendipity quadrilateral (a face of Hex20, a side of INTER16).
     Quad8,
+    /// 9-node biquadratic quadrilateral (a face of Hex27, a side of INTER18).
     Quad9,
+    /// 8-node trilinear hexahedron (VTK, Abaqus C3D8 order).
     Hex8,
+    /// 20-node serendipity hexahedron (VTK, Abaqus C3D20 order).
     Hex20,
+    /// 27-node triquadratic hexahedron (VTK order; see [`HEX27_NODES`]).
     Hex27,
+    /// 8-node interface (two Quad4 sides: bottom 0-3, top copies 4-7);
+    /// matches the faces of Hex8 and the quadrilateral sides of Wedge6.
     Inter8,
+    /// 16-node interface (two Quad8 sides: bottom 0-7, top copies 8-15);
+    /// matches the faces of Hex20 and the quadrilateral sides of Wedge15.
     Inter16,
+    /// 18-node interface (two Quad9 sides: bottom 0-8, top copies 9-17);
+    /// matches the faces of Hex27 (the paper's element).
     Inter18,
     /// 3-node linear triangle (a wedge face, or a side of INTER6).
     Tri3,

@@ -26,6 +26,8 @@
 //! An embedder that builds criteria by name must reference this crate
 //! (`use junta_criteria as _;`) so that the linker keeps the registrations.
 
+#![warn(missing_docs)]
+
 use junta_core::{CoreError, FailureMode};
 use serde::Deserialize;
 

@@ -34,8 +34,11 @@ pub enum BodyLoad {
     /// Rotation about an axis: `omega^2`, a point of the axis and its
     /// direction (need not be unit).
     Centrifugal {
+        /// Square of the angular velocity, `omega^2` (1 / time^2).
         omega2: f64,
+        /// A point of the rotation axis.
         point: [f64; 3],
+        /// Direction of the rotation axis (normalised here; not zero).
         axis: [f64; 3],
     },
 }

@@ -40,6 +40,8 @@
 //! assert_eq!(h20.num_points(), 27);
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod body_load;
 pub mod face_load;
 pub mod h8i;

@@ -27,8 +27,12 @@ pub enum QuadratureError {
     /// No rule of that family with that many points.
     #[error("no {family} rule with {n} points; valid point counts: {valid}")]
     UnsupportedPoints {
+        /// The family asked for (`"Gauss-Legendre"`, `"Gauss-Lobatto"`,
+        /// `"triangle"`).
         family: &'static str,
+        /// The number of points asked for.
         n: usize,
+        /// The point counts the family supports, comma-separated.
         valid: &'static str,
     },
 }

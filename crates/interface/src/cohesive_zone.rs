@@ -110,11 +110,13 @@ pub struct CohesiveZoneAdvice {
     pub modulus_along: f64,
     /// Thickness of the thinner body on either side.
     pub arm_thickness: f64,
-    /// Shorter in-plane side of the finest and of the coarsest element.
+    /// Shorter in-plane side of the finest element.
     pub element_length_min: f64,
+    /// Shorter in-plane side of the coarsest element.
     pub element_length_max: f64,
-    /// Mode I and mode II lengths.
+    /// Mode I zone lengths (normal strength `N`, toughness `G_Ic`).
     pub mode_i: ZoneLengths,
+    /// Mode II zone lengths (shear strength `S`, toughness `G_IIc`).
     pub mode_ii: ZoneLengths,
     /// The shorter zone of the two modes.
     pub length: f64,

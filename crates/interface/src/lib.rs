@@ -18,6 +18,8 @@
 //! - [`advisor`]: the paper's penalty choice from its error analysis
 //!   (eqs. 41-55) on an assembled model.
 
+#![warn(missing_docs)]
+
 pub mod advisor;
 pub mod cohesive_zone;
 pub mod element;

@@ -39,9 +39,13 @@ pub struct RestartFile {
 /// When the first interface point failed.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct FirstFailure {
+    /// Increment (global, 1-based) in which it failed.
     pub increment: usize,
+    /// Load factor of that increment.
     pub load_factor: f64,
+    /// The curve's reaction then (`None` without a curve).
     pub reaction: Option<f64>,
+    /// The curve's displacement then (`None` without a curve).
     pub displacement: Option<f64>,
 }
 
@@ -69,6 +73,8 @@ pub fn read_restart(dir: &Path) -> Result<RestartFile> {
 /// One input file of a run and its hash.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct InputHash {
+    /// The file: canonical (absolute) path, or the path as found (relative
+    /// to the scene's directory) when it could not be resolved.
     pub path: PathBuf,
     /// FNV-1a 64 of the file's bytes, hex.
     pub fnv1a: String,

@@ -9,16 +9,34 @@ use std::path::Path;
 /// One row of `curve.csv`: one converged increment.
 #[derive(Debug, Clone)]
 pub struct CurveRow {
+    /// Global index of the increment (1-based, converged increments only,
+    /// counted across restarts).
     pub increment: usize,
+    /// Step of the program it belongs to (0-based).
     pub step: usize,
+    /// Load factor reached (`load_factor` column).
     pub lambda: f64,
+    /// Total internal force of the curve's reaction set in its component
+    /// (the reaction on supports, the applied load on a loaded free set),
+    /// sign per `negate`; the load factor with `conjugate`. `None` (an
+    /// empty column) without a curve.
     pub reaction: Option<f64>,
+    /// Mean displacement of the curve's point set in its component, less
+    /// that of `relative_to`, sign per `negate`; `f_ext . u` with
+    /// `conjugate`. `None` without a curve.
     pub displacement: Option<f64>,
+    /// Interface integration points that have failed (`failed_points`).
     pub failed: usize,
+    /// Interface integration points in the model (`interface_points`).
     pub points: usize,
+    /// Newton iterations of the converged attempt.
     pub iterations: usize,
+    /// Cut-backs before the increment converged.
     pub cutbacks: usize,
+    /// Wall-clock seconds spent on the increment, failed attempts included.
     pub seconds: f64,
+    /// Whether the increment was sized by the paper's small-increment rule
+    /// (`small_increment` column, 1 or 0).
     pub small: bool,
     /// Fracture energy dissipated in all interfaces so far.
     pub dissipated: f64,
@@ -39,6 +57,8 @@ pub struct CurveRow {
     pub frictional: f64,
 }
 
+/// Header line of `curve.csv` (with its newline): the column names of
+/// [`CurveRow::csv`], in order.
 pub const CURVE_HEADER: &str =
     "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation\n";
 
@@ -47,6 +67,8 @@ fn opt(v: Option<f64>) -> String {
 }
 
 impl CurveRow {
+    /// The row as a line of `curve.csv` (with its newline; the columns of
+    /// [`CURVE_HEADER`], floats in `{:e}` form, `None` as an empty field).
     pub fn csv(&self) -> String {
         format!(
             "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e}\n",
@@ -72,6 +94,11 @@ impl CurveRow {
             self.frictional
         )
     }
+
+    /// A row from a line of `curve.csv` (without its newline), or `None` if
+    /// it is not one. Reads files of older runs too: 14 columns (before the
+    /// path-following and frictional columns), 16 or 17; a missing column
+    /// takes its neutral value (`load_sign` 0, `control` `load`, 0.0).
     pub fn parse(line: &str) -> Option<CurveRow> {
         let f: Vec<&str> = line.split(',').collect();
         // 14 columns: a run written before the path-following and

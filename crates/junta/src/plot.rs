@@ -20,11 +20,18 @@ pub struct Series {
 
 /// One panel of a chart.
 pub struct Panel {
+    /// Caption above the panel.
     pub title: String,
+    /// Label of the horizontal axis.
     pub x_label: String,
+    /// Label of the vertical axis.
     pub y_label: String,
+    /// Logarithmic horizontal axis (points with `x <= 0` are skipped).
     pub log_x: bool,
+    /// Logarithmic vertical axis (points with `y <= 0` are skipped).
     pub log_y: bool,
+    /// The series drawn, in order; the axes span their drawable points
+    /// (and the `vlines`).
     pub series: Vec<Series>,
     /// Vertical lines `(x, label)`.
     pub vlines: Vec<(f64, String)>,

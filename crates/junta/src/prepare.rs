@@ -10,24 +10,51 @@ use std::path::{Path, PathBuf};
 
 /// A model ready to run, from a scene or a deck.
 pub struct Prepared {
+    /// The built model: mesh, elements, dofs with their constraints, loads.
     pub model: Model,
+    /// The linear back end, built and chosen for the model's matrix kind
+    /// ([`resolve_solver`]).
     pub solver: Box<dyn LinearSolver>,
+    /// The scene's `[model] title` or the first line of the deck's
+    /// `*HEADING`; empty if none.
     pub title: String,
+    /// The scene's `[model] units`, free text for the reports (e.g.
+    /// `"N, mm, MPa"`; `None` for decks).
     pub units: Option<String>,
+    /// The scene's `[output] directory` (`None`: the caller chooses, e.g.
+    /// [`default_dir`]).
     pub output_dir: Option<PathBuf>,
+    /// Write VTU results (`[output] vtu`, default true).
     pub vtu: bool,
+    /// Node sets whose mean displacement is reported in `summary.json`
+    /// (`[output] probes`).
     pub probes: Vec<String>,
+    /// Fractions of the load at which a linear run also writes its
+    /// solution scaled (`[output] fractions`).
     pub fractions: Vec<f64>,
+    /// The scene's reference reaction and its component index (0 = x,
+    /// 1 = y, 2 = z).
     pub reference: Option<(scene::ReferenceSpec, usize)>,
+    /// Analysis type, load program and increment control.
     pub analysis: scene::AnalysisSpec,
+    /// The load-displacement curve to record (`[output.curve]`, or a
+    /// deck's), if any.
     pub curve: Option<scene::CurveSpec>,
+    /// Incremental runs: a VTU frame every this many increments (>= 1).
     pub every: usize,
+    /// Physical thickness of the adhesive layer by interface block name
+    /// (`interface[].thickness`), for the penalty advisor.
     pub thickness: std::collections::BTreeMap<String, f64>,
+    /// Notes from reading the input and choosing the solver (ignored
+    /// keywords, the back end chosen and why).
     pub notes: Vec<String>,
     /// The `--solver KEY=VALUE` overrides applied (kept for restarts).
     pub solver_overrides: Vec<String>,
-    /// Registry key and parameters of the solver (to build another one).
+    /// Registry key of the solver (resolved: never `auto`), to build
+    /// another one.
     pub solver_key: String,
+    /// Parameters of the solver (its `[solver]` table without `type`, with
+    /// the `--solver` overrides applied).
     pub solver_table: toml::Table,
     /// The load cases of a linear deck with several `*STEP`s (empty
     /// otherwise).
@@ -44,6 +71,8 @@ pub struct Prepared {
     pub read_seconds: f64,
 }
 
+/// Build the linear back end registered as `key` from its parameter
+/// table; errors name `where_` (the input) and the `solver` key at fault.
 pub fn build_solver(key: &str, table: &toml::Table, where_: &str) -> Result<Box<dyn LinearSolver>> {
     let entry =
         registry::find::<SolverEntry>(key).map_err(|e| err!("{where_}: key `solver.type`: {e}"))?;

@@ -25,7 +25,7 @@
 
 use crate::check::CheckReport;
 use crate::checkpoint::{check_fields, check_inputs, read_restart, RestartFile};
-use crate::curve::{past_peak_hint, Curve, CurveRow};
+use crate::curve::{past_peak_hint, Curve};
 use crate::error::{bail, err, Context, Error, Result};
 use crate::incremental::{run_incremental, Limits};
 use crate::observer::{Observer, RunLog};

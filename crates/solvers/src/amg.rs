@@ -249,8 +249,10 @@ pub struct Level {
     pub b: Vec<[f64; NULL_DIM]>,
     /// Tentative prolongator to the next level (none on the coarsest).
     pub t: Csr,
-    /// Smoothed prolongator and its transpose.
+    /// Smoothed prolongator to the next level, `P = T - omega D^-1 A T`
+    /// with `omega = 4 / (3 rho)` (empty on the coarsest).
     pub p: Csr,
+    /// Restriction from this level, `R = P^T`.
     pub r: Csr,
     /// Inverses of the nodal diagonal blocks `D` of `A`.
     pub dinv: BlockInverse,

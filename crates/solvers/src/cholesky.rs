@@ -259,20 +259,22 @@ pub struct CholeskyStats {
     /// Non-zeros of `L` as stored (supernodal blocks count their full
     /// lower trapezoid).
     pub factor_nonzeros: usize,
-    /// Smallest and largest diagonal entry of the last matrix.
+    /// Smallest diagonal entry of the last matrix.
     pub matrix_diag_min: f64,
+    /// Largest diagonal entry of the last matrix.
     pub matrix_diag_max: f64,
-    /// Smallest pivot ratio `l_kk^2 / a_kk` and the original equation where
-    /// it occurs.
+    /// Smallest pivot ratio `l_kk^2 / a_kk` of the last factor (near 0:
+    /// digits lost to cancellation, the matrix is nearly singular).
     pub min_pivot_ratio: f64,
+    /// Original (unpermuted) equation where `min_pivot_ratio` occurs.
     pub min_pivot_equation: usize,
     /// Refinement steps of the last solve.
     pub refinement_steps: usize,
     /// Precision of the current factor (`"double"` or `"mixed"`).
     pub precision: &'static str,
-    /// Times the mixed mode gave up and refactorised in double precision,
-    /// and why the last time.
+    /// Times the mixed mode gave up and refactorised in double precision.
     pub mixed_fallbacks: usize,
+    /// Why it gave up the last time (empty if it never did).
     pub mixed_fallback_reason: String,
 }
 

@@ -278,16 +278,20 @@ pub const LDLT_PARAMS: &[ParamDoc] = &[
 pub struct LdltStats {
     /// Ordering used.
     pub ordering: &'static str,
-    /// Number of symbolic analyses, numeric factorisations and solves so far.
+    /// Number of symbolic analyses so far.
     pub analyze_count: usize,
+    /// Number of numeric factorisations so far.
     pub factor_count: usize,
+    /// Number of solves so far.
     pub solve_count: usize,
     /// Non-zeros of `L` as stored (lower trapezoids of the panels).
     pub factor_nonzeros: usize,
     /// Negative eigenvalues of the last matrix (from `D`).
     pub negative_pivots: usize,
-    /// 1x1 and 2x2 pivots of the last factor.
+    /// Number of 1x1 pivots of the last factor.
     pub pivots_1x1: usize,
+    /// Number of 2x2 pivot blocks of the last factor (each covers two
+    /// equations).
     pub pivots_2x2: usize,
     /// Pivots replaced by a static perturbation.
     pub perturbed_pivots: usize,

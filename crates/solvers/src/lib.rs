@@ -38,6 +38,8 @@
 //! by key must reference this crate (`use junta_solvers as _;`) so that the
 //! linker keeps the registrations.
 
+#![warn(missing_docs)]
+
 pub mod amg;
 pub mod arc_length;
 pub mod cg;

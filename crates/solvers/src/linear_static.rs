@@ -86,7 +86,10 @@ pub fn solve_linear_static(
 /// forces (full length).
 #[derive(Debug, Clone, Copy)]
 pub struct LoadCase<'a> {
+    /// Prescribed displacement of every dof (length 3 x nodes); only the
+    /// constrained dofs are read.
     pub prescribed: &'a [f64],
+    /// External nodal forces of every dof (length 3 x nodes).
     pub f_ext: &'a [f64],
 }
 

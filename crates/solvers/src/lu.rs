@@ -8,7 +8,7 @@
 //! triangular, `P` the fill-reducing ordering and `P_r` row interchanges.
 //!
 //! - **Ordering.** `P` is the ordering of the shared analysis of the
-//!   symmetric back ends ([`crate::supernodal::analyze`]: nested dissection
+//!   symmetric back ends (`supernodal::analyze`: nested dissection
 //!   or AMD on the pattern of `A + A^T`, by predicted flops). The assembled
 //!   pattern is structurally symmetric; this is SuperLU's `MMD_AT_PLUS_A`
 //!   choice, which suits matrices with a nearly symmetric structure better
@@ -16,7 +16,7 @@
 //! - **Restricted pivoting (default, [`LuPivoting::Auto`]).** The factor
 //!   keeps the structure of the symmetric (Cholesky) factor and takes its
 //!   row interchanges within each panel's diagonal block
-//!   ([`crate::panel_lu`], maths there): left-looking over the panels of
+//!   (the private module `panel_lu`, maths there): left-looking over the panels of
 //!   the shared analysis, two BLAS-3 updates per descendant (`L` and `U`
 //!   sides), a dense partial-pivoting `LU` of the diagonal block and two
 //!   triangular solves. Stored entries: `|J|^2 + 2 |J| |R|` per panel, about
@@ -102,7 +102,7 @@ pub struct LuSettings {
 #[serde(rename_all = "snake_case")]
 pub enum LuPivoting {
     /// Restricted pivoting on the symmetric structure
-    /// ([`crate::panel_lu`]); when a pivot has to be perturbed, the matrix
+    /// (module `panel_lu`); when a pivot has to be perturbed, the matrix
     /// is refactorised with unrestricted partial pivoting, and the run stays
     /// with it (a note says so).
     #[default]
@@ -177,7 +177,7 @@ impl std::fmt::Debug for Workspace {
 }
 
 /// Sparse supernodal LU for general matrices (registry key `"lu"`):
-/// restricted pivoting on the symmetric structure ([`crate::panel_lu`]) with
+/// restricted pivoting on the symmetric structure (module `panel_lu`) with
 /// a fallback to faer's unrestricted partial pivoting ([`LuPivoting`]).
 #[derive(Debug)]
 pub struct LuSolver {

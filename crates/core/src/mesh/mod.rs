@@ -49,7 +49,9 @@ impl ElementBlock {
 /// Reference to one element: block index and index within the block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct ElementRef {
+    /// Index of the block in [`Mesh::blocks`].
     pub block: usize,
+    /// Index of the element within that block (0-based).
     pub element: usize,
 }
 
@@ -58,8 +60,11 @@ pub struct ElementRef {
 /// Abaqus S1..S6 / S1..S5 order, 0-based).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct FaceRef {
+    /// Index of the solid block in [`Mesh::blocks`].
     pub block: usize,
+    /// Index of the element within that block (0-based).
     pub element: usize,
+    /// Face of the element, 0-based (0 = Abaqus S1).
     pub face: usize,
 }
 

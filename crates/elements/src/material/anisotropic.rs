@@ -42,8 +42,13 @@ pub struct AnisotropicParams {
     /// The 21 constants in the Abaqus order (module docs).
     #[serde(rename = "D")]
     pub d: Vec<f64>,
+    /// Material axis 1, or a point of the cylinder axis (optional, with `b`;
+    /// default: the global axes).
     pub a: Option<[f64; 3]>,
+    /// A vector in the material 1-2 plane, or a second point of the
+    /// cylinder axis (optional, with `a`).
     pub b: Option<[f64; 3]>,
+    /// `"rectangular"` (default) or `"cylindrical"` (`a`, `b` points of the axis).
     pub system: Option<System>,
 }
 

@@ -66,14 +66,26 @@ use std::sync::Arc;
 /// The nine engineering constants of an orthotropic material (material axes).
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 pub struct EngineeringConstants {
+    /// Young's modulus along material axis 1 (stress units, > 0).
     pub e1: f64,
+    /// Young's modulus along material axis 2 (stress units, > 0).
     pub e2: f64,
+    /// Young's modulus along material axis 3 (stress units, > 0).
     pub e3: f64,
+    /// Poisson's ratio: contraction along 2 under stress along 1
+    /// (`|nu12| < sqrt(E1 / E2)`).
     pub nu12: f64,
+    /// Poisson's ratio: contraction along 3 under stress along 1
+    /// (`|nu13| < sqrt(E1 / E3)`).
     pub nu13: f64,
+    /// Poisson's ratio: contraction along 3 under stress along 2
+    /// (`|nu23| < sqrt(E2 / E3)`).
     pub nu23: f64,
+    /// Shear modulus in the 1-2 plane (stress units, > 0).
     pub g12: f64,
+    /// Shear modulus in the 1-3 plane (stress units, > 0).
     pub g13: f64,
+    /// Shear modulus in the 2-3 plane (stress units, > 0).
     pub g23: f64,
 }
 
@@ -130,8 +142,13 @@ pub enum System {
 /// docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Orientation {
+    /// Rectangular: a vector along material axis 1. Cylindrical: a point
+    /// of the cylinder axis.
     pub a: [f64; 3],
+    /// Rectangular: a vector in the material 1-2 plane (not parallel to
+    /// `a`). Cylindrical: a second point of the axis (`b - a` gives axis 3).
     pub b: [f64; 3],
+    /// How `a` and `b` are read.
     pub system: System,
 }
 
@@ -207,7 +224,9 @@ pub enum Axes {
     Fixed(Matrix3<f64>),
     /// Cylindrical: a point of the axis and the unit axis direction `e3`.
     Cylindrical {
+        /// A point of the cylinder axis (the orientation's `a`).
         point: Vector3<f64>,
+        /// Unit direction of the axis, material axis 3.
         axis: Vector3<f64>,
     },
 }
@@ -297,19 +316,28 @@ pub struct Orthotropic {
 #[derive(Debug, Clone, Copy, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OrthotropicParams {
+    /// `E1`: Young's modulus along material axis 1, > 0.
     #[serde(rename = "E1")]
     pub e1: f64,
+    /// `E2`: Young's modulus along material axis 2, > 0.
     #[serde(rename = "E2")]
     pub e2: f64,
+    /// `E3`: Young's modulus along material axis 3, > 0.
     #[serde(rename = "E3")]
     pub e3: f64,
+    /// Poisson's ratio: contraction along 2 under stress along 1.
     pub nu12: f64,
+    /// Poisson's ratio: contraction along 3 under stress along 1.
     pub nu13: f64,
+    /// Poisson's ratio: contraction along 3 under stress along 2.
     pub nu23: f64,
+    /// `G12`: shear modulus in the 1-2 plane, > 0.
     #[serde(rename = "G12")]
     pub g12: f64,
+    /// `G13`: shear modulus in the 1-3 plane, > 0.
     #[serde(rename = "G13")]
     pub g13: f64,
+    /// `G23`: shear modulus in the 2-3 plane, > 0.
     #[serde(rename = "G23")]
     pub g23: f64,
     /// Material axis 1 (optional, with `b`).

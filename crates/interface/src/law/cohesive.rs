@@ -141,10 +141,16 @@ pub trait Softening: Send + Sync + std::fmt::Debug {
 /// Propagation criterion: the toughness at mode ratio B.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Propagation {
-    /// Benzeggagh-Kenane with exponent eta.
-    Bk { eta: f64 },
-    /// Power law with exponent alpha.
-    PowerLaw { alpha: f64 },
+    /// Benzeggagh-Kenane: `G_c = G_Ic + (G_IIc - G_Ic) B^eta`.
+    Bk {
+        /// BK exponent `eta > 0` (AS4/PEEK: 2.284).
+        eta: f64,
+    },
+    /// Power law: `G_c = [((1 - B) / G_Ic)^alpha + (B / G_IIc)^alpha]^(-1/alpha)`.
+    PowerLaw {
+        /// Exponent `alpha > 0` (1 linear, 2 quadratic).
+        alpha: f64,
+    },
 }
 
 impl Propagation {

@@ -62,32 +62,49 @@ pub enum GmshError {
     /// The file could not be read.
     #[error("cannot read `{file}`: {source}")]
     Io {
+        /// The file, as given.
         file: String,
+        /// The operating system's error.
         #[source]
         source: std::io::Error,
     },
     /// Binary MSH files are not supported.
     #[error("{file}:{line}: binary MSH files are not supported; re-export as ASCII (gmsh: `-format msh41` with `Mesh.Binary = 0`)")]
-    Binary { file: String, line: usize },
+    Binary {
+        /// The file, as given.
+        file: String,
+        /// Line of the `$MeshFormat` data (1-based).
+        line: usize,
+    },
     /// Only MSH 4.1 is read.
     #[error("{file}:{line}: MSH version `{version}` is not supported; valid: 4.1 (gmsh: `-format msh41`)")]
     Version {
+        /// The file, as given.
         file: String,
+        /// Line of the `$MeshFormat` data (1-based).
         line: usize,
+        /// The version the file declares.
         version: String,
     },
     /// An element type the reader does not handle.
     #[error("{file}:{line}: Gmsh element type {code} is not supported; valid: 5 (hex8), 17 (hex20), 12 (hex27), 3/16/10 (quad4/8/9 boundary faces), 2/9 (tri3/6 boundary faces), 15 (point), 1/8/26 (lines, ignored)")]
     ElementType {
+        /// The file, as given.
         file: String,
+        /// Line of the element block's header (1-based).
         line: usize,
+        /// Gmsh's element type code.
         code: usize,
     },
     /// Malformed content.
     #[error("{file}:{line}: {message}")]
     Syntax {
+        /// The file, as given.
         file: String,
+        /// Line (1-based; 0 for a fault of the whole mesh, found after
+        /// reading).
         line: usize,
+        /// What is wrong.
         message: String,
     },
 }

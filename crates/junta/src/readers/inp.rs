@@ -154,78 +154,127 @@ pub enum InpError {
     /// The file could not be read.
     #[error("cannot read `{file}`: {source}")]
     Io {
+        /// The file that could not be read (the deck or an included file).
         file: String,
+        /// The operating system's error.
         #[source]
         source: std::io::Error,
     },
     /// A keyword the reader does not support.
     #[error("{file}:{line}: unsupported keyword `*{keyword}`; supported keywords: {valid}")]
     UnknownKeyword {
+        /// The deck, or the included file the line comes from.
         file: String,
+        /// Line in that file (1-based).
         line: usize,
+        /// The keyword, upper case, without its `*`.
         keyword: String,
+        /// The supported keywords ([`SUPPORTED_KEYWORDS`]).
         valid: String,
     },
     /// A parameter the keyword does not accept, or a bad parameter value.
     #[error("{file}:{line}: *{keyword}: unsupported parameter `{parameter}`; valid: {valid}")]
     Parameter {
+        /// The deck, or the included file the line comes from.
         file: String,
+        /// Line in that file (1-based).
         line: usize,
+        /// The keyword, upper case, without its `*` (for a directive,
+        /// `** junta: NAME`).
         keyword: String,
+        /// The parameter (upper case), with its value when the value is
+        /// at fault (`KEY=value`).
         parameter: String,
+        /// The parameters (or values) the keyword accepts.
         valid: String,
     },
     /// A required parameter is missing.
     #[error("{file}:{line}: *{keyword} needs the parameter {parameter}")]
     MissingParameter {
+        /// The deck, or the included file the line comes from.
         file: String,
+        /// Line in that file (1-based).
         line: usize,
+        /// The keyword, upper case, without its `*` (for a directive,
+        /// `** junta: NAME`).
         keyword: String,
+        /// The missing parameter (e.g. `TYPE=`).
         parameter: String,
     },
     /// An element TYPE the reader does not support.
     #[error("{file}:{line}: *ELEMENT: unsupported element TYPE={element_type}; supported types: {valid}")]
     ElementType {
+        /// The deck, or the included file the line comes from.
         file: String,
+        /// Line in that file (1-based).
         line: usize,
+        /// The `TYPE=` value, upper case.
         element_type: String,
+        /// The supported types ([`SUPPORTED_ELEMENT_TYPES`]).
         valid: String,
     },
     /// A field that should be a number is not.
     #[error("{file}:{line}: *{keyword}: {what} `{text}` is not a valid {expected}")]
     BadNumber {
+        /// The deck, or the included file the line comes from.
         file: String,
+        /// Line in that file (1-based).
         line: usize,
+        /// The keyword, upper case, without its `*` (for a directive,
+        /// `** junta: NAME`).
         keyword: String,
+        /// What the field holds (e.g. `"node label"`, `"density"`).
         what: String,
+        /// The field as written.
         text: String,
+        /// What it should be: `"number"` (finite) or `"positive integer
+        /// label"`.
         expected: &'static str,
     },
     /// A node or element label that was never defined.
     #[error("{file}:{line}: *{keyword}: {kind} label {label} is not defined")]
     UndefinedLabel {
+        /// The deck, or the included file the line comes from.
         file: String,
+        /// Line in that file (1-based).
         line: usize,
+        /// The keyword, upper case, without its `*` (for a directive,
+        /// `** junta: NAME`).
         keyword: String,
+        /// `"node"` or `"element"`.
         kind: &'static str,
+        /// The label as written in the deck.
         label: usize,
     },
     /// A set or material name that was never defined.
     #[error("{file}:{line}: *{keyword}: {kind} `{name}` is not defined; defined: {valid}")]
     UnknownName {
+        /// The deck, or the included file the line comes from.
         file: String,
+        /// Line in that file (1-based).
         line: usize,
+        /// The keyword, upper case, without its `*` (for a directive,
+        /// `** junta: NAME`).
         keyword: String,
+        /// What was named: `"node set"`, `"element set"`, `"material"` or
+        /// `"orientation"`.
         kind: &'static str,
+        /// The name as written.
         name: String,
+        /// The names of that kind the deck defines (`(none)` if none).
         valid: String,
     },
     /// Any other mistake in the deck.
     #[error("{file}:{line}: *{keyword}: {message}")]
     Invalid {
+        /// The deck, or the included file the line comes from.
         file: String,
+        /// Line in that file (1-based).
         line: usize,
+        /// The keyword, upper case, without its `*` (for a directive,
+        /// `** junta: NAME`).
         keyword: String,
+        /// What is wrong, and what would be valid.
         message: String,
     },
 }
@@ -234,7 +283,12 @@ pub enum InpError {
 #[derive(Debug, Clone, PartialEq)]
 pub enum InpMaterialKind {
     /// `*ELASTIC` (TYPE=ISOTROPIC): Young's modulus and Poisson's ratio.
-    Isotropic { e: f64, nu: f64 },
+    Isotropic {
+        /// Young's modulus `E` (stress units).
+        e: f64,
+        /// Poisson's ratio `nu`.
+        nu: f64,
+    },
     /// `*ELASTIC, TYPE=ENGINEERING CONSTANTS`:
     /// `[E1, E2, E3, nu12, nu13, nu23, G12, G13, G23]`.
     EngineeringConstants([f64; 9]),
@@ -313,9 +367,15 @@ pub enum InpMixedMode {
     /// `MODE INDEPENDENT` (the default): one fracture energy.
     ModeIndependent,
     /// `BK` with `POWER=eta`.
-    Bk { power: f64 },
+    Bk {
+        /// The BK exponent eta (`POWER=`).
+        power: f64,
+    },
     /// `POWER LAW` with `POWER=alpha`.
-    PowerLaw { power: f64 },
+    PowerLaw {
+        /// The power-law exponent alpha (`POWER=`).
+        power: f64,
+    },
 }
 
 /// `*DAMAGE EVOLUTION, TYPE=ENERGY`.
@@ -349,10 +409,17 @@ pub struct InpDamageStabilization {
 /// are resolved to the names stored in [`Mesh::node_sets`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct InpCurve {
+    /// Node set whose total internal force is recorded (the reaction on
+    /// supports, the applied load on a loaded free set).
     pub reaction_set: String,
+    /// Its component: `x`, `y` or `z` (lower case).
     pub reaction_component: String,
+    /// Node set whose mean displacement is recorded.
     pub point_set: String,
+    /// Its component: `x`, `y` or `z` (lower case).
     pub point_component: String,
+    /// Node set whose mean displacement (same component) is subtracted,
+    /// for a relative displacement (e.g. the opening of a DCB's arms).
     pub relative_to: Option<String>,
     /// Line of the directive.
     pub line: usize,
@@ -444,9 +511,13 @@ pub struct InpCload {
 /// The `*STATIC` procedure of a step (data line values, all optional).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct InpStatic {
+    /// First value, `dt0`: the initial time increment (step-time units).
     pub initial_increment: Option<f64>,
+    /// Second value, `T`: the step's time period.
     pub period: Option<f64>,
+    /// Third value, `dtmin`: the smallest time increment allowed.
     pub min_increment: Option<f64>,
+    /// Fourth value, `dtmax`: the largest time increment allowed.
     pub max_increment: Option<f64>,
     /// DIRECT parameter (fixed increments).
     pub direct: bool,
@@ -454,6 +525,7 @@ pub struct InpStatic {
     pub solver: Option<String>,
     /// `RIKS` (Abaqus arc length): the CLI runs it with path following.
     pub riks: Option<InpRiks>,
+    /// Line of the `*STATIC` keyword.
     pub line: usize,
 }
 
@@ -461,6 +533,8 @@ pub struct InpStatic {
 /// proportionality factor (the 5th value), which ends the run.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct InpRiks {
+    /// The maximum load proportionality factor; `None` when the field is
+    /// empty.
     pub max_load_factor: Option<f64>,
 }
 
@@ -487,6 +561,7 @@ const STATIC_REFUSED: [(&str, &str); 3] = [
 /// A `*STEP ... *END STEP`.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct InpStep {
+    /// `NAME=`, as written.
     pub name: Option<String>,
     /// NLGEOM (YES when given without value).
     pub nlgeom: bool,
@@ -512,15 +587,25 @@ pub struct InpStep {
 /// - `notes`: what was accepted but ignored, with line numbers.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct InpDeck {
+    /// Nodes, blocks, node and element sets (no face sets).
     pub mesh: Mesh,
+    /// Element label -> block and index in the block.
     pub element_labels: BTreeMap<usize, ElementRef>,
+    /// The `*HEADING` data lines, joined by newlines.
     pub heading: String,
+    /// `*MATERIAL`s, in input order.
     pub materials: Vec<InpMaterial>,
+    /// `*SOLID SECTION`s, in input order.
     pub solid_sections: Vec<InpSolidSection>,
+    /// `*COHESIVE SECTION`s, in input order.
     pub cohesive_sections: Vec<InpCohesiveSection>,
+    /// `*BOUNDARY` data lines, in input order.
     pub boundaries: Vec<InpBoundary>,
+    /// `*CLOAD` data lines, in input order.
     pub cloads: Vec<InpCload>,
+    /// `*STEP`s, in input order.
     pub steps: Vec<InpStep>,
+    /// What was accepted but ignored or changed, with line numbers.
     pub notes: Vec<String>,
     /// `** junta: curve ...` directive, if any.
     pub curve: Option<InpCurve>,
@@ -613,8 +698,11 @@ pub enum InpDloadKind {
     Gravity([f64; 3]),
     /// `CENTRIF`: `omega^2`, a point of the axis, the axis direction.
     Centrifugal {
+        /// Square of the angular velocity, `omega^2` (1 / time^2).
         omega2: f64,
+        /// A point of the rotation axis.
         point: [f64; 3],
+        /// Direction of the rotation axis, as written (not normalised).
         axis: [f64; 3],
     },
     /// `BX`, `BY`, `BZ`: body force per unit volume (no density).
@@ -627,6 +715,7 @@ pub struct InpDload {
     /// Load label as written, upper case (`P3`, `GRAV`, `CENTRIF`, `BZ`;
     /// `P` for a `*DSLOAD` surface pressure).
     pub label: String,
+    /// The load and its values.
     pub kind: InpDloadKind,
     /// `(element, face)`: the face (0-based, S1..S6 order of hexahedra,
     /// S1..S5 of wedges) for pressures,
@@ -660,11 +749,16 @@ pub struct InpEquation {
 /// enclosing `*STEP` (`None`: outside any step).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct InpNodePrint {
+    /// `NSET=`, as written.
     pub nset: String,
+    /// The variables of the data lines (`U`, `RF`, ...), upper case.
     pub variables: Vec<String>,
     /// `TOTALS=`: `NO` (default), `YES` (rows and their sum) or `ONLY`.
     pub totals: String,
+    /// Index of the enclosing step in [`InpDeck::steps`] (`None`: outside
+    /// any step).
     pub step: Option<usize>,
+    /// Line of the keyword.
     pub line: usize,
 }
 
@@ -672,13 +766,17 @@ pub struct InpNodePrint {
 /// the set's elements at their integration points.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InpElPrint {
+    /// `ELSET=`, as written (matched case-insensitively).
     pub elset: String,
     /// Upper case, as written (default `S`).
     pub variables: Vec<String>,
     /// `GLOBAL=YES`: global axes also for elements with an orientation
     /// (default `NO`: as CalculiX, their material axes at each point).
     pub global: bool,
+    /// Index of the enclosing step in [`InpDeck::steps`] (`None`: outside
+    /// any step).
     pub step: Option<usize>,
+    /// Line of the keyword.
     pub line: usize,
 }
 
