@@ -98,10 +98,11 @@ use junta_core::mesh::inp::{
     read_inp, InpDeck, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening,
 };
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
-use junta_core::Model;
+use junta_core::{Element, Model};
 use junta_elements::Orientation;
 use junta_solvers::newton::NewtonSettings;
 use std::path::Path;
+use std::sync::Arc;
 
 fn table(pairs: &[(&str, f64)]) -> toml::Table {
     pairs
@@ -315,10 +316,51 @@ fn period(deck: &InpDeck, k: usize) -> f64 {
 /// Read a deck and build the model (with the boundary conditions and loads
 /// of its first step), every step's load case, and for a deck with a
 /// softening law its incremental program.
+///
+/// Stages: [`read_deck`], [`build_elements`] (one element set per block,
+/// with its material or cohesive law), [`deck_solver`], the load cases
+/// ([`deck_steps`]) and, with a softening law, the load program
+/// ([`incremental_program`]); then what the run reports (reaction sets,
+/// curve, print tables) and the model itself ([`model_of_deck`]).
 pub fn build_model(path: &Path) -> Result<DeckModel> {
     let file = path.display().to_string();
-    // *INCLUDE files are read in place, errors name the file they are in
-    let mut deck = read_inp(path).map_err(|e| err!("{e}"))?;
+    let mut deck = read_deck(path, &file)?;
+    let mut notes = deck.notes.clone();
+    let (elements, softening) = build_elements(&deck, &file, &mut notes)?;
+    let solver = deck_solver(&deck, softening, &file, &mut notes)?;
+    let steps = deck_steps(&deck, &file)?;
+    if !softening {
+        note_linear_riks(&deck, &file, &mut notes);
+    }
+    let incremental = if softening {
+        Some(incremental_program(&deck, &steps, &file, &mut notes)?)
+    } else {
+        None
+    };
+    let reaction_sets = reaction_sets(&mut deck);
+    let first = incremental.as_ref().map_or(&steps[0], |i| &i.pattern);
+    let curve = curve_spec(&deck, incremental.is_some(), &file, &mut notes);
+    let title = deck.heading.lines().next().unwrap_or("").trim().to_string();
+    let every = deck.every;
+    let prints = print_tables(&mut deck);
+    let model = model_of_deck(deck, elements, first, reaction_sets, &file, &mut notes)?;
+    Ok(DeckModel {
+        model,
+        notes,
+        steps,
+        title,
+        incremental,
+        curve,
+        every,
+        solver,
+        prints,
+    })
+}
+
+/// Read the deck (`*INCLUDE` files in place: errors name the file they are
+/// in) and refuse one with nothing to solve.
+fn read_deck(path: &Path, file: &str) -> Result<InpDeck> {
+    let deck = read_inp(path).map_err(|e| err!("{e}"))?;
     if deck.mesh.nodes.is_empty() && deck.mesh.blocks.is_empty() {
         bail!("{file}: the deck is empty: no *NODE and no *ELEMENT");
     }
@@ -328,102 +370,141 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     if deck.steps.is_empty() {
         bail!("{file}: the deck has no *STEP: nothing to solve; add *STEP, *STATIC, the loads and *END STEP");
     }
-    let mut notes = deck.notes.clone();
+    Ok(deck)
+}
+
+/// The elements of every block, in block order, and whether any cohesive
+/// law softens (then the deck runs incremental).
+fn build_elements(
+    deck: &InpDeck,
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Result<(Vec<Arc<dyn Element>>, bool)> {
     let mut elements = Vec::new();
     let mut softening = false;
-    for (bi, b) in deck.mesh.blocks.iter().enumerate() {
-        // `*SOLID SECTION, ORIENTATION=`: the material axes `a`, `b` (a
-        // cylindrical system: two points of the axis, `system =
-        // "cylindrical"`; the elements then take the axes at each
-        // integration point)
-        let axes: Vec<(&str, toml::Value)> =
-            match deck.block_orientations.get(bi).copied().flatten() {
-                Some(o) => {
-                    let o = &deck.orientations[o];
-                    let arr = |v: [f64; 3]| {
-                        toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
-                    };
-                    let mut axes = vec![("a", arr(o.a)), ("b", arr(o.b))];
-                    if o.cylindrical {
-                        axes.push(("system", toml::Value::String("cylindrical".into())));
-                    }
-                    axes
-                }
-                None => Vec::new(),
-            };
-        let with_axes = |mut t: toml::Table| {
-            for (k, v) in &axes {
-                t.insert((*k).into(), v.clone());
-            }
-            t
-        };
-        let mat = deck.material(&b.material).ok_or_else(|| {
-            err!(
-                "{file}: elements of block `{}` have no material: add a *SOLID SECTION (or *COHESIVE SECTION) for their ELSET",
-                b.name
-            )
-        })?;
-        let entry =
-            registry::find::<ElementEntry>(&b.element_type).map_err(|e| err!("{file}: {e}"))?;
-        let mut build = ElementBuild {
-            material: None,
-            law: None,
-            options: &toml::Table::new(),
-        };
-        let at = format!("{file}:{}: *MATERIAL, NAME={}", mat.line, mat.name);
-        match (&mat.kind, b.shape.is_interface()) {
-            (InpMaterialKind::Isotropic { e, nu }, false) => {
-                let m = registry::find::<MaterialEntry>("isotropic")?;
-                build.material = Some((m.build)(&table(&[("E", *e), ("nu", *nu)])).map_err(|e| err!("{at}: {e}"))?);
-            }
-            (InpMaterialKind::EngineeringConstants(c), false) => {
-                let names = ["E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23"];
-                let pairs: Vec<(&str, f64)> = names.iter().copied().zip(c.iter().copied()).collect();
-                let m = registry::find::<MaterialEntry>("orthotropic")?;
-                build.material = Some(
-                    (m.build)(&with_axes(table(&pairs))).map_err(|e| err!("{at}: {e}"))?,
-                );
-            }
-            (InpMaterialKind::Anisotropic(d), false) => {
-                let mut t = toml::Table::new();
-                t.insert(
-                    "D".into(),
-                    toml::Value::Array(d.iter().map(|&x| toml::Value::Float(x)).collect()),
-                );
-                let m = registry::find::<MaterialEntry>("anisotropic")?;
-                build.material =
-                    Some((m.build)(&with_axes(t)).map_err(|e| err!("{at}: {e}"))?);
-            }
-            (InpMaterialKind::Traction(_), true) => {
-                let thickness = section_thickness(&deck, mat, &file)?;
-                let (key, t) = cohesive_law_table(mat, thickness, period(&deck, 0), &file, &mut notes)?;
-                softening |= key != "linear_penalty";
-                let l = registry::find::<LawEntry>(key)?;
-                let law = (l.build)(&t).map_err(|e| err!("{at}: law `{key}`: {e}"))?;
-                notes.extend(law.warnings().into_iter().map(|w| format!("{at}: {w}")));
-                build.law = Some(law);
-            }
-            (_, true) => {
-                return Err(err!(
-                    "{at}: cohesive elements of block `{}` need *ELASTIC, TYPE=TRACTION",
-                    b.name
-                ))
-            }
-            (_, false) => {
-                return Err(err!(
-                    "{at}: solid elements of block `{}` need *ELASTIC (ISOTROPIC, ENGINEERING CONSTANTS, ORTHO or ANISO)",
-                    b.name
-                ))
-            }
-        }
-        elements.push((entry.build)(&build).map_err(|e| err!("{file}: block `{}`: {e}", b.name))?);
+    for bi in 0..deck.mesh.blocks.len() {
+        let (element, softens) = block_element(deck, bi, file, notes)?;
+        softening |= softens;
+        elements.push(element);
     }
+    Ok((elements, softening))
+}
+
+/// The material axes of block `bi` from its `*SOLID SECTION, ORIENTATION=`
+/// (none without one): `a`, `b`, and for a cylindrical system (two points
+/// of the axis) `system = "cylindrical"`; the elements then take the axes
+/// at each integration point.
+fn orientation_axes(deck: &InpDeck, bi: usize) -> Vec<(&'static str, toml::Value)> {
+    match deck.block_orientations.get(bi).copied().flatten() {
+        Some(o) => {
+            let o = &deck.orientations[o];
+            let arr = |v: [f64; 3]| {
+                toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
+            };
+            let mut axes = vec![("a", arr(o.a)), ("b", arr(o.b))];
+            if o.cylindrical {
+                axes.push(("system", toml::Value::String("cylindrical".into())));
+            }
+            axes
+        }
+        None => Vec::new(),
+    }
+}
+
+/// The elements of block `bi`: its registry element type with the block's
+/// material (isotropic, orthotropic or anisotropic, with the section's
+/// axes) or, for cohesive elements, its interface law
+/// ([`cohesive_law_table`]); `true` with them when that law softens.
+fn block_element(
+    deck: &InpDeck,
+    bi: usize,
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Result<(Arc<dyn Element>, bool)> {
+    let b = &deck.mesh.blocks[bi];
+    let axes = orientation_axes(deck, bi);
+    let with_axes = |mut t: toml::Table| {
+        for (k, v) in &axes {
+            t.insert((*k).into(), v.clone());
+        }
+        t
+    };
+    let mat = deck.material(&b.material).ok_or_else(|| {
+        err!(
+            "{file}: elements of block `{}` have no material: add a *SOLID SECTION (or *COHESIVE SECTION) for their ELSET",
+            b.name
+        )
+    })?;
+    let entry = registry::find::<ElementEntry>(&b.element_type).map_err(|e| err!("{file}: {e}"))?;
+    let mut softening = false;
+    let mut build = ElementBuild {
+        material: None,
+        law: None,
+        options: &toml::Table::new(),
+    };
+    let at = format!("{file}:{}: *MATERIAL, NAME={}", mat.line, mat.name);
+    match (&mat.kind, b.shape.is_interface()) {
+        (InpMaterialKind::Isotropic { e, nu }, false) => {
+            let m = registry::find::<MaterialEntry>("isotropic")?;
+            build.material =
+                Some((m.build)(&table(&[("E", *e), ("nu", *nu)])).map_err(|e| err!("{at}: {e}"))?);
+        }
+        (InpMaterialKind::EngineeringConstants(c), false) => {
+            let names = ["E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23"];
+            let pairs: Vec<(&str, f64)> = names.iter().copied().zip(c.iter().copied()).collect();
+            let m = registry::find::<MaterialEntry>("orthotropic")?;
+            build.material =
+                Some((m.build)(&with_axes(table(&pairs))).map_err(|e| err!("{at}: {e}"))?);
+        }
+        (InpMaterialKind::Anisotropic(d), false) => {
+            let mut t = toml::Table::new();
+            t.insert(
+                "D".into(),
+                toml::Value::Array(d.iter().map(|&x| toml::Value::Float(x)).collect()),
+            );
+            let m = registry::find::<MaterialEntry>("anisotropic")?;
+            build.material = Some((m.build)(&with_axes(t)).map_err(|e| err!("{at}: {e}"))?);
+        }
+        (InpMaterialKind::Traction(_), true) => {
+            let thickness = section_thickness(deck, mat, file)?;
+            let (key, t) = cohesive_law_table(mat, thickness, period(deck, 0), file, notes)?;
+            softening = key != "linear_penalty";
+            let l = registry::find::<LawEntry>(key)?;
+            let law = (l.build)(&t).map_err(|e| err!("{at}: law `{key}`: {e}"))?;
+            notes.extend(law.warnings().into_iter().map(|w| format!("{at}: {w}")));
+            build.law = Some(law);
+        }
+        (_, true) => {
+            return Err(err!(
+                "{at}: cohesive elements of block `{}` need *ELASTIC, TYPE=TRACTION",
+                b.name
+            ))
+        }
+        (_, false) => {
+            return Err(err!(
+                "{at}: solid elements of block `{}` need *ELASTIC (ISOTROPIC, ENGINEERING CONSTANTS, ORTHO or ANISO)",
+                b.name
+            ))
+        }
+    }
+    let element = (entry.build)(&build).map_err(|e| err!("{file}: block `{}`: {e}", b.name))?;
+    Ok((element, softening))
+}
+
+/// The back end the steps' `*STATIC, SOLVER=` ask for ([`solver_of_deck`]),
+/// if any; steps asking for different ones are an error.
+fn deck_solver(
+    deck: &InpDeck,
+    softening: bool,
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Result<Option<String>> {
     let mut solver = None;
     for st in &deck.steps {
         if let Some(p) = &st.static_procedure {
             if let Some(name) = &p.solver {
                 let at = format!("{file}:{}", p.line);
-                let key = solver_of_deck(name, softening, &at, &mut notes)?;
+                let key = solver_of_deck(name, softening, &at, notes)?;
                 if solver.as_ref().is_some_and(|k| k != &key) {
                     return Err(err!(
                         "{at}: *STATIC, SOLVER={name} differs from an earlier step's solver; Junta uses one back end per run"
@@ -433,25 +514,29 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
             }
         }
     }
-    let steps = deck_steps(&deck, &file)?;
-    if !softening {
-        if let Some(p) = deck
-            .steps
-            .iter()
-            .filter_map(|st| st.static_procedure.as_ref())
-            .find(|p| p.riks.is_some())
-        {
-            notes.push(format!(
-                "{file}:{}: *STATIC, RIKS on a model without a softening law: its path is linear, solved in one linear step",
-                p.line
-            ));
-        }
+    Ok(solver)
+}
+
+/// A note for `*STATIC, RIKS` on a deck without a softening law: its path
+/// is linear, solved in one step.
+fn note_linear_riks(deck: &InpDeck, file: &str, notes: &mut Vec<String>) {
+    if let Some(p) = deck
+        .steps
+        .iter()
+        .filter_map(|st| st.static_procedure.as_ref())
+        .find(|p| p.riks.is_some())
+    {
+        notes.push(format!(
+            "{file}:{}: *STATIC, RIKS on a model without a softening law: its path is linear, solved in one linear step",
+            p.line
+        ));
     }
-    let incremental = if softening {
-        Some(incremental_program(&deck, &steps, &file, &mut notes)?)
-    } else {
-        None
-    };
+}
+
+/// The node sets whose reactions are reported: every `*BOUNDARY` target,
+/// once, in order (a target given by node gets a node set `node_N`, added
+/// to the mesh).
+fn reaction_sets(deck: &mut InpDeck) -> Vec<String> {
     let mut reaction_sets: Vec<String> = Vec::new();
     for bc in &deck.boundaries {
         let name = match deck
@@ -471,7 +556,17 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
             reaction_sets.push(name);
         }
     }
-    let first = incremental.as_ref().map_or(&steps[0], |i| &i.pattern);
+    reaction_sets
+}
+
+/// The `** junta: curve` directive as a curve spec; on a deck that runs
+/// linear (`incremental` false) a note that it is not used.
+fn curve_spec(
+    deck: &InpDeck,
+    incremental: bool,
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Option<CurveSpec> {
     let curve = deck.curve.as_ref().map(|c| CurveSpec {
         reaction_set: c.reaction_set.clone(),
         reaction_component: c.reaction_component.clone(),
@@ -482,15 +577,18 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         reference: None,
         conjugate: false,
     });
-    if let (Some(c), None) = (&deck.curve, &incremental) {
+    if let (Some(c), false) = (&deck.curve, incremental) {
         notes.push(format!(
             "{file}:{}: the curve directive is used by incremental runs only (a deck with a softening cohesive law); this deck runs linear",
             c.line
         ));
     }
-    let title = deck.heading.lines().next().unwrap_or("").trim().to_string();
-    let every = deck.every;
-    // material axes of each block with an orientation, for *EL PRINT
+    curve
+}
+
+/// The deck's `*NODE PRINT` / `*EL PRINT` requests (taken from it), with
+/// the material axes of each block with an orientation (for `*EL PRINT`).
+fn print_tables(deck: &mut InpDeck) -> crate::deck_print::PrintTables {
     let block_axes = deck
         .block_orientations
         .iter()
@@ -506,11 +604,24 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
             })
         })
         .collect();
-    let prints = crate::deck_print::PrintTables::new(
+    crate::deck_print::PrintTables::new(
         std::mem::take(&mut deck.node_prints),
         std::mem::take(&mut deck.el_prints),
     )
-    .with_axes(block_axes);
+    .with_axes(block_axes)
+}
+
+/// The model of the deck's mesh and elements, loaded by `first` (the first
+/// step, or the incremental run's pattern), with its `*EQUATION`s
+/// eliminated; element errors name the deck's own element label.
+fn model_of_deck(
+    deck: InpDeck,
+    elements: Vec<Arc<dyn Element>>,
+    first: &DeckStep,
+    reaction_sets: Vec<String>,
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Result<Model> {
     crate::limits::check_memory(
         &format!("{file}: the model ({} nodes)", deck.mesh.nodes.len()),
         crate::limits::model_bytes(&deck.mesh),
@@ -571,17 +682,7 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
             model.dofs.dependents.dofs.len()
         ));
     }
-    Ok(DeckModel {
-        model,
-        notes,
-        steps,
-        title,
-        incremental,
-        curve,
-        every,
-        solver,
-        prints,
-    })
+    Ok(model)
 }
 
 /// `c` with `s = c * pattern` (same constrained dofs, values and forces in
