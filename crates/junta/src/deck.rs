@@ -95,11 +95,12 @@
 use crate::error::{bail, err, Result};
 use crate::scene::{AnalysisSpec, CurveSpec};
 use junta_core::mesh::inp::{
-    read_inp, InpDeck, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening,
+    read_inp, InpDeck, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening, InpStep,
 };
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
 use junta_core::{Element, Model};
 use junta_elements::Orientation;
+use junta_solvers::arc_length::ArcLengthSettings;
 use junta_solvers::newton::NewtonSettings;
 use std::path::Path;
 use std::sync::Arc;
@@ -770,6 +771,13 @@ fn step_amplitude(deck: &InpDeck, k: usize, file: &str) -> Result<Option<usize>>
 
 /// The load program and Newton settings of a deck with a softening law
 /// (module docs).
+///
+/// Stages: the load pattern ([`ProgramSteps::pattern`]); per deck step,
+/// the load factors it passes through ([`ProgramSteps::targets`], segments
+/// that do not move the load dropped), its notes ([`step_notes`]) and its
+/// Newton settings ([`step_newton`], the same for every step); the checks
+/// of amplitudes against viscosity and Riks ([`check_amplitudes`]); and
+/// `*STATIC, RIKS` as path following ([`riks_path`]).
 fn incremental_program(
     deck: &InpDeck,
     steps: &[DeckStep],
@@ -780,94 +788,11 @@ fn incremental_program(
     let mut limits = Vec::with_capacity(steps.len());
     let mut deck_steps = Vec::with_capacity(steps.len());
     let mut settings: Option<(NewtonSettings, usize)> = None;
-    let amps = (0..steps.len())
-        .map(|k| step_amplitude(deck, k, file))
-        .collect::<Result<Vec<_>>>()?;
-    let ends = step_ends(deck);
-    // a step with an amplitude: its loads at amplitude 1 (those carried
-    // from earlier steps at their value)
-    let unit = |k: usize| -> Result<DeckStep> {
-        let carried = deck_steps_scaled(deck, file, k..k + 1, &|amp, st| {
-            if st == Some(k) {
-                0.0
-            } else {
-                amplitude_at_end(deck, &ends, amp, st)
-            }
-        })?;
-        let c = &carried[0];
-        if c.constraints.iter().any(|c| c.1 != 0.0) || c.f_ext.iter().any(|f| *f != 0.0) {
-            bail!(
-                "{file}:{}: {}: loads or prescribed displacements carried over from earlier steps stay constant while this step's amplitude varies: not one load pattern; give them again in this step with the same AMPLITUDE=",
-                c.line,
-                c.name
-            );
-        }
-        let mut u = deck_steps_scaled(deck, file, k..k + 1, &|amp, st| {
-            if st == Some(k) {
-                1.0
-            } else {
-                amplitude_at_end(deck, &ends, amp, st)
-            }
-        })?;
-        Ok(u.remove(0))
-    };
-    let pattern = match amps.first().copied().flatten() {
-        Some(_) => unit(0)?,
-        None => steps[0].clone(),
-    };
-    if pattern.constraints.iter().all(|c| c.1 == 0.0) && pattern.f_ext.iter().all(|f| *f == 0.0) {
-        bail!(
-            "{file}:{}: {}: nothing loads the model (no *CLOAD, no non-zero *BOUNDARY): the incremental run of a softening deck scales the first step's loads",
-            pattern.line,
-            pattern.name
-        );
-    }
+    let ps = ProgramSteps::new(deck, steps.len(), file)?;
+    let pattern = ps.pattern(steps)?;
     let mut lambda = 0.0;
     for (k, s) in steps.iter().enumerate() {
-        let not_proportional = || {
-            err!(
-                "{file}:{}: {}: its loads and prescribed displacements are not a multiple of the first step's; Junta's incremental runs scale one load pattern over the steps (a proportional program), so multi-step softening decks must keep the same loaded dofs with proportional values (or be split into several decks)",
-                s.line,
-                s.name
-            )
-        };
-        // the load factors this step passes through
-        let targets: Vec<f64> = match amps[k] {
-            None if k == 0 => vec![1.0],
-            None => vec![proportional(&pattern, s).ok_or_else(not_proportional)?],
-            Some(a) => {
-                let c = if k == 0 {
-                    1.0
-                } else {
-                    proportional(&pattern, &unit(k)?).ok_or_else(not_proportional)?
-                };
-                let amp = &deck.amplitudes[a];
-                let start = if amp.total_time {
-                    step_end_time(deck, &ends, k, true) - period(deck, k)
-                } else {
-                    0.0
-                };
-                let end = start + period(deck, k);
-                let mut t: Vec<f64> = amp
-                    .points
-                    .iter()
-                    .filter(|p| p.0 > start && p.0 < end)
-                    .map(|p| c * p.1)
-                    .collect();
-                t.push(c * amp.value(end));
-                if c != 0.0 && (c * amp.value(start) - lambda).abs() > 1e-12 * c.abs() {
-                    notes.push(format!(
-                        "{file}:{}: {}: amplitude `{}` starts at {} but the loads stand at {} of it: the jump is ramped over the step's first segment",
-                        s.line,
-                        s.name,
-                        amp.name,
-                        amp.value(start),
-                        lambda / c
-                    ));
-                }
-                t
-            }
-        };
+        let targets = ps.targets(&pattern, k, s, lambda, notes)?;
         let step = deck.steps.get(k);
         let limit = step.and_then(|st| st.max_increments.map(|n| (n, st.line)));
         let before = program.len();
@@ -880,50 +805,8 @@ fn incremental_program(
                 lambda = t;
             }
         }
-        if program.len() == before {
-            notes.push(format!(
-                "{file}:{}: {}: the load factor does not change in this step: nothing to solve, skipped",
-                s.line, s.name
-            ));
-        }
-        if step.is_some_and(|st| st.nlgeom) {
-            notes.push(format!(
-                "{file}:{}: NLGEOM ignored: Junta's elements are small-strain",
-                s.line
-            ));
-        }
-        if step.is_some_and(|st| st.max_increments.is_none()) {
-            notes.push(format!(
-                "{file}:{}: no INC= on *STEP: Abaqus would stop this step after 100 increments; Junta does not limit it",
-                s.line
-            ));
-        }
-        let proc = step.and_then(|st| st.static_procedure.as_ref());
-        let t = proc.and_then(|p| p.period).unwrap_or(1.0);
-        let pline = proc.map_or(s.line, |p| p.line);
-        if t <= 0.0 {
-            bail!("{file}:{pline}: *STATIC: the time period {t} must be positive");
-        }
-        let dt0 = (proc.and_then(|p| p.initial_increment).unwrap_or(t) / t).min(1.0);
-        let mut n = NewtonSettings {
-            initial_increment: dt0,
-            max_increment: (proc.and_then(|p| p.max_increment).unwrap_or(t) / t).min(1.0),
-            min_increment: proc
-                .and_then(|p| p.min_increment)
-                .map_or(dt0.min(1e-5), |m| m / t),
-            ..NewtonSettings::default()
-        };
-        if proc.is_some_and(|p| p.direct) {
-            n.max_increment = dt0;
-            n.min_increment = dt0;
-            n.growth = 1.0;
-        }
-        if !(n.initial_increment > 0.0 && n.max_increment > 0.0 && n.min_increment > 0.0) {
-            bail!("{file}:{pline}: *STATIC: increments must be positive (data line `initial increment, time period, minimum increment, maximum increment`)");
-        }
-        if n.min_increment > n.initial_increment.min(n.max_increment) {
-            bail!("{file}:{pline}: *STATIC: the minimum increment exceeds the initial or the maximum increment");
-        }
+        step_notes(file, s, step, program.len() == before, notes);
+        let (n, pline) = step_newton(file, s, step)?;
         match &settings {
             None => settings = Some((n, pline)),
             Some((first, l)) => {
@@ -939,6 +822,232 @@ fn incremental_program(
             }
         }
     }
+    check_amplitudes(deck, steps.len(), &ps.amps, file)?;
+    let (mut newton, _) = settings.expect("at least one step");
+    let (control, arc_length) =
+        riks_path(deck, steps.len(), file, &mut program, &mut newton, notes)?;
+    Ok(DeckIncremental {
+        analysis: AnalysisSpec {
+            kind: "static".into(),
+            steps: program,
+            stop_when_separated: false,
+            newton,
+            control,
+            arc_length,
+        },
+        increment_limits: limits,
+        deck_steps,
+        pattern,
+    })
+}
+
+/// The deck's steps as the load program sees them: the amplitude of each
+/// step's loads ([`step_amplitude`]) and the total time at each step's end
+/// ([`step_ends`]).
+struct ProgramSteps<'a> {
+    deck: &'a InpDeck,
+    file: &'a str,
+    amps: Vec<Option<usize>>,
+    ends: Vec<f64>,
+}
+
+impl<'a> ProgramSteps<'a> {
+    fn new(deck: &'a InpDeck, steps: usize, file: &'a str) -> Result<Self> {
+        let amps = (0..steps)
+            .map(|k| step_amplitude(deck, k, file))
+            .collect::<Result<Vec<_>>>()?;
+        let ends = step_ends(deck);
+        Ok(ProgramSteps {
+            deck,
+            file,
+            amps,
+            ends,
+        })
+    }
+
+    /// The loads of step `k` (a step with an amplitude) at amplitude 1;
+    /// loads carried from earlier steps (at their value) are an error.
+    fn unit(&self, k: usize) -> Result<DeckStep> {
+        let (deck, file, ends) = (self.deck, self.file, &self.ends);
+        let carried = deck_steps_scaled(deck, file, k..k + 1, &|amp, st| {
+            if st == Some(k) {
+                0.0
+            } else {
+                amplitude_at_end(deck, ends, amp, st)
+            }
+        })?;
+        let c = &carried[0];
+        if c.constraints.iter().any(|c| c.1 != 0.0) || c.f_ext.iter().any(|f| *f != 0.0) {
+            bail!(
+                "{file}:{}: {}: loads or prescribed displacements carried over from earlier steps stay constant while this step's amplitude varies: not one load pattern; give them again in this step with the same AMPLITUDE=",
+                c.line,
+                c.name
+            );
+        }
+        let mut u = deck_steps_scaled(deck, file, k..k + 1, &|amp, st| {
+            if st == Some(k) {
+                1.0
+            } else {
+                amplitude_at_end(deck, ends, amp, st)
+            }
+        })?;
+        Ok(u.remove(0))
+    }
+
+    /// The load pattern the load factor scales: the first step's loads (at
+    /// amplitude 1 when it has one); an error when nothing loads the model.
+    fn pattern(&self, steps: &[DeckStep]) -> Result<DeckStep> {
+        let pattern = match self.amps.first().copied().flatten() {
+            Some(_) => self.unit(0)?,
+            None => steps[0].clone(),
+        };
+        if pattern.constraints.iter().all(|c| c.1 == 0.0) && pattern.f_ext.iter().all(|f| *f == 0.0)
+        {
+            bail!(
+                "{}:{}: {}: nothing loads the model (no *CLOAD, no non-zero *BOUNDARY): the incremental run of a softening deck scales the first step's loads",
+                self.file,
+                pattern.line,
+                pattern.name
+            );
+        }
+        Ok(pattern)
+    }
+
+    /// The load factors step `k` (`s`) passes through, from `lambda`: its
+    /// multiple `c` of the pattern (1 for the first step); with an
+    /// amplitude `a`, `c a(t_i)` at the amplitude's points inside the step,
+    /// then `c a(T)` (a note when `c a(0)` is not where the loads stand).
+    fn targets(
+        &self,
+        pattern: &DeckStep,
+        k: usize,
+        s: &DeckStep,
+        lambda: f64,
+        notes: &mut Vec<String>,
+    ) -> Result<Vec<f64>> {
+        let (deck, file) = (self.deck, self.file);
+        let not_proportional = || {
+            err!(
+                "{file}:{}: {}: its loads and prescribed displacements are not a multiple of the first step's; Junta's incremental runs scale one load pattern over the steps (a proportional program), so multi-step softening decks must keep the same loaded dofs with proportional values (or be split into several decks)",
+                s.line,
+                s.name
+            )
+        };
+        let a = match self.amps[k] {
+            None if k == 0 => return Ok(vec![1.0]),
+            None => return Ok(vec![proportional(pattern, s).ok_or_else(not_proportional)?]),
+            Some(a) => a,
+        };
+        let c = if k == 0 {
+            1.0
+        } else {
+            proportional(pattern, &self.unit(k)?).ok_or_else(not_proportional)?
+        };
+        let amp = &deck.amplitudes[a];
+        let start = if amp.total_time {
+            step_end_time(deck, &self.ends, k, true) - period(deck, k)
+        } else {
+            0.0
+        };
+        let end = start + period(deck, k);
+        let mut t: Vec<f64> = amp
+            .points
+            .iter()
+            .filter(|p| p.0 > start && p.0 < end)
+            .map(|p| c * p.1)
+            .collect();
+        t.push(c * amp.value(end));
+        if c != 0.0 && (c * amp.value(start) - lambda).abs() > 1e-12 * c.abs() {
+            notes.push(format!(
+                "{file}:{}: {}: amplitude `{}` starts at {} but the loads stand at {} of it: the jump is ramped over the step's first segment",
+                s.line,
+                s.name,
+                amp.name,
+                amp.value(start),
+                lambda / c
+            ));
+        }
+        Ok(t)
+    }
+}
+
+/// The notes of one step of an incremental run: skipped (`skipped`: the
+/// load factor does not change), NLGEOM ignored, no `INC=`.
+fn step_notes(
+    file: &str,
+    s: &DeckStep,
+    step: Option<&InpStep>,
+    skipped: bool,
+    notes: &mut Vec<String>,
+) {
+    if skipped {
+        notes.push(format!(
+            "{file}:{}: {}: the load factor does not change in this step: nothing to solve, skipped",
+            s.line, s.name
+        ));
+    }
+    if step.is_some_and(|st| st.nlgeom) {
+        notes.push(format!(
+            "{file}:{}: NLGEOM ignored: Junta's elements are small-strain",
+            s.line
+        ));
+    }
+    if step.is_some_and(|st| st.max_increments.is_none()) {
+        notes.push(format!(
+            "{file}:{}: no INC= on *STEP: Abaqus would stop this step after 100 increments; Junta does not limit it",
+            s.line
+        ));
+    }
+}
+
+/// The Newton settings of one step's `*STATIC` data `dt0, T, dtmin, dtmax`
+/// as fractions of the period `T`: `initial_increment = min(dt0 / T, 1)`,
+/// `max_increment = min(dtmax / T, 1)`, `min_increment = dtmin / T`
+/// (default `min(dt0 / T, 1e-5)`); `DIRECT` fixes the increment at `dt0`.
+/// With the line of the `*STATIC` (of the `*STEP` without one).
+fn step_newton(
+    file: &str,
+    s: &DeckStep,
+    step: Option<&InpStep>,
+) -> Result<(NewtonSettings, usize)> {
+    let proc = step.and_then(|st| st.static_procedure.as_ref());
+    let t = proc.and_then(|p| p.period).unwrap_or(1.0);
+    let pline = proc.map_or(s.line, |p| p.line);
+    if t <= 0.0 {
+        bail!("{file}:{pline}: *STATIC: the time period {t} must be positive");
+    }
+    let dt0 = (proc.and_then(|p| p.initial_increment).unwrap_or(t) / t).min(1.0);
+    let mut n = NewtonSettings {
+        initial_increment: dt0,
+        max_increment: (proc.and_then(|p| p.max_increment).unwrap_or(t) / t).min(1.0),
+        min_increment: proc
+            .and_then(|p| p.min_increment)
+            .map_or(dt0.min(1e-5), |m| m / t),
+        ..NewtonSettings::default()
+    };
+    if proc.is_some_and(|p| p.direct) {
+        n.max_increment = dt0;
+        n.min_increment = dt0;
+        n.growth = 1.0;
+    }
+    if !(n.initial_increment > 0.0 && n.max_increment > 0.0 && n.min_increment > 0.0) {
+        bail!("{file}:{pline}: *STATIC: increments must be positive (data line `initial increment, time period, minimum increment, maximum increment`)");
+    }
+    if n.min_increment > n.initial_increment.min(n.max_increment) {
+        bail!("{file}:{pline}: *STATIC: the minimum increment exceeds the initial or the maximum increment");
+    }
+    Ok((n, pline))
+}
+
+/// What an incremental program cannot combine: an amplitude (`amps`, per
+/// step) with `*DAMAGE STABILIZATION` or `*STATIC, RIKS`, and the
+/// stabilization with steps of different periods.
+fn check_amplitudes(
+    deck: &InpDeck,
+    steps: usize,
+    amps: &[Option<usize>],
+    file: &str,
+) -> Result<()> {
     let viscous = deck.materials.iter().any(|m| {
         m.damage_stabilization
             .as_ref()
@@ -965,27 +1074,40 @@ fn incremental_program(
             );
         }
     }
-    if viscous && (1..steps.len()).any(|k| period(deck, k) != period(deck, 0)) {
+    if viscous && (1..steps).any(|k| period(deck, k) != period(deck, 0)) {
         bail!(
             "{file}: *DAMAGE STABILIZATION with steps of different periods: Junta's viscosity is in load-factor units, one value per law; give the steps the same period"
         );
     }
-    let (mut newton, _) = settings.expect("at least one step");
-    // `*STATIC, RIKS`: Abaqus's arc length, run with path following; the
-    // load factor is the load proportionality factor (LPF) of the step's
-    // loads, the 5th data value its maximum
+    Ok(())
+}
+
+/// `*STATIC, RIKS`: Abaqus's arc length, run with path following; the load
+/// factor is the load proportionality factor (LPF) of the step's loads, the
+/// 5th data value its maximum (the program becomes `[LPF_max]`, 1e6
+/// without one), the first increment `dt0 / T` as a fraction of it, and
+/// `INC` (default 100) the number of increments. Without Riks: load
+/// control, `program` and `newton` as they are.
+fn riks_path(
+    deck: &InpDeck,
+    steps: usize,
+    file: &str,
+    program: &mut Vec<f64>,
+    newton: &mut NewtonSettings,
+    notes: &mut Vec<String>,
+) -> Result<(crate::scene::Control, ArcLengthSettings)> {
     let mut control = crate::scene::Control::Load;
-    let mut arc_length = junta_solvers::arc_length::ArcLengthSettings::default();
+    let mut arc_length = ArcLengthSettings::default();
     let riks = deck.steps.iter().find_map(|st| {
         let p = st.static_procedure.as_ref()?;
         Some((p.riks.as_ref()?, p, st))
     });
     if let Some((r, p, st)) = riks {
-        if steps.len() != 1 {
+        if steps != 1 {
             bail!(
                 "{file}:{}: *STATIC, RIKS: path following runs one step; this deck has {} steps",
                 p.line,
-                steps.len()
+                steps
             );
         }
         let t = p.period.unwrap_or(1.0);
@@ -998,7 +1120,7 @@ fn incremental_program(
             ),
             None => 1e6,
         };
-        program = vec![end];
+        *program = vec![end];
         newton.initial_increment = (first / end).min(1.0);
         newton.max_increment = 1.0;
         newton.min_increment = newton.min_increment.min(1e-3 * newton.initial_increment);
@@ -1014,19 +1136,7 @@ fn incremental_program(
             }
         ));
     }
-    Ok(DeckIncremental {
-        analysis: AnalysisSpec {
-            kind: "static".into(),
-            steps: program,
-            stop_when_separated: false,
-            newton,
-            control,
-            arc_length,
-        },
-        increment_limits: limits,
-        deck_steps,
-        pattern,
-    })
+    Ok((control, arc_length))
 }
 
 /// The boundary conditions and loads in force in one step of a deck.
