@@ -94,14 +94,16 @@
 
 use crate::error::{bail, err, Result};
 use crate::readers::inp::{
-    read_inp, InpDeck, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening,
+    read_inp, InpDeck, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening, InpStep,
 };
 use crate::scene::{AnalysisSpec, CurveSpec};
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
-use junta_core::Model;
+use junta_core::{Element, Model};
 use junta_elements::Orientation;
+use junta_solvers::arc_length::ArcLengthSettings;
 use junta_solvers::newton::NewtonSettings;
 use std::path::Path;
+use std::sync::Arc;
 
 fn table(pairs: &[(&str, f64)]) -> toml::Table {
     pairs
@@ -315,10 +317,51 @@ fn period(deck: &InpDeck, k: usize) -> f64 {
 /// Read a deck and build the model (with the boundary conditions and loads
 /// of its first step), every step's load case, and for a deck with a
 /// softening law its incremental program.
+///
+/// Stages: [`read_deck`], [`build_elements`] (one element set per block,
+/// with its material or cohesive law), [`deck_solver`], the load cases
+/// ([`deck_steps`]) and, with a softening law, the load program
+/// ([`incremental_program`]); then what the run reports (reaction sets,
+/// curve, print tables) and the model itself ([`model_of_deck`]).
 pub fn build_model(path: &Path) -> Result<DeckModel> {
     let file = path.display().to_string();
-    // *INCLUDE files are read in place, errors name the file they are in
-    let mut deck = read_inp(path).map_err(|e| err!("{e}"))?;
+    let mut deck = read_deck(path, &file)?;
+    let mut notes = deck.notes.clone();
+    let (elements, softening) = build_elements(&deck, &file, &mut notes)?;
+    let solver = deck_solver(&deck, softening, &file, &mut notes)?;
+    let steps = deck_steps(&deck, &file)?;
+    if !softening {
+        note_linear_riks(&deck, &file, &mut notes);
+    }
+    let incremental = if softening {
+        Some(incremental_program(&deck, &steps, &file, &mut notes)?)
+    } else {
+        None
+    };
+    let reaction_sets = reaction_sets(&mut deck);
+    let first = incremental.as_ref().map_or(&steps[0], |i| &i.pattern);
+    let curve = curve_spec(&deck, incremental.is_some(), &file, &mut notes);
+    let title = deck.heading.lines().next().unwrap_or("").trim().to_string();
+    let every = deck.every;
+    let prints = print_tables(&mut deck);
+    let model = model_of_deck(deck, elements, first, reaction_sets, &file, &mut notes)?;
+    Ok(DeckModel {
+        model,
+        notes,
+        steps,
+        title,
+        incremental,
+        curve,
+        every,
+        solver,
+        prints,
+    })
+}
+
+/// Read the deck (`*INCLUDE` files in place: errors name the file they are
+/// in) and refuse one with nothing to solve.
+fn read_deck(path: &Path, file: &str) -> Result<InpDeck> {
+    let deck = read_inp(path).map_err(|e| err!("{e}"))?;
     if deck.mesh.nodes.is_empty() && deck.mesh.blocks.is_empty() {
         bail!("{file}: the deck is empty: no *NODE and no *ELEMENT");
     }
@@ -328,102 +371,141 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     if deck.steps.is_empty() {
         bail!("{file}: the deck has no *STEP: nothing to solve; add *STEP, *STATIC, the loads and *END STEP");
     }
-    let mut notes = deck.notes.clone();
+    Ok(deck)
+}
+
+/// The elements of every block, in block order, and whether any cohesive
+/// law softens (then the deck runs incremental).
+fn build_elements(
+    deck: &InpDeck,
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Result<(Vec<Arc<dyn Element>>, bool)> {
     let mut elements = Vec::new();
     let mut softening = false;
-    for (bi, b) in deck.mesh.blocks.iter().enumerate() {
-        // `*SOLID SECTION, ORIENTATION=`: the material axes `a`, `b` (a
-        // cylindrical system: two points of the axis, `system =
-        // "cylindrical"`; the elements then take the axes at each
-        // integration point)
-        let axes: Vec<(&str, toml::Value)> =
-            match deck.block_orientations.get(bi).copied().flatten() {
-                Some(o) => {
-                    let o = &deck.orientations[o];
-                    let arr = |v: [f64; 3]| {
-                        toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
-                    };
-                    let mut axes = vec![("a", arr(o.a)), ("b", arr(o.b))];
-                    if o.cylindrical {
-                        axes.push(("system", toml::Value::String("cylindrical".into())));
-                    }
-                    axes
-                }
-                None => Vec::new(),
-            };
-        let with_axes = |mut t: toml::Table| {
-            for (k, v) in &axes {
-                t.insert((*k).into(), v.clone());
-            }
-            t
-        };
-        let mat = deck.material(&b.material).ok_or_else(|| {
-            err!(
-                "{file}: elements of block `{}` have no material: add a *SOLID SECTION (or *COHESIVE SECTION) for their ELSET",
-                b.name
-            )
-        })?;
-        let entry =
-            registry::find::<ElementEntry>(&b.element_type).map_err(|e| err!("{file}: {e}"))?;
-        let mut build = ElementBuild {
-            material: None,
-            law: None,
-            options: &toml::Table::new(),
-        };
-        let at = format!("{file}:{}: *MATERIAL, NAME={}", mat.line, mat.name);
-        match (&mat.kind, b.shape.is_interface()) {
-            (InpMaterialKind::Isotropic { e, nu }, false) => {
-                let m = registry::find::<MaterialEntry>("isotropic")?;
-                build.material = Some((m.build)(&table(&[("E", *e), ("nu", *nu)])).map_err(|e| err!("{at}: {e}"))?);
-            }
-            (InpMaterialKind::EngineeringConstants(c), false) => {
-                let names = ["E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23"];
-                let pairs: Vec<(&str, f64)> = names.iter().copied().zip(c.iter().copied()).collect();
-                let m = registry::find::<MaterialEntry>("orthotropic")?;
-                build.material = Some(
-                    (m.build)(&with_axes(table(&pairs))).map_err(|e| err!("{at}: {e}"))?,
-                );
-            }
-            (InpMaterialKind::Anisotropic(d), false) => {
-                let mut t = toml::Table::new();
-                t.insert(
-                    "D".into(),
-                    toml::Value::Array(d.iter().map(|&x| toml::Value::Float(x)).collect()),
-                );
-                let m = registry::find::<MaterialEntry>("anisotropic")?;
-                build.material =
-                    Some((m.build)(&with_axes(t)).map_err(|e| err!("{at}: {e}"))?);
-            }
-            (InpMaterialKind::Traction(_), true) => {
-                let thickness = section_thickness(&deck, mat, &file)?;
-                let (key, t) = cohesive_law_table(mat, thickness, period(&deck, 0), &file, &mut notes)?;
-                softening |= key != "linear_penalty";
-                let l = registry::find::<LawEntry>(key)?;
-                let law = (l.build)(&t).map_err(|e| err!("{at}: law `{key}`: {e}"))?;
-                notes.extend(law.warnings().into_iter().map(|w| format!("{at}: {w}")));
-                build.law = Some(law);
-            }
-            (_, true) => {
-                return Err(err!(
-                    "{at}: cohesive elements of block `{}` need *ELASTIC, TYPE=TRACTION",
-                    b.name
-                ))
-            }
-            (_, false) => {
-                return Err(err!(
-                    "{at}: solid elements of block `{}` need *ELASTIC (ISOTROPIC, ENGINEERING CONSTANTS, ORTHO or ANISO)",
-                    b.name
-                ))
-            }
-        }
-        elements.push((entry.build)(&build).map_err(|e| err!("{file}: block `{}`: {e}", b.name))?);
+    for bi in 0..deck.mesh.blocks.len() {
+        let (element, softens) = block_element(deck, bi, file, notes)?;
+        softening |= softens;
+        elements.push(element);
     }
+    Ok((elements, softening))
+}
+
+/// The material axes of block `bi` from its `*SOLID SECTION, ORIENTATION=`
+/// (none without one): `a`, `b`, and for a cylindrical system (two points
+/// of the axis) `system = "cylindrical"`; the elements then take the axes
+/// at each integration point.
+fn orientation_axes(deck: &InpDeck, bi: usize) -> Vec<(&'static str, toml::Value)> {
+    match deck.block_orientations.get(bi).copied().flatten() {
+        Some(o) => {
+            let o = &deck.orientations[o];
+            let arr = |v: [f64; 3]| {
+                toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
+            };
+            let mut axes = vec![("a", arr(o.a)), ("b", arr(o.b))];
+            if o.cylindrical {
+                axes.push(("system", toml::Value::String("cylindrical".into())));
+            }
+            axes
+        }
+        None => Vec::new(),
+    }
+}
+
+/// The elements of block `bi`: its registry element type with the block's
+/// material (isotropic, orthotropic or anisotropic, with the section's
+/// axes) or, for cohesive elements, its interface law
+/// ([`cohesive_law_table`]); `true` with them when that law softens.
+fn block_element(
+    deck: &InpDeck,
+    bi: usize,
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Result<(Arc<dyn Element>, bool)> {
+    let b = &deck.mesh.blocks[bi];
+    let axes = orientation_axes(deck, bi);
+    let with_axes = |mut t: toml::Table| {
+        for (k, v) in &axes {
+            t.insert((*k).into(), v.clone());
+        }
+        t
+    };
+    let mat = deck.material(&b.material).ok_or_else(|| {
+        err!(
+            "{file}: elements of block `{}` have no material: add a *SOLID SECTION (or *COHESIVE SECTION) for their ELSET",
+            b.name
+        )
+    })?;
+    let entry = registry::find::<ElementEntry>(&b.element_type).map_err(|e| err!("{file}: {e}"))?;
+    let mut softening = false;
+    let mut build = ElementBuild {
+        material: None,
+        law: None,
+        options: &toml::Table::new(),
+    };
+    let at = format!("{file}:{}: *MATERIAL, NAME={}", mat.line, mat.name);
+    match (&mat.kind, b.shape.is_interface()) {
+        (InpMaterialKind::Isotropic { e, nu }, false) => {
+            let m = registry::find::<MaterialEntry>("isotropic")?;
+            build.material =
+                Some((m.build)(&table(&[("E", *e), ("nu", *nu)])).map_err(|e| err!("{at}: {e}"))?);
+        }
+        (InpMaterialKind::EngineeringConstants(c), false) => {
+            let names = ["E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23"];
+            let pairs: Vec<(&str, f64)> = names.iter().copied().zip(c.iter().copied()).collect();
+            let m = registry::find::<MaterialEntry>("orthotropic")?;
+            build.material =
+                Some((m.build)(&with_axes(table(&pairs))).map_err(|e| err!("{at}: {e}"))?);
+        }
+        (InpMaterialKind::Anisotropic(d), false) => {
+            let mut t = toml::Table::new();
+            t.insert(
+                "D".into(),
+                toml::Value::Array(d.iter().map(|&x| toml::Value::Float(x)).collect()),
+            );
+            let m = registry::find::<MaterialEntry>("anisotropic")?;
+            build.material = Some((m.build)(&with_axes(t)).map_err(|e| err!("{at}: {e}"))?);
+        }
+        (InpMaterialKind::Traction(_), true) => {
+            let thickness = section_thickness(deck, mat, file)?;
+            let (key, t) = cohesive_law_table(mat, thickness, period(deck, 0), file, notes)?;
+            softening = key != "linear_penalty";
+            let l = registry::find::<LawEntry>(key)?;
+            let law = (l.build)(&t).map_err(|e| err!("{at}: law `{key}`: {e}"))?;
+            notes.extend(law.warnings().into_iter().map(|w| format!("{at}: {w}")));
+            build.law = Some(law);
+        }
+        (_, true) => {
+            return Err(err!(
+                "{at}: cohesive elements of block `{}` need *ELASTIC, TYPE=TRACTION",
+                b.name
+            ))
+        }
+        (_, false) => {
+            return Err(err!(
+                "{at}: solid elements of block `{}` need *ELASTIC (ISOTROPIC, ENGINEERING CONSTANTS, ORTHO or ANISO)",
+                b.name
+            ))
+        }
+    }
+    let element = (entry.build)(&build).map_err(|e| err!("{file}: block `{}`: {e}", b.name))?;
+    Ok((element, softening))
+}
+
+/// The back end the steps' `*STATIC, SOLVER=` ask for ([`solver_of_deck`]),
+/// if any; steps asking for different ones are an error.
+fn deck_solver(
+    deck: &InpDeck,
+    softening: bool,
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Result<Option<String>> {
     let mut solver = None;
     for st in &deck.steps {
         if let Some(p) = &st.static_procedure {
             if let Some(name) = &p.solver {
                 let at = format!("{file}:{}", p.line);
-                let key = solver_of_deck(name, softening, &at, &mut notes)?;
+                let key = solver_of_deck(name, softening, &at, notes)?;
                 if solver.as_ref().is_some_and(|k| k != &key) {
                     return Err(err!(
                         "{at}: *STATIC, SOLVER={name} differs from an earlier step's solver; Junta uses one back end per run"
@@ -433,25 +515,29 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
             }
         }
     }
-    let steps = deck_steps(&deck, &file)?;
-    if !softening {
-        if let Some(p) = deck
-            .steps
-            .iter()
-            .filter_map(|st| st.static_procedure.as_ref())
-            .find(|p| p.riks.is_some())
-        {
-            notes.push(format!(
-                "{file}:{}: *STATIC, RIKS on a model without a softening law: its path is linear, solved in one linear step",
-                p.line
-            ));
-        }
+    Ok(solver)
+}
+
+/// A note for `*STATIC, RIKS` on a deck without a softening law: its path
+/// is linear, solved in one step.
+fn note_linear_riks(deck: &InpDeck, file: &str, notes: &mut Vec<String>) {
+    if let Some(p) = deck
+        .steps
+        .iter()
+        .filter_map(|st| st.static_procedure.as_ref())
+        .find(|p| p.riks.is_some())
+    {
+        notes.push(format!(
+            "{file}:{}: *STATIC, RIKS on a model without a softening law: its path is linear, solved in one linear step",
+            p.line
+        ));
     }
-    let incremental = if softening {
-        Some(incremental_program(&deck, &steps, &file, &mut notes)?)
-    } else {
-        None
-    };
+}
+
+/// The node sets whose reactions are reported: every `*BOUNDARY` target,
+/// once, in order (a target given by node gets a node set `node_N`, added
+/// to the mesh).
+fn reaction_sets(deck: &mut InpDeck) -> Vec<String> {
     let mut reaction_sets: Vec<String> = Vec::new();
     for bc in &deck.boundaries {
         let name = match deck
@@ -471,7 +557,17 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
             reaction_sets.push(name);
         }
     }
-    let first = incremental.as_ref().map_or(&steps[0], |i| &i.pattern);
+    reaction_sets
+}
+
+/// The `** junta: curve` directive as a curve spec; on a deck that runs
+/// linear (`incremental` false) a note that it is not used.
+fn curve_spec(
+    deck: &InpDeck,
+    incremental: bool,
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Option<CurveSpec> {
     let curve = deck.curve.as_ref().map(|c| CurveSpec {
         reaction_set: c.reaction_set.clone(),
         reaction_component: c.reaction_component.clone(),
@@ -482,15 +578,18 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
         reference: None,
         conjugate: false,
     });
-    if let (Some(c), None) = (&deck.curve, &incremental) {
+    if let (Some(c), false) = (&deck.curve, incremental) {
         notes.push(format!(
             "{file}:{}: the curve directive is used by incremental runs only (a deck with a softening cohesive law); this deck runs linear",
             c.line
         ));
     }
-    let title = deck.heading.lines().next().unwrap_or("").trim().to_string();
-    let every = deck.every;
-    // material axes of each block with an orientation, for *EL PRINT
+    curve
+}
+
+/// The deck's `*NODE PRINT` / `*EL PRINT` requests (taken from it), with
+/// the material axes of each block with an orientation (for `*EL PRINT`).
+fn print_tables(deck: &mut InpDeck) -> crate::deck_print::PrintTables {
     let block_axes = deck
         .block_orientations
         .iter()
@@ -506,11 +605,24 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
             })
         })
         .collect();
-    let prints = crate::deck_print::PrintTables::new(
+    crate::deck_print::PrintTables::new(
         std::mem::take(&mut deck.node_prints),
         std::mem::take(&mut deck.el_prints),
     )
-    .with_axes(block_axes);
+    .with_axes(block_axes)
+}
+
+/// The model of the deck's mesh and elements, loaded by `first` (the first
+/// step, or the incremental run's pattern), with its `*EQUATION`s
+/// eliminated; element errors name the deck's own element label.
+fn model_of_deck(
+    deck: InpDeck,
+    elements: Vec<Arc<dyn Element>>,
+    first: &DeckStep,
+    reaction_sets: Vec<String>,
+    file: &str,
+    notes: &mut Vec<String>,
+) -> Result<Model> {
     crate::limits::check_memory(
         &format!("{file}: the model ({} nodes)", deck.mesh.nodes.len()),
         crate::limits::model_bytes(&deck.mesh),
@@ -571,17 +683,7 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
             model.dofs.dependents.dofs.len()
         ));
     }
-    Ok(DeckModel {
-        model,
-        notes,
-        steps,
-        title,
-        incremental,
-        curve,
-        every,
-        solver,
-        prints,
-    })
+    Ok(model)
 }
 
 /// `c` with `s = c * pattern` (same constrained dofs, values and forces in
@@ -669,6 +771,13 @@ fn step_amplitude(deck: &InpDeck, k: usize, file: &str) -> Result<Option<usize>>
 
 /// The load program and Newton settings of a deck with a softening law
 /// (module docs).
+///
+/// Stages: the load pattern ([`ProgramSteps::pattern`]); per deck step,
+/// the load factors it passes through ([`ProgramSteps::targets`], segments
+/// that do not move the load dropped), its notes ([`step_notes`]) and its
+/// Newton settings ([`step_newton`], the same for every step); the checks
+/// of amplitudes against viscosity and Riks ([`check_amplitudes`]); and
+/// `*STATIC, RIKS` as path following ([`riks_path`]).
 fn incremental_program(
     deck: &InpDeck,
     steps: &[DeckStep],
@@ -679,94 +788,11 @@ fn incremental_program(
     let mut limits = Vec::with_capacity(steps.len());
     let mut deck_steps = Vec::with_capacity(steps.len());
     let mut settings: Option<(NewtonSettings, usize)> = None;
-    let amps = (0..steps.len())
-        .map(|k| step_amplitude(deck, k, file))
-        .collect::<Result<Vec<_>>>()?;
-    let ends = step_ends(deck);
-    // a step with an amplitude: its loads at amplitude 1 (those carried
-    // from earlier steps at their value)
-    let unit = |k: usize| -> Result<DeckStep> {
-        let carried = deck_steps_scaled(deck, file, k..k + 1, &|amp, st| {
-            if st == Some(k) {
-                0.0
-            } else {
-                amplitude_at_end(deck, &ends, amp, st)
-            }
-        })?;
-        let c = &carried[0];
-        if c.constraints.iter().any(|c| c.1 != 0.0) || c.f_ext.iter().any(|f| *f != 0.0) {
-            bail!(
-                "{file}:{}: {}: loads or prescribed displacements carried over from earlier steps stay constant while this step's amplitude varies: not one load pattern; give them again in this step with the same AMPLITUDE=",
-                c.line,
-                c.name
-            );
-        }
-        let mut u = deck_steps_scaled(deck, file, k..k + 1, &|amp, st| {
-            if st == Some(k) {
-                1.0
-            } else {
-                amplitude_at_end(deck, &ends, amp, st)
-            }
-        })?;
-        Ok(u.remove(0))
-    };
-    let pattern = match amps.first().copied().flatten() {
-        Some(_) => unit(0)?,
-        None => steps[0].clone(),
-    };
-    if pattern.constraints.iter().all(|c| c.1 == 0.0) && pattern.f_ext.iter().all(|f| *f == 0.0) {
-        bail!(
-            "{file}:{}: {}: nothing loads the model (no *CLOAD, no non-zero *BOUNDARY): the incremental run of a softening deck scales the first step's loads",
-            pattern.line,
-            pattern.name
-        );
-    }
+    let ps = ProgramSteps::new(deck, steps.len(), file)?;
+    let pattern = ps.pattern(steps)?;
     let mut lambda = 0.0;
     for (k, s) in steps.iter().enumerate() {
-        let not_proportional = || {
-            err!(
-                "{file}:{}: {}: its loads and prescribed displacements are not a multiple of the first step's; Junta's incremental runs scale one load pattern over the steps (a proportional program), so multi-step softening decks must keep the same loaded dofs with proportional values (or be split into several decks)",
-                s.line,
-                s.name
-            )
-        };
-        // the load factors this step passes through
-        let targets: Vec<f64> = match amps[k] {
-            None if k == 0 => vec![1.0],
-            None => vec![proportional(&pattern, s).ok_or_else(not_proportional)?],
-            Some(a) => {
-                let c = if k == 0 {
-                    1.0
-                } else {
-                    proportional(&pattern, &unit(k)?).ok_or_else(not_proportional)?
-                };
-                let amp = &deck.amplitudes[a];
-                let start = if amp.total_time {
-                    step_end_time(deck, &ends, k, true) - period(deck, k)
-                } else {
-                    0.0
-                };
-                let end = start + period(deck, k);
-                let mut t: Vec<f64> = amp
-                    .points
-                    .iter()
-                    .filter(|p| p.0 > start && p.0 < end)
-                    .map(|p| c * p.1)
-                    .collect();
-                t.push(c * amp.value(end));
-                if c != 0.0 && (c * amp.value(start) - lambda).abs() > 1e-12 * c.abs() {
-                    notes.push(format!(
-                        "{file}:{}: {}: amplitude `{}` starts at {} but the loads stand at {} of it: the jump is ramped over the step's first segment",
-                        s.line,
-                        s.name,
-                        amp.name,
-                        amp.value(start),
-                        lambda / c
-                    ));
-                }
-                t
-            }
-        };
+        let targets = ps.targets(&pattern, k, s, lambda, notes)?;
         let step = deck.steps.get(k);
         let limit = step.and_then(|st| st.max_increments.map(|n| (n, st.line)));
         let before = program.len();
@@ -779,50 +805,8 @@ fn incremental_program(
                 lambda = t;
             }
         }
-        if program.len() == before {
-            notes.push(format!(
-                "{file}:{}: {}: the load factor does not change in this step: nothing to solve, skipped",
-                s.line, s.name
-            ));
-        }
-        if step.is_some_and(|st| st.nlgeom) {
-            notes.push(format!(
-                "{file}:{}: NLGEOM ignored: Junta's elements are small-strain",
-                s.line
-            ));
-        }
-        if step.is_some_and(|st| st.max_increments.is_none()) {
-            notes.push(format!(
-                "{file}:{}: no INC= on *STEP: Abaqus would stop this step after 100 increments; Junta does not limit it",
-                s.line
-            ));
-        }
-        let proc = step.and_then(|st| st.static_procedure.as_ref());
-        let t = proc.and_then(|p| p.period).unwrap_or(1.0);
-        let pline = proc.map_or(s.line, |p| p.line);
-        if t <= 0.0 {
-            bail!("{file}:{pline}: *STATIC: the time period {t} must be positive");
-        }
-        let dt0 = (proc.and_then(|p| p.initial_increment).unwrap_or(t) / t).min(1.0);
-        let mut n = NewtonSettings {
-            initial_increment: dt0,
-            max_increment: (proc.and_then(|p| p.max_increment).unwrap_or(t) / t).min(1.0),
-            min_increment: proc
-                .and_then(|p| p.min_increment)
-                .map_or(dt0.min(1e-5), |m| m / t),
-            ..NewtonSettings::default()
-        };
-        if proc.is_some_and(|p| p.direct) {
-            n.max_increment = dt0;
-            n.min_increment = dt0;
-            n.growth = 1.0;
-        }
-        if !(n.initial_increment > 0.0 && n.max_increment > 0.0 && n.min_increment > 0.0) {
-            bail!("{file}:{pline}: *STATIC: increments must be positive (data line `initial increment, time period, minimum increment, maximum increment`)");
-        }
-        if n.min_increment > n.initial_increment.min(n.max_increment) {
-            bail!("{file}:{pline}: *STATIC: the minimum increment exceeds the initial or the maximum increment");
-        }
+        step_notes(file, s, step, program.len() == before, notes);
+        let (n, pline) = step_newton(file, s, step)?;
         match &settings {
             None => settings = Some((n, pline)),
             Some((first, l)) => {
@@ -838,6 +822,232 @@ fn incremental_program(
             }
         }
     }
+    check_amplitudes(deck, steps.len(), &ps.amps, file)?;
+    let (mut newton, _) = settings.expect("at least one step");
+    let (control, arc_length) =
+        riks_path(deck, steps.len(), file, &mut program, &mut newton, notes)?;
+    Ok(DeckIncremental {
+        analysis: AnalysisSpec {
+            kind: "static".into(),
+            steps: program,
+            stop_when_separated: false,
+            newton,
+            control,
+            arc_length,
+        },
+        increment_limits: limits,
+        deck_steps,
+        pattern,
+    })
+}
+
+/// The deck's steps as the load program sees them: the amplitude of each
+/// step's loads ([`step_amplitude`]) and the total time at each step's end
+/// ([`step_ends`]).
+struct ProgramSteps<'a> {
+    deck: &'a InpDeck,
+    file: &'a str,
+    amps: Vec<Option<usize>>,
+    ends: Vec<f64>,
+}
+
+impl<'a> ProgramSteps<'a> {
+    fn new(deck: &'a InpDeck, steps: usize, file: &'a str) -> Result<Self> {
+        let amps = (0..steps)
+            .map(|k| step_amplitude(deck, k, file))
+            .collect::<Result<Vec<_>>>()?;
+        let ends = step_ends(deck);
+        Ok(ProgramSteps {
+            deck,
+            file,
+            amps,
+            ends,
+        })
+    }
+
+    /// The loads of step `k` (a step with an amplitude) at amplitude 1;
+    /// loads carried from earlier steps (at their value) are an error.
+    fn unit(&self, k: usize) -> Result<DeckStep> {
+        let (deck, file, ends) = (self.deck, self.file, &self.ends);
+        let carried = deck_steps_scaled(deck, file, k..k + 1, &|amp, st| {
+            if st == Some(k) {
+                0.0
+            } else {
+                amplitude_at_end(deck, ends, amp, st)
+            }
+        })?;
+        let c = &carried[0];
+        if c.constraints.iter().any(|c| c.1 != 0.0) || c.f_ext.iter().any(|f| *f != 0.0) {
+            bail!(
+                "{file}:{}: {}: loads or prescribed displacements carried over from earlier steps stay constant while this step's amplitude varies: not one load pattern; give them again in this step with the same AMPLITUDE=",
+                c.line,
+                c.name
+            );
+        }
+        let mut u = deck_steps_scaled(deck, file, k..k + 1, &|amp, st| {
+            if st == Some(k) {
+                1.0
+            } else {
+                amplitude_at_end(deck, ends, amp, st)
+            }
+        })?;
+        Ok(u.remove(0))
+    }
+
+    /// The load pattern the load factor scales: the first step's loads (at
+    /// amplitude 1 when it has one); an error when nothing loads the model.
+    fn pattern(&self, steps: &[DeckStep]) -> Result<DeckStep> {
+        let pattern = match self.amps.first().copied().flatten() {
+            Some(_) => self.unit(0)?,
+            None => steps[0].clone(),
+        };
+        if pattern.constraints.iter().all(|c| c.1 == 0.0) && pattern.f_ext.iter().all(|f| *f == 0.0)
+        {
+            bail!(
+                "{}:{}: {}: nothing loads the model (no *CLOAD, no non-zero *BOUNDARY): the incremental run of a softening deck scales the first step's loads",
+                self.file,
+                pattern.line,
+                pattern.name
+            );
+        }
+        Ok(pattern)
+    }
+
+    /// The load factors step `k` (`s`) passes through, from `lambda`: its
+    /// multiple `c` of the pattern (1 for the first step); with an
+    /// amplitude `a`, `c a(t_i)` at the amplitude's points inside the step,
+    /// then `c a(T)` (a note when `c a(0)` is not where the loads stand).
+    fn targets(
+        &self,
+        pattern: &DeckStep,
+        k: usize,
+        s: &DeckStep,
+        lambda: f64,
+        notes: &mut Vec<String>,
+    ) -> Result<Vec<f64>> {
+        let (deck, file) = (self.deck, self.file);
+        let not_proportional = || {
+            err!(
+                "{file}:{}: {}: its loads and prescribed displacements are not a multiple of the first step's; Junta's incremental runs scale one load pattern over the steps (a proportional program), so multi-step softening decks must keep the same loaded dofs with proportional values (or be split into several decks)",
+                s.line,
+                s.name
+            )
+        };
+        let a = match self.amps[k] {
+            None if k == 0 => return Ok(vec![1.0]),
+            None => return Ok(vec![proportional(pattern, s).ok_or_else(not_proportional)?]),
+            Some(a) => a,
+        };
+        let c = if k == 0 {
+            1.0
+        } else {
+            proportional(pattern, &self.unit(k)?).ok_or_else(not_proportional)?
+        };
+        let amp = &deck.amplitudes[a];
+        let start = if amp.total_time {
+            step_end_time(deck, &self.ends, k, true) - period(deck, k)
+        } else {
+            0.0
+        };
+        let end = start + period(deck, k);
+        let mut t: Vec<f64> = amp
+            .points
+            .iter()
+            .filter(|p| p.0 > start && p.0 < end)
+            .map(|p| c * p.1)
+            .collect();
+        t.push(c * amp.value(end));
+        if c != 0.0 && (c * amp.value(start) - lambda).abs() > 1e-12 * c.abs() {
+            notes.push(format!(
+                "{file}:{}: {}: amplitude `{}` starts at {} but the loads stand at {} of it: the jump is ramped over the step's first segment",
+                s.line,
+                s.name,
+                amp.name,
+                amp.value(start),
+                lambda / c
+            ));
+        }
+        Ok(t)
+    }
+}
+
+/// The notes of one step of an incremental run: skipped (`skipped`: the
+/// load factor does not change), NLGEOM ignored, no `INC=`.
+fn step_notes(
+    file: &str,
+    s: &DeckStep,
+    step: Option<&InpStep>,
+    skipped: bool,
+    notes: &mut Vec<String>,
+) {
+    if skipped {
+        notes.push(format!(
+            "{file}:{}: {}: the load factor does not change in this step: nothing to solve, skipped",
+            s.line, s.name
+        ));
+    }
+    if step.is_some_and(|st| st.nlgeom) {
+        notes.push(format!(
+            "{file}:{}: NLGEOM ignored: Junta's elements are small-strain",
+            s.line
+        ));
+    }
+    if step.is_some_and(|st| st.max_increments.is_none()) {
+        notes.push(format!(
+            "{file}:{}: no INC= on *STEP: Abaqus would stop this step after 100 increments; Junta does not limit it",
+            s.line
+        ));
+    }
+}
+
+/// The Newton settings of one step's `*STATIC` data `dt0, T, dtmin, dtmax`
+/// as fractions of the period `T`: `initial_increment = min(dt0 / T, 1)`,
+/// `max_increment = min(dtmax / T, 1)`, `min_increment = dtmin / T`
+/// (default `min(dt0 / T, 1e-5)`); `DIRECT` fixes the increment at `dt0`.
+/// With the line of the `*STATIC` (of the `*STEP` without one).
+fn step_newton(
+    file: &str,
+    s: &DeckStep,
+    step: Option<&InpStep>,
+) -> Result<(NewtonSettings, usize)> {
+    let proc = step.and_then(|st| st.static_procedure.as_ref());
+    let t = proc.and_then(|p| p.period).unwrap_or(1.0);
+    let pline = proc.map_or(s.line, |p| p.line);
+    if t <= 0.0 {
+        bail!("{file}:{pline}: *STATIC: the time period {t} must be positive");
+    }
+    let dt0 = (proc.and_then(|p| p.initial_increment).unwrap_or(t) / t).min(1.0);
+    let mut n = NewtonSettings {
+        initial_increment: dt0,
+        max_increment: (proc.and_then(|p| p.max_increment).unwrap_or(t) / t).min(1.0),
+        min_increment: proc
+            .and_then(|p| p.min_increment)
+            .map_or(dt0.min(1e-5), |m| m / t),
+        ..NewtonSettings::default()
+    };
+    if proc.is_some_and(|p| p.direct) {
+        n.max_increment = dt0;
+        n.min_increment = dt0;
+        n.growth = 1.0;
+    }
+    if !(n.initial_increment > 0.0 && n.max_increment > 0.0 && n.min_increment > 0.0) {
+        bail!("{file}:{pline}: *STATIC: increments must be positive (data line `initial increment, time period, minimum increment, maximum increment`)");
+    }
+    if n.min_increment > n.initial_increment.min(n.max_increment) {
+        bail!("{file}:{pline}: *STATIC: the minimum increment exceeds the initial or the maximum increment");
+    }
+    Ok((n, pline))
+}
+
+/// What an incremental program cannot combine: an amplitude (`amps`, per
+/// step) with `*DAMAGE STABILIZATION` or `*STATIC, RIKS`, and the
+/// stabilization with steps of different periods.
+fn check_amplitudes(
+    deck: &InpDeck,
+    steps: usize,
+    amps: &[Option<usize>],
+    file: &str,
+) -> Result<()> {
     let viscous = deck.materials.iter().any(|m| {
         m.damage_stabilization
             .as_ref()
@@ -864,27 +1074,40 @@ fn incremental_program(
             );
         }
     }
-    if viscous && (1..steps.len()).any(|k| period(deck, k) != period(deck, 0)) {
+    if viscous && (1..steps).any(|k| period(deck, k) != period(deck, 0)) {
         bail!(
             "{file}: *DAMAGE STABILIZATION with steps of different periods: Junta's viscosity is in load-factor units, one value per law; give the steps the same period"
         );
     }
-    let (mut newton, _) = settings.expect("at least one step");
-    // `*STATIC, RIKS`: Abaqus's arc length, run with path following; the
-    // load factor is the load proportionality factor (LPF) of the step's
-    // loads, the 5th data value its maximum
+    Ok(())
+}
+
+/// `*STATIC, RIKS`: Abaqus's arc length, run with path following; the load
+/// factor is the load proportionality factor (LPF) of the step's loads, the
+/// 5th data value its maximum (the program becomes `[LPF_max]`, 1e6
+/// without one), the first increment `dt0 / T` as a fraction of it, and
+/// `INC` (default 100) the number of increments. Without Riks: load
+/// control, `program` and `newton` as they are.
+fn riks_path(
+    deck: &InpDeck,
+    steps: usize,
+    file: &str,
+    program: &mut Vec<f64>,
+    newton: &mut NewtonSettings,
+    notes: &mut Vec<String>,
+) -> Result<(crate::scene::Control, ArcLengthSettings)> {
     let mut control = crate::scene::Control::Load;
-    let mut arc_length = junta_solvers::arc_length::ArcLengthSettings::default();
+    let mut arc_length = ArcLengthSettings::default();
     let riks = deck.steps.iter().find_map(|st| {
         let p = st.static_procedure.as_ref()?;
         Some((p.riks.as_ref()?, p, st))
     });
     if let Some((r, p, st)) = riks {
-        if steps.len() != 1 {
+        if steps != 1 {
             bail!(
                 "{file}:{}: *STATIC, RIKS: path following runs one step; this deck has {} steps",
                 p.line,
-                steps.len()
+                steps
             );
         }
         let t = p.period.unwrap_or(1.0);
@@ -897,7 +1120,7 @@ fn incremental_program(
             ),
             None => 1e6,
         };
-        program = vec![end];
+        *program = vec![end];
         newton.initial_increment = (first / end).min(1.0);
         newton.max_increment = 1.0;
         newton.min_increment = newton.min_increment.min(1e-3 * newton.initial_increment);
@@ -913,19 +1136,7 @@ fn incremental_program(
             }
         ));
     }
-    Ok(DeckIncremental {
-        analysis: AnalysisSpec {
-            kind: "static".into(),
-            steps: program,
-            stop_when_separated: false,
-            newton,
-            control,
-            arc_length,
-        },
-        increment_limits: limits,
-        deck_steps,
-        pattern,
-    })
+    Ok((control, arc_length))
 }
 
 /// The boundary conditions and loads in force in one step of a deck.

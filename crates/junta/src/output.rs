@@ -553,6 +553,10 @@ pub fn write_interface_vtu(
 }
 
 /// [`write_interface_vtu`] with a suffix on the file names (`interfaces<suffix>.vtu`).
+///
+/// Stages: [`MidSurface::of`] gathers the mid-surface cells,
+/// [`write_mid_surface_vtu`] writes them, [`write_interface_points_vtu`]
+/// writes the integration points.
 pub fn write_interface_vtu_named(
     dir: &Path,
     suffix: &str,
@@ -563,92 +567,139 @@ pub fn write_interface_vtu_named(
     if res.is_empty() {
         return Ok(());
     }
-    let mesh = &model.mesh;
-    // mid-surface cells
-    let mut points: Vec<[f64; 3]> = Vec::new();
-    let mut jumps: Vec<[f64; 3]> = Vec::new();
-    let mut conn: Vec<usize> = Vec::new();
-    let mut offsets = Vec::new();
-    let mut types = Vec::new();
-    let mut cell_t = Vec::new();
-    let mut cell_j = Vec::new();
-    let mut cell_block = Vec::new();
     let law_names = law_output_names(res);
-    let mut cell_law: Vec<Vec<f64>> = vec![Vec::new(); law_names.len()];
-    let mut index = std::collections::HashMap::new();
-    for r in res {
-        let b = &mesh.blocks[r.block];
-        let m = b.nodes_per_element() / 2;
-        for e in 0..b.len() {
-            let nodes = b.element(e);
-            for a in 0..m {
-                let (bot, top) = (nodes[a], nodes[m + a]);
-                let id = *index.entry((bot, top)).or_insert_with(|| {
-                    let p = mesh.nodes[bot];
-                    let q = mesh.nodes[top];
-                    points.push([
-                        0.5 * (p[0] + q[0]),
-                        0.5 * (p[1] + q[1]),
-                        0.5 * (p[2] + q[2]),
-                    ]);
-                    jumps.push([0, 1, 2].map(|c| u[3 * top + c] - u[3 * bot + c]));
-                    points.len() - 1
-                });
-                conn.push(id);
+    let surface = MidSurface::of(model, u, res, &law_names);
+    write_mid_surface_vtu(
+        &dir.join(format!("interfaces{suffix}.vtu")),
+        &surface,
+        &law_names,
+    )?;
+    write_interface_points_vtu(
+        &dir.join(format!("interface_points{suffix}.vtu")),
+        res,
+        &law_names,
+    )
+}
+
+/// The interfaces as their mid-surface (module docs): one point per
+/// (bottom, top) node pair at `(x_bot + x_top) / 2` with the jump
+/// `u_top - u_bot`, one cell per element with the means over its
+/// integration points of the local traction, the local jump and each
+/// scalar law output.
+struct MidSurface {
+    points: Vec<[f64; 3]>,
+    jumps: Vec<[f64; 3]>,
+    conn: Vec<usize>,
+    offsets: Vec<usize>,
+    types: Vec<u8>,
+    cell_t: Vec<[f64; 3]>,
+    cell_j: Vec<[f64; 3]>,
+    cell_block: Vec<f64>,
+    /// Per name of `law_names`, the cell means.
+    cell_law: Vec<Vec<f64>>,
+}
+
+impl MidSurface {
+    fn of(model: &Model, u: &[f64], res: &[InterfaceResults], law_names: &[&str]) -> Self {
+        let mesh = &model.mesh;
+        let mut s = MidSurface {
+            points: Vec::new(),
+            jumps: Vec::new(),
+            conn: Vec::new(),
+            offsets: Vec::new(),
+            types: Vec::new(),
+            cell_t: Vec::new(),
+            cell_j: Vec::new(),
+            cell_block: Vec::new(),
+            cell_law: vec![Vec::new(); law_names.len()],
+        };
+        let mut index = std::collections::HashMap::new();
+        for r in res {
+            let b = &mesh.blocks[r.block];
+            let m = b.nodes_per_element() / 2;
+            for e in 0..b.len() {
+                let nodes = b.element(e);
+                for a in 0..m {
+                    let (bot, top) = (nodes[a], nodes[m + a]);
+                    let id = *index.entry((bot, top)).or_insert_with(|| {
+                        let p = mesh.nodes[bot];
+                        let q = mesh.nodes[top];
+                        s.points.push([
+                            0.5 * (p[0] + q[0]),
+                            0.5 * (p[1] + q[1]),
+                            0.5 * (p[2] + q[2]),
+                        ]);
+                        s.jumps
+                            .push([0, 1, 2].map(|c| u[3 * top + c] - u[3 * bot + c]));
+                        s.points.len() - 1
+                    });
+                    s.conn.push(id);
+                }
+                s.offsets.push(s.conn.len());
+                s.types.push(b.shape.vtk_type());
+                let pts = &r.points[e * r.points_per_element..(e + 1) * r.points_per_element];
+                s.push_means(pts, law_names, r.block);
             }
-            offsets.push(conn.len());
-            types.push(b.shape.vtk_type());
-            let pts = &r.points[e * r.points_per_element..(e + 1) * r.points_per_element];
-            let mean = |name: &str| {
-                let mut s = [0.0; 3];
-                for p in pts {
-                    if let Some(v) = p.get(name) {
-                        for c in 0..3 {
-                            s[c] += v[c] / pts.len() as f64;
-                        }
+        }
+        s
+    }
+
+    /// The cell data of one element from its integration points `pts`.
+    fn push_means(&mut self, pts: &[junta_core::PointOutput], law_names: &[&str], block: usize) {
+        let mean = |name: &str| {
+            let mut s = [0.0; 3];
+            for p in pts {
+                if let Some(v) = p.get(name) {
+                    for c in 0..3 {
+                        s[c] += v[c] / pts.len() as f64;
                     }
                 }
-                s
-            };
-            for (k, name) in law_names.iter().enumerate() {
-                let v: f64 = pts
-                    .iter()
-                    .map(|p| p.get(name).map_or(0.0, |v| v[0]))
-                    .sum::<f64>()
-                    / pts.len().max(1) as f64;
-                cell_law[k].push(v);
             }
-            cell_t.push(mean("traction"));
-            cell_j.push(mean("jump"));
-            cell_block.push(r.block as f64);
+            s
+        };
+        for (k, name) in law_names.iter().enumerate() {
+            let v: f64 = pts
+                .iter()
+                .map(|p| p.get(name).map_or(0.0, |v| v[0]))
+                .sum::<f64>()
+                / pts.len().max(1) as f64;
+            self.cell_law[k].push(v);
         }
+        self.cell_t.push(mean("traction"));
+        self.cell_j.push(mean("jump"));
+        self.cell_block.push(block as f64);
     }
-    let path = dir.join(format!("interfaces{suffix}.vtu"));
-    let f = std::fs::File::create(&path)
-        .with_context(|| format!("cannot create {}", path.display()))?;
-    let mut w = Vtu::new(std::io::BufWriter::new(f), points.len());
+}
+
+/// Write the mid-surface cells to `interfaces<suffix>.vtu` (`path`): point
+/// data `jump_global`; cell data `traction_local`, `jump_local`, `block`
+/// and the scalar law outputs.
+fn write_mid_surface_vtu(path: &Path, s: &MidSurface, law_names: &[&str]) -> Result<()> {
+    let f =
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
+    let mut w = Vtu::new(std::io::BufWriter::new(f), s.points.len());
     (|| -> std::io::Result<()> {
-        vtu_head(&mut w, points.len(), types.len())?;
+        vtu_head(&mut w, s.points.len(), s.types.len())?;
         write_array(
             &mut w,
             "Points",
             3,
-            points.iter().flat_map(|p| p.iter().copied()),
+            s.points.iter().flat_map(|p| p.iter().copied()),
         )?;
         writeln!(w, "      </Points>\n      <Cells>")?;
         write_ints(
             &mut w,
             "connectivity",
             "Int64",
-            conn.iter().map(|&v| v as u64),
+            s.conn.iter().map(|&v| v as u64),
         )?;
         write_ints(
             &mut w,
             "offsets",
             "Int64",
-            offsets.iter().map(|&v| v as u64),
+            s.offsets.iter().map(|&v| v as u64),
         )?;
-        write_ints(&mut w, "types", "UInt8", types.iter().map(|&v| v as u64))?;
+        write_ints(&mut w, "types", "UInt8", s.types.iter().map(|&v| v as u64))?;
         writeln!(
             w,
             "      </Cells>\n      <PointData Vectors=\"jump_global\">"
@@ -657,35 +708,43 @@ pub fn write_interface_vtu_named(
             &mut w,
             "jump_global",
             3,
-            jumps.iter().flat_map(|p| p.iter().copied()),
+            s.jumps.iter().flat_map(|p| p.iter().copied()),
         )?;
         writeln!(w, "      </PointData>\n      <CellData>")?;
         write_array(
             &mut w,
             "traction_local",
             3,
-            cell_t.iter().flat_map(|p| p.iter().copied()),
+            s.cell_t.iter().flat_map(|p| p.iter().copied()),
         )?;
         write_array(
             &mut w,
             "jump_local",
             3,
-            cell_j.iter().flat_map(|p| p.iter().copied()),
+            s.cell_j.iter().flat_map(|p| p.iter().copied()),
         )?;
-        write_array(&mut w, "block", 1, cell_block.iter().copied())?;
-        for (name, values) in law_names.iter().zip(&cell_law) {
+        write_array(&mut w, "block", 1, s.cell_block.iter().copied())?;
+        for (name, values) in law_names.iter().zip(&s.cell_law) {
             write_array(&mut w, name, 1, values.iter().copied())?;
         }
         writeln!(w, "      </CellData>")?;
         vtu_tail(&mut w)
     })()
-    .with_context(|| format!("cannot write {}", path.display()))?;
+    .with_context(|| format!("cannot write {}", path.display()))
+}
 
-    // integration points
+/// Write the integration points of the interfaces to
+/// `interface_points<suffix>.vtu` (`path`): one vertex each, with its local
+/// traction and jump, normal, failure flag and index, scalar law outputs,
+/// plastic jump (when the law has one) and law state.
+fn write_interface_points_vtu(
+    path: &Path,
+    res: &[InterfaceResults],
+    law_names: &[&str],
+) -> Result<()> {
     let all: Vec<&junta_core::PointOutput> = res.iter().flat_map(|r| r.points.iter()).collect();
-    let path = dir.join(format!("interface_points{suffix}.vtu"));
-    let f = std::fs::File::create(&path)
-        .with_context(|| format!("cannot create {}", path.display()))?;
+    let f =
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?;
     let mut w = Vtu::new(std::io::BufWriter::new(f), all.len());
     let get3 = |p: &junta_core::PointOutput, name: &str, from: usize| -> [f64; 3] {
         p.get(name)
@@ -731,7 +790,7 @@ pub fn write_interface_vtu_named(
             1,
             all.iter().map(|p| scalar(p, "failure_index")),
         )?;
-        for name in &law_names {
+        for name in law_names {
             write_array(&mut w, name, 1, all.iter().map(|p| scalar(p, name)))?;
         }
         {

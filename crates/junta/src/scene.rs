@@ -624,7 +624,20 @@ fn mesh_diagonal(mesh: &Mesh) -> f64 {
 }
 
 /// Load the mesh of a scene, then insert its cracks, box node sets and interfaces.
+///
+/// Stages: [`load_mesh`], [`insert_cracks`], [`add_box_node_sets`],
+/// [`insert_interfaces`].
 pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
+    let mut mesh = load_mesh(sf)?;
+    insert_cracks(sf, &mut mesh)?;
+    add_box_node_sets(sf, &mut mesh)?;
+    insert_interfaces(sf, &mut mesh)?;
+    Ok(mesh)
+}
+
+/// The `[mesh]` of a scene: generated (`box`, `boxes`) or read (`gmsh`,
+/// `inp`); keys that the type does not use are an error.
+fn load_mesh(sf: &SceneFile) -> Result<Mesh> {
     let m = &sf.scene.mesh;
     let kind = m.kind.get_ref().as_str();
     let at = sf.at(m.kind.span());
@@ -655,7 +668,7 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
         );
     }
     let missing = |k: &str| err!("{at}: key `mesh.{k}` is required with type = \"{kind}\"");
-    let mut mesh = match kind {
+    Ok(match kind {
         "box" => generate_box(
             sf,
             "mesh",
@@ -672,58 +685,7 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
             if m.boxes.is_empty() {
                 return Err(missing("boxes"));
             }
-            // boxes sharing volume would be merged at their coincident
-            // nodes and bonded on many faces: refuse them
-            for (j, b) in m.boxes.iter().enumerate() {
-                for (i, a) in m.boxes.iter().enumerate().take(j) {
-                    let overlap = (0..3).all(|c| {
-                        let lo = a.origin[c].max(b.origin[c]);
-                        let hi = (a.origin[c] + a.size[c]).min(b.origin[c] + b.size[c]);
-                        let scale = a.size[c].abs().min(b.size[c].abs());
-                        hi - lo > 1e-9 * scale
-                    });
-                    if overlap {
-                        bail!(
-                            "{}: key `mesh.boxes[{j}]`: box `{}` overlaps box `{}` (mesh.boxes[{i}]); boxes may touch but not share volume",
-                            sf.at(b.element.span()),
-                            b.name,
-                            a.name
-                        );
-                    }
-                }
-            }
-            let mut parts = Vec::new();
-            for (i, b) in m.boxes.iter().enumerate() {
-                let key = format!("mesh.boxes[{i}]");
-                let part = generate_box(
-                    sf,
-                    &key,
-                    BoxGeometry {
-                        size: b.size,
-                        divisions: b.divisions,
-                        origin: b.origin,
-                        grading: b.grading,
-                    },
-                    &b.element,
-                    &b.material,
-                )?;
-                parts.push((b.name.clone(), part));
-            }
-            let mut mesh = junta_core::mesh::merge::merge(parts, 1e-9)
-                .map_err(|e| err!("{at}: key `mesh.boxes`: {e}"))?;
-            for (i, b) in m.boxes.iter().enumerate() {
-                if let Some(g) = &b.group {
-                    if m.boxes.iter().any(|o| &o.name == g) {
-                        bail!("{at}: key `mesh.boxes[{i}].group`: `{g}` is also the name of a box; give the group its own name");
-                    }
-                    let members = mesh.element_sets.get(&b.name).cloned().unwrap_or_default();
-                    let set = mesh.element_sets.entry(g.clone()).or_default();
-                    set.extend(members);
-                    set.sort_unstable();
-                    set.dedup();
-                }
-            }
-            mesh
+            merged_boxes(sf, &at)?
         }
         "gmsh" => {
             let p = sf.relative(m.file.as_ref().ok_or_else(|| missing("file"))?);
@@ -735,24 +697,94 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
                 .map_err(|e| err!("{at}: key `mesh.file`: {e}"))?
                 .mesh
         }
-    };
+    })
+}
+
+/// `type = "boxes"`: the boxes generated one by one and merged at their
+/// coincident nodes (boxes sharing volume are an error: they would be
+/// bonded on many faces), each box an element set, a `group` the union of
+/// its boxes' sets.
+fn merged_boxes(sf: &SceneFile, at: &str) -> Result<Mesh> {
+    let m = &sf.scene.mesh;
+    for (j, b) in m.boxes.iter().enumerate() {
+        for (i, a) in m.boxes.iter().enumerate().take(j) {
+            let overlap = (0..3).all(|c| {
+                let lo = a.origin[c].max(b.origin[c]);
+                let hi = (a.origin[c] + a.size[c]).min(b.origin[c] + b.size[c]);
+                let scale = a.size[c].abs().min(b.size[c].abs());
+                hi - lo > 1e-9 * scale
+            });
+            if overlap {
+                bail!(
+                    "{}: key `mesh.boxes[{j}]`: box `{}` overlaps box `{}` (mesh.boxes[{i}]); boxes may touch but not share volume",
+                    sf.at(b.element.span()),
+                    b.name,
+                    a.name
+                );
+            }
+        }
+    }
+    let mut parts = Vec::new();
+    for (i, b) in m.boxes.iter().enumerate() {
+        let key = format!("mesh.boxes[{i}]");
+        let part = generate_box(
+            sf,
+            &key,
+            BoxGeometry {
+                size: b.size,
+                divisions: b.divisions,
+                origin: b.origin,
+                grading: b.grading,
+            },
+            &b.element,
+            &b.material,
+        )?;
+        parts.push((b.name.clone(), part));
+    }
+    let mut mesh = junta_core::mesh::merge::merge(parts, 1e-9)
+        .map_err(|e| err!("{at}: key `mesh.boxes`: {e}"))?;
+    for (i, b) in m.boxes.iter().enumerate() {
+        if let Some(g) = &b.group {
+            if m.boxes.iter().any(|o| &o.name == g) {
+                bail!("{at}: key `mesh.boxes[{i}].group`: `{g}` is also the name of a box; give the group its own name");
+            }
+            let members = mesh.element_sets.get(&b.name).cloned().unwrap_or_default();
+            let set = mesh.element_sets.entry(g.clone()).or_default();
+            set.extend(members);
+            set.sort_unstable();
+            set.dedup();
+        }
+    }
+    Ok(mesh)
+}
+
+/// `[[crack]]`: each a traction-free cut between two element sets (the
+/// interface's nodes duplicated, its elements dropped).
+fn insert_cracks(sf: &SceneFile, mesh: &mut Mesh) -> Result<()> {
     for (i, c) in sf.scene.crack.iter().enumerate() {
         let [a, b] = c.between.get_ref();
-        let ins = junta_core::mesh::interface::insert_interface(&mut mesh, a, b, &c.name, "")
+        let ins = junta_core::mesh::interface::insert_interface(mesh, a, b, &c.name, "")
             .map_err(|e| err!("{}: key `crack[{i}].between`: {e}", sf.at(c.between.span())))?;
         // keep the duplicated nodes, drop the elements: a traction-free cut
         mesh.element_sets.remove(&c.name);
         for &b in ins.blocks.iter().rev() {
-            remove_block(&mut mesh, b);
+            remove_block(mesh, b);
         }
     }
+    Ok(())
+}
+
+/// `[[node_set]]`: the nodes within each box `[lo, hi]` (to 1e-9 of the
+/// larger of the mesh diagonal and the box's largest side); an empty set
+/// or an existing name is an error.
+fn add_box_node_sets(sf: &SceneFile, mesh: &mut Mesh) -> Result<()> {
     for (i, ns) in sf.scene.node_set.iter().enumerate() {
         let [lo, hi] = *ns.within.get_ref();
         let size = (0..3)
             .map(|c| hi[c] - lo[c])
             .fold(0.0f64, f64::max)
             .max(1e-300);
-        let diag = mesh_diagonal(&mesh).max(size);
+        let diag = mesh_diagonal(mesh).max(size);
         let tol = 1e-9 * diag;
         let nodes: Vec<usize> = (0..mesh.nodes.len())
             .filter(|&n| {
@@ -773,24 +805,26 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
             );
         }
     }
+    Ok(())
+}
+
+/// `[[interface]]`: interface elements between two element sets, with
+/// their law; a `precrack` region gets its own law, `within` keeps only
+/// the elements inside a box.
+fn insert_interfaces(sf: &SceneFile, mesh: &mut Mesh) -> Result<()> {
     for (i, f) in sf.scene.interface.iter().enumerate() {
         let [a, b] = f.between.get_ref();
-        let ins = junta_core::mesh::interface::insert_interface(
-            &mut mesh,
-            a,
-            b,
-            &f.name,
-            f.law.get_ref(),
-        )
-        .map_err(|e| {
-            err!(
-                "{}: key `interface[{i}].between`: {e}",
-                sf.at(f.between.span())
-            )
-        })?;
+        let ins =
+            junta_core::mesh::interface::insert_interface(mesh, a, b, &f.name, f.law.get_ref())
+                .map_err(|e| {
+                    err!(
+                        "{}: key `interface[{i}].between`: {e}",
+                        sf.at(f.between.span())
+                    )
+                })?;
         if let Some(pc) = &f.precrack {
             split_precrack(
-                &mut mesh,
+                mesh,
                 &ins.blocks,
                 &f.name,
                 *pc.within.get_ref(),
@@ -804,11 +838,11 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
             })?;
         }
         if let Some(w) = &f.within {
-            keep_within(&mut mesh, &ins.blocks, &f.name, *w.get_ref())
+            keep_within(mesh, &ins.blocks, &f.name, *w.get_ref())
                 .map_err(|e| err!("{}: key `interface[{i}].within`: {e}", sf.at(w.span())))?;
         }
     }
-    Ok(mesh)
+    Ok(())
 }
 
 /// Centre of each element of a block, in order.

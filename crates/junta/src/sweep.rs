@@ -78,6 +78,10 @@ fn set_penalty(sf: &mut scene::SceneFile, d: f64) -> usize {
 }
 
 /// Run the sweep and write `sweep.csv` and `sweep.svg` into `out`.
+///
+/// Stages: [`check_range`]; the scene and the advisor's numbers (they do not
+/// depend on d); per d, one [`sweep_row`] per back end of
+/// [`SWEEP_SOLVERS`]; [`sweep_csv`] and [`sweep_panels`] (the chart).
 pub fn sweep_penalty(
     input: &Path,
     from: f64,
@@ -85,15 +89,7 @@ pub fn sweep_penalty(
     per_decade: usize,
     out: &Path,
 ) -> Result<Vec<SweepRow>> {
-    if !(from > 0.0 && to > from && from.is_finite() && to.is_finite()) {
-        bail!("--from and --to must be positive with from < to (got {from:e}, {to:e})");
-    }
-    if per_decade == 0 || (to.log10() - from.log10()) * per_decade as f64 > 10_000.0 {
-        bail!(
-            "--per-decade {per_decade}: give 1 or more values per decade and at most 10000 values in all ({:.1} decades from {from:e} to {to:e})",
-            to.log10() - from.log10()
-        );
-    }
+    check_range(from, to, per_decade)?;
     let mut sf = crate::validate::read_scene(input)?;
     if set_penalty(&mut sf, from) == 0 {
         bail!(
@@ -121,59 +117,103 @@ pub fn sweep_penalty(
         set_penalty(&mut sf, d);
         let model = scene::build_model(&sf)?;
         for (label, key, params) in SWEEP_SOLVERS {
-            let entry = registry::find::<SolverEntry>(key)?;
-            let table: toml::Table = toml::from_str(params)?;
-            let mut solver = (entry.build)(&table)?;
-            let t = Instant::now();
-            let res = solve_linear_static(&model, solver.as_mut());
-            let seconds = t.elapsed().as_secs_f64();
-            let mut row = SweepRow {
+            rows.push(sweep_row(
+                &model,
                 d,
-                solver: label.into(),
-                ok: false,
-                rel_error: None,
-                max_normal_jump: None,
-                seconds,
-                iterations: 0,
-                residual: f64::NAN,
-                equilibrium: f64::NAN,
-                warnings: Vec::new(),
-                precision: String::new(),
-                notes: Vec::new(),
-                message: String::new(),
-            };
-            match res {
-                Ok(r) => {
-                    row.ok = true;
-                    row.seconds = r.timings.analyze + r.timings.factor + r.timings.solve;
-                    row.iterations = r.report.iterations;
-                    row.residual = r.report.residual;
-                    row.equilibrium = r.free_residual;
-                    row.warnings = r.report.warnings.clone();
-                    row.precision = r.report.precision.clone();
-                    row.notes = r.report.notes.clone();
-                    if let Some((rs, c)) = &reference {
-                        let v = model.set_total(&rs.set, &r.residual)?[*c];
-                        row.rel_error = Some((v - rs.value).abs() / rs.value.abs());
-                    }
-                    let ifs = output::interface_results(&model, &r.u, &r.state)?;
-                    row.max_normal_jump = ifs
-                        .iter()
-                        .flat_map(|i| i.points.iter())
-                        .filter_map(|p| p.get("jump"))
-                        .map(|j| j[2].abs())
-                        .reduce(f64::max);
-                }
-                Err(e) => row.message = format!("{e:#}"),
-            }
-            rows.push(row);
+                (label, key, params),
+                reference.as_ref(),
+            )?);
         }
     }
-    // CSV
+    let csv = sweep_csv(&rows, &advice)?;
+    std::fs::write(out.join("sweep.csv"), csv).context("cannot write sweep.csv")?;
+    let ds = log_range(from, to, per_decade * 4);
+    let panels = sweep_panels(&rows, &advice, reference.as_ref(), &ds);
+    plot::write_svg(&out.join("sweep.svg"), &panels)?;
+    Ok(rows)
+}
+
+/// `--from`, `--to` and `--per-decade`: a positive range, at most 10000
+/// values.
+fn check_range(from: f64, to: f64, per_decade: usize) -> Result<()> {
+    if !(from > 0.0 && to > from && from.is_finite() && to.is_finite()) {
+        bail!("--from and --to must be positive with from < to (got {from:e}, {to:e})");
+    }
+    if per_decade == 0 || (to.log10() - from.log10()) * per_decade as f64 > 10_000.0 {
+        bail!(
+            "--per-decade {per_decade}: give 1 or more values per decade and at most 10000 values in all ({:.1} decades from {from:e} to {to:e})",
+            to.log10() - from.log10()
+        );
+    }
+    Ok(())
+}
+
+/// One run of the sweep: `model` (penalty `d`) solved with the back end
+/// `(label, registry key, parameters)`; the relative error of the
+/// reference reaction (`reference`: the spec and its component) and the
+/// largest |delta_3| over the interface points when it solved, the error
+/// message when it failed.
+fn sweep_row(
+    model: &junta_core::Model,
+    d: f64,
+    (label, key, params): (&str, &str, &str),
+    reference: Option<&(scene::ReferenceSpec, usize)>,
+) -> Result<SweepRow> {
+    let entry = registry::find::<SolverEntry>(key)?;
+    let table: toml::Table = toml::from_str(params)?;
+    let mut solver = (entry.build)(&table)?;
+    let t = Instant::now();
+    let res = solve_linear_static(model, solver.as_mut());
+    let seconds = t.elapsed().as_secs_f64();
+    let mut row = SweepRow {
+        d,
+        solver: label.into(),
+        ok: false,
+        rel_error: None,
+        max_normal_jump: None,
+        seconds,
+        iterations: 0,
+        residual: f64::NAN,
+        equilibrium: f64::NAN,
+        warnings: Vec::new(),
+        precision: String::new(),
+        notes: Vec::new(),
+        message: String::new(),
+    };
+    match res {
+        Ok(r) => {
+            row.ok = true;
+            row.seconds = r.timings.analyze + r.timings.factor + r.timings.solve;
+            row.iterations = r.report.iterations;
+            row.residual = r.report.residual;
+            row.equilibrium = r.free_residual;
+            row.warnings = r.report.warnings.clone();
+            row.precision = r.report.precision.clone();
+            row.notes = r.report.notes.clone();
+            if let Some((rs, c)) = reference {
+                let v = model.set_total(&rs.set, &r.residual)?[*c];
+                row.rel_error = Some((v - rs.value).abs() / rs.value.abs());
+            }
+            let ifs = output::interface_results(model, &r.u, &r.state)?;
+            row.max_normal_jump = ifs
+                .iter()
+                .flat_map(|i| i.points.iter())
+                .filter_map(|p| p.get("jump"))
+                .map(|j| j[2].abs())
+                .reduce(f64::max);
+        }
+        Err(e) => row.message = format!("{e:#}"),
+    }
+    Ok(row)
+}
+
+/// `sweep.csv`: one line per run, with the paper's error estimate (eq. 53)
+/// at its d.
+fn sweep_csv(rows: &[SweepRow], advice: &junta_interface::PenaltyAdvice) -> Result<String> {
     let mut csv = String::from(
         "d,solver,status,relative_error,max_abs_normal_jump,solve_seconds,iterations,solver_residual,equilibrium_residual,eq53_estimate,precision,message\n",
     );
-    for r in &rows {
+    for r in rows {
         let (ce, re) = advice.errors_at(r.d);
         let msg = if r.ok {
             r.warnings
@@ -210,9 +250,17 @@ pub fn sweep_penalty(
             msg.replace('"', "'")
         )?;
     }
-    std::fs::write(out.join("sweep.csv"), csv).context("cannot write sweep.csv")?;
-    // chart
-    let series = |solver: &str, color: usize, f: &dyn Fn(&SweepRow) -> Option<f64>| plot::Series {
+    Ok(csv)
+}
+
+/// The line of `f` over d for the runs of `solver` that solved.
+fn series(
+    rows: &[SweepRow],
+    solver: &str,
+    color: usize,
+    f: &dyn Fn(&SweepRow) -> Option<f64>,
+) -> plot::Series {
+    plot::Series {
         name: solver.to_string(),
         points: rows
             .iter()
@@ -221,8 +269,13 @@ pub fn sweep_penalty(
             .collect(),
         color,
         markers_only: false,
-    };
-    let failed = |solver: &str, color: usize, y: f64| plot::Series {
+    }
+}
+
+/// Markers at the runs of `solver` that failed or warned (at their
+/// relative error, `y` without one).
+fn failed_series(rows: &[SweepRow], solver: &str, color: usize, y: f64) -> plot::Series {
+    plot::Series {
         name: format!("{solver} failed / warned"),
         points: rows
             .iter()
@@ -231,18 +284,30 @@ pub fn sweep_penalty(
             .collect(),
         color,
         markers_only: true,
-    };
-    let ds = log_range(from, to, per_decade * 4);
+    }
+}
+
+/// A series drawn as markers only.
+fn dots(mut s: plot::Series) -> plot::Series {
+    s.markers_only = true;
+    s
+}
+
+/// The chart's panels: relative error of the reference reaction (with the
+/// eq. 53 estimate over `ds` and the advisor's d_op, eq. 55), the largest
+/// |delta_3|, and the solve time, over d.
+fn sweep_panels(
+    rows: &[SweepRow],
+    advice: &junta_interface::PenaltyAdvice,
+    reference: Option<&(scene::ReferenceSpec, usize)>,
+    ds: &[f64],
+) -> Vec<plot::Panel> {
     // the mixed mode as markers over the double line: where it holds, the
     // two coincide
-    let dots = |mut s: plot::Series| {
-        s.markers_only = true;
-        s
-    };
     let mut error_series = vec![
-        series("cg", 1, &|r| r.rel_error),
-        series("cholesky", 0, &|r| r.rel_error),
-        dots(series("cholesky_mixed", 2, &|r| r.rel_error)),
+        series(rows, "cg", 1, &|r| r.rel_error),
+        series(rows, "cholesky", 0, &|r| r.rel_error),
+        dots(series(rows, "cholesky_mixed", 2, &|r| r.rel_error)),
         plot::Series {
             name: "cholesky_mixed fell back to double".into(),
             points: rows
@@ -253,10 +318,10 @@ pub fn sweep_penalty(
             color: 6,
             markers_only: true,
         },
-        failed("cholesky", 4, 1.0),
-        failed("cg", 3, 1.0),
-        series("amg", 5, &|r| r.rel_error),
-        failed("amg", 5, 1.0),
+        failed_series(rows, "cholesky", 4, 1.0),
+        failed_series(rows, "cg", 3, 1.0),
+        series(rows, "amg", 5, &|r| r.rel_error),
+        failed_series(rows, "amg", 5, 1.0),
     ];
     error_series.push(plot::Series {
         name: "eq. 53 estimate k/(d a) + n e_c d a / k".into(),
@@ -270,12 +335,11 @@ pub fn sweep_penalty(
         color: 5,
         markers_only: false,
     });
-    let panels = vec![
+    vec![
         plot::Panel {
             title: format!(
                 "relative error of the reference reaction ({})",
                 reference
-                    .as_ref()
                     .map(|(r, _)| r.set.as_str())
                     .unwrap_or("no [reference] in the scene")
             ),
@@ -296,10 +360,10 @@ pub fn sweep_penalty(
             log_x: true,
             log_y: true,
             series: vec![
-                series("cg", 1, &|r| r.max_normal_jump),
-                series("cholesky", 0, &|r| r.max_normal_jump),
-                dots(series("cholesky_mixed", 2, &|r| r.max_normal_jump)),
-                series("amg", 5, &|r| r.max_normal_jump),
+                series(rows, "cg", 1, &|r| r.max_normal_jump),
+                series(rows, "cholesky", 0, &|r| r.max_normal_jump),
+                dots(series(rows, "cholesky_mixed", 2, &|r| r.max_normal_jump)),
+                series(rows, "amg", 5, &|r| r.max_normal_jump),
             ],
             vlines: vec![],
         },
@@ -310,16 +374,14 @@ pub fn sweep_penalty(
             log_x: true,
             log_y: true,
             series: vec![
-                series("cholesky", 0, &|r| Some(r.seconds)),
-                series("cholesky_mixed", 2, &|r| Some(r.seconds)),
-                series("cg", 1, &|r| Some(r.seconds)),
-                series("amg", 5, &|r| Some(r.seconds)),
+                series(rows, "cholesky", 0, &|r| Some(r.seconds)),
+                series(rows, "cholesky_mixed", 2, &|r| Some(r.seconds)),
+                series(rows, "cg", 1, &|r| Some(r.seconds)),
+                series(rows, "amg", 5, &|r| Some(r.seconds)),
             ],
             vlines: vec![],
         },
-    ];
-    plot::write_svg(&out.join("sweep.svg"), &panels)?;
-    Ok(rows)
+    ]
 }
 
 /// Normal-traction profile along one axis for one (d, rule) run.
