@@ -318,11 +318,11 @@ fn period(deck: &InpDeck, k: usize) -> f64 {
 /// of its first step), every step's load case, and for a deck with a
 /// softening law its incremental program.
 ///
-/// Stages: [`read_deck`], [`build_elements`] (one element set per block,
-/// with its material or cohesive law), [`deck_solver`], the load cases
+/// Stages: `read_deck`, `build_elements` (one element set per block,
+/// with its material or cohesive law), `deck_solver`, the load cases
 /// ([`deck_steps`]) and, with a softening law, the load program
-/// ([`incremental_program`]); then what the run reports (reaction sets,
-/// curve, print tables) and the model itself ([`model_of_deck`]).
+/// (`incremental_program`); then what the run reports (reaction sets,
+/// curve, print tables) and the model itself (`model_of_deck`).
 pub fn build_model(path: &Path) -> Result<DeckModel> {
     let file = path.display().to_string();
     let mut deck = read_deck(path, &file)?;

@@ -12,7 +12,8 @@
 
 use std::fmt::Display;
 
-/// An error of the run API.
+/// An error of the run API. The lower crates' errors are boxed so that a
+/// `Result<T, Error>` stays two words larger than `T`.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// The input (scene, deck, mesh, override, output directory) is not
@@ -21,34 +22,34 @@ pub enum Error {
     Input(String),
     /// The incremental driver failed (a numerical failure with its numbers).
     #[error(transparent)]
-    Nonlinear(#[from] junta_solvers::newton::NonlinearError),
+    Nonlinear(Box<junta_solvers::newton::NonlinearError>),
     /// A linear analysis failed.
     #[error(transparent)]
-    Analysis(#[from] junta_solvers::linear_static::AnalysisError),
+    Analysis(Box<junta_solvers::linear_static::AnalysisError>),
     /// The model could not be built or evaluated.
     #[error(transparent)]
-    Core(#[from] junta_core::CoreError),
+    Core(Box<junta_core::CoreError>),
     /// A linear solver failed.
     #[error(transparent)]
-    Solver(#[from] junta_core::solver::SolverError),
+    Solver(Box<junta_core::solver::SolverError>),
     /// An element kernel failed.
     #[error(transparent)]
-    Element(#[from] junta_core::element::ElementError),
+    Element(Box<junta_core::element::ElementError>),
     /// A deck could not be read.
     #[error(transparent)]
-    Deck(#[from] crate::readers::inp::InpError),
+    Deck(Box<crate::readers::inp::InpError>),
     /// A Gmsh mesh could not be read.
     #[error(transparent)]
-    Gmsh(#[from] crate::readers::gmsh::GmshError),
+    Gmsh(Box<crate::readers::gmsh::GmshError>),
     /// A file could not be read or written.
     #[error(transparent)]
-    Io(#[from] std::io::Error),
+    Io(Box<std::io::Error>),
     /// JSON could not be read or written.
     #[error(transparent)]
-    Json(#[from] serde_json::Error),
+    Json(Box<serde_json::Error>),
     /// TOML could not be parsed.
     #[error(transparent)]
-    Toml(#[from] toml::de::Error),
+    Toml(Box<toml::de::Error>),
     /// A chart could not be drawn.
     #[error("{0}")]
     Chart(String),
@@ -62,6 +63,28 @@ pub enum Error {
         source: Box<Error>,
     },
 }
+
+/// `From` for a lower crate's error, boxed (keeps `Result<T, Error>` small).
+macro_rules! boxed_from {
+    ($variant:ident, $t:ty) => {
+        impl From<$t> for Error {
+            fn from(e: $t) -> Self {
+                Error::$variant(Box::new(e))
+            }
+        }
+    };
+}
+
+boxed_from!(Nonlinear, junta_solvers::newton::NonlinearError);
+boxed_from!(Analysis, junta_solvers::linear_static::AnalysisError);
+boxed_from!(Core, junta_core::CoreError);
+boxed_from!(Solver, junta_core::solver::SolverError);
+boxed_from!(Element, junta_core::element::ElementError);
+boxed_from!(Deck, crate::readers::inp::InpError);
+boxed_from!(Gmsh, crate::readers::gmsh::GmshError);
+boxed_from!(Toml, toml::de::Error);
+boxed_from!(Json, serde_json::Error);
+boxed_from!(Io, std::io::Error);
 
 impl From<toml::ser::Error> for Error {
     fn from(e: toml::ser::Error) -> Self {

@@ -3,8 +3,8 @@
 
 use crate::error::{err, Context, Result};
 use crate::observer::Observer;
-use crate::prepare::{build_solver, Prepared};
 use crate::observer::{RunEnd, RunLog};
+use crate::prepare::{build_solver, Prepared};
 use crate::results::{RunResults, Status};
 use crate::{deck, output};
 use junta_core::Model;

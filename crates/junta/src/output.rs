@@ -434,9 +434,15 @@ pub fn law_output_names(res: &[InterfaceResults]) -> Vec<&'static str> {
 /// damaged area (damage >= 0.99) and process-zone area (0 < damage < 0.99).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct InterfaceEnergy {
+    /// Fracture energy dissipated in the block (integral of the points'
+    /// `dissipated_energy` density over their area).
     pub dissipated_energy: f64,
+    /// Energy dissipated by viscous regularisation (same integral of
+    /// `viscous_energy`).
     pub viscous_energy: f64,
+    /// Area of the points with damage >= 0.99.
     pub damaged_area: f64,
+    /// Area of the points with 0 < damage < 0.99 (the process zone).
     pub process_zone_area: f64,
     /// Whether the law reports damage (else the numbers are zero).
     pub has_damage: bool,
@@ -554,8 +560,8 @@ pub fn write_interface_vtu(
 
 /// [`write_interface_vtu`] with a suffix on the file names (`interfaces<suffix>.vtu`).
 ///
-/// Stages: [`MidSurface::of`] gathers the mid-surface cells,
-/// [`write_mid_surface_vtu`] writes them, [`write_interface_points_vtu`]
+/// Stages: `MidSurface::of` gathers the mid-surface cells,
+/// `write_mid_surface_vtu` writes them, `write_interface_points_vtu`
 /// writes the integration points.
 pub fn write_interface_vtu_named(
     dir: &Path,

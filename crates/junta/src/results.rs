@@ -52,4 +52,3 @@ impl RunResults {
         serde_json::to_string_pretty(&self.summary).unwrap_or_default()
     }
 }
-

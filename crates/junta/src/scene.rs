@@ -203,7 +203,9 @@ impl ReferenceSpec {
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModelInfo {
+    /// Title, shown in summaries and charts.
     pub title: Option<String>,
+    /// The units the scene's numbers are in (informative, e.g. "N, mm, MPa").
     pub units: Option<String>,
 }
 
@@ -240,13 +242,20 @@ pub struct MeshSpec {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BoxPart {
+    /// Name of the part: its element set and the prefix of its node sets.
     pub name: String,
+    /// Edge lengths along x, y, z.
     pub size: [f64; 3],
+    /// Elements along x, y, z.
     pub divisions: [usize; 3],
+    /// Element type key (h8, h8i, h20, h27, h20r, h27r, wedge6, wedge15).
     pub element: Spanned<String>,
+    /// Material name (a key of `[materials]`).
     pub material: Spanned<String>,
+    /// Lower corner (default the origin).
     #[serde(default)]
     pub origin: [f64; 3],
+    /// Ratio of the last to the first element size per axis (default 1).
     #[serde(default = "unit_grading")]
     pub grading: [f64; 3],
     /// Further element set the box's elements join (several boxes with the
@@ -322,8 +331,11 @@ pub struct CrackSpec {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BlockSpec {
+    /// Name of the imported block (Gmsh physical volume or deck element set).
     pub name: Spanned<String>,
+    /// Element type key (default: from the file's element type).
     pub element: Option<Spanned<String>>,
+    /// Material name (a key of `[materials]`).
     pub material: Spanned<String>,
 }
 
@@ -331,7 +343,9 @@ pub struct BlockSpec {
 #[derive(Debug, Deserialize)]
 #[serde(untagged)]
 pub enum Fixed {
+    /// `"all"` (every component).
     Word(String),
+    /// Components by name, e.g. `["x", "z"]`.
     List(Vec<String>),
 }
 
@@ -339,8 +353,11 @@ pub enum Fixed {
 #[derive(Debug, Default, Deserialize, Clone, Copy)]
 #[serde(deny_unknown_fields)]
 pub struct Components {
+    /// x component, if given.
     pub x: Option<f64>,
+    /// y component, if given.
     pub y: Option<f64>,
+    /// z component, if given.
     pub z: Option<f64>,
 }
 
@@ -421,8 +438,11 @@ fn yes() -> bool {
 
 /// A parsed scene with its source, for messages.
 pub struct SceneFile {
+    /// The scene's path (messages name it; relative files are read next to it).
     pub path: PathBuf,
+    /// The scene's text (messages give line numbers from it).
     pub text: String,
+    /// The parsed scene.
     pub scene: Scene,
 }
 
@@ -625,8 +645,8 @@ fn mesh_diagonal(mesh: &Mesh) -> f64 {
 
 /// Load the mesh of a scene, then insert its cracks, box node sets and interfaces.
 ///
-/// Stages: [`load_mesh`], [`insert_cracks`], [`add_box_node_sets`],
-/// [`insert_interfaces`].
+/// Stages: `load_mesh`, `insert_cracks`, `add_box_node_sets`,
+/// `insert_interfaces`.
 pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
     let mut mesh = load_mesh(sf)?;
     insert_cracks(sf, &mut mesh)?;

@@ -29,8 +29,8 @@ use crate::curve::{past_peak_hint, Curve};
 use crate::error::{bail, err, Context, Error, Result};
 use crate::incremental::{run_incremental, Limits};
 use crate::observer::{Observer, RunLog};
-pub use crate::results::{RunResults, Status};
 use crate::prepare::{prepare_with, Prepared};
+pub use crate::results::{RunResults, Status};
 use crate::writers;
 use std::path::{Path, PathBuf};
 

@@ -25,20 +25,31 @@ use std::time::Instant;
 /// One run of the sweep.
 #[derive(Debug, Clone)]
 pub struct SweepRow {
+    /// Penalty stiffness d of every `linear_penalty` law in this run.
     pub d: f64,
+    /// The back end's label (direct or CG variant).
     pub solver: String,
+    /// Whether the solve succeeded.
     pub ok: bool,
+    /// |computed - reference| / |reference| of the scene's `[reference]`.
     pub rel_error: Option<f64>,
+    /// Largest |delta_3| (normal jump, the constraint error) of the interfaces.
     pub max_normal_jump: Option<f64>,
+    /// Wall time of the solve (s).
     pub seconds: f64,
+    /// Iterations of an iterative back end (0 for a direct one).
     pub iterations: usize,
+    /// The back end's own residual ||b - K u|| / ||b||.
     pub residual: f64,
+    /// Relative equilibrium residual of the free dofs after the solve.
     pub equilibrium: f64,
+    /// The back end's warnings (lost digits, pivots).
     pub warnings: Vec<String>,
     /// Precision of the direct solver's final factor (`double`/`mixed`).
     pub precision: String,
     /// What the back end decided on its own (mixed-precision fallback).
     pub notes: Vec<String>,
+    /// The error of a failed run (empty when `ok`).
     pub message: String,
 }
 
@@ -79,9 +90,9 @@ fn set_penalty(sf: &mut scene::SceneFile, d: f64) -> usize {
 
 /// Run the sweep and write `sweep.csv` and `sweep.svg` into `out`.
 ///
-/// Stages: [`check_range`]; the scene and the advisor's numbers (they do not
-/// depend on d); per d, one [`sweep_row`] per back end of
-/// [`SWEEP_SOLVERS`]; [`sweep_csv`] and [`sweep_panels`] (the chart).
+/// Stages: `check_range`; the scene and the advisor's numbers (they do not
+/// depend on d); per d, one `sweep_row` per back end of
+/// [`SWEEP_SOLVERS`]; `sweep_csv` and `sweep_panels` (the chart).
 pub fn sweep_penalty(
     input: &Path,
     from: f64,
@@ -387,7 +398,9 @@ fn sweep_panels(
 /// Normal-traction profile along one axis for one (d, rule) run.
 #[derive(Debug, Clone)]
 pub struct Profile {
+    /// Penalty of the run (None: the scene's own).
     pub d: Option<f64>,
+    /// Integration rule of the interfaces (`gauss` or `lobatto`).
     pub rule: String,
     /// `(coordinate, mean normal traction of the points at that coordinate)`, sorted.
     pub points: Vec<(f64, f64)>,

@@ -37,6 +37,7 @@ pub struct ControlRun {
 }
 
 impl ControlRun {
+    /// The point of the largest |load| `(displacement, load)` of the curve.
     pub fn peak(&self) -> Option<(f64, f64)> {
         self.points
             .iter()
