@@ -2,8 +2,8 @@
 """Whole runs of the same input through the command line, the Rust run API
 and the Python package: the API must cost what the CLI costs.
 
-Cases: the DCB of examples/delamination/dcb.toml (497 increments, direct
-LDL^T) and the H20 unit cube n = 20 of shared/BENCHMARKS.md section 1
+Cases: the DCB of examples/delamination/dcb_arc.toml (arc length to 10 mm,
+60 increments, direct LDL^T) and the H20 unit cube n = 20 of shared/BENCHMARKS.md section 1
 (107,163 dofs, one linear solve; deck written by bench/make_cube_deck.py).
 Each way runs REPEAT times (default 3) one after the other on a quiet
 machine, release builds, 2 threads; the table gives the median wall time
@@ -51,7 +51,7 @@ def main():
     os.makedirs(work, exist_ok=True)
     inputs = {}
     if "dcb" in args.cases:
-        inputs["DCB (dcb.toml)"] = os.path.join(ROOT, "examples/delamination/dcb.toml")
+        inputs["DCB (dcb_arc)"] = os.path.join(ROOT, "examples/delamination/dcb_arc.toml")
     if "cube" in args.cases:
         deck = os.path.join(work, "cube_C3D20_20.inp")
         if not os.path.exists(deck):
