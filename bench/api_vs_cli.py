@@ -5,8 +5,7 @@ and the Python package: the API must cost what the CLI costs.
 Cases: the DCB of examples/delamination/dcb_arc.toml (arc length to 10 mm,
 60 increments, direct LDL^T) and the H20 unit cube n = 20 of shared/BENCHMARKS.md section 1
 (107,163 dofs, one linear solve; deck written by bench/make_cube_deck.py).
-Each way runs REPEAT times (default 3) one after the other on a quiet
-machine, release builds, 2 threads; the table gives the median wall time
+Each way runs REPEAT times (default 3), the ways in turn (round-robin), release builds, 2 threads; the table gives the median wall time
 and its ratio to the CLI's.
 
 - CLI: `target/release/junta run INPUT -o DIR -q`
@@ -73,18 +72,18 @@ def main():
             ways["Python"] = lambda d: [sys.executable, "-c",
                                         "import junta,sys; junta.Simulation.from_file(sys.argv[1]).run(output=sys.argv[2])",
                                         path, d]
-        medians = {}
-        for way, cmd in ways.items():
-            times = []
-            for _ in range(args.repeat):
+        # round-robin: the ways share whatever else the machine does
+        times = {way: [] for way in ways}
+        for _ in range(args.repeat):
+            for way, cmd in ways.items():
                 d = tempfile.mkdtemp(dir=work)
-                times.append(timed(cmd(d), env))
+                times[way].append(timed(cmd(d), env))
                 shutil.rmtree(d, ignore_errors=True)
-            medians[way] = statistics.median(times)
-            runs = " ".join(f"{t:.2f}" for t in times)
+        medians = {way: statistics.median(t) for way, t in times.items()}
+        for way, t in times.items():
+            runs = " ".join(f"{x:.2f}" for x in t)
             print(f"{label:<16} {way:<10} {medians[way]:>9.2f} {runs:>24} "
                   f"{medians[way] / medians['CLI']:>6.3f}")
-
 
 if __name__ == "__main__":
     main()

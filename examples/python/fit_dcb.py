@@ -20,7 +20,6 @@ Units: N, mm, N/mm. Run from the repository root:
 Prints the fitted G_Ic, the number of runs and the wall time.
 """
 
-import os
 import pathlib
 import sys
 import time
