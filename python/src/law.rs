@@ -605,15 +605,8 @@ pub fn from_object(py: Python<'_>, key: &str, obj: &Bound<'_, PyAny>) -> Result<
             names.len()
         ));
     }
-    let reserved = [
-        "jump",
-        "traction",
-        "frame",
-        "area",
-        "state",
-        "failed",
-        "failure_index",
-    ];
+    // the names every interface point reports whatever its law
+    let reserved = junta::output::FIXED_POINT_VALUES;
     if let Some(n) = names.iter().find(|n| reserved.contains(&n.as_str())) {
         return Err(format!(
             "output name `{n}` is reserved (the interface element reports it); reserved: {}",

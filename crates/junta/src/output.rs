@@ -403,7 +403,7 @@ fn component_range(points: &[junta_core::PointOutput], name: &str) -> ([f64; 3],
 /// Values every interface point carries whatever its law; the other
 /// scalar values of a point are its law's outputs
 /// ([`junta_core::InterfaceLaw::output_names`]).
-const FIXED_POINT_VALUES: &[&str] = &[
+pub const FIXED_POINT_VALUES: &[&str] = &[
     "jump",
     "traction",
     "frame",
