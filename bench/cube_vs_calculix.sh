@@ -5,7 +5,7 @@
 # top Fz reactions agree to 1e-6 and prints wall time and peak memory
 # (/usr/bin/time -v). Junta runs twice: with its default solver settings
 # (`auto`: AMG-CG on these compact 3D models above 100,000 equations, see
-# crates/cli/src/auto.rs; the direct solver's auto precision below) and with
+# crates/junta/src/auto.rs; the direct solver's auto precision below) and with
 # `--solver type=cholesky --solver precision=double` (double-precision
 # factor).
 # Usage: bench/cube_vs_calculix.sh [CASES...]
