@@ -97,16 +97,7 @@ fn observer_stop_leaves_a_restartable_run() {
         serde_json::from_str(&std::fs::read_to_string(parts.path().join("summary.json")).unwrap())
             .unwrap();
     assert_eq!(summary["status"], "stopped: increment 10 reached");
-    let out = junta()
-        .args(["run", "-q", "--restart"])
-        .arg(parts.path())
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    common::restart_ok(parts.path());
     assert_eq!(
         curve_without_seconds(whole.path()),
         curve_without_seconds(parts.path())
