@@ -40,5 +40,7 @@ pub use error::CoreError;
 pub use law::{FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse};
 pub use material::{Material, Voigt6};
 pub use model::Model;
-pub use solver::{EquationLayout, LinearSolver, MatrixKind, SolveReport, SolverError};
+pub use solver::{
+    EquationLayout, LinearSolver, MatrixKind, PrecomputedDissection, SolveReport, SolverError,
+};
 pub use sparse::SymmetricCsc;

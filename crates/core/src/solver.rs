@@ -107,6 +107,20 @@ pub struct SolveReport {
     pub negative_pivots: Option<usize>,
 }
 
+/// A nested-dissection ordering computed by the caller, with the factor
+/// size predicted for it ([`LinearSolver::offer_dissection`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PrecomputedDissection {
+    /// `perm[new] = old`: the equation eliminated `new`-th.
+    pub perm: Vec<usize>,
+    /// Predicted non-zeros of the Cholesky factor (diagonal included).
+    pub nonzeros: usize,
+    /// Predicted floating-point operations of the factorisation.
+    pub flops: f64,
+    /// Seconds spent computing the ordering and its prediction.
+    pub seconds: f64,
+}
+
 /// Kind of a tangent matrix, from the laws and materials of a model.
 /// Ordered: a model's kind is the largest of its elements' kinds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
@@ -199,6 +213,12 @@ pub trait LinearSolver: Send + std::fmt::Debug {
     /// perturbed pivot, no tiny pivot, little growth): that check reads
     /// the whole matrix once more per solve. Ignored by default.
     fn set_caller_checks_residual(&mut self, _checks: bool) {}
+    /// A nested-dissection ordering of the pattern the next
+    /// [`LinearSolver::analyze`] will see, computed before this back end
+    /// was built (the solver choice `auto` orders the model to predict the
+    /// direct factor's size). A direct back end that would compute nested
+    /// dissection takes this one instead; others ignore it.
+    fn offer_dissection(&mut self, _dissection: PrecomputedDissection) {}
     /// Cumulative report of what the solver did.
     fn report(&self) -> SolveReport;
     /// The matrix kinds this back end can solve (default: SPD only).

@@ -6,10 +6,12 @@
 //!
 //! Models of at most [`DIRECT_ALWAYS`] equations keep the direct solver
 //! without any analysis (their factor is small; existing results stay bit
-//! for bit). Above, the factor's non-zeros are counted exactly on the
-//! nested-dissection ordering (elimination tree and column counts,
-//! `O(nnz(A))`), and AMG is chosen, with the numbers in the run's notes
-//! (`summary.json` `notes`), when
+//! for bit). Above, the model is ordered by nested dissection (the
+//! ordering the direct solver would compute first) and the factor's size is
+//! predicted on that ordering by weighted column counts over the node graph
+//! ([`ordering::choose_reusing`]: `O(nnz(A))`, exact for an ordering that
+//! keeps each node's equations together). AMG is chosen, with the numbers
+//! in the run's notes (`summary.json` `notes`), when
 //! - the factor's memory (8 bytes per non-zero, double precision) exceeds
 //!   half of the memory available ([`crate::limits::machine_memory`]): such
 //!   a factor is never attempted; or
@@ -17,9 +19,14 @@
 //!   [`AMG_FILL_PER_EQUATION`] non-zeros per equation (a compact 3D solid,
 //!   where AMG-CG is measured faster). Softening models keep `ldlt` there:
 //!   GMRES on an indefinite tangent is not measured to be faster.
+//!
+//! When the direct solver is kept, the dissection is handed to it
+//! ([`junta_core::LinearSolver::offer_dissection`]), so the run orders the
+//! model once. The decision's time is the `choose_solver` entry of
+//! `summary.json` `timings`.
 
-use junta_core::Model;
-use junta_solvers::ordering;
+use junta_core::{Model, PrecomputedDissection};
+use junta_solvers::ordering::{self, OrderingKind};
 
 /// Up to this many equations `auto` keeps the direct solver.
 pub const DIRECT_ALWAYS: usize = 100_000;
@@ -27,24 +34,59 @@ pub const DIRECT_ALWAYS: usize = 100_000;
 /// Above [`DIRECT_ALWAYS`], a factor with more non-zeros per equation than
 /// this (a compact 3D solid, whose fill grows like `n^(1/3)`) is slower
 /// than AMG: measured with `bench/cube_vs_calculix.sh` (2 cores), H20 cube
-/// n=20 (102,039 equations, 1,230 factor entries per equation) AMG-CG 4.5 s
-/// against the direct solver's 5.6 s, H8 n=40 (200,039 equations, 1,170
-/// per equation) 3.5 s against 10.2 s. Slender and layered models fill
-/// far less and stay direct.
+/// n=20 (102,039 equations, 1,227 factor entries per equation) and H8 n=40
+/// (200,039 equations, 1,163 per equation): see `docs/performance.md` for
+/// the times of both back ends. Slender and layered models fill far less
+/// and stay direct.
 pub const AMG_FILL_PER_EQUATION: f64 = 1000.0;
 
-/// `Some(reason)` when `auto` should use AMG instead of the direct factor
-/// (the reason names the factor's size against the memory available,
-/// [`crate::limits::machine_memory`], which `JUNTA_MEMORY_LIMIT` sets).
-pub fn prefer_amg(model: &Model, positive_definite: bool) -> Option<String> {
+/// What `auto` decided for a symmetric model.
+#[derive(Debug, Clone, Default)]
+pub struct Decision {
+    /// `Some(reason)` when AMG replaces the direct factor (the reason names
+    /// the factor's predicted size against the memory available).
+    pub amg_reason: Option<String>,
+    /// The nested dissection computed to decide, for the direct solver
+    /// (`None` when AMG was chosen or no analysis was needed).
+    pub dissection: Option<PrecomputedDissection>,
+    /// Seconds spent deciding.
+    pub seconds: f64,
+}
+
+/// [`decide_above`] with the threshold [`DIRECT_ALWAYS`].
+pub fn decide(model: &Model, positive_definite: bool) -> Decision {
+    decide_above(model, positive_definite, DIRECT_ALWAYS)
+}
+
+/// The direct factor or AMG for `model`; models of at most
+/// `direct_always` equations keep the direct factor without analysis.
+pub fn decide_above(model: &Model, positive_definite: bool, direct_always: usize) -> Decision {
+    let t0 = std::time::Instant::now();
     let n = model.dofs.num_free;
-    if n <= DIRECT_ALWAYS {
-        return None;
+    if n <= direct_always {
+        return Decision::default();
     }
     let pattern = model.assembler().pattern;
     let coords = model.dofs.equation_coords(&model.mesh.nodes);
-    let perm = ordering::nested_dissection(&pattern, Some(&coords));
-    let nnz_l = ordering::factor_nonzeros(&pattern, Some(&perm));
+    let choice = ordering::choose(OrderingKind::NestedDissection, &pattern, Some(&coords));
+    let estimate = choice.estimate();
+    let amg_reason = amg_reason(n, estimate.nonzeros, positive_definite);
+    let dissection = amg_reason.is_none().then(|| PrecomputedDissection {
+        perm: choice.perm,
+        nonzeros: estimate.nonzeros,
+        flops: estimate.flops,
+        seconds: choice.seconds,
+    });
+    Decision {
+        amg_reason,
+        dissection,
+        seconds: t0.elapsed().as_secs_f64(),
+    }
+}
+
+/// `Some(reason)` when a direct factor of `nnz_l` non-zeros for `n`
+/// equations should give way to AMG (see the module docs).
+fn amg_reason(n: usize, nnz_l: usize, positive_definite: bool) -> Option<String> {
     let bytes = 8.0 * nnz_l as f64;
     let avail = crate::limits::machine_memory().unwrap_or(f64::INFINITY);
     let gb = |b: f64| b / 1e9;

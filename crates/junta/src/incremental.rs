@@ -509,7 +509,7 @@ fn finish(
         summary["interfaces"] = output::interface_summary(model, &interfaces);
     }
     match &run {
-        Some(run) => run_totals(&mut summary, model, run, t0)?,
+        Some(run) => run_totals(&mut summary, p, run, t0)?,
         None => {
             if let Some(last) = log.rows.last() {
                 summary["failed_points_at_last_increment"] = json!(last.failed);
@@ -568,16 +568,19 @@ fn base_summary(input: &Path, p: &Prepared, log: &RunLog, status: &str) -> serde
 /// Reactions, timings and driver counts of a run the driver returned.
 fn run_totals(
     summary: &mut serde_json::Value,
-    model: &Model,
+    p: &Prepared,
     run: &NonlinearRun,
     t0: Instant,
 ) -> Result<()> {
+    let model = &p.model;
     summary["reactions"] = output::reactions(model, &run.residual)?;
     summary["displacement_max"] = json!(output::displacement_max(&run.u));
     let t = run.summary.timings;
     summary["timings"] = json!({
+        "read": p.read_seconds, "choose_solver": p.choose_solver_seconds,
         "assemble": t.assemble, "analyze": t.analyze, "factor": t.factor, "solve": t.solve,
-        "driver_total": t.total, "total": t0.elapsed().as_secs_f64(),
+        "driver_total": t.total,
+        "total": p.read_seconds + p.choose_solver_seconds + t0.elapsed().as_secs_f64(),
     });
     summary["symbolic_analyses"] = json!(run.summary.analyze_count);
     summary["cutbacks"] = json!(run.summary.cutbacks);

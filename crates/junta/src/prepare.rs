@@ -69,6 +69,9 @@ pub struct Prepared {
     pub prints: crate::deck_print::PrintTables,
     /// Seconds spent reading the input and building the model.
     pub read_seconds: f64,
+    /// Seconds spent choosing the linear solver (`auto`'s analysis,
+    /// [`crate::auto::decide`]); not part of `read_seconds`.
+    pub choose_solver_seconds: f64,
 }
 
 /// Build the linear back end registered as `key` from its parameter
@@ -92,10 +95,11 @@ pub fn resolve_solver(
     notes: &mut Vec<String>,
 ) -> Result<Box<dyn LinearSolver>> {
     let kind = model.matrix_kind();
+    let mut dissection = None;
     if key == "auto" && kind != MatrixKind::General {
-        if let Some(reason) =
-            crate::auto::prefer_amg(model, kind == MatrixKind::SymmetricPositiveDefinite)
-        {
+        let decision = crate::auto::decide(model, kind == MatrixKind::SymmetricPositiveDefinite);
+        dissection = decision.dissection;
+        if let Some(reason) = decision.amg_reason {
             let method = if kind == MatrixKind::SymmetricPositiveDefinite {
                 "cg"
             } else {
@@ -134,7 +138,10 @@ pub fn resolve_solver(
             ));
         }
     }
-    let solver = build_solver(key, table, where_)?;
+    let mut solver = build_solver(key, table, where_)?;
+    if let Some(d) = dissection {
+        solver.offer_dissection(d);
+    }
     if kind == MatrixKind::General && !solver.accepts(kind) {
         notes.push(format!(
             "solver `{key}` solves symmetric matrices only, but the tangent is {}: the symmetric part of the tangent is assembled instead, so Newton loses its quadratic convergence (see the iterations per increment in curve.csv and summary.json); use [solver] type = \"auto\" or \"lu\" for the consistent tangent",
@@ -207,7 +214,7 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
 pub fn prepare_with(input: &Path, options: &crate::Options) -> Result<Prepared> {
     let t0 = std::time::Instant::now();
     let mut p = prepare_unchecked(input, options)?;
-    p.read_seconds = t0.elapsed().as_secs_f64();
+    p.read_seconds = t0.elapsed().as_secs_f64() - p.choose_solver_seconds;
     check_prepared(&input.display().to_string(), &p)?;
     Ok(p)
 }
@@ -232,7 +239,9 @@ pub fn prepare_model(model: Model, analysis: scene::AnalysisSpec, key: &str) -> 
     let mut key = key.to_string();
     let table = toml::Table::new();
     let mut notes = Vec::new();
+    let t_choice = std::time::Instant::now();
     let solver = resolve_solver(&mut key, &table, &model, where_, &mut notes)?;
+    let choose_solver_seconds = t_choice.elapsed().as_secs_f64();
     Ok(Prepared {
         model,
         solver,
@@ -256,6 +265,7 @@ pub fn prepare_model(model: Model, analysis: scene::AnalysisSpec, key: &str) -> 
         program_deck_steps: Vec::new(),
         prints: Default::default(),
         read_seconds: 0.0,
+        choose_solver_seconds,
     })
 }
 
@@ -360,6 +370,7 @@ fn prepare_unchecked(input: &Path, options: &crate::Options) -> Result<Prepared>
             let mut key = d.solver.clone().unwrap_or_else(|| "auto".to_string());
             let mut table = toml::Table::new();
             apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
+            let t_choice = std::time::Instant::now();
             let solver = resolve_solver(
                 &mut key,
                 &table,
@@ -367,6 +378,7 @@ fn prepare_unchecked(input: &Path, options: &crate::Options) -> Result<Prepared>
                 &input.display().to_string(),
                 &mut notes,
             )?;
+            let choose_solver_seconds = t_choice.elapsed().as_secs_f64();
             let (analysis, (increment_limits, program_deck_steps), deck_steps) = match d.incremental
             {
                 // the load program holds the steps
@@ -408,6 +420,7 @@ fn prepare_unchecked(input: &Path, options: &crate::Options) -> Result<Prepared>
                 program_deck_steps,
                 prints: d.prints,
                 read_seconds: 0.0,
+                choose_solver_seconds,
             })
         }
         _ => bail!(
@@ -428,6 +441,7 @@ fn prepare_scene(
     let (mut key, mut table) = scene::solver_table(sf);
     apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
     let mut notes = Vec::new();
+    let t_choice = std::time::Instant::now();
     let solver = resolve_solver(
         &mut key,
         &table,
@@ -435,6 +449,7 @@ fn prepare_scene(
         &sf.path.display().to_string(),
         &mut notes,
     )?;
+    let choose_solver_seconds = t_choice.elapsed().as_secs_f64();
     let (solver_key, solver_table) = (key, table);
     Ok(Prepared {
         model,
@@ -467,6 +482,7 @@ fn prepare_scene(
         program_deck_steps: Vec::new(),
         prints: Default::default(),
         read_seconds: 0.0,
+        choose_solver_seconds,
     })
 }
 

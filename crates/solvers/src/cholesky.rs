@@ -70,7 +70,7 @@ use crate::ordering::OrderingKind;
 use crate::supernodal::{FactorScalar, PanelFactor};
 use faer::Par;
 use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
-use junta_core::{LinearSolver, SolveReport, SolverError, SymmetricCsc};
+use junta_core::{LinearSolver, PrecomputedDissection, SolveReport, SolverError, SymmetricCsc};
 use serde::Deserialize;
 use std::time::Instant;
 
@@ -248,6 +248,9 @@ pub struct CholeskyStats {
     pub factor_bytes: usize,
     /// Number of symbolic analyses so far.
     pub analyze_count: usize,
+    /// Of those, analyses that took the caller's nested dissection
+    /// ([`LinearSolver::offer_dissection`]) instead of computing it.
+    pub dissections_reused: usize,
     /// Number of numeric factorisations so far.
     pub factor_count: usize,
     /// Number of solves so far.
@@ -297,6 +300,9 @@ pub struct CholeskySolver {
     /// `||A||_inf` of the matrix of the single-precision factor.
     a_norm_inf: f64,
     factored: bool,
+    /// A nested dissection offered by the caller, taken by the next
+    /// analysis.
+    dissection: Option<PrecomputedDissection>,
     stats: CholeskyStats,
     report: SolveReport,
     /// Warnings of the last factorisation (kept while solving with it).
@@ -335,6 +341,7 @@ impl CholeskySolver {
             single_failed: false,
             a_norm_inf: 0.0,
             factored: false,
+            dissection: None,
             stats: CholeskyStats::default(),
             report: SolveReport {
                 solver: "cholesky".into(),
@@ -693,7 +700,15 @@ impl LinearSolver for CholeskySolver {
             kind,
             candidates,
             ordering_note,
-        } = crate::supernodal::analyze(self.settings.ordering, matrix, coords, 1.0)?;
+            dissection_reused,
+        } = crate::supernodal::analyze(
+            self.settings.ordering,
+            matrix,
+            coords,
+            1.0,
+            self.dissection.take().as_ref(),
+        )?;
+        self.stats.dissections_reused += usize::from(dissection_reused);
         self.stats.supernodal = true;
         self.stats.factor_nonzeros = factor.nonzeros();
         self.factor = Some(factor);
@@ -730,6 +745,10 @@ impl LinearSolver for CholeskySolver {
             "cholesky: symbolic analysis"
         );
         Ok(())
+    }
+
+    fn offer_dissection(&mut self, dissection: PrecomputedDissection) {
+        self.dissection = Some(dissection);
     }
 
     fn factorize(&mut self, matrix: &SymmetricCsc) -> Result<(), SolverError> {

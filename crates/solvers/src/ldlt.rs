@@ -122,7 +122,9 @@ use faer::linalg::triangular_solve as tri;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{MatMut, MatRef, Par};
 use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
-use junta_core::{LinearSolver, MatrixKind, SolveReport, SolverError, SymmetricCsc};
+use junta_core::{
+    LinearSolver, MatrixKind, PrecomputedDissection, SolveReport, SolverError, SymmetricCsc,
+};
 use rayon::prelude::*;
 use serde::Deserialize;
 use std::time::Instant;
@@ -280,6 +282,9 @@ pub struct LdltStats {
     pub ordering: &'static str,
     /// Number of symbolic analyses so far.
     pub analyze_count: usize,
+    /// Of those, analyses that took the caller's nested dissection
+    /// ([`LinearSolver::offer_dissection`]) instead of computing it.
+    pub dissections_reused: usize,
     /// Number of numeric factorisations so far.
     pub factor_count: usize,
     /// Number of solves so far.
@@ -407,6 +412,9 @@ pub struct LdltSolver {
     /// ([`LinearSolver::set_caller_checks_residual`]).
     caller_checks: bool,
     stats: LdltStats,
+    /// A nested dissection offered by the caller, taken by the next
+    /// analysis.
+    dissection: Option<PrecomputedDissection>,
     report: SolveReport,
 }
 
@@ -451,6 +459,7 @@ impl LdltSolver {
             panel_max_multiplier: Vec::new(),
             caller_checks: false,
             stats: LdltStats::default(),
+            dissection: None,
             report: SolveReport {
                 solver: "ldlt".into(),
                 precision: "double".into(),
@@ -1419,7 +1428,14 @@ impl LinearSolver for LdltSolver {
         } else {
             1.0
         };
-        let a = crate::supernodal::analyze(self.settings.ordering, matrix, coords, nd_weight)?;
+        let a = crate::supernodal::analyze(
+            self.settings.ordering,
+            matrix,
+            coords,
+            nd_weight,
+            self.dissection.take().as_ref(),
+        )?;
+        self.stats.dissections_reused += usize::from(a.dissection_reused);
         self.stats.factor_nonzeros = a.factor.nonzeros();
         self.stats.ordering = a.kind.name();
         self.stats.analyze_count += 1;
@@ -1462,6 +1478,10 @@ impl LinearSolver for LdltSolver {
             "ldlt: symbolic analysis"
         );
         Ok(())
+    }
+
+    fn offer_dissection(&mut self, dissection: PrecomputedDissection) {
+        self.dissection = Some(dissection);
     }
 
     fn factorize(&mut self, matrix: &SymmetricCsc) -> Result<(), SolverError> {

@@ -457,7 +457,7 @@ impl LinearSolver for LuSolver {
         self.factored = false;
         // ordering and symmetric structure: the shared analysis on the
         // pattern of A + A^T (the assembled pattern is symmetric)
-        let a = crate::supernodal::analyze(self.settings.ordering, matrix, coords, 1.0)?;
+        let a = crate::supernodal::analyze(self.settings.ordering, matrix, coords, 1.0, None)?;
         self.report.notes.retain(|n| !n.starts_with("ordering "));
         self.report.notes.push(a.ordering_note.clone());
         self.report.ordering = a.kind.name().into();

@@ -69,8 +69,9 @@
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
 use faer::sparse::SymbolicSparseColMatRef;
-use junta_core::SymmetricCsc;
+use junta_core::{PrecomputedDissection, SymmetricCsc};
 use rayon::prelude::*;
+
 use serde::Deserialize;
 
 /// Subgraphs with at most this many vertices (nodes, not dofs) are ordered
@@ -136,6 +137,9 @@ pub struct OrderingChoice {
     /// Weight of nested dissection's flops in the comparison (1 unless
     /// the caller refactorises partially, see [`choose_weighted`]).
     pub nd_weight: f64,
+    /// The nested-dissection candidate was the caller's
+    /// ([`choose_reusing`]), not computed here.
+    pub dissection_reused: bool,
 }
 
 impl OrderingChoice {
@@ -165,6 +169,11 @@ impl OrderingChoice {
                 )
             })
             .collect();
+        let reused = if self.dissection_reused {
+            " (nested dissection reused from the solver choice)"
+        } else {
+            ""
+        };
         if self.candidates.len() > 1 {
             let weight = if self.nd_weight != 1.0 {
                 format!(
@@ -175,13 +184,13 @@ impl OrderingChoice {
                 String::new()
             };
             format!(
-                "ordering auto: {} non-zeros predicted, kept {}{weight}",
+                "ordering auto: {} non-zeros predicted, kept {}{weight}{reused}",
                 list.join(", "),
                 self.kind.name()
             )
         } else {
             format!(
-                "ordering {}: {} non-zeros predicted",
+                "ordering {}: {} non-zeros predicted{reused}",
                 self.kind.name(),
                 list.join(", ")
             )
@@ -234,6 +243,21 @@ pub fn choose_weighted(
     coords: Option<&[[f64; 3]]>,
     nd_weight: f64,
 ) -> OrderingChoice {
+    choose_reusing(kind, matrix, coords, nd_weight, None)
+}
+
+/// [`choose_weighted`], with the nested-dissection candidate taken from
+/// `known` (computed by the caller on the same pattern and coordinates,
+/// with its prediction) instead of computed again. `known` is ignored when
+/// `kind` asks for no nested dissection or when it is not a permutation of
+/// the matrix's equations.
+pub fn choose_reusing(
+    kind: OrderingKind,
+    matrix: &SymmetricCsc,
+    coords: Option<&[[f64; 3]]>,
+    nd_weight: f64,
+    known: Option<&PrecomputedDissection>,
+) -> OrderingChoice {
     let t0 = std::time::Instant::now();
     let kinds: &[OrderingKind] = match kind {
         OrderingKind::Auto => &[OrderingKind::NestedDissection, OrderingKind::Amd],
@@ -241,19 +265,40 @@ pub fn choose_weighted(
         OrderingKind::Amd => &[OrderingKind::Amd],
         OrderingKind::Natural => &[OrderingKind::Natural],
     };
+    let known = known.filter(|k| {
+        kinds.contains(&OrderingKind::NestedDissection) && is_permutation(&k.perm, matrix.n)
+    });
+    let to_compute: Vec<OrderingKind> = kinds
+        .iter()
+        .copied()
+        .filter(|&k| known.is_none() || k != OrderingKind::NestedDissection)
+        .collect();
     // the candidates and the counter are independent: compute them in
     // parallel, then predict each candidate's fill
-    let (counter, perms) = rayon::join(
-        || FillCounter::new(matrix),
+    let (counter, computed) = rayon::join(
+        || (!to_compute.is_empty()).then(|| FillCounter::new(matrix)),
         || {
-            kinds
+            to_compute
                 .par_iter()
                 .map(|&k| (k, compute(k, matrix, coords)))
                 .collect::<Vec<_>>()
         },
     );
-    let mut best: Option<(Vec<usize>, OrderingKind, FillEstimate)> = None;
-    let mut candidates = Vec::with_capacity(kinds.len());
+    let mut candidates: Vec<(OrderingKind, Vec<usize>, FillEstimate)> = Vec::new();
+    if let Some(k) = known {
+        let est = FillEstimate {
+            nonzeros: k.nonzeros,
+            flops: k.flops,
+        };
+        candidates.push((OrderingKind::NestedDissection, k.perm.clone(), est));
+    }
+    for (k, perm) in computed {
+        let est = counter
+            .as_ref()
+            .map(|c| c.predict(&perm))
+            .unwrap_or_default();
+        candidates.push((k, perm, est));
+    }
     let weighted = |k: OrderingKind, e: &FillEstimate| {
         if k == OrderingKind::NestedDissection {
             e.flops * nd_weight
@@ -261,24 +306,22 @@ pub fn choose_weighted(
             e.flops
         }
     };
-    for (k, perm) in perms {
-        let est = counter.predict(&perm);
-        candidates.push((k, est));
-        if best
-            .as_ref()
-            .is_none_or(|b| weighted(k, &est) < weighted(b.1, &b.2))
-        {
-            best = Some((perm, k, est));
-        }
-    }
-    let (perm, kind, _) =
-        best.unwrap_or_else(|| (Vec::new(), OrderingKind::Natural, FillEstimate::default()));
+    let best = (0..candidates.len()).min_by(|&a, &b| {
+        let (ka, _, ea) = &candidates[a];
+        let (kb, _, eb) = &candidates[b];
+        weighted(*ka, ea).total_cmp(&weighted(*kb, eb))
+    });
+    let (perm, kept) = match best {
+        Some(b) => (std::mem::take(&mut candidates[b].1), candidates[b].0),
+        None => (Vec::new(), OrderingKind::Natural),
+    };
     OrderingChoice {
         perm,
-        kind,
-        candidates,
+        kind: kept,
+        candidates: candidates.into_iter().map(|(k, _, e)| (k, e)).collect(),
         seconds: t0.elapsed().as_secs_f64(),
         nd_weight: if kinds.len() > 1 { nd_weight } else { 1.0 },
+        dissection_reused: known.is_some(),
     }
 }
 

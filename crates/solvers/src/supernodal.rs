@@ -26,7 +26,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::{Accum, MatMut, MatRef, Par, Side};
-use junta_core::{SolverError, SymmetricCsc};
+use junta_core::{PrecomputedDissection, SolverError, SymmetricCsc};
 use rayon::prelude::*;
 
 /// Working precision of a factor: `f64` or `f32`.
@@ -252,10 +252,14 @@ pub(crate) struct Analysis {
     pub(crate) kind: OrderingKind,
     pub(crate) candidates: Vec<(OrderingKind, ordering::FillEstimate)>,
     pub(crate) ordering_note: String,
+    /// The nested dissection came from the caller
+    /// ([`junta_core::LinearSolver::offer_dissection`]).
+    pub(crate) dissection_reused: bool,
 }
 
-/// Ordering `kind` of `matrix` ([`ordering::compute`], with `coords` for
-/// the geometric orderings), then faer's supernodal symbolic Cholesky with
+/// Ordering `kind` of `matrix` ([`ordering::choose_reusing`], with `coords`
+/// for the geometric orderings and `known` a nested dissection computed
+/// earlier), then faer's supernodal symbolic Cholesky with
 /// that ordering (elimination tree, column counts, supernodes, row
 /// structure of `L`) and the panels. The structure of an `L D L^T` factor
 /// without delayed pivots is the same.
@@ -264,10 +268,12 @@ pub(crate) fn analyze(
     matrix: &SymmetricCsc,
     coords: Option<&[[f64; 3]]>,
     nd_weight: f64,
+    known: Option<&PrecomputedDissection>,
 ) -> Result<Analysis, SolverError> {
     let t0 = std::time::Instant::now();
     let n = matrix.n;
-    let choice = ordering::choose_weighted(kind, matrix, coords, nd_weight);
+    let choice = ordering::choose_reusing(kind, matrix, coords, nd_weight, known);
+    let dissection_reused = choice.dissection_reused;
     let ordering_note = choice.note();
     let ordering::OrderingChoice {
         perm,
@@ -304,6 +310,7 @@ pub(crate) fn analyze(
         kind,
         candidates,
         ordering_note,
+        dissection_reused,
     })
 }
 
