@@ -155,7 +155,7 @@ impl Csr {
     pub fn from_symmetric(m: &SymmetricCsc) -> (Csr, Vec<usize>) {
         let n = m.n;
         let (row_ptr, col, src) = crate::common::symmetric_to_full_pattern(m);
-        let val = src.iter().map(|&p| m.values[p]).collect();
+        let val = src.par_iter().map(|&p| m.values[p]).collect();
         (
             Csr {
                 n_rows: n,
@@ -205,34 +205,87 @@ impl Csr {
             .collect()
     }
 
-    /// Transpose.
+    /// Transpose. The rows are split into one contiguous block per
+    /// thread; each block counts its entries per column, the counts give
+    /// every block its write positions in every output row (blocks in row
+    /// order, so each output row lists its columns increasing), and the
+    /// blocks scatter their entries in parallel. The result is the same
+    /// for any number of threads.
     pub fn transpose(&self) -> Csr {
-        let mut count = vec![0usize; self.n_cols + 1];
-        for &j in &self.col {
-            count[j as usize + 1] += 1;
-        }
-        for j in 0..self.n_cols {
-            count[j + 1] += count[j];
-        }
-        let row_ptr = count.clone();
-        let mut next = count;
-        let mut col = vec![0u32; self.col.len()];
-        let mut val = vec![0.0; self.col.len()];
-        for i in 0..self.n_rows {
-            for p in self.row_ptr[i]..self.row_ptr[i + 1] {
-                let j = self.col[p] as usize;
-                col[next[j]] = i as u32;
-                val[next[j]] = self.val[p];
-                next[j] += 1;
+        let (n, m) = (self.n_rows, self.n_cols);
+        let blocks = if self.col.len() < PAR_MIN_LEN {
+            1
+        } else {
+            rayon::current_num_threads().max(1)
+        };
+        let rows_per = n.div_ceil(blocks).max(1);
+        let range = |b: usize| (b * rows_per).min(n)..((b + 1) * rows_per).min(n);
+        // counts[b][j]: entries of block b in column j
+        let counts: Vec<Vec<usize>> = (0..blocks)
+            .into_par_iter()
+            .map(|b| {
+                let mut c = vec![0usize; m];
+                let r = range(b);
+                for &j in &self.col[self.row_ptr[r.start]..self.row_ptr[r.end]] {
+                    c[j as usize] += 1;
+                }
+                c
+            })
+            .collect();
+        let mut row_ptr = vec![0usize; m + 1];
+        let mut starts = vec![vec![0usize; m]; blocks];
+        for j in 0..m {
+            let mut at = row_ptr[j];
+            for b in 0..blocks {
+                starts[b][j] = at;
+                at += counts[b][j];
             }
+            row_ptr[j + 1] = at;
         }
+        let nnz = row_ptr[m];
+        let mut col = vec![0u32; nnz];
+        let mut val = vec![0.0; nnz];
+        let (col_out, val_out) = (SharedSlice(col.as_mut_ptr()), SharedSlice(val.as_mut_ptr()));
+        starts
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(b, mut next)| {
+                for i in range(b) {
+                    for q in self.row_ptr[i]..self.row_ptr[i + 1] {
+                        let j = self.col[q] as usize;
+                        // SAFETY: the positions next[j] of block b are its own
+                        // (disjoint from every other block's by the prefix sums
+                        // above) and below nnz
+                        unsafe {
+                            col_out.write(next[j], i as u32);
+                            val_out.write(next[j], self.val[q]);
+                        }
+                        next[j] += 1;
+                    }
+                }
+            });
         Csr {
-            n_rows: self.n_cols,
-            n_cols: self.n_rows,
+            n_rows: m,
+            n_cols: n,
             row_ptr,
             col,
             val,
         }
+    }
+}
+
+/// A raw pointer to a slice written at disjoint positions by several
+/// threads ([`Csr::transpose`]).
+#[derive(Clone, Copy)]
+struct SharedSlice<T>(*mut T);
+unsafe impl<T: Send> Send for SharedSlice<T> {}
+unsafe impl<T: Send> Sync for SharedSlice<T> {}
+
+impl<T> SharedSlice<T> {
+    /// # Safety
+    /// `k` is in bounds and no other thread touches position `k`.
+    unsafe fn write(&self, k: usize, value: T) {
+        self.0.add(k).write(value)
     }
 }
 
@@ -836,6 +889,7 @@ fn smoothed_prolongator(
             let mut v: Vec<f64> = Vec::new();
             // coarse accumulators: bs values per coarse column (slot order)
             let mut w: Vec<f64> = Vec::new();
+            let mut dcol: Vec<f64> = Vec::new();
             for node in k0..k1 {
                 let (s, e) = (node_ptr[node], node_ptr[node + 1]);
                 let bs = e - s;
@@ -853,11 +907,14 @@ fn smoothed_prolongator(
                 v.clear();
                 v.resize(fine.len() * bs, 0.0);
                 for (jj, j) in (s..e).enumerate() {
+                    // column jj of the node's block of D^-1
+                    dcol.clear();
+                    dcol.extend((0..bs).map(|r| dinv.inv[dinv.row[s + r] + jj]));
                     for q in a.row_ptr[j]..a.row_ptr[j + 1] {
                         let slot = slot_f[a.col[q] as usize] * bs;
                         let ajk = a.val[q];
-                        for r in 0..bs {
-                            v[slot + r] += dinv.inv[dinv.row[s + r] + jj] * ajk;
+                        for (vr, d) in v[slot..slot + bs].iter_mut().zip(&dcol) {
+                            *vr += d * ajk;
                         }
                     }
                 }
@@ -886,8 +943,9 @@ fn smoothed_prolongator(
                     for q in t.row_ptr[k]..t.row_ptr[k + 1] {
                         let base = slot_c[t.col[q] as usize] * bs;
                         let tv = -omega * t.val[q];
-                        for r in 0..bs {
-                            w[base + r] += tv * v[slot * bs + r];
+                        let vk = &v[slot * bs..(slot + 1) * bs];
+                        for (wr, vr) in w[base..base + bs].iter_mut().zip(vk) {
+                            *wr += tv * vr;
                         }
                     }
                     slot_f[k] = usize::MAX;
@@ -911,64 +969,163 @@ fn smoothed_prolongator(
     concat_rows(parts, n, nc)
 }
 
-/// Galerkin product `R A P` (`R = P^T`) row by row: for each coarse row
-/// `I`, the sparse row `w = R_I A` in a dense accumulator of fine size,
-/// then `w P` in one of coarse size. Neither `A P` nor `R A` is stored
-/// (on level 0 of a 3D mesh `A P` would be the largest array of the set-up).
+/// Galerkin product `R A P` (`R = P^T`) by groups of coarse rows: the
+/// rows of a coarse node (the columns of one aggregate's tentative basis)
+/// share one pattern, so for each group `G` of consecutive rows with equal
+/// patterns (at most [`GALERKIN_GROUP`]) the sparse block `W = R_G A` is
+/// accumulated in a slot-indexed buffer (one slot per fine column reached,
+/// `|G|` values per slot), then `W P` in one per coarse column. Each index
+/// of `A` and `P` is read once per group instead of once per row, and
+/// neither `A P` nor `R A` is stored (on level 0 of a 3D mesh `A P` would
+/// be the largest array of the set-up). Rows and their order, and the
+/// arithmetic of each entry, are those of the row-by-row product.
 fn galerkin(r: &Csr, a: &Csr, p: &Csr) -> Csr {
     let (nc, n) = (r.n_rows, a.n_rows);
-    let chunk = (nc / (8 * rayon::current_num_threads().max(1))).clamp(16, 256);
+    let groups = equal_pattern_groups(r, GALERKIN_GROUP);
+    let ng = groups.len() - 1;
+    let chunk = (ng / (8 * rayon::current_num_threads().max(1))).clamp(4, 64);
     let parts = par_chunks_with_state(
-        nc.div_ceil(chunk),
-        || {
-            (
-                vec![usize::MAX; n],
-                vec![0.0; n],
-                vec![usize::MAX; nc],
-                vec![0.0; nc],
-                Vec::<u32>::new(),
-            )
-        },
-        |(mark_f, acc_f, mark_c, acc_c, fine), c| {
-            let (i0, i1) = (c * chunk, ((c + 1) * chunk).min(nc));
-            let mut lens = Vec::with_capacity(i1 - i0);
-            let mut cols: Vec<u32> = Vec::new();
-            let mut vals = Vec::new();
-            for i in i0..i1 {
-                fine.clear();
-                for q in r.row_ptr[i]..r.row_ptr[i + 1] {
-                    let (k, rk) = (r.col[q] as usize, r.val[q]);
-                    for t in a.row_ptr[k]..a.row_ptr[k + 1] {
-                        let j = a.col[t] as usize;
-                        if mark_f[j] != i {
-                            mark_f[j] = i;
-                            acc_f[j] = 0.0;
-                            fine.push(j as u32);
-                        }
-                        acc_f[j] += rk * a.val[t];
-                    }
-                }
-                let start = cols.len();
-                for &j in fine.iter() {
-                    let (j, wj) = (j as usize, acc_f[j as usize]);
-                    for t in p.row_ptr[j]..p.row_ptr[j + 1] {
-                        let jc = p.col[t] as usize;
-                        if mark_c[jc] != i {
-                            mark_c[jc] = i;
-                            acc_c[jc] = 0.0;
-                            cols.push(jc as u32);
-                        }
-                        acc_c[jc] += wj * p.val[t];
-                    }
-                }
-                cols[start..].sort_unstable();
-                vals.extend(cols[start..].iter().map(|&j| acc_c[j as usize]));
-                lens.push(cols.len() - start);
+        ng.div_ceil(chunk),
+        || GalerkinScratch::new(n, nc),
+        |scratch, c| {
+            let mut out = (Vec::new(), Vec::new(), Vec::new());
+            for g in c * chunk..((c + 1) * chunk).min(ng) {
+                scratch.group(r, a, p, groups[g]..groups[g + 1], &mut out);
             }
-            (lens, cols, vals)
+            out
         },
     );
     concat_rows(parts, nc, p.n_cols)
+}
+
+/// Most coarse rows multiplied together by [`galerkin`] (the near-null
+/// space of 3D elasticity has six vectors).
+const GALERKIN_GROUP: usize = 8;
+
+/// Starts of the groups of consecutive rows of `m` with identical column
+/// patterns, at most `max` rows each (the last entry is `n_rows`).
+fn equal_pattern_groups(m: &Csr, max: usize) -> Vec<usize> {
+    let row = |i: usize| &m.col[m.row_ptr[i]..m.row_ptr[i + 1]];
+    let mut starts = vec![0];
+    for i in 1..m.n_rows {
+        let s = *starts.last().unwrap();
+        if i - s >= max || row(i) != row(s) {
+            starts.push(i);
+        }
+    }
+    if m.n_rows > 0 {
+        starts.push(m.n_rows);
+    }
+    starts
+}
+
+/// Scratch of one thread of [`galerkin`]: slots of the fine and coarse
+/// columns reached by the current group, and their accumulators.
+struct GalerkinScratch {
+    slot_f: Vec<u32>,
+    slot_c: Vec<u32>,
+    fine: Vec<u32>,
+    coarse: Vec<u32>,
+    acc_f: Vec<f64>,
+    acc_c: Vec<f64>,
+    order: Vec<(u32, u32)>,
+}
+
+impl GalerkinScratch {
+    const FREE: u32 = u32::MAX;
+
+    fn new(n: usize, nc: usize) -> Self {
+        GalerkinScratch {
+            slot_f: vec![Self::FREE; n],
+            slot_c: vec![Self::FREE; nc],
+            fine: Vec::new(),
+            coarse: Vec::new(),
+            acc_f: Vec::new(),
+            acc_c: Vec::new(),
+            order: Vec::new(),
+        }
+    }
+
+    /// Rows `rows` of `R A P` (one pattern in `R`), appended to `out` as
+    /// (row lengths, columns, values).
+    fn group(
+        &mut self,
+        r: &Csr,
+        a: &Csr,
+        p: &Csr,
+        rows: std::ops::Range<usize>,
+        out: &mut (Vec<usize>, Vec<u32>, Vec<f64>),
+    ) {
+        let bs = rows.len();
+        let first = r.row_ptr[rows.start];
+        let len = r.row_ptr[rows.start + 1] - first;
+        let mut rv = [0.0; GALERKIN_GROUP];
+        // W = R_G A, slot by slot
+        self.fine.clear();
+        self.acc_f.clear();
+        for off in 0..len {
+            for (g, i) in rows.clone().enumerate() {
+                rv[g] = r.val[r.row_ptr[i] + off];
+            }
+            let k = r.col[first + off] as usize;
+            for t in a.row_ptr[k]..a.row_ptr[k + 1] {
+                let j = a.col[t] as usize;
+                let slot = slot_of(&mut self.slot_f[j], &mut self.fine, &mut self.acc_f, j, bs);
+                let av = a.val[t];
+                for (w, r) in self.acc_f[slot..slot + bs].iter_mut().zip(&rv) {
+                    *w += r * av;
+                }
+            }
+        }
+        // W P, slot by slot
+        self.coarse.clear();
+        self.acc_c.clear();
+        for (sf, &j) in self.fine.iter().enumerate() {
+            let j = j as usize;
+            for t in p.row_ptr[j]..p.row_ptr[j + 1] {
+                let jc = p.col[t] as usize;
+                let slot = slot_of(
+                    &mut self.slot_c[jc],
+                    &mut self.coarse,
+                    &mut self.acc_c,
+                    jc,
+                    bs,
+                );
+                let pv = p.val[t];
+                let w = &self.acc_f[sf * bs..(sf + 1) * bs];
+                for (c, wg) in self.acc_c[slot..slot + bs].iter_mut().zip(w) {
+                    *c += wg * pv;
+                }
+            }
+            self.slot_f[j] = Self::FREE;
+        }
+        // the group's rows, columns sorted
+        self.order.clear();
+        self.order
+            .extend(self.coarse.iter().map(|&jc| (jc, self.slot_c[jc as usize])));
+        self.order.sort_unstable_by_key(|o| o.0);
+        for &jc in &self.coarse {
+            self.slot_c[jc as usize] = Self::FREE;
+        }
+        let (lens, cols, vals) = out;
+        for g in 0..bs {
+            cols.extend(self.order.iter().map(|o| o.0));
+            vals.extend(self.order.iter().map(|o| self.acc_c[o.1 as usize + g]));
+            lens.push(self.order.len());
+        }
+    }
+}
+
+/// The accumulator offset of column `j` (`bs` values per slot), opening a
+/// zeroed slot when `j` is new (`slot` is `j`'s marker).
+#[inline]
+fn slot_of(slot: &mut u32, list: &mut Vec<u32>, acc: &mut Vec<f64>, j: usize, bs: usize) -> usize {
+    if *slot == GalerkinScratch::FREE {
+        *slot = (list.len() * bs) as u32;
+        list.push(j as u32);
+        acc.resize(acc.len() + bs, 0.0);
+    }
+    *slot as usize
 }
 
 /// `f(state, c)` for every chunk `c < chunks`, in parallel, results in
@@ -1160,6 +1317,7 @@ impl Amg {
                 layout.node.len()
             )));
         }
+        let t_start = std::time::Instant::now();
         let (mut a0, mut src0) = Csr::from_symmetric(m);
         let mut node_ptr = vec![0usize];
         let mut node_body = Vec::new();
@@ -1205,6 +1363,10 @@ impl Amg {
             node_ptr = new_ptr;
             node_body = new_body;
         }
+        tracing::debug!(
+            "amg: level 0 matrix, rigid-body modes and bonded clusters {:.3} s",
+            t_start.elapsed().as_secs_f64()
+        );
         let levels = vec![Level {
             a: a0,
             node_ptr,
@@ -1665,5 +1827,40 @@ mod tests {
         let at = a.transpose();
         assert_eq!(dense(&at), dense(&a).transpose());
         assert_eq!(at.row_ptr, vec![0, 1, 2, 3]);
+    }
+
+    /// Above the parallel threshold the rows are split among the threads:
+    /// with three threads the transpose is still exact, and each of its
+    /// rows lists its columns in increasing order.
+    #[test]
+    fn parallel_transpose_matches_the_entries() {
+        let (n, m) = (3001, 517);
+        let mut a = Csr {
+            n_rows: n,
+            n_cols: m,
+            row_ptr: vec![0],
+            ..Default::default()
+        };
+        for i in 0..n {
+            for j in (0..m).filter(|j| (i * 7 + j * 13) % 29 < 1 + i % 5) {
+                a.col.push(j as u32);
+                a.val.push((i * m + j) as f64);
+            }
+            a.row_ptr.push(a.col.len());
+        }
+        assert!(a.col.len() > PAR_MIN_LEN, "{} entries", a.col.len());
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .unwrap();
+        let at = pool.install(|| a.transpose());
+        assert_eq!((at.n_rows, at.n_cols, at.col.len()), (m, n, a.col.len()));
+        for j in 0..m {
+            let row = &at.col[at.row_ptr[j]..at.row_ptr[j + 1]];
+            assert!(row.windows(2).all(|w| w[0] < w[1]), "row {j} unsorted");
+            for (q, &i) in row.iter().enumerate() {
+                assert_eq!(at.val[at.row_ptr[j] + q], (i as usize * m + j) as f64);
+            }
+        }
     }
 }

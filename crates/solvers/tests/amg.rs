@@ -377,3 +377,64 @@ fn gmres_with_amg_solves_a_softening_tangent() {
         "{e:?}"
     );
 }
+
+/// The set-up runs its strength, tentative prolongator, smoothed
+/// prolongator, transposes and Galerkin products in parallel: on one
+/// thread and on four it must build the same hierarchy (same aggregates,
+/// same patterns, the same operators to round-off) and precondition CG to
+/// the same iteration count.
+#[test]
+fn parallel_setup_builds_the_serial_hierarchy() {
+    let model = cube(16);
+    let (k, b) = assemble(&model);
+    let coords = model.dofs.equation_coords(&model.mesh.nodes);
+    let layout = model.equation_layout();
+    let settings = AmgSettings {
+        max_coarse: 50,
+        ..Default::default()
+    };
+    let build = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| Amg::setup(&k, &coords, &layout, settings).unwrap())
+    };
+    let (serial, parallel) = (build(1), build(4));
+    assert_eq!(serial.sizes(), parallel.sizes());
+    assert!(serial.num_levels() >= 3, "levels {:?}", serial.sizes());
+    let same = |what: &str, l: usize, x: &junta_solvers::amg::Csr, y: &junta_solvers::amg::Csr| {
+        assert_eq!(x.row_ptr, y.row_ptr, "level {l}: {what} row starts");
+        assert_eq!(x.col, y.col, "level {l}: {what} columns");
+        let scale = x.val.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (p, (u, v)) in x.val.iter().zip(&y.val).enumerate() {
+            assert!(
+                (u - v).abs() <= 1e-14 * scale,
+                "level {l}: {what} entry {p}: {u:e} (1 thread) against {v:e} (4 threads)"
+            );
+        }
+    };
+    for (l, (s, p)) in serial.levels.iter().zip(&parallel.levels).enumerate() {
+        assert_eq!(s.aggregate, p.aggregate, "level {l}: aggregates");
+        same("A", l, &s.a, &p.a);
+        same("T", l, &s.t, &p.t);
+        same("P", l, &s.p, &p.p);
+        same("R", l, &s.r, &p.r);
+    }
+    let iterations = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut s = amg_cg();
+            s.set_layout(&layout);
+            s.analyze(&k, Some(&coords)).unwrap();
+            s.factorize(&k).unwrap();
+            let mut x = b.clone();
+            s.solve_in_place(&k, &mut x).unwrap();
+            s.report().iterations
+        })
+    };
+    assert_eq!(iterations(1), iterations(4));
+}
