@@ -818,21 +818,29 @@ pub fn color_elements(mesh: &Mesh) -> Vec<Vec<ElementRef>> {
     colors
 }
 
-/// Check every element's reference geometry; the first bad one is an error.
+/// Check every element's reference geometry, the elements in parallel;
+/// the first bad one (by block, then element number) is an error.
 pub fn check_geometry(mesh: &Mesh, elements: &[Arc<dyn Element>]) -> Result<(), CoreError> {
     for (bi, b) in mesh.blocks.iter().enumerate() {
-        let mut coords = vec![[0.0; 3]; b.nodes_per_element()];
-        for e in 0..b.len() {
-            for (a, &n) in b.element(e).iter().enumerate() {
-                coords[a] = mesh.nodes[n];
-            }
-            elements[bi]
-                .check_geometry(&coords)
-                .map_err(|source| CoreError::Element {
-                    block: b.name.clone(),
-                    element: e,
-                    source,
-                })?;
+        let bad = (0..b.len())
+            .into_par_iter()
+            .map_init(
+                || vec![[0.0; 3]; b.nodes_per_element()],
+                |coords, e| {
+                    for (a, &n) in b.element(e).iter().enumerate() {
+                        coords[a] = mesh.nodes[n];
+                    }
+                    elements[bi].check_geometry(coords).err().map(|s| (e, s))
+                },
+            )
+            .find_first(Option::is_some)
+            .flatten();
+        if let Some((element, source)) = bad {
+            return Err(CoreError::Element {
+                block: b.name.clone(),
+                element,
+                source,
+            });
         }
     }
     Ok(())

@@ -108,6 +108,8 @@
 
 use junta_core::mesh::{ElementBlock, ElementRef, Mesh};
 use junta_core::topology::CellShape;
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 use thiserror::Error;
@@ -988,63 +990,91 @@ enum Item<'a> {
     },
 }
 
+/// One line of a deck, lexed alone.
+enum Line<'a> {
+    /// Blank or a `**` comment.
+    Skip,
+    /// A keyword line: its text after the `*`.
+    Keyword(&'a str),
+    /// A data line.
+    Data(Item<'a>),
+}
+
+/// The deck's items: each line is lexed alone (in parallel: a large deck's
+/// data lines are most of the reading time), then keyword lines ending with
+/// a comma take the data lines that follow them as their continuation.
 fn lex(text: &str) -> Vec<Item<'_>> {
-    let mut items = Vec::new();
-    let mut lines = text.lines().enumerate().peekable();
-    while let Some((i, raw)) = lines.next() {
-        let l = raw.trim();
-        if l.is_empty() || l.starts_with("**") {
-            continue;
-        }
-        if let Some(rest) = l.strip_prefix('*') {
-            let mut full = rest.to_string();
-            // keyword-line continuation
-            while full.trim_end().ends_with(',') {
-                match lines.peek() {
-                    Some((_, next)) if !next.trim().starts_with('*') && !next.trim().is_empty() => {
-                        full.push_str(next.trim());
-                        lines.next();
+    let lines: Vec<&str> = text.lines().collect();
+    let lexed: Vec<Line<'_>> = lines
+        .par_iter()
+        .enumerate()
+        .map(|(i, raw)| lex_line(i + 1, raw))
+        .collect();
+    let mut items = Vec::with_capacity(lexed.len());
+    let mut lexed = lexed.into_iter().enumerate().peekable();
+    while let Some((i, line)) = lexed.next() {
+        match line {
+            Line::Skip => {}
+            Line::Data(item) => items.push(item),
+            Line::Keyword(rest) => {
+                let mut full = rest.to_string();
+                // keyword-line continuation
+                while full.trim_end().ends_with(',') {
+                    match lexed.peek() {
+                        Some((_, Line::Data(Item::Data { raw, .. }))) => {
+                            full.push_str(raw);
+                            lexed.next();
+                        }
+                        _ => break,
                     }
-                    _ => break,
                 }
+                items.push(keyword_item(i + 1, &full));
             }
-            let mut parts = full.split(',');
-            let name = parts
-                .next()
-                .unwrap_or("")
-                .split_whitespace()
-                .collect::<Vec<_>>()
-                .join(" ")
-                .to_uppercase();
-            let params = parts
-                .filter(|p| !p.trim().is_empty())
-                .map(|p| match p.split_once('=') {
-                    Some((k, v)) => (norm_key(k), Some(v.trim().to_string())),
-                    None => (norm_key(p), None),
-                })
-                .collect();
-            items.push(Item::Keyword {
-                line: i + 1,
-                name,
-                params,
-            });
-        } else {
-            let continues = l.ends_with(',');
-            let fields: Vec<&str> = l.split(',').map(str::trim).collect();
-            let fields = if continues {
-                fields[..fields.len() - 1].to_vec()
-            } else {
-                fields
-            };
-            items.push(Item::Data {
-                line: i + 1,
-                raw: l,
-                fields,
-                continues,
-            });
         }
     }
     items
+}
+
+/// Line `line` (1-based) of a deck, alone.
+fn lex_line(line: usize, raw: &str) -> Line<'_> {
+    let l = raw.trim();
+    if l.is_empty() || l.starts_with("**") {
+        return Line::Skip;
+    }
+    if let Some(rest) = l.strip_prefix('*') {
+        return Line::Keyword(rest);
+    }
+    let continues = l.ends_with(',');
+    let mut fields: Vec<&str> = l.split(',').map(str::trim).collect();
+    if continues {
+        fields.pop();
+    }
+    Line::Data(Item::Data {
+        line,
+        raw: l,
+        fields,
+        continues,
+    })
+}
+
+/// A keyword line's name (upper case, single spaces) and parameters.
+fn keyword_item(line: usize, full: &str) -> Item<'static> {
+    let mut parts = full.split(',');
+    let name = parts
+        .next()
+        .unwrap_or("")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .to_uppercase();
+    let params = parts
+        .filter(|p| !p.trim().is_empty())
+        .map(|p| match p.split_once('=') {
+            Some((k, v)) => (norm_key(k), Some(v.trim().to_string())),
+            None => (norm_key(p), None),
+        })
+        .collect();
+    Item::Keyword { line, name, params }
 }
 
 fn norm_key(k: &str) -> String {
@@ -1105,9 +1135,9 @@ struct Parser<'a> {
     file: &'a str,
     nodes: Vec<[f64; 3]>,
     labels: Vec<usize>,
-    node_id: HashMap<usize, usize>,
+    node_id: FxHashMap<usize, usize>,
     elems: Vec<Elem>,
-    elem_id: HashMap<usize, usize>,
+    elem_id: FxHashMap<usize, usize>,
     pre_blocks: Vec<PreBlock>,
     pre_block_key: HashMap<(String, String), usize>,
     nsets: Vec<NamedSet>,
@@ -4144,9 +4174,9 @@ pub fn parse_inp(text: &str, file_name: &str) -> Result<InpDeck, InpError> {
         file: file_name,
         nodes: Vec::new(),
         labels: Vec::new(),
-        node_id: HashMap::new(),
+        node_id: FxHashMap::default(),
         elems: Vec::new(),
-        elem_id: HashMap::new(),
+        elem_id: FxHashMap::default(),
         pre_blocks: Vec::new(),
         pre_block_key: HashMap::new(),
         nsets: Vec::new(),
