@@ -95,6 +95,9 @@ name=cube_c3d20_n20
 python3 "$here/make_cube_deck.py" C3D20 20 "$work/$name.inp"
 read -r hw hm < <(measure "$work/$name.amgh" "$junta" run "$work/$name.inp" -o "$work/$name.amgout" -q \
   --solver type=cg --solver preconditioner=amg)
+# the matrix for PETSc GAMG (below) is exported by a separate, untimed run
+"$junta" run "$work/$name.inp" -o "$work/$name.export" -q \
+  --solver type=cg --solver preconditioner=amg --export-matrix "$work/$name.mtx" >/dev/null
 read -r dw dm < <(measure "$work/$name.direct" "$junta" run "$work/$name.inp" -o "$work/$name.directout" -q --solver type=cholesky)
 python3 - "$work/$name.amgout/summary.json" "$work/$name.directout/summary.json" "$hw" "$hm" "$dw" "$dm" <<'PY'
 import json, sys
@@ -115,3 +118,26 @@ print(f"\npyamg {pyamg.__version__} smoothed aggregation on {d}: {len(res)-1} CG
       f"{np.linalg.norm(b - A @ x) / np.linalg.norm(b):.1e}, levels {[l.A.shape[0] for l in ml.levels]}, "
       f"set-up {ts:.1f} s, solve {tsol:.1f} s")
 PY
+
+# ------------------------------------------------------- PETSc as yardstick
+# PETSc's GAMG (Debian python3-petsc4py, sequential: one process, one thread)
+# with CG to ||b - A x|| / ||b|| <= 1e-10 on the matrices Junta exported above
+# (H8 at the first of AMG_SIZES, H20 n=20), against Junta's AMG-CG on the same
+# decks: the timed runs above (2 threads) and one more run each with 1 thread.
+# Set-up and solve times only (Junta: summary.json timings.factor and
+# timings.solve; PETSc: KSPSetUp and KSPSolve, median of 3, default GAMG
+# options; see bench/petsc_gamg.py).
+if ! dpkg -s python3-petsc4py python3-scipy >/dev/null 2>&1; then
+  echo "installing PETSc (python3-petsc4py)..." >&2
+  if [ "$(id -u)" = 0 ]; then apt-get update -qq && apt-get install -y -qq python3-petsc4py python3-scipy >/dev/null
+  else sudo apt-get update -qq && sudo apt-get install -y -qq python3-petsc4py python3-scipy >/dev/null; fi
+fi
+printf '\n| deck | equations | Junta AMG set-up s | Junta solve s | Junta its | PETSc GAMG set-up s | PETSc solve s | PETSc its | ratio (Junta set-up+solve)/(PETSc set-up+solve) |\n|---|---|---|---|---|---|---|---|---|\n'
+for name in "cube_c3d8_n${amg_sizes[0]}" cube_c3d20_n20; do
+  RAYON_NUM_THREADS=1 OMP_NUM_THREADS=1 "$junta" run "$work/$name.inp" -o "$work/$name.amg1t" -q \
+    --solver type=cg --solver preconditioner=amg >/dev/null 2>"$work/$name.amg1t.log"
+  OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 /usr/bin/python3 "$here/petsc_gamg.py" "$work/$name.mtx" --repeat 3 \
+    "$name, Junta 2 threads=$work/$name.amgout/summary.json" "$name, Junta 1 thread=$work/$name.amg1t/summary.json" \
+    2>"$work/$name.petsc.log" || { cat "$work/$name.petsc.log" >&2; exit 1; }
+done
+grep -h '^petsc_gamg: PETSc' "$work/cube_c3d8_n${amg_sizes[0]}.petsc.log" "$work/cube_c3d20_n20.petsc.log"
