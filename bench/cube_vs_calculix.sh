@@ -4,8 +4,9 @@
 # 206,763 dofs), 2 threads each, run one after the other. Checks that the
 # top Fz reactions agree to 1e-6 and prints wall time and peak memory
 # (/usr/bin/time -v). Junta runs twice: with its default solver settings
-# (`auto`: AMG-CG on these compact 3D models above 100,000 equations, see
-# crates/junta/src/auto.rs; the direct solver's auto precision below) and with
+# (`auto`: the direct solver or AMG-CG, whichever its cost model predicts
+# faster, see crates/junta/src/auto.rs: direct on H20 n=20, AMG on H8 n=40;
+# the direct solver's auto precision) and with
 # `--solver type=cholesky --solver precision=double` (double-precision
 # factor).
 # Usage: bench/cube_vs_calculix.sh [CASES...]

@@ -15,10 +15,12 @@
 //! - the factor's memory (8 bytes per non-zero, double precision) exceeds
 //!   half of the memory available ([`crate::limits::machine_memory`]): such
 //!   a factor is never attempted; or
-//! - for positive-definite models only, the factor holds more than
-//!   [`AMG_FILL_PER_EQUATION`] non-zeros per equation (a compact 3D solid,
-//!   where AMG-CG is measured faster). Softening models keep `ldlt` there:
-//!   GMRES on an indefinite tangent is not measured to be faster.
+//! - for positive-definite models only, AMG-CG is predicted faster than
+//!   the direct solver by the cost model of [`predicted_seconds`]: the
+//!   factorisation's flops and the factor's size against the matrix's
+//!   entries times the iterations of a set-up and a solve. Softening models
+//!   keep `ldlt` there: GMRES on an indefinite tangent is not measured to
+//!   be faster.
 //!
 //! When the direct solver is kept, the dissection is handed to it
 //! ([`junta_core::LinearSolver::offer_dissection`]), so the run orders the
@@ -31,14 +33,45 @@ use junta_solvers::ordering::{self, OrderingKind};
 /// Up to this many equations `auto` keeps the direct solver.
 pub const DIRECT_ALWAYS: usize = 100_000;
 
-/// Above [`DIRECT_ALWAYS`], a factor with more non-zeros per equation than
-/// this (a compact 3D solid, whose fill grows like `n^(1/3)`) is slower
-/// than AMG: measured with `bench/cube_vs_calculix.sh` (2 cores), H20 cube
-/// n=20 (102,039 equations, 1,227 factor entries per equation) and H8 n=40
-/// (200,039 equations, 1,163 per equation): see `docs/performance.md` for
-/// the times of both back ends. Slender and layered models fill far less
-/// and stay direct.
-pub const AMG_FILL_PER_EQUATION: f64 = 1000.0;
+/// Floating-point operations per second of the direct factorisation
+/// (the `flops` of [`ordering::FillEstimate`], mixed precision, 2
+/// threads). Measured with `bench/cube_vs_calculix.sh` (2026-11-26): H20
+/// cube n=20, 3.2e11 in 2.39 s; H8 n=40, 7.5e11 in 5.99 s.
+pub const DIRECT_FLOPS_PER_SECOND: f64 = 1.3e11;
+
+/// Seconds per factor non-zero of the rest of a direct solve (symbolic
+/// analysis, triangular solves, refinement). Same runs: 1.02 s for 125M
+/// non-zeros, 1.55 s for 233M.
+pub const DIRECT_SECONDS_PER_FACTOR_ENTRY: f64 = 7e-9;
+
+/// Seconds per stored (upper-triangle) matrix entry of one AMG-CG
+/// iteration. Same decks: H20 0.093 s per iteration for 8.26M entries, H8
+/// 0.125 s for 7.79M.
+pub const AMG_SECONDS_PER_ENTRY: f64 = 1.3e-8;
+
+/// The AMG set-up costs about this many iterations (same runs: H20 1.08 s,
+/// H8 1.3 s: 11.6 and 10.4 iterations).
+pub const AMG_SETUP_ITERATIONS: f64 = 11.0;
+
+/// Iterations assumed for AMG-CG to a relative residual of 1e-10: 16 were
+/// measured on the H8 cube n=40, 35 on the H20 cube n=20 (quadratic
+/// elements couple farther and coarsen less well).
+pub const AMG_ITERATIONS: f64 = 25.0;
+
+/// Predicted seconds of the direct solver and of AMG-CG for a factor of
+/// `factor` (non-zeros and flops) and a matrix of `entries` stored
+/// entries (upper triangle): `flops / DIRECT_FLOPS_PER_SECOND + nnz(L)
+/// DIRECT_SECONDS_PER_FACTOR_ENTRY` against `entries
+/// AMG_SECONDS_PER_ENTRY (AMG_SETUP_ITERATIONS + AMG_ITERATIONS)`. On
+/// the benchmark cubes: H20 n=20 3.3 s direct against 3.9 s AMG (measured
+/// 3.4 s and 4.3 s), H8 n=40 7.4 s against 3.6 s (measured 7.5 s and 3.3
+/// s).
+pub fn predicted_seconds(factor: &ordering::FillEstimate, entries: usize) -> (f64, f64) {
+    let direct = factor.flops / DIRECT_FLOPS_PER_SECOND
+        + factor.nonzeros as f64 * DIRECT_SECONDS_PER_FACTOR_ENTRY;
+    let amg = entries as f64 * AMG_SECONDS_PER_ENTRY * (AMG_SETUP_ITERATIONS + AMG_ITERATIONS);
+    (direct, amg)
+}
 
 /// What `auto` decided for a symmetric model.
 #[derive(Debug, Clone, Default)]
@@ -70,7 +103,7 @@ pub fn decide_above(model: &Model, positive_definite: bool, direct_always: usize
     let coords = model.dofs.equation_coords(&model.mesh.nodes);
     let choice = ordering::choose(OrderingKind::NestedDissection, &pattern, Some(&coords));
     let estimate = choice.estimate();
-    let amg_reason = amg_reason(n, estimate.nonzeros, positive_definite);
+    let amg_reason = amg_reason(n, &estimate, pattern.nnz(), positive_definite);
     let dissection = amg_reason.is_none().then(|| PrecomputedDissection {
         perm: choice.perm,
         nonzeros: estimate.nonzeros,
@@ -84,22 +117,30 @@ pub fn decide_above(model: &Model, positive_definite: bool, direct_always: usize
     }
 }
 
-/// `Some(reason)` when a direct factor of `nnz_l` non-zeros for `n`
-/// equations should give way to AMG (see the module docs).
-fn amg_reason(n: usize, nnz_l: usize, positive_definite: bool) -> Option<String> {
+/// `Some(reason)` when a direct factor `factor` for `n` equations and a
+/// matrix of `entries` stored entries should give way to AMG (see the
+/// module docs).
+fn amg_reason(
+    n: usize,
+    factor: &ordering::FillEstimate,
+    entries: usize,
+    positive_definite: bool,
+) -> Option<String> {
+    let nnz_l = factor.nonzeros;
     let bytes = 8.0 * nnz_l as f64;
     let avail = crate::limits::machine_memory().unwrap_or(f64::INFINITY);
     let gb = |b: f64| b / 1e9;
-    let fill = nnz_l as f64 / n as f64;
+    let (direct, amg) = predicted_seconds(factor, entries);
     if bytes > 0.5 * avail {
         Some(format!(
             "solver auto: the direct factor of {n} equations would hold {nnz_l} non-zeros ({:.1} GB in double precision, nested dissection), more than half of the {:.1} GB available",
             gb(bytes),
             gb(avail)
         ))
-    } else if positive_definite && fill > AMG_FILL_PER_EQUATION {
+    } else if positive_definite && amg < direct {
         Some(format!(
-            "solver auto: the direct factor of {n} equations would hold {nnz_l} non-zeros ({fill:.0} per equation, above {AMG_FILL_PER_EQUATION:.0}: a compact 3D model, on which AMG is the faster; {:.1} GB would fit in the {:.1} GB available)",
+            "solver auto: AMG-CG is predicted faster than the direct factor of {n} equations ({nnz_l} non-zeros, {:.1e} flops: about {direct:.1} s, against {amg:.1} s for {entries} matrix entries and {AMG_ITERATIONS:.0} iterations; {:.1} GB would fit in the {:.1} GB available)",
+            factor.flops,
             gb(bytes),
             gb(avail)
         ))
