@@ -205,87 +205,19 @@ impl Csr {
             .collect()
     }
 
-    /// Transpose. The rows are split into one contiguous block per
-    /// thread; each block counts its entries per column, the counts give
-    /// every block its write positions in every output row (blocks in row
-    /// order, so each output row lists its columns increasing), and the
-    /// blocks scatter their entries in parallel. The result is the same
-    /// for any number of threads.
+    /// Transpose ([`crate::common::transpose_pattern`], values gathered in
+    /// parallel): the same for any number of threads.
     pub fn transpose(&self) -> Csr {
-        let (n, m) = (self.n_rows, self.n_cols);
-        let blocks = if self.col.len() < PAR_MIN_LEN {
-            1
-        } else {
-            rayon::current_num_threads().max(1)
-        };
-        let rows_per = n.div_ceil(blocks).max(1);
-        let range = |b: usize| (b * rows_per).min(n)..((b + 1) * rows_per).min(n);
-        // counts[b][j]: entries of block b in column j
-        let counts: Vec<Vec<usize>> = (0..blocks)
-            .into_par_iter()
-            .map(|b| {
-                let mut c = vec![0usize; m];
-                let r = range(b);
-                for &j in &self.col[self.row_ptr[r.start]..self.row_ptr[r.end]] {
-                    c[j as usize] += 1;
-                }
-                c
-            })
-            .collect();
-        let mut row_ptr = vec![0usize; m + 1];
-        let mut starts = vec![vec![0usize; m]; blocks];
-        for j in 0..m {
-            let mut at = row_ptr[j];
-            for b in 0..blocks {
-                starts[b][j] = at;
-                at += counts[b][j];
-            }
-            row_ptr[j + 1] = at;
-        }
-        let nnz = row_ptr[m];
-        let mut col = vec![0u32; nnz];
-        let mut val = vec![0.0; nnz];
-        let (col_out, val_out) = (SharedSlice(col.as_mut_ptr()), SharedSlice(val.as_mut_ptr()));
-        starts
-            .into_par_iter()
-            .enumerate()
-            .for_each(|(b, mut next)| {
-                for i in range(b) {
-                    for q in self.row_ptr[i]..self.row_ptr[i + 1] {
-                        let j = self.col[q] as usize;
-                        // SAFETY: the positions next[j] of block b are its own
-                        // (disjoint from every other block's by the prefix sums
-                        // above) and below nnz
-                        unsafe {
-                            col_out.write(next[j], i as u32);
-                            val_out.write(next[j], self.val[q]);
-                        }
-                        next[j] += 1;
-                    }
-                }
-            });
+        let (row_ptr, col, src) =
+            crate::common::transpose_pattern(&self.row_ptr, self.n_cols, |q| self.col[q] as usize);
+        let val = src.par_iter().map(|&q| self.val[q]).collect();
         Csr {
-            n_rows: m,
-            n_cols: n,
+            n_rows: self.n_cols,
+            n_cols: self.n_rows,
             row_ptr,
             col,
             val,
         }
-    }
-}
-
-/// A raw pointer to a slice written at disjoint positions by several
-/// threads ([`Csr::transpose`]).
-#[derive(Clone, Copy)]
-struct SharedSlice<T>(*mut T);
-unsafe impl<T: Send> Send for SharedSlice<T> {}
-unsafe impl<T: Send> Sync for SharedSlice<T> {}
-
-impl<T> SharedSlice<T> {
-    /// # Safety
-    /// `k` is in bounds and no other thread touches position `k`.
-    unsafe fn write(&self, k: usize, value: T) {
-        self.0.add(k).write(value)
     }
 }
 
