@@ -104,12 +104,15 @@ pub fn decide_above(model: &Model, positive_definite: bool, direct_always: usize
     let choice = ordering::choose(OrderingKind::NestedDissection, &pattern, Some(&coords));
     let estimate = choice.estimate();
     let amg_reason = amg_reason(n, &estimate, pattern.nnz(), positive_definite);
-    let dissection = amg_reason.is_none().then(|| PrecomputedDissection {
-        perm: choice.perm,
-        nonzeros: estimate.nonzeros,
-        flops: estimate.flops,
-        seconds: choice.seconds,
-    });
+    let dissection = match amg_reason {
+        Some(_) => None,
+        None => Some(PrecomputedDissection {
+            perm: choice.perm,
+            nonzeros: estimate.nonzeros,
+            flops: estimate.flops,
+            seconds: choice.seconds,
+        }),
+    };
     Decision {
         amg_reason,
         dissection,

@@ -258,17 +258,15 @@ pub(crate) fn symmetric_to_full_pattern(m: &SymmetricCsc) -> (Vec<usize>, Vec<u3
     let mut src = vec![0usize; total];
     let (col_out, src_out) = (SharedSlice::new(&mut col_idx), SharedSlice::new(&mut src));
     (0..n).into_par_iter().with_min_len(1024).for_each(|i| {
-        let mut at = row_ptr[i];
         let lower = (m.col_ptr[i]..m.col_ptr[i + 1]).map(|p| (m.row_idx[p] as u32, p));
         let upper = strict_upper(i).map(|t| (up_col[t], up_src[t]));
-        for (c, p) in lower.chain(upper) {
+        for (at, (c, p)) in (row_ptr[i]..).zip(lower.chain(upper)) {
             // SAFETY: row i's positions row_ptr[i]..row_ptr[i + 1] are its
             // own, and below `total`
             unsafe {
                 col_out.write(at, c);
                 src_out.write(at, p);
             }
-            at += 1;
         }
     });
     (row_ptr, col_idx, src)
