@@ -6,35 +6,22 @@
 
 use junta::{RunSettings, Simulation};
 
-/// A unit cube of `n^3` `element`s (`h8`, `h20`), clamped at z = 0 and
-/// pulled at z = 1: the model of the bench's CalculiX decks (same mesh,
-/// hence the same matrix pattern, which is all the choice reads).
+/// The unit cube of `examples/cube.toml` (clamped at z = 0, pulled at
+/// z = 1) with `n^3` `element`s (`h8`, `h20`) and the default solver
+/// choice: the model of the bench's CalculiX decks (same mesh, hence the
+/// same matrix pattern, which is all the choice reads).
 fn cube(element: &str, n: usize) -> String {
-    format!(
-        r#"
-[materials.steel]
-type = "isotropic"
-E = 210000.0
-nu = 0.3
-
-[mesh]
-type = "box"
-size = [1.0, 1.0, 1.0]
-divisions = [{n}, {n}, {n}]
-element = "{element}"
-material = "steel"
-
-[[boundary]]
-set = "z0"
-fixed = "all"
-[[boundary]]
-set = "z1"
-displacement = {{ z = -0.01 }}
-
-[analysis]
-type = "linear"
-"#
-    )
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let text = std::fs::read_to_string(root.join("examples/cube.toml")).unwrap();
+    let edited = text
+        .replace(
+            "divisions = [2, 2, 2]",
+            &format!("divisions = [{n}, {n}, {n}]"),
+        )
+        .replace("element = \"h8\"", &format!("element = \"{element}\""))
+        .replace("type = \"cholesky\"", "type = \"auto\"");
+    assert!(edited.contains("type = \"auto\"") && edited.contains(&format!("[{n}, {n}, {n}]")));
+    edited
 }
 
 /// The cost model of `junta::auto::predicted_seconds` on the two cubes,
@@ -73,6 +60,7 @@ fn auto_keeps_the_direct_solver_on_a_plate_and_orders_it_once() {
     let text = cube("h8", 1)
         .replace("size = [1.0, 1.0, 1.0]", "size = [200.0, 40.0, 5.0]")
         .replace("divisions = [1, 1, 1]", "divisions = [200, 40, 5]");
+    assert!(text.contains("[200, 40, 5]") && text.contains("[200.0, 40.0, 5.0]"));
     let sim = Simulation::from_scene_text(&text, "plate.toml").unwrap();
     assert!(sim.model().dofs.num_free > junta::auto::DIRECT_ALWAYS);
     assert_eq!(sim.prepared().solver_key, "cholesky");
