@@ -1538,7 +1538,7 @@ impl Amg {
         {
             let lev = &mut self.levels[l];
             lev.x.iter_mut().for_each(|v| *v = 0.0);
-            chebyshev(lev, degree);
+            chebyshev(lev, degree, true);
             // residual
             lev.a.mul(&lev.x, &mut lev.res);
             let rhs = &lev.rhs;
@@ -1555,15 +1555,16 @@ impl Amg {
             lev.p.mul(&coarse[0].x, &mut lev.d);
             let d = &lev.d;
             update(&mut lev.x, |i, x| x + d[i]);
-            chebyshev(lev, degree);
+            chebyshev(lev, degree, false);
         }
     }
 }
 
 /// Chebyshev smoothing of `A x = rhs` from the current `x`, polynomial in
 /// `D^-1 A` (`D` the nodal block diagonal) on `[ρ/30, ρ]` (Saad, Iterative
-/// Methods, Alg. 12.1).
-fn chebyshev(lev: &mut Level, degree: usize) {
+/// Methods, Alg. 12.1). With `from_zero` (`x` is zero: the pre-smoothing)
+/// the first residual is `rhs` itself, without a product with `A`.
+fn chebyshev(lev: &mut Level, degree: usize, from_zero: bool) {
     let upper = lev.rho;
     let lower = upper / 30.0;
     let theta = 0.5 * (upper + lower);
@@ -1580,8 +1581,12 @@ fn chebyshev(lev: &mut Level, degree: usize) {
         dinv,
         ..
     } = lev;
-    a.mul(x, res);
-    update(res, |i, r| rhs[i] - r);
+    if from_zero {
+        res.copy_from_slice(rhs);
+    } else {
+        a.mul(x, res);
+        update(res, |i, r| rhs[i] - r);
+    }
     dinv.apply(res, z);
     update(d, |i, _| z[i] / theta);
     for k in 0..degree {
