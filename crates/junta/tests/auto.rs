@@ -26,8 +26,8 @@ fn cube(element: &str, n: usize) -> String {
 
 /// The cost model of `junta::auto::predicted_seconds` on the two cubes,
 /// whose direct and AMG times were measured on this machine kind
-/// (docs/performance.md, 2026-11-26: H20 n=20 direct 3.4 s against AMG-CG
-/// 4.3 s; H8 n=40 direct 7.5 s against AMG-CG 3.3 s): `auto` keeps the
+/// (docs/performance.md, 2026-11-26: H20 n=20 direct 3.9 s against AMG-CG
+/// 4.2 s; H8 n=40 direct 7.5 s against AMG-CG 3.1 s): `auto` keeps the
 /// direct solver on the H20 cube, with the dissection it computed, and
 /// takes AMG on the H8 cube. The prediction is booked as its own phase,
 /// not as reading.
