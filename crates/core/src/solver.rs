@@ -117,8 +117,6 @@ pub struct PrecomputedDissection {
     pub nonzeros: usize,
     /// Predicted floating-point operations of the factorisation.
     pub flops: f64,
-    /// Seconds spent computing the ordering and its prediction.
-    pub seconds: f64,
 }
 
 /// Kind of a tangent matrix, from the laws and materials of a model.

@@ -82,8 +82,6 @@ pub struct Decision {
     /// The nested dissection computed to decide, for the direct solver
     /// (`None` when AMG was chosen or no analysis was needed).
     pub dissection: Option<PrecomputedDissection>,
-    /// Seconds spent deciding.
-    pub seconds: f64,
 }
 
 /// [`decide_above`] with the threshold [`DIRECT_ALWAYS`].
@@ -94,7 +92,6 @@ pub fn decide(model: &Model, positive_definite: bool) -> Decision {
 /// The direct factor or AMG for `model`; models of at most
 /// `direct_always` equations keep the direct factor without analysis.
 pub fn decide_above(model: &Model, positive_definite: bool, direct_always: usize) -> Decision {
-    let t0 = std::time::Instant::now();
     let n = model.dofs.num_free;
     if n <= direct_always {
         return Decision::default();
@@ -110,13 +107,11 @@ pub fn decide_above(model: &Model, positive_definite: bool, direct_always: usize
             perm: choice.perm,
             nonzeros: estimate.nonzeros,
             flops: estimate.flops,
-            seconds: choice.seconds,
         }),
     };
     Decision {
         amg_reason,
         dissection,
-        seconds: t0.elapsed().as_secs_f64(),
     }
 }
 
