@@ -18,6 +18,9 @@ pub struct RestartFile {
     pub checkpoint: Checkpoint,
     /// First failure so far, if any.
     pub first_failure: Option<FirstFailure>,
+    /// Changes of control at limit points so far.
+    #[serde(default)]
+    pub path_switches: Vec<junta_solvers::path_switch::PathSwitch>,
     /// Frames written so far `(load factor, file)`.
     pub frames: Vec<(f64, String)>,
     /// The run's `--solver KEY=VALUE` overrides (applied again on restart).

@@ -1087,7 +1087,8 @@ fn check_amplitudes(
 /// 5th data value its maximum (the program becomes `[LPF_max]`, 1e6
 /// without one), the first increment `dt0 / T` as a fraction of it, and
 /// `INC` (default 100) the number of increments. Without Riks: load
-/// control, `program` and `newton` as they are.
+/// control with path following at limit points (`control = "auto"`),
+/// `program` and `newton` as they are.
 fn riks_path(
     deck: &InpDeck,
     steps: usize,
@@ -1096,7 +1097,7 @@ fn riks_path(
     newton: &mut NewtonSettings,
     notes: &mut Vec<String>,
 ) -> Result<(crate::scene::Control, ArcLengthSettings)> {
-    let mut control = crate::scene::Control::Load;
+    let mut control = crate::scene::Control::Auto;
     let mut arc_length = ArcLengthSettings::default();
     let riks = deck.steps.iter().find_map(|st| {
         let p = st.static_procedure.as_ref()?;

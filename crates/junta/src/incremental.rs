@@ -24,6 +24,7 @@ use junta_solvers::arc_length::{solve_arc_length, PathEnd};
 use junta_solvers::newton::{
     solve_nonlinear, Checkpoint, Control, IncrementView, NonlinearError, NonlinearRun,
 };
+use junta_solvers::path_switch::solve_with_path_switch;
 use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
@@ -142,6 +143,20 @@ impl Engine<'_> {
         observers: &mut [&mut dyn Observer],
     ) -> Control {
         let r = v.report;
+        if let Some(s) = &r.switched {
+            tracing::warn!(
+                "increment {} at load factor {:.6e}: {}; {} control from here",
+                s.increment,
+                s.lambda,
+                s.reason,
+                if s.to == "load" {
+                    "load"
+                } else {
+                    "path-following"
+                }
+            );
+            self.log.path_switches.push(s.clone());
+        }
         let flow = self.increment(v, observers);
         self.log.last_increment = r.increment_index;
         let flow = match flow {
@@ -347,6 +362,7 @@ pub(crate) fn run_incremental(
                 rows,
                 frames: r.frames,
                 first_failure: r.first_failure,
+                path_switches: r.path_switches,
                 start_increment: start,
                 last_increment: start,
                 ..RunLog::default()
@@ -402,6 +418,15 @@ fn drive(
 ) -> Result<(NonlinearRun, Option<PathEnd>), NonlinearError> {
     let mut callback = |v: &IncrementView<'_>| engine.on_increment(v, observers);
     match analysis.control {
+        scene::Control::Auto => solve_with_path_switch(
+            model,
+            solver,
+            &analysis.steps,
+            &analysis.newton,
+            &analysis.arc_length,
+            checkpoint,
+            &mut callback,
+        ),
         scene::Control::Load => solve_nonlinear(
             model,
             solver,
@@ -562,6 +587,7 @@ fn base_summary(input: &Path, p: &Prepared, log: &RunLog, status: &str) -> serde
         "restarted_from_increment": if log.start_increment > 0 { Some(log.start_increment) } else { None },
         "control": p.analysis.control,
         "limit_points": limit_points(rows),
+        "path_switches": log.path_switches,
     })
 }
 

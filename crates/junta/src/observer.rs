@@ -69,6 +69,8 @@ pub struct RunLog {
     pub frames: Vec<(f64, String)>,
     /// When the first interface point failed.
     pub first_failure: Option<FirstFailure>,
+    /// Changes of control at limit points (`control = "auto"`).
+    pub path_switches: Vec<junta_solvers::path_switch::PathSwitch>,
     /// Every interface point failed and none is still being released.
     pub separated: bool,
     /// Increment the run started from (0, or a restart's checkpoint).

@@ -191,7 +191,8 @@ fn apply_solver_overrides(
         }
     }
     for (_, k, value) in parsed {
-        if k != "type" {
+        // `control` belongs to the nonlinear driver ([`control_override`])
+        if k != "type" && k != "control" {
             table.insert(k.to_string(), value);
         }
     }
@@ -214,6 +215,7 @@ pub fn prepare(input: &Path, solver_overrides: &[String]) -> Result<Prepared> {
 pub fn prepare_with(input: &Path, options: &crate::Options) -> Result<Prepared> {
     let t0 = std::time::Instant::now();
     let mut p = prepare_unchecked(input, options)?;
+    control_override(input, &mut p)?;
     p.read_seconds = t0.elapsed().as_secs_f64() - p.choose_solver_seconds;
     check_prepared(&input.display().to_string(), &p)?;
     Ok(p)
@@ -227,7 +229,8 @@ pub fn prepare_scene_text(
 ) -> Result<Prepared> {
     let sf = scene::SceneFile::parse(input, text)?;
     crate::validate::scene(&sf)?;
-    let p = prepare_scene(input, &sf, solver_overrides)?;
+    let mut p = prepare_scene(input, &sf, solver_overrides)?;
+    control_override(input, &mut p)?;
     check_prepared(&input.display().to_string(), &p)?;
     Ok(p)
 }
@@ -484,6 +487,31 @@ fn prepare_scene(
         read_seconds: 0.0,
         choose_solver_seconds,
     })
+}
+
+/// `--solver control=load|displacement|auto|arc_length`: the control of an
+/// incremental run, for decks (which have no `control` key) and scenes
+/// alike; the last one given counts.
+fn control_override(input: &Path, p: &mut Prepared) -> Result<()> {
+    let Some(value) = p
+        .solver_overrides
+        .iter()
+        .filter_map(|o| o.split_once('='))
+        .filter(|(k, _)| k.trim() == "control")
+        .map(|(_, v)| v.trim().trim_matches('"').to_string())
+        .last()
+    else {
+        return Ok(());
+    };
+    p.analysis.control = match value.as_str() {
+        "auto" => scene::Control::Auto,
+        "load" | "displacement" => scene::Control::Load,
+        "arc_length" => scene::Control::ArcLength,
+        other => bail!(
+            "--solver control={other}: use auto (load control, path following at limit points), load or displacement (load control only: stop at a limit point), or arc_length"
+        ),
+    };
+    check_path_following(input, &p.analysis)
 }
 
 /// `out/<file stem><suffix>`.

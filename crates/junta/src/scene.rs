@@ -81,11 +81,15 @@ pub struct AnalysisSpec {
     /// Newton-Raphson settings (`[analysis.newton]`, see `junta_solvers::newton::NewtonSettings`).
     #[serde(default)]
     pub newton: junta_solvers::newton::NewtonSettings,
-    /// What constrains the increments of a `static` run: `"load"` (default:
-    /// the load factor, i.e. load or displacement control, whatever the
-    /// scene prescribes) or `"arc_length"` (path following: cylindrical arc
-    /// length, then the dissipated energy once the laws dissipate; passes
-    /// limit points and snap-backs; see `junta_solvers::arc_length`).
+    /// What constrains the increments of a `static` run: `"auto"`
+    /// (default: the load factor, i.e. load or displacement control,
+    /// whatever the scene prescribes, with path following taking over at
+    /// limit points and handing back after them; see
+    /// `junta_solvers::path_switch`), `"load"` or its synonym
+    /// `"displacement"` (the load factor only: the run stops at the first
+    /// limit point), or `"arc_length"` (path following throughout:
+    /// cylindrical arc length, then the dissipated energy once the laws
+    /// dissipate; see `junta_solvers::arc_length`).
     #[serde(default)]
     pub control: Control,
     /// Path-following settings (`[analysis.arc_length]`, see
@@ -98,8 +102,13 @@ pub struct AnalysisSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Control {
-    /// The load factor is prescribed.
+    /// The load factor is prescribed; path following takes over at limit
+    /// points and hands back after them.
     #[default]
+    Auto,
+    /// The load factor is prescribed throughout (`"load"` or
+    /// `"displacement"`): the run stops at a limit point.
+    #[serde(alias = "displacement")]
     Load,
     /// Path following (arc length / dissipation).
     ArcLength,
@@ -119,7 +128,7 @@ impl Default for AnalysisSpec {
             steps: one_step(),
             stop_when_separated: false,
             newton: Default::default(),
-            control: Control::Load,
+            control: Control::Auto,
             arc_length: Default::default(),
         }
     }

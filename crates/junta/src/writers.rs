@@ -193,6 +193,7 @@ impl Observer for Checkpoints {
             input: self.input.clone(),
             checkpoint: inc.checkpoint(),
             first_failure: log.first_failure.clone(),
+            path_switches: log.path_switches.clone(),
             frames: log.frames.clone(),
             solver_overrides: self.solver_overrides.clone(),
             inputs: self.inputs.clone(),

@@ -309,6 +309,57 @@ pub struct PathState {
     /// under the dissipation constraint, else 0 (the secant predictor).
     #[serde(default)]
     pub last_tau: f64,
+    /// When path following took over from load control at a limit point
+    /// ([`crate::path_switch`]): what tells when load control can take
+    /// over again.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub return_to_load: Option<LoadReturn>,
+}
+
+/// When path following that took over at a limit point hands back to load
+/// (or displacement) control: after it has passed the limit (an increment
+/// with a falling load factor, or one under the dissipation constraint),
+/// at the second consecutive cylindrical arc-length increment whose load
+/// factor rises past the one at the switch, with a tangent whose inertia
+/// is back to the one before the switch (when the back end reports it).
+/// There the path is a stable, loading branch again, which load control
+/// follows.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LoadReturn {
+    /// Load factor at the switch (the last converged load-controlled
+    /// increment).
+    pub lambda_switch: f64,
+    /// Negative pivots of the tangent there, when reported.
+    pub pivots_switch: Option<usize>,
+    /// The path has passed the limit point.
+    pub passed: bool,
+    /// Consecutive rising arc-length increments past `lambda_switch`.
+    pub rising: usize,
+}
+
+impl LoadReturn {
+    /// Rising increments in a row before load control takes over again.
+    const RISING_INCREMENTS: usize = 2;
+
+    /// Account for a converged increment; true when load control can take
+    /// over from here.
+    fn update(&mut self, r: &IncrementReport, end: f64) -> bool {
+        let sign = end.signum();
+        let falling = r.delta_lambda * sign < 0.0;
+        if falling || r.control == PathMode::Dissipation {
+            self.passed = true;
+        }
+        let stable = match (self.pivots_switch, r.negative_pivots) {
+            (Some(before), Some(now)) => now <= before,
+            _ => true,
+        };
+        let rising = r.control == PathMode::Arc
+            && r.delta_lambda * sign > 0.0
+            && (r.lambda - self.lambda_switch) * sign > 0.0
+            && stable;
+        self.rising = if rising { self.rising + 1 } else { 0 };
+        self.passed && self.rising >= Self::RISING_INCREMENTS
+    }
 }
 
 /// Why a path-following run ended without error.
@@ -324,6 +375,10 @@ pub enum PathEnd {
     IncrementLimit,
     /// The observer stopped the run.
     Observer,
+    /// The path is a stable loading branch again after the limit point
+    /// where path following took over ([`LoadReturn`]): load control goes
+    /// on from here.
+    ReturnToLoad,
 }
 
 /// Element matrices needed for `q`, `g`, `h` (see the module doc).
@@ -570,13 +625,11 @@ pub fn solve_arc_length<F>(
     settings: &NewtonSettings,
     arc: &ArcLengthSettings,
     restart: Option<&Checkpoint>,
-    mut observer: F,
+    observer: F,
 ) -> Result<(NonlinearRun, PathEnd), NonlinearError>
 where
     F: FnMut(&IncrementView<'_>) -> Control,
 {
-    let t_run = Instant::now();
-    arc.validate()?;
     if program.len() != 1 || !program[0].is_finite() || program[0] == 0.0 {
         return Err(CoreError::Invalid(format!(
             "path following needs a single step with a finite, non-zero end load factor \
@@ -585,10 +638,34 @@ where
         ))
         .into());
     }
+    run_path(
+        model, solver, program[0], settings, arc, restart, observer, false,
+    )
+}
+
+/// [`solve_arc_length`] to the end load factor `end` of the step the
+/// cursor is in (`restart`, whose step may be any step of a longer
+/// program); `analyzed`: the solver holds the symbolic analysis already.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn run_path<F>(
+    model: &Model,
+    solver: &mut dyn LinearSolver,
+    end: f64,
+    settings: &NewtonSettings,
+    arc: &ArcLengthSettings,
+    restart: Option<&Checkpoint>,
+    mut observer: F,
+    analyzed: bool,
+) -> Result<(NonlinearRun, PathEnd), NonlinearError>
+where
+    F: FnMut(&IncrementView<'_>) -> Control,
+{
+    let t_run = Instant::now();
+    arc.validate()?;
     settings.validate()?;
-    let end = program[0];
     let (state, u_start, cur, path) = path_start(model, settings, end, restart)?;
-    let (w, timings) = Work::for_run(model, solver, u_start, settings);
+    let (mut w, timings) = Work::for_run(model, solver, u_start, settings);
+    w.analyzed = analyzed;
     let mut run = PathRun::new(w, state, cur, path, settings, arc, end)?;
     let mut end_reason = PathEnd::Completed;
     while run.cur.t < 1.0 {
@@ -604,6 +681,10 @@ where
         let committed = run.commit(&inc)?;
         run.next_size(&inc, &committed);
         let report = run.report(solver, &inc, &committed, before);
+        let hand_back = match &mut run.path.return_to_load {
+            Some(r) => r.update(&report, end),
+            None => false,
+        };
         let view = IncrementView {
             report: &report,
             u: &run.w.u,
@@ -621,6 +702,10 @@ where
         if run.path.lambda_max > 0.0 && run.cur.lambda * end.signum() <= 1e-6 * run.path.lambda_max
         {
             end_reason = PathEnd::Unloaded;
+            break;
+        }
+        if hand_back && run.cur.t < 1.0 {
+            end_reason = PathEnd::ReturnToLoad;
             break;
         }
     }
@@ -681,6 +766,7 @@ fn path_start(
                 lambda_max: 0.0,
                 stored_max: 0.0,
                 last_tau: 0.0,
+                return_to_load: None,
             };
             Ok((state, u_start, cur, path))
         }
@@ -1035,7 +1121,7 @@ impl<'a> PathRun<'a> {
                 return Ok(false);
             }
             return Err(NonlinearError::IncrementTooSmall {
-                step: 0,
+                step: cur.step,
                 lambda: cur.lambda,
                 increment: r.size,
                 last_residual: rel,
@@ -1184,7 +1270,7 @@ impl<'a> PathRun<'a> {
         summary.newton_iterations_max = summary.newton_iterations_max.max(conv.iterations);
         summary.final_lambda = cur.lambda;
         let report = IncrementReport {
-            step: 0,
+            step: cur.step,
             increment_index: cur.increment_index,
             lambda: cur.lambda,
             delta_lambda: c.delta_lambda,
@@ -1198,6 +1284,7 @@ impl<'a> PathRun<'a> {
             negative_pivots: solver.report().negative_pivots,
             control: inc.control,
             dissipation: Some(conv.dissipation),
+            switched: None,
         };
         tracing::info!(
             increment = report.increment_index,

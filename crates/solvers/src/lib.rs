@@ -53,6 +53,7 @@ pub mod minres;
 pub mod newton;
 pub mod ordering;
 mod panel_lu;
+pub mod path_switch;
 mod supernodal;
 
 pub use cg::{CgSettings, CgSolver, KrylovMethod, Preconditioner};

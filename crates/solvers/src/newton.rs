@@ -368,6 +368,9 @@ pub struct IncrementReport {
     /// `½ (lambda_0 Δa - Δlambda a_0 + p_0 Δlambda - lambda_0 Δp)` (see
     /// [`crate::arc_length`]); arc-length runs only.
     pub dissipation: Option<f64>,
+    /// On the first increment after the driver changed the control at a
+    /// limit point (or back): where and why ([`crate::path_switch`]).
+    pub switched: Option<crate::path_switch::PathSwitch>,
 }
 
 /// The driver's position in the program: everything its future depends on.
@@ -570,6 +573,9 @@ pub(crate) struct Work<'m> {
     pub(crate) history: Vec<f64>,
     pub(crate) timings: Timings,
     pub(crate) analyzed: bool,
+    /// Symbolic analyses these buffers made (0 when a driver before them
+    /// left the solver analysed).
+    pub(crate) analyses: usize,
     pub(crate) iterations: usize,
     pub(crate) secant_attempts: usize,
     pub(crate) solves: usize,
@@ -615,6 +621,7 @@ impl<'m> Work<'m> {
             history: Vec::with_capacity(settings.max_iterations + 1),
             timings: Timings::default(),
             analyzed: false,
+            analyses: 0,
             iterations: 0,
             secant_attempts: 0,
             solves: 0,
@@ -728,6 +735,7 @@ impl<'m> Work<'m> {
             solver.analyze(&self.k, Some(&self.coords))?;
             self.timings.analyze += t.elapsed().as_secs_f64();
             self.analyzed = true;
+            self.analyses += 1;
         }
         Ok(())
     }
@@ -768,7 +776,7 @@ impl<'m> Work<'m> {
         t_run: Instant,
     ) {
         summary.newton_iterations_total = self.iterations;
-        summary.analyze_count = usize::from(self.analyzed);
+        summary.analyze_count = self.analyses;
         summary.secant_attempts = self.secant_attempts;
         summary.linear_solves = self.solves;
         timings.assemble = self.timings.assemble;
@@ -1268,8 +1276,59 @@ pub fn solve_nonlinear<F>(
     program: &[f64],
     settings: &NewtonSettings,
     restart: Option<&Checkpoint>,
-    mut observer: F,
+    observer: F,
 ) -> Result<NonlinearRun, NonlinearError>
+where
+    F: FnMut(&IncrementView<'_>) -> Control,
+{
+    let options = LoadOptions {
+        analyzed: false,
+        stop_at_limit: false,
+    };
+    match run_load(model, solver, program, settings, restart, observer, options)? {
+        LoadOutcome::Finished(run) => Ok(run),
+        LoadOutcome::Limit { error, .. } => Err(error),
+    }
+}
+
+/// How [`run_load`] starts and where it stops.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LoadOptions {
+    /// The solver holds the symbolic analysis of this model's pattern
+    /// already (a driver before this one analysed it).
+    pub(crate) analyzed: bool,
+    /// Stop at a limit point ([`LoadOutcome::Limit`]) as soon as a failed
+    /// attempt's tangent has more negative pivots than the last converged
+    /// increment's, instead of cutting back to `min_increment` first.
+    pub(crate) stop_at_limit: bool,
+}
+
+/// How a load-controlled run ended.
+pub(crate) enum LoadOutcome {
+    /// The end of the program, or the observer stopped it.
+    Finished(NonlinearRun),
+    /// No further increment converges: `run` holds the last converged
+    /// increment (its residual evaluated again), `error` the failure
+    /// ([`NonlinearError::IncrementTooSmall`]) and `reason` why this is
+    /// taken for a limit point.
+    Limit {
+        run: NonlinearRun,
+        error: NonlinearError,
+        reason: String,
+    },
+}
+
+/// [`solve_nonlinear`], ending at a limit point with the last converged
+/// state instead of only the error.
+pub(crate) fn run_load<F>(
+    model: &Model,
+    solver: &mut dyn LinearSolver,
+    program: &[f64],
+    settings: &NewtonSettings,
+    restart: Option<&Checkpoint>,
+    mut observer: F,
+    options: LoadOptions,
+) -> Result<LoadOutcome, NonlinearError>
 where
     F: FnMut(&IncrementView<'_>) -> Control,
 {
@@ -1282,7 +1341,8 @@ where
         .into());
     }
     let (state, u_start, cur) = load_start(model, program, settings, restart)?;
-    let (w, timings) = Work::for_run(model, solver, u_start, settings);
+    let (mut w, timings) = Work::for_run(model, solver, u_start, settings);
+    w.analyzed = options.analyzed;
     let mut run = LoadRun {
         w,
         state,
@@ -1295,15 +1355,26 @@ where
         settings,
         small_size: settings.small_increment(),
         initial_size: settings.initial_increment.min(settings.max_increment),
+        stop_at_limit: options.stop_at_limit,
+        pivots_converged: None,
     };
     // residual of the starting point, so that a run with nothing to do
     // still returns a consistent residual
     if restart.is_some() {
         run.w.evaluate_at_rest(&mut run.state, &run.cur)?;
     }
+    let mut limit = None;
     while run.advance_step() {
         let before = run.w.timings;
-        let inc = run.converge_increment(solver)?;
+        let inc = match run.converge_increment(solver) {
+            Ok(inc) => inc,
+            Err((error @ NonlinearError::IncrementTooSmall { .. }, reason)) => {
+                run.w.evaluate_at_rest(&mut run.state, &run.cur)?;
+                limit = Some((error, reason));
+                break;
+            }
+            Err((error, _)) => return Err(error),
+        };
         let report = run.commit(solver, &inc, before);
         let view = IncrementView {
             report: &report,
@@ -1327,13 +1398,17 @@ where
         ..
     } = run;
     w.close(&mut summary, timings, t_run);
-    Ok(NonlinearRun {
+    let run = NonlinearRun {
         summary,
         u: w.u,
         residual: w.res,
         state,
         cursor: cur,
         path: None,
+    };
+    Ok(match limit {
+        None => LoadOutcome::Finished(run),
+        Some((error, reason)) => LoadOutcome::Limit { run, error, reason },
     })
 }
 
@@ -1399,6 +1474,11 @@ struct LoadRun<'a> {
     small_size: f64,
     /// First increment of a step.
     initial_size: f64,
+    /// See [`LoadOptions::stop_at_limit`].
+    stop_at_limit: bool,
+    /// Negative pivots of the last converged increment's tangent, when the
+    /// back end reports them.
+    pivots_converged: Option<usize>,
 }
 
 /// A converged increment: where it ends (fraction of the step and load
@@ -1440,10 +1520,15 @@ impl LoadRun<'_> {
     /// each failure restoring the converged state and multiplying the size
     /// by `cutback`; below `min_increment` the run stops with
     /// [`NonlinearError::IncrementTooSmall`].
+    ///
+    /// The error comes with why the stop is taken for a limit point: the
+    /// increment fell below `min_increment`, or (with `stop_at_limit`) the
+    /// failed attempt's tangent has more negative pivots than the last
+    /// converged one's.
     fn converge_increment(
         &mut self,
         solver: &mut dyn LinearSolver,
-    ) -> Result<LoadIncrement, NonlinearError> {
+    ) -> Result<LoadIncrement, (NonlinearError, String)> {
         let cur = self.cur;
         let start = if cur.step == 0 {
             0.0
@@ -1471,10 +1556,11 @@ impl LoadRun<'_> {
                 delta_load_factor: lambda_new - cur.lambda,
                 secant: false,
             };
-            match self
+            let attempt = self
                 .w
-                .attempt(solver, &mut self.state, step, cur.force_peak)?
-            {
+                .attempt(solver, &mut self.state, step, cur.force_peak)
+                .map_err(|e| (e, String::new()))?;
+            match attempt {
                 Attempt::Converged {
                     iterations,
                     eval,
@@ -1507,15 +1593,32 @@ impl LoadRun<'_> {
                         next_increment = next,
                         "increment failed ({reason}); cutting back"
                     );
-                    if next < self.settings.min_increment || span == 0.0 {
-                        return Err(NonlinearError::IncrementTooSmall {
+                    let pivots = solver.report().negative_pivots;
+                    let why = if next < self.settings.min_increment || span == 0.0 {
+                        Some(format!(
+                            "the increment was cut back below min_increment = {:e} of the step \
+                             ({reason})",
+                            self.settings.min_increment
+                        ))
+                    } else {
+                        match (self.stop_at_limit, self.pivots_converged, pivots) {
+                            (true, Some(before), Some(now)) if now > before => Some(format!(
+                                "the tangent's inertia changed: {now} negative pivots in a \
+                                 failed attempt against {before} at the last converged increment"
+                            )),
+                            _ => None,
+                        }
+                    };
+                    if let Some(why) = why {
+                        let error = NonlinearError::IncrementTooSmall {
                             step: cur.step,
                             lambda: cur.lambda,
                             increment: lambda_new - cur.lambda,
                             last_residual: rel,
                             iterations,
                             reason,
-                        });
+                        };
+                        return Err((error, why));
                     }
                     size = next;
                 }
@@ -1576,7 +1679,11 @@ impl LoadRun<'_> {
             },
             control: crate::arc_length::PathMode::Load,
             dissipation: None,
+            switched: None,
         };
+        if report.negative_pivots.is_some() {
+            self.pivots_converged = report.negative_pivots;
+        }
         tracing::info!(
             increment = report.increment_index,
             step = report.step,

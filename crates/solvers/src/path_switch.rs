@@ -1,0 +1,373 @@
+//! Load or displacement control that passes limit points by itself: the
+//! Newton driver ([`crate::newton`]) runs the program until it meets a
+//! limit point, path following ([`crate::arc_length`]) takes over there,
+//! and load control takes over again where the path is a stable loading
+//! branch once more. A user who prescribes a load or a displacement gets
+//! the whole curve to the end of the program, snap-backs included, without
+//! choosing a control.
+//!
+//! # Limit points
+//!
+//! Under load control the load factor `lambda` is prescribed: at a maximum
+//! of the load (load control) or where the prescribed displacement turns
+//! back (a snap-back under displacement control) no equilibrium lies
+//! beyond the last converged state, every attempt fails, and the driver
+//! cuts the increment back. A limit point is taken to be met when
+//!
+//! - the increment was cut back below `min_increment` (the point where the
+//!   Newton driver alone stops with
+//!   [`NonlinearError::IncrementTooSmall`]), or
+//! - an attempt failed and its last tangent had more negative pivots than
+//!   the last converged increment's (the tangent's inertia changed: the
+//!   structure is past a stability limit), when the linear back end
+//!   reports the inertia (`ldlt`, `cholesky`).
+//!
+//! # Switch to path following
+//!
+//! From the last converged increment, path following continues to the end
+//! load factor of the current step, with the cylindrical arc length first
+//! (its size the arc length `sqrt(|Δu|^2 + c Δlambda^2)` of the last
+//! converged increment, its direction that increment's) and the dissipation
+//! constraint as soon as the laws dissipate (see [`crate::arc_length`]).
+//! The step must move away from zero (`lambda` from 0, or from
+//! `lambda_{s-1}` to `lambda_s` of the same sign and larger magnitude);
+//! elsewhere (an unloading step) the run stops as the Newton driver does.
+//!
+//! # Return to load control
+//!
+//! Path following hands back when the path has passed the limit and is a
+//! stable loading branch again ([`crate::arc_length::LoadReturn`]), or at
+//! the end of the step; the following steps start under load control
+//! again, with the same switching. So a run ends at the end of its program
+//! whenever the structure still carries the load there. It ends earlier
+//! only when the load falls back to zero after a maximum under path
+//! following (a force-controlled structure that came apart), when path
+//! following itself cannot go on, or when its `max_increments` is reached.
+//!
+//! # Reports
+//!
+//! The first increment after each switch carries an
+//! [`IncrementReport::switched`] record (which increment, load factor,
+//! step, the new control and why). A checkpoint taken under path following
+//! holds the path state, so a restart continues under it; one taken under
+//! load control restarts under load control.
+
+use crate::arc_length::{run_path, ArcLengthSettings, LoadReturn, PathEnd, PathMode, PathState};
+use crate::newton::{
+    run_load, Checkpoint, Control, IncrementReport, IncrementView, LoadOptions, LoadOutcome,
+    NewtonSettings, NonlinearError, NonlinearRun, NonlinearSummary,
+};
+use junta_core::{LinearSolver, Model};
+use serde::{Deserialize, Serialize};
+
+/// A change of control at a limit point, or back.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PathSwitch {
+    /// The last converged increment before the switch.
+    pub increment: usize,
+    /// Step (0-based) of the program.
+    pub step: usize,
+    /// Load factor there.
+    pub lambda: f64,
+    /// The control after the switch: `arc_length` or `load`.
+    pub to: String,
+    /// Why.
+    pub reason: String,
+}
+
+/// Run the load program with the Newton driver, switching to path
+/// following at limit points and back (module documentation). Returns the
+/// final run (its summary the totals of every phase), how the last path
+/// following phase ended (`None` when the run ended under load control),
+/// or the error that ended it.
+pub fn solve_with_path_switch<F>(
+    model: &Model,
+    solver: &mut dyn LinearSolver,
+    program: &[f64],
+    settings: &NewtonSettings,
+    arc: &ArcLengthSettings,
+    restart: Option<&Checkpoint>,
+    mut observer: F,
+) -> Result<(NonlinearRun, Option<PathEnd>), NonlinearError>
+where
+    F: FnMut(&IncrementView<'_>) -> Control,
+{
+    arc.validate()?;
+    let mut from = restart.cloned();
+    let mut totals = NonlinearSummary::default();
+    let mut analyzed = false;
+    let mut pending: Option<PathSwitch> = None;
+    loop {
+        let path_phase = from.as_ref().is_some_and(|c| c.path.is_some());
+        if !path_phase {
+            let mut track = Track::default();
+            let outcome = {
+                let mut obs = |v: &IncrementView<'_>| {
+                    track.record(v, program, model);
+                    forward(&mut observer, v, &mut pending)
+                };
+                let options = LoadOptions {
+                    analyzed,
+                    stop_at_limit: true,
+                };
+                run_load(
+                    model,
+                    solver,
+                    program,
+                    settings,
+                    from.as_ref(),
+                    &mut obs,
+                    options,
+                )?
+            };
+            analyzed = true;
+            match outcome {
+                LoadOutcome::Finished(run) => return Ok((add_totals(&mut totals, run), None)),
+                LoadOutcome::Limit { run, error, reason } => {
+                    let c = run.checkpoint();
+                    if !moves_away_from_zero(program, c.step) {
+                        return Err(error);
+                    }
+                    add_totals(&mut totals, run);
+                    let switch = PathSwitch {
+                        increment: c.increment_index,
+                        step: c.step,
+                        lambda: c.lambda,
+                        to: "arc_length".into(),
+                        reason,
+                    };
+                    tracing::warn!(
+                        lambda = switch.lambda,
+                        increment = switch.increment,
+                        "limit point ({}): path following takes over",
+                        switch.reason
+                    );
+                    from = Some(track.path_checkpoint(c, model, settings));
+                    pending = Some(switch);
+                }
+            }
+        } else {
+            let c = from.take().expect("a path phase starts from a checkpoint");
+            let end = program[c.step.min(program.len() - 1)];
+            let (run, end_reason) = {
+                let obs = |v: &IncrementView<'_>| forward(&mut observer, v, &mut pending);
+                run_path(model, solver, end, settings, arc, Some(&c), obs, analyzed)?
+            };
+            analyzed = true;
+            let done = run.cursor.step + 1 >= program.len();
+            match end_reason {
+                PathEnd::ReturnToLoad => {
+                    let back = load_checkpoint(run.checkpoint(), program, settings);
+                    pending = Some(PathSwitch {
+                        increment: back.increment_index,
+                        step: back.step,
+                        lambda: back.lambda,
+                        to: "load".into(),
+                        reason: "past the limit point the path loads again on a stable branch"
+                            .into(),
+                    });
+                    tracing::warn!(
+                        lambda = back.lambda,
+                        "the path is a stable loading branch again: load control takes over"
+                    );
+                    add_totals(&mut totals, run);
+                    from = Some(back);
+                }
+                PathEnd::Completed if !done => {
+                    let back = load_checkpoint(run.checkpoint(), program, settings);
+                    add_totals(&mut totals, run);
+                    from = Some(back);
+                }
+                _ => return Ok((add_totals(&mut totals, run), Some(end_reason))),
+            }
+        }
+    }
+}
+
+/// Hand a converged increment to the caller's observer, with the pending
+/// switch record on its report.
+fn forward<F>(observer: &mut F, v: &IncrementView<'_>, pending: &mut Option<PathSwitch>) -> Control
+where
+    F: FnMut(&IncrementView<'_>) -> Control,
+{
+    let Some(switch) = pending.take() else {
+        return observer(v);
+    };
+    let report = IncrementReport {
+        switched: Some(switch),
+        ..v.report.clone()
+    };
+    observer(&IncrementView {
+        report: &report,
+        ..*v
+    })
+}
+
+/// Whether step `step` of `program` loads away from zero (path following
+/// runs to its end load factor from any point of it).
+fn moves_away_from_zero(program: &[f64], step: usize) -> bool {
+    let Some(&end) = program.get(step) else {
+        return false;
+    };
+    let start = if step == 0 { 0.0 } else { program[step - 1] };
+    end != 0.0 && (start == 0.0 || (start * end > 0.0 && end.abs() > start.abs()))
+}
+
+/// The last two converged increments of a load-controlled phase: what
+/// path following needs to start from the last one.
+#[derive(Default)]
+struct Track {
+    u_last: Vec<f64>,
+    u_before: Vec<f64>,
+    lambda_last: f64,
+    lambda_before: f64,
+    lambda_max: f64,
+    pivots_last: Option<usize>,
+    /// Largest arc length of an increment so far.
+    arc_max: f64,
+    /// Energy the laws report dissipated at the last increment.
+    dissipated: f64,
+    /// The last increment dissipated (the laws' energy grew).
+    dissipating: bool,
+    /// Largest energy the laws dissipated in one increment.
+    tau_max: f64,
+}
+
+impl Track {
+    fn record(&mut self, v: &IncrementView<'_>, program: &[f64], model: &Model) {
+        std::mem::swap(&mut self.u_last, &mut self.u_before);
+        self.u_last.clear();
+        self.u_last.extend_from_slice(v.u);
+        self.lambda_before = self.lambda_last;
+        self.lambda_last = v.report.lambda;
+        let sign = program.get(v.report.step).map_or(1.0, |e| e.signum());
+        self.lambda_max = self.lambda_max.max(v.report.lambda * sign);
+        self.pivots_last = v.report.negative_pivots;
+        if self.u_before.len() == self.u_last.len() {
+            self.arc_max = self.arc_max.max(distance(&self.u_before, &self.u_last));
+        }
+        // a law that cannot report it counts as not dissipating
+        let d = model.dissipated_energy(v.u, v.state).unwrap_or(0.0);
+        self.dissipating = d > self.dissipated;
+        self.tau_max = self.tau_max.max(d - self.dissipated);
+        self.dissipated = d;
+    }
+
+    /// The checkpoint `c` (the last converged load-controlled increment)
+    /// with the path state that continues from it: cylindrical arc length
+    /// of the last increment's size and direction.
+    fn path_checkpoint(
+        &self,
+        mut c: Checkpoint,
+        model: &Model,
+        settings: &NewtonSettings,
+    ) -> Checkpoint {
+        let have_two = self.u_before.len() == c.u.len() && self.u_last.len() == c.u.len();
+        let (u_prev, lambda_prev) = if have_two {
+            (self.u_before.clone(), self.lambda_before)
+        } else {
+            // a single converged increment (or a restart right before the
+            // limit): the unloaded state before it
+            (model.dofs.expand(None, 0.0), 0.0)
+        };
+        // the norm over all dofs, prescribed ones included, is the
+        // cylindrical arc length `sqrt(|Δu_f|^2 + c Δlambda^2)`
+        let arc_last = distance(&u_prev, &c.u);
+        let arc0 = self.arc_max.max(arc_last);
+        // the last increments before a limit point are cut back: restart
+        // from a quarter of the largest increment, the driver adapts it
+        let mut arc = arc_last.max(FIRST_ARC_OF_LARGEST * arc0);
+        if !(arc > 0.0 && arc.is_finite()) {
+            arc = settings.min_increment.max(1e-12);
+        }
+        // where the laws dissipate, the limit is a crack starting to run:
+        // the dissipation constraint follows it where the arc may turn
+        // back onto the loading branch (a snap-back at more than 90
+        // degrees); its size a quarter of the largest increment's
+        // dissipation, the driver adapts it
+        let (mode, size, tau0) = if self.dissipating && self.tau_max > 0.0 {
+            let tau = FIRST_ARC_OF_LARGEST * self.tau_max;
+            (PathMode::Dissipation, tau, tau)
+        } else {
+            (PathMode::Arc, arc, 0.0)
+        };
+        c.path = Some(PathState {
+            mode,
+            size,
+            arc0: arc0.max(arc),
+            tau0,
+            arc_last: arc,
+            previous_lambda: lambda_prev,
+            previous_u: u_prev,
+            lambda_max: self.lambda_max,
+            stored_max: 0.0,
+            last_tau: 0.0,
+            return_to_load: Some(LoadReturn {
+                lambda_switch: c.lambda,
+                pivots_switch: self.pivots_last,
+                passed: false,
+                rising: 0,
+            }),
+        });
+        c
+    }
+}
+
+/// The first arc length (or dissipation) after a switch, as a fraction of
+/// the largest load-controlled increment's (when the last one is
+/// shorter).
+const FIRST_ARC_OF_LARGEST: f64 = 0.25;
+
+/// Euclidean distance of two vectors.
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// A path-following checkpoint made a load-controlled one: the fraction of
+/// its step from the load factor, the next increment the last one's share
+/// of the step (within the Newton settings' bounds).
+fn load_checkpoint(mut c: Checkpoint, program: &[f64], settings: &NewtonSettings) -> Checkpoint {
+    let end = program[c.step];
+    let start = if c.step == 0 {
+        0.0
+    } else {
+        program[c.step - 1]
+    };
+    let span = end - start;
+    let previous_lambda = c.path.as_ref().map_or(start, |p| p.previous_lambda);
+    c.step_fraction = if c.lambda == end {
+        1.0
+    } else {
+        ((c.lambda - start) / span).clamp(0.0, 1.0 - 1e-12)
+    };
+    c.increment_size = ((c.lambda - previous_lambda).abs() / span.abs())
+        .clamp(settings.min_increment, settings.max_increment);
+    c.path = None;
+    c
+}
+
+/// Add a phase's counts and timings to `totals`; the run with the totals.
+fn add_totals(totals: &mut NonlinearSummary, mut run: NonlinearRun) -> NonlinearRun {
+    let s = &run.summary;
+    totals.increments += s.increments;
+    totals.newton_iterations_total += s.newton_iterations_total;
+    totals.newton_iterations_max = totals.newton_iterations_max.max(s.newton_iterations_max);
+    totals.cutbacks += s.cutbacks;
+    totals.timings.pattern += s.timings.pattern;
+    totals.timings.assemble += s.timings.assemble;
+    totals.timings.analyze += s.timings.analyze;
+    totals.timings.factor += s.timings.factor;
+    totals.timings.solve += s.timings.solve;
+    totals.timings.total += s.timings.total;
+    totals.analyze_count += s.analyze_count;
+    totals.final_lambda = s.final_lambda;
+    totals.stopped_by_observer = s.stopped_by_observer;
+    totals.secant_attempts += s.secant_attempts;
+    totals.linear_solves += s.linear_solves;
+    run.summary = totals.clone();
+    run
+}
