@@ -744,6 +744,7 @@ pub fn evaluate_law<'py>(
         load_factor,
         delta_load_factor,
         secant,
+        exact_tangent: false,
     };
     if let Err(f) = l.call_evaluate(py, &jump, &state, step, &mut trial, &mut out) {
         return Err(match f {
@@ -811,6 +812,7 @@ pub fn evaluate_registered<'py>(
         load_factor,
         delta_load_factor,
         secant,
+        exact_tangent: false,
     };
     let mut trial = vec![0.0; n * k];
     let mut t = Vec::with_capacity(3 * n);

@@ -53,6 +53,12 @@ pub struct StepInfo {
     /// between the loading and unloading branches of a softening point).
     /// Laws without a secant form ignore it.
     pub secant: bool,
+    /// Assemble the law's exact tangent in full, nonsymmetric where it is,
+    /// also for a law that declares a symmetric kind (whose tangent is
+    /// otherwise stored as its symmetric part). The drivers set it after
+    /// switching to the exact tangent when Newton stagnated on the
+    /// symmetric part ([`crate::Element::symmetrises_tangent`]).
+    pub exact_tangent: bool,
 }
 
 /// Everything an element kernel reads. Buffers are owned by the caller.
@@ -184,5 +190,12 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     /// material's); see [`crate::solver::MatrixKind`].
     fn tangent_kind(&self) -> crate::solver::MatrixKind {
         crate::solver::MatrixKind::SymmetricPositiveDefinite
+    }
+    /// True when the element stores the symmetric part of a tangent that
+    /// is not symmetric everywhere (a mixed-mode softening law of a
+    /// symmetric kind), and assembles the exact one in full when
+    /// [`StepInfo::exact_tangent`] asks. Default: false.
+    fn symmetrises_tangent(&self) -> bool {
+        false
     }
 }

@@ -124,6 +124,13 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     fn tangent_kind(&self) -> crate::solver::MatrixKind {
         crate::solver::MatrixKind::SymmetricPositiveDefinite
     }
+    /// True when the law's tangent can be nonsymmetric although its
+    /// [`InterfaceLaw::tangent_kind`] is symmetric (the element then
+    /// stores its symmetric part, and a driver may switch to the exact
+    /// tangent: [`crate::element::StepInfo::exact_tangent`]). Default: false.
+    fn tangent_is_symmetrised(&self) -> bool {
+        false
+    }
     /// Names of the scalar per-point outputs this law reports (see
     /// [`output`] for the shared names). Default: none.
     fn output_names(&self) -> &'static [&'static str] {

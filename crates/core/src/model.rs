@@ -145,6 +145,13 @@ impl Model {
             .unwrap_or_default()
     }
 
+    /// Whether any element stores the symmetric part of a tangent that can
+    /// be nonsymmetric ([`crate::Element::symmetrises_tangent`]).
+    pub fn tangent_symmetrised(&self) -> bool {
+        self.matrix_kind() != crate::solver::MatrixKind::General
+            && self.elements.iter().any(|e| e.symmetrises_tangent())
+    }
+
     /// Sparsity pattern and colouring for this model.
     pub fn assembler(&self) -> Assembler {
         Assembler::new(&self.mesh, &self.dofs)

@@ -342,7 +342,8 @@ impl Element for InterfaceElement {
         let mut bk = [[0.0f64; MAX]; MAX];
         let want_k = k.is_some();
         let sl = self.law.state_len();
-        let symmetric = self.law.tangent_kind() != junta_core::MatrixKind::General;
+        let symmetric =
+            self.law.tangent_kind() != junta_core::MatrixKind::General && !ctx.step.exact_tangent;
         let mut n = [0.0; 9];
         let mut own = [LawResponse::default(); MAX_POINTS];
         let batch = self.batch_responses(ctx, state_trial, &mut own)?;
@@ -508,6 +509,11 @@ impl Element for InterfaceElement {
 
     fn tangent_kind(&self) -> junta_core::MatrixKind {
         self.law.tangent_kind()
+    }
+
+    fn symmetrises_tangent(&self) -> bool {
+        self.law.tangent_kind() != junta_core::MatrixKind::General
+            && self.law.tangent_is_symmetrised()
     }
 
     fn fracture_properties(&self) -> Option<junta_core::FractureProperties> {

@@ -44,6 +44,7 @@ fn ctx(jump: [f64; 3], committed: &[f64], increment: usize) -> LawContext<'_> {
             load_factor: 0.0,
             delta_load_factor: 0.0,
             secant: false,
+            exact_tangent: false,
         },
     }
 }
@@ -562,6 +563,7 @@ fn inter8_top_face_pulled_uniformly() {
                     load_factor: 0.0,
                     delta_load_factor: 0.0,
                     secant: false,
+                    exact_tangent: false,
                 },
                 law_responses: None,
             },

@@ -82,6 +82,7 @@ impl Point {
                         load_factor: 0.0,
                         delta_load_factor: 1.0,
                         secant: false,
+                        exact_tangent: false,
                     },
                 },
                 &mut trial,

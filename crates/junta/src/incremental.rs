@@ -143,17 +143,16 @@ impl Engine<'_> {
         observers: &mut [&mut dyn Observer],
     ) -> Control {
         let r = v.report;
-        if let Some(s) = &r.switched {
+        for s in &r.switched {
+            let what = match s.to.as_str() {
+                "load" => format!("{}; load control from here", s.reason),
+                "arc_length" => format!("limit point ({}); path following from here", s.reason),
+                _ => s.reason.clone(),
+            };
             tracing::warn!(
-                "increment {} at load factor {:.6e}: {}; {} control from here",
+                "increment {} at load factor {:.6e}: {what}",
                 s.increment,
-                s.lambda,
-                s.reason,
-                if s.to == "load" {
-                    "load"
-                } else {
-                    "path-following"
-                }
+                s.lambda
             );
             self.log.path_switches.push(s.clone());
         }
@@ -196,6 +195,7 @@ impl Engine<'_> {
             load_factor: r.lambda,
             delta_load_factor: r.delta_lambda,
             secant: false,
+            exact_tangent: false,
         };
         let ifs = output::interface_results_at(model, v.u, v.state, step)?;
         let row = self.row_of(v, &ifs)?;
@@ -520,6 +520,7 @@ fn finish(
         load_factor: log.rows.last().map_or(0.0, |r| r.lambda),
         delta_load_factor: 0.0,
         secant: false,
+        exact_tangent: false,
     };
     // the state the run ends on: the driver's, else the last converged one
     let converged_here = log.last_increment > log.start_increment;

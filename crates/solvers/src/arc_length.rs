@@ -666,6 +666,9 @@ where
     let (state, u_start, cur, path) = path_start(model, settings, end, restart)?;
     let (mut w, timings) = Work::for_run(model, solver, u_start, settings);
     w.analyzed = analyzed;
+    if cur.exact {
+        w.use_exact_tangent();
+    }
     let mut run = PathRun::new(w, state, cur, path, settings, arc, end)?;
     let mut end_reason = PathEnd::Completed;
     while run.cur.t < 1.0 {
@@ -754,6 +757,7 @@ fn path_start(
                 size: settings.initial_increment.min(settings.max_increment),
                 small: false,
                 force_peak: 0.0,
+                exact: false,
             };
             let path = PathState {
                 mode: PathMode::Load,
@@ -934,6 +938,10 @@ impl<'a> PathRun<'a> {
                     reason,
                 } => (iterations, rel, reason),
             };
+            if self.try_exact_tangent(&reason)? {
+                // the same increment again, on the exact tangent
+                continue;
+            }
             // a failed secant start: the same step again from the
             // converged state before any cut-back
             if self.pw.extrapolate_from.is_some() {
@@ -1036,6 +1044,29 @@ impl<'a> PathRun<'a> {
             }
         }
         Ok((outcome, r.mode))
+    }
+
+    /// [`Work::try_exact_tangent`] at the failed attempt's last iterate;
+    /// on a switch the converged state is restored.
+    fn try_exact_tangent(&mut self, reason: &IncrementFailure) -> Result<bool, NonlinearError> {
+        let lambda = lambda_now(&self.w);
+        let step = StepInfo {
+            increment: self.cur.increment_index + 1,
+            load_factor: lambda,
+            delta_load_factor: lambda - self.cur.lambda,
+            secant: false,
+            exact_tangent: false,
+        };
+        let program_step = self.cur.step;
+        if !self
+            .w
+            .try_exact_tangent(&mut self.state, step, reason, program_step)?
+        {
+            return Ok(false);
+        }
+        restore(&mut self.w, &mut self.state);
+        self.cur.exact = true;
+        Ok(true)
     }
 
     /// An arc that failed at a sharp turn of the path (a snap-back right
@@ -1281,10 +1312,15 @@ impl<'a> PathRun<'a> {
             cutbacks: inc.cutbacks,
             seconds: increment_timings(self.w.timings, before),
             small_increment_mode: false,
-            negative_pivots: solver.report().negative_pivots,
+            // `lu` (the exact tangent) gives no inertia
+            negative_pivots: if self.w.exact {
+                None
+            } else {
+                solver.report().negative_pivots
+            },
             control: inc.control,
             dissipation: Some(conv.dissipation),
-            switched: None,
+            switched: self.w.exact_switch.take().into_iter().collect(),
         };
         tracing::info!(
             increment = report.increment_index,
@@ -1336,6 +1372,23 @@ impl<'a> PathRun<'a> {
     /// current trial instead. On success `w.u`, `w.lambda_trial`, `w.res`,
     /// `w.f_int` and the trial state hold the converged increment.
     fn attempt(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+        constraint: Constraint,
+        warm: bool,
+    ) -> Result<Attempt, NonlinearError> {
+        let mut exact = self.w.exact_solver.take();
+        let solver: &mut dyn LinearSolver = match exact.as_deref_mut() {
+            Some(lu) => lu,
+            None => solver,
+        };
+        let r = self.attempt_with(solver, constraint, warm);
+        self.w.exact_solver = exact;
+        r
+    }
+
+    /// [`PathRun::attempt`] with the back end in use.
+    fn attempt_with(
         &mut self,
         solver: &mut dyn LinearSolver,
         constraint: Constraint,
@@ -1504,6 +1557,7 @@ impl PathAttempt<'_, '_> {
             load_factor: self.lambda,
             delta_load_factor: self.lambda - self.cur.lambda,
             secant: self.secant,
+            exact_tangent: false,
         }
     }
 

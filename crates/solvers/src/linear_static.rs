@@ -144,6 +144,7 @@ pub fn solve_linear_static_cases(
         load_factor: 1.0,
         delta_load_factor: 1.0,
         secant: false,
+        exact_tangent: false,
     };
     let initial = |case: &LoadCase<'_>| -> Vec<f64> {
         let mut u: Vec<f64> = (0..ndof)

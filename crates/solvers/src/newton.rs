@@ -369,8 +369,9 @@ pub struct IncrementReport {
     /// [`crate::arc_length`]); arc-length runs only.
     pub dissipation: Option<f64>,
     /// On the first increment after the driver changed the control at a
-    /// limit point (or back): where and why ([`crate::path_switch`]).
-    pub switched: Option<crate::path_switch::PathSwitch>,
+    /// limit point (or back), or switched to the exact tangent: where and
+    /// why ([`crate::path_switch`], [`Work::try_exact_tangent`]).
+    pub switched: Vec<crate::path_switch::PathSwitch>,
 }
 
 /// The driver's position in the program: everything its future depends on.
@@ -383,6 +384,8 @@ pub(crate) struct Cursor {
     pub(crate) size: f64,
     pub(crate) small: bool,
     pub(crate) force_peak: f64,
+    /// The exact tangent is in use ([`Work::try_exact_tangent`]).
+    pub(crate) exact: bool,
 }
 
 /// A restart point after a converged increment. Serialisable, so that a
@@ -412,6 +415,9 @@ pub struct Checkpoint {
     /// Path-following state (arc-length runs only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub path: Option<crate::arc_length::PathState>,
+    /// The run switched to the exact (nonsymmetric) tangent.
+    #[serde(default)]
+    pub exact_tangent: bool,
 }
 
 impl Checkpoint {
@@ -424,6 +430,7 @@ impl Checkpoint {
             size: self.increment_size,
             small: self.small_increment_mode,
             force_peak: self.force_peak,
+            exact: self.exact_tangent,
         }
     }
 
@@ -444,6 +451,7 @@ impl Checkpoint {
             u: u.to_vec(),
             state_committed: state.committed.clone(),
             path: path.cloned(),
+            exact_tangent: c.exact,
         }
     }
 }
@@ -582,6 +590,13 @@ pub(crate) struct Work<'m> {
     pub(crate) settings: NewtonSettings,
     /// Load factor of the current trial (path following).
     pub(crate) lambda_trial: f64,
+    /// The exact (nonsymmetric) tangent is assembled in full and solved by
+    /// `exact_solver` ([`Work::try_exact_tangent`]).
+    pub(crate) exact: bool,
+    /// The `lu` back end of the exact tangent.
+    pub(crate) exact_solver: Option<Box<dyn LinearSolver>>,
+    /// The switch to the exact tangent, for the next increment's report.
+    pub(crate) exact_switch: Option<crate::path_switch::PathSwitch>,
 }
 
 pub(crate) fn is_element_error(e: &CoreError) -> bool {
@@ -627,6 +642,9 @@ impl<'m> Work<'m> {
             solves: 0,
             settings: settings.clone(),
             lambda_trial: 0.0,
+            exact: false,
+            exact_solver: None,
+            exact_switch: None,
         }
     }
 
@@ -674,6 +692,10 @@ impl<'m> Work<'m> {
     ) -> Result<Eval, CoreError> {
         let m = self.model;
         state.restore();
+        let step = StepInfo {
+            exact_tangent: self.exact,
+            ..step
+        };
         let t = Instant::now();
         let r = self.asm.assemble_cached(
             &m.mesh,
@@ -761,10 +783,77 @@ impl<'m> Work<'m> {
             load_factor: cur.lambda,
             delta_load_factor: 0.0,
             secant: false,
+            exact_tangent: false,
         };
         let ev = self.evaluate(state, step, cur.lambda, cur.force_peak)?;
         state.restore();
         Ok(ev)
+    }
+
+    /// Assemble and solve the exact tangent in full from now on: the
+    /// matrix gets its lower triangle and the `lu` back end takes over
+    /// (analysed on the next tangent).
+    pub(crate) fn use_exact_tangent(&mut self) {
+        self.exact = true;
+        self.k.set_general(true);
+        self.exact_solver = Some(Box::new(crate::lu::LuSolver::new(Default::default())));
+        self.analyzed = false;
+    }
+
+    /// After an attempt that failed by its iteration limit or by
+    /// stagnation on the symmetric part of a tangent that can be
+    /// nonsymmetric ([`Model::tangent_symmetrised`]): measure, at the
+    /// attempt's last iterate, the largest skew entry of the exact
+    /// tangent scaled by its diagonal ([`largest_scaled_skew`]). Above [`EXACT_TANGENT_SKEW`] (mixed-mode
+    /// softening: the symmetric part is no Newton tangent any more) the
+    /// run switches to the exact tangent ([`Work::use_exact_tangent`]) and
+    /// the same increment is tried again; the switch is kept for the next
+    /// report. Returns whether it switched.
+    pub(crate) fn try_exact_tangent(
+        &mut self,
+        state: &mut StateStore,
+        step: StepInfo,
+        reason: &IncrementFailure,
+        program_step: usize,
+    ) -> Result<bool, CoreError> {
+        let stalled = matches!(
+            reason,
+            IncrementFailure::IterationLimit | IncrementFailure::Stagnated { .. }
+        );
+        if self.exact || !stalled || !self.model.tangent_symmetrised() {
+            return Ok(false);
+        }
+        self.k.set_general(true);
+        self.exact = true;
+        let r = self.evaluate(state, step, step.load_factor, 0.0);
+        self.exact = false;
+        r?;
+        let ratio = largest_scaled_skew(&self.k);
+        state.restore();
+        if ratio <= EXACT_TANGENT_SKEW {
+            self.k.set_general(false);
+            tracing::info!(
+                skew = ratio,
+                "stalled on the symmetric tangent, which is close to the exact one"
+            );
+            return Ok(false);
+        }
+        self.use_exact_tangent();
+        self.exact_switch = Some(crate::path_switch::PathSwitch {
+            increment: step.increment.saturating_sub(1),
+            step: program_step,
+            lambda: step.load_factor - step.delta_load_factor,
+            to: "exact_tangent".into(),
+            reason: format!(
+                "Newton stalled ({reason}) on the symmetric part of a mixed-mode tangent whose skew part is {:.1e} of it: the exact, nonsymmetric tangent (lu) from here",
+                ratio
+            ),
+        });
+        tracing::warn!(
+            skew = ratio,
+            "stalled on the symmetric tangent: switching to the exact tangent"
+        );
+        Ok(true)
     }
 
     /// The run's totals: the counters and phase timings of these buffers,
@@ -794,6 +883,24 @@ impl<'m> Work<'m> {
     /// module doc ([`Work::newton_checks`]), until the attempt converges or
     /// fails.
     fn attempt(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+        state: &mut StateStore,
+        step: StepInfo,
+        force_peak: f64,
+    ) -> Result<Attempt, NonlinearError> {
+        let mut exact = self.exact_solver.take();
+        let solver: &mut dyn LinearSolver = match exact.as_deref_mut() {
+            Some(lu) => lu,
+            None => solver,
+        };
+        let r = self.attempt_with(solver, state, step, force_peak);
+        self.exact_solver = exact;
+        r
+    }
+
+    /// [`Work::attempt`] with the back end in use.
+    fn attempt_with(
         &mut self,
         solver: &mut dyn LinearSolver,
         state: &mut StateStore,
@@ -1214,6 +1321,37 @@ impl SolveClock {
     }
 }
 
+/// The largest skew entry of a nonsymmetric matrix scaled by its
+/// diagonal, `max |K_ij - K_ji| / sqrt(|K_ii K_jj|)`: a local measure, so
+/// that the skew of a few process-zone points is not lost in the solids'
+/// stiffness.
+fn largest_scaled_skew(k: &SymmetricCsc) -> f64 {
+    let mut diag = vec![0.0; k.n];
+    for j in 0..k.n {
+        for p in k.col_ptr[j]..k.col_ptr[j + 1] {
+            if k.row_idx[p] == j {
+                diag[j] = k.values[p].abs();
+            }
+        }
+    }
+    let mut largest: f64 = 0.0;
+    for j in 0..k.n {
+        for p in k.col_ptr[j]..k.col_ptr[j + 1] {
+            let scale = (diag[k.row_idx[p]] * diag[j]).sqrt();
+            if scale > 0.0 {
+                largest = largest.max((k.values[p] - k.lower[p]).abs() / scale);
+            }
+        }
+    }
+    largest
+}
+
+/// Largest skew entry of the exact tangent, scaled by the diagonal
+/// ([`largest_scaled_skew`]), above which a Newton attempt stalled on the
+/// symmetric part switches to the exact tangent
+/// ([`Work::try_exact_tangent`]).
+pub(crate) const EXACT_TANGENT_SKEW: f64 = 1e-4;
+
 /// Newton iterations without a 1 % decrease of the best relative residual
 /// after which an attempt stops as stagnated (a quadratically converging
 /// Newton gains far more per iteration; the secant fallback, which
@@ -1343,6 +1481,9 @@ where
     let (state, u_start, cur) = load_start(model, program, settings, restart)?;
     let (mut w, timings) = Work::for_run(model, solver, u_start, settings);
     w.analyzed = options.analyzed;
+    if cur.exact {
+        w.use_exact_tangent();
+    }
     let mut run = LoadRun {
         w,
         state,
@@ -1455,6 +1596,7 @@ fn load_start(
                 },
                 small,
                 force_peak: 0.0,
+                exact: false,
             }
         }
     };
@@ -1555,6 +1697,7 @@ impl LoadRun<'_> {
                 load_factor: lambda_new,
                 delta_load_factor: lambda_new - cur.lambda,
                 secant: false,
+                exact_tangent: false,
             };
             let attempt = self
                 .w
@@ -1581,8 +1724,17 @@ impl LoadRun<'_> {
                     rel,
                     reason,
                 } => {
+                    let exact = self
+                        .w
+                        .try_exact_tangent(&mut self.state, step, &reason, cur.step)
+                        .map_err(|e| (e.into(), String::new()))?;
                     self.state.restore();
                     self.w.u.copy_from_slice(&self.w.u_conv);
+                    if exact {
+                        // the same increment again, on the exact tangent
+                        self.cur.exact = true;
+                        continue;
+                    }
                     self.summary.cutbacks += 1;
                     cutbacks += 1;
                     let next = (t_new - cur.t) * self.settings.cutback;
@@ -1672,14 +1824,15 @@ impl LoadRun<'_> {
             cutbacks: inc.cutbacks,
             seconds: increment_timings(self.w.timings, before),
             small_increment_mode: was_small,
-            negative_pivots: if inc.iterations > 0 {
+            // `lu` (the exact tangent) gives no inertia
+            negative_pivots: if inc.iterations > 0 && !self.w.exact {
                 solver.report().negative_pivots
             } else {
                 None
             },
             control: crate::arc_length::PathMode::Load,
             dissipation: None,
-            switched: None,
+            switched: self.w.exact_switch.take().into_iter().collect(),
         };
         if report.negative_pivots.is_some() {
             self.pivots_converged = report.negative_pivots;

@@ -47,15 +47,15 @@
 //! # Reports
 //!
 //! The first increment after each switch carries an
-//! [`IncrementReport::switched`] record (which increment, load factor,
+//! [`crate::newton::IncrementReport::switched`] record (which increment, load factor,
 //! step, the new control and why). A checkpoint taken under path following
 //! holds the path state, so a restart continues under it; one taken under
 //! load control restarts under load control.
 
 use crate::arc_length::{run_path, ArcLengthSettings, LoadReturn, PathEnd, PathMode, PathState};
 use crate::newton::{
-    run_load, Checkpoint, Control, IncrementReport, IncrementView, LoadOptions, LoadOutcome,
-    NewtonSettings, NonlinearError, NonlinearRun, NonlinearSummary,
+    run_load, Checkpoint, Control, IncrementView, LoadOptions, LoadOutcome, NewtonSettings,
+    NonlinearError, NonlinearRun, NonlinearSummary,
 };
 use junta_core::{LinearSolver, Model};
 use serde::{Deserialize, Serialize};
@@ -193,10 +193,8 @@ where
     let Some(switch) = pending.take() else {
         return observer(v);
     };
-    let report = IncrementReport {
-        switched: Some(switch),
-        ..v.report.clone()
-    };
+    let mut report = v.report.clone();
+    report.switched.insert(0, switch);
     observer(&IncrementView {
         report: &report,
         ..*v

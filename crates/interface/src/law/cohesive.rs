@@ -560,6 +560,11 @@ impl InterfaceLaw for CohesiveLaw {
         }
     }
 
+    fn tangent_is_symmetrised(&self) -> bool {
+        // mixed mode: the mode ratio changes with the jump
+        !self.exact_tangent
+    }
+
     fn output_names(&self) -> &'static [&'static str] {
         &[
             output::DAMAGE,
