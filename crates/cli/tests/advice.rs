@@ -63,7 +63,11 @@ fn cohesive_penalty_below_turons_bound_is_warned() {
     let dir = tempfile::tempdir().unwrap();
     let base = std::fs::read_to_string(repo().join("examples/delamination/dcb.toml")).unwrap();
     assert!(base.contains("K = 1.0e6"));
-    let s = check_text(dir.path(), "low.toml", &base.replace("K = 1.0e6", "K = 1.0e5"));
+    let s = check_text(
+        dir.path(),
+        "low.toml",
+        &base.replace("K = 1.0e6", "K = 1.0e5"),
+    );
     let l = penalty_line(&s);
     assert!(l.contains("6.47%"), "{l}");
     assert!(
@@ -74,7 +78,11 @@ fn cohesive_penalty_below_turons_bound_is_warned() {
             )),
         "{l}"
     );
-    let s = check_text(dir.path(), "stiff.toml", &base.replace("K = 1.0e6", "K = 1.0e9"));
+    let s = check_text(
+        dir.path(),
+        "stiff.toml",
+        &base.replace("K = 1.0e6", "K = 1.0e9"),
+    );
     let l = penalty_line(&s);
     assert!(l.contains("too stiff") && l.contains("oscillations"), "{l}");
     assert!(!l.contains("recommended"), "{l}");
@@ -90,7 +98,10 @@ fn constraint_penalty_keeps_the_papers_recommendation() {
         l.contains("eps_op = k_min/sqrt(n e_c)") && l.contains("recommended d_op"),
         "{l}"
     );
-    assert!(!l.contains("cohesive") && !l.contains("Turon's bound"), "{l}");
+    assert!(
+        !l.contains("cohesive") && !l.contains("Turon's bound"),
+        "{l}"
+    );
 }
 
 fn h8_warnings(s: &str) -> Vec<&str> {
