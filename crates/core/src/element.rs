@@ -182,6 +182,11 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     fn fracture_properties(&self) -> Option<crate::law::FractureProperties> {
         None
     }
+    /// The role of the element's law's penalty (interfaces; see
+    /// [`crate::law::InterfaceLaw::penalty_role`]). Default: none (solids).
+    fn penalty_role(&self) -> Option<crate::law::PenaltyRole> {
+        None
+    }
     /// Warnings about the element's law or material parameters.
     fn warnings(&self) -> Vec<String> {
         Vec::new()

@@ -86,6 +86,35 @@ pub struct FractureProperties {
     pub penalty: [f64; 3],
 }
 
+/// What a law's penalty stiffness is, for the penalty advisor
+/// ([`InterfaceLaw::penalty_role`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PenaltyRole {
+    /// The penalty enforces a constraint (bonded faces that must not
+    /// separate or slide, contact that must not interpenetrate, sticking
+    /// friction): ideally infinite, any finite value is an error. The
+    /// paper's error analysis (eqs. 41-55) applies: the advisor balances
+    /// the constraint error against round-off and recommends `d_op`.
+    Constraint,
+    /// The penalty is the initial stiffness of a cohesive (fracture) law,
+    /// part of the model: it adds compliance to the bodies it joins and
+    /// sets the opening at damage onset. The advisor compares its
+    /// compliance with the solids' (Turon et al. 2007's `K >= 50 E_33 / t`)
+    /// and warns of ill-conditioning when it is far above that bound; it
+    /// never recommends the constraint optimum.
+    Cohesive,
+}
+
+impl PenaltyRole {
+    /// Name for summaries (`"constraint"`, `"cohesive"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            PenaltyRole::Constraint => "constraint",
+            PenaltyRole::Cohesive => "cohesive",
+        }
+    }
+}
+
 /// A traction-separation law.
 pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     /// Registry key (`"linear_penalty"`, ...).
@@ -142,6 +171,21 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     /// Fracture properties, for softening laws.
     fn fracture_properties(&self) -> Option<FractureProperties> {
         None
+    }
+    /// What the law's penalty is: a constraint penalty, judged by the
+    /// paper's error analysis, or a cohesive law's stiffness, judged
+    /// against the solids' compliance (see [`PenaltyRole`]). Default:
+    /// [`PenaltyRole::Cohesive`] for a law that gives
+    /// [`InterfaceLaw::fracture_properties`] (it has a fracture energy),
+    /// else [`PenaltyRole::Constraint`]. A law whose stiffness is physical
+    /// without a fracture energy (an adhesive layer of known modulus)
+    /// should say `Cohesive`.
+    fn penalty_role(&self) -> PenaltyRole {
+        if self.fracture_properties().is_some() {
+            PenaltyRole::Cohesive
+        } else {
+            PenaltyRole::Constraint
+        }
     }
     /// Warnings about the parameters (shown by `junta check` and in run
     /// summaries), e.g. strengths inconsistent with the penalties.

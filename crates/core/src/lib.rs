@@ -37,7 +37,7 @@ pub use criterion::{FailureCriterion, FailureMode, FailureResult, OnsetInput};
 pub use dual::Dual3;
 pub use element::{Element, ElementContext, ElementError, PointOutput};
 pub use error::CoreError;
-pub use law::{FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse};
+pub use law::{FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse, PenaltyRole};
 pub use material::{Material, Voigt6};
 pub use model::Model;
 pub use solver::{

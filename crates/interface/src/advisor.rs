@@ -25,9 +25,116 @@
 //! meshes.) Turon's rule `K = 50 E / t` is given as well when the physical
 //! thickness t of the bonded layer is known (E: the largest reference
 //! modulus of the solids beside the interface).
+//!
+//! # Constraint penalties and cohesive laws
+//!
+//! The analysis above is for a penalty that *enforces a constraint*
+//! (ideally infinite): the paper's `linear_penalty` and `paper_debond`,
+//! `contact`, `coulomb_friction`, `mohr_coulomb`. The penalty of a
+//! cohesive (fracture) law (`bilinear`, `exponential`, `trilinear`,
+//! `bilinear_friction`) is part of the model instead: its compliance adds
+//! to the solids' and, with the strength, it sets the opening at damage
+//! onset; making it as stiff as round-off allows buys nothing and invites
+//! spurious traction oscillations ahead of the crack and ill-conditioned
+//! tangents. Each law says which it is
+//! ([`junta_core::InterfaceLaw::penalty_role`]); for a
+//! [`PenaltyRole::Cohesive`] law the advisor reports ([`CohesivePenalty`])
+//!
+//! ```text
+//! compliance ratio  r = (1 / K) / (t / E_33) = E_33 / (K t)
+//! Turon's bound     K >= K_T = 50 E_33 / t          (r <= 2 %)
+//! stiff limit       K_max = min(1e3 K_T, d_op)
+//! ```
+//!
+//! (Turon, Davila, Camanho & Costa, Eng. Fract. Mech. 74 (2007)
+//! 1665-1682: `K = alpha E_33 / t`; the sub-laminate of thickness t in
+//! series with the interface has the effective modulus
+//! `E_33 / (1 + 1/alpha)`, which for alpha >= 50 loses less than 2 %.) `E_33` is the modulus of the solids across the
+//! interface and `t` the thickness of the thinner body beside it (the arm
+//! of a DCB), both read as in [`crate::cohesive_zone`]; `K` is the law's
+//! normal penalty. Verdict: below `K_T` too compliant (raise K to `K_T`);
+//! above `K_max` too stiff (no accuracy to gain, oscillations and
+//! ill-conditioning to lose); otherwise good. The paper's `d_op` enters
+//! only as the upper limit, never as a recommendation.
 
+use crate::cohesive_zone::{adjacent_solids, AdjacentSolids};
 use junta_core::element::{ElementContext, StepInfo};
-use junta_core::{CoreError, Model};
+use junta_core::{CoreError, Model, PenaltyRole};
+
+/// Turon et al. (2007)'s factor: `K >= TURON_ALPHA E_33 / t`.
+pub const TURON_ALPHA: f64 = 50.0;
+
+/// A cohesive penalty above this multiple of Turon's bound is too stiff.
+pub const STIFF_FACTOR: f64 = 1e3;
+
+/// Where a cohesive law's penalty stands against the solids beside it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CohesiveVerdict {
+    /// Below Turon's bound: the interface adds more than 2 % compliance.
+    TooCompliant,
+    /// Between Turon's bound and the stiff limit.
+    Good,
+    /// Above the stiff limit: traction oscillations, ill-conditioning.
+    TooStiff,
+}
+
+impl CohesiveVerdict {
+    /// Name for summaries.
+    pub fn name(self) -> &'static str {
+        match self {
+            CohesiveVerdict::TooCompliant => "too compliant",
+            CohesiveVerdict::Good => "good",
+            CohesiveVerdict::TooStiff => "too stiff",
+        }
+    }
+}
+
+/// The advisor's numbers for the penalty of a cohesive law (see the module
+/// documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CohesivePenalty {
+    /// Modulus of the solids across the interface, `E_33`.
+    pub modulus_normal: f64,
+    /// Thickness `t` of the thinner body beside the interface.
+    pub arm_thickness: f64,
+    /// The law's normal penalty `K` (the scene's `d3`).
+    pub penalty: f64,
+    /// `(1 / K) / (t / E_33)`: the compliance the interface adds, relative
+    /// to the arm's through-thickness compliance.
+    pub compliance_ratio: f64,
+    /// Turon's bound `50 E_33 / t`.
+    pub turon_bound: f64,
+    /// `min(1e3 x Turon's bound, d_op)`.
+    pub stiff_limit: f64,
+    /// Verdict on `K`.
+    pub verdict: CohesiveVerdict,
+}
+
+impl CohesivePenalty {
+    /// The numbers for penalty `k` between solids of modulus `e_33` and
+    /// thickness `t` (both positive and finite), with the error analysis's
+    /// round-off balance `d_op` as a ceiling.
+    pub fn new(k: f64, e_33: f64, t: f64, d_op: f64) -> CohesivePenalty {
+        let turon_bound = TURON_ALPHA * e_33 / t;
+        let stiff_limit = (STIFF_FACTOR * turon_bound).min(d_op);
+        let verdict = if k < turon_bound {
+            CohesiveVerdict::TooCompliant
+        } else if k > stiff_limit {
+            CohesiveVerdict::TooStiff
+        } else {
+            CohesiveVerdict::Good
+        };
+        CohesivePenalty {
+            modulus_normal: e_33,
+            arm_thickness: t,
+            penalty: k,
+            compliance_ratio: e_33 / (k * t),
+            turon_bound,
+            stiff_limit,
+            verdict,
+        }
+    }
+}
 
 /// Where a penalty stands against the error analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -69,10 +176,18 @@ pub struct PenaltyAdvice {
     pub roundoff_error: f64,
     /// Best attainable relative error, 2 sqrt(n e_c).
     pub best_error: f64,
-    /// Verdict on the scene's d3.
+    /// Verdict of the error analysis on the scene's d3: the advice for a
+    /// constraint penalty; for a cohesive law see [`PenaltyAdvice::cohesive`].
     pub verdict: PenaltyVerdict,
     /// Turon's K = 50 E / t, when a thickness is given.
     pub turon: Option<f64>,
+    /// What the law's penalty is (the law's
+    /// [`junta_core::InterfaceLaw::penalty_role`]).
+    pub role: PenaltyRole,
+    /// For a cohesive law: its penalty against the solids beside it (`None`
+    /// for a constraint penalty, or when no solid beside the interface has
+    /// a finite thickness and a modulus across it).
+    pub cohesive: Option<CohesivePenalty>,
 }
 
 impl PenaltyAdvice {
@@ -222,6 +337,10 @@ pub fn penalty_advice(
         turon: thickness
             .filter(|t| *t > 0.0 && modulus > 0.0)
             .map(|t| 50.0 * modulus / t),
+        role: model.elements[block]
+            .penalty_role()
+            .unwrap_or(PenaltyRole::Constraint),
+        cohesive: None,
     };
     let (ce, re) = advice.errors_at(d_scene[2]);
     advice.constraint_error = ce;
@@ -233,6 +352,18 @@ pub fn penalty_advice(
     } else {
         PenaltyVerdict::Good
     };
+    if advice.role == PenaltyRole::Cohesive {
+        advice.cohesive = match adjacent_solids(model, block)? {
+            Some(AdjacentSolids {
+                modulus_normal: e,
+                arm_thickness: t,
+                ..
+            }) if e > 0.0 && e.is_finite() && t > 0.0 && t.is_finite() && d_scene[2] > 0.0 => {
+                Some(CohesivePenalty::new(d_scene[2], e, t, advice.d_op))
+            }
+            _ => None,
+        };
+    }
     Ok(advice)
 }
 
@@ -244,4 +375,44 @@ fn iel_law_stiffness(model: &Model, block: usize) -> [f64; 3] {
     model.elements[block]
         .interface_stiffness()
         .unwrap_or([0.0; 3])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The DCB of examples/delamination/dcb.toml: AS4/PEEK arms, E_33 =
+    /// E3 = 10100 MPa across the interface, arm thickness t = 1.56 mm,
+    /// K = 1e6 N/mm^3. By hand: Turon's bound 50 x 10100 / 1.56 =
+    /// 323717.95 N/mm^3; compliance ratio E_33 / (K t) = 10100 / 1.56e6 =
+    /// 6.4744e-3 (0.65 %, i.e. alpha = K t / E_33 = 154.5 >= 50).
+    #[test]
+    fn dcb_penalty_is_above_turons_bound() {
+        let c = CohesivePenalty::new(1e6, 10100.0, 1.56, 6.0e10);
+        assert!((c.turon_bound - 323_717.948_717_948_7).abs() < 1e-6);
+        assert!((c.compliance_ratio - 6.474_358_974_358_974e-3).abs() < 1e-15);
+        // the stiff limit is 1e3 x the bound, below the round-off balance
+        assert!((c.stiff_limit - 3.237_179_487_179_487e8).abs() < 1e-3);
+        assert_eq!(c.verdict, CohesiveVerdict::Good);
+    }
+
+    /// Below the bound (K = 1e5 < 3.237e5): more than 2 % compliance
+    /// (10100 / (1e5 x 1.56) = 6.47 %); above 1e3 x the bound, or above
+    /// d_op when that is lower: too stiff.
+    #[test]
+    fn cohesive_verdicts_follow_the_bounds() {
+        let low = CohesivePenalty::new(1e5, 10100.0, 1.56, 6.0e10);
+        assert_eq!(low.verdict, CohesiveVerdict::TooCompliant);
+        assert!(low.compliance_ratio > 1.0 / TURON_ALPHA);
+        // exactly at the bound: 2 %
+        let at = CohesivePenalty::new(50.0 * 10100.0 / 1.56, 10100.0, 1.56, 6.0e10);
+        assert!((at.compliance_ratio - 0.02).abs() < 1e-15);
+        assert_eq!(at.verdict, CohesiveVerdict::Good);
+        let stiff = CohesivePenalty::new(1e9, 10100.0, 1.56, 6.0e10);
+        assert_eq!(stiff.verdict, CohesiveVerdict::TooStiff);
+        // a round-off balance below 1e3 x the bound caps the limit
+        let capped = CohesivePenalty::new(1e7, 10100.0, 1.56, 5e6);
+        assert_eq!(capped.stiff_limit, 5e6);
+        assert_eq!(capped.verdict, CohesiveVerdict::TooStiff);
+    }
 }

@@ -203,27 +203,36 @@ pub fn zone_lengths(
     }
 }
 
-/// Advice for interface block `block` of `model`, or `None` if its law
-/// does not soften (no fracture properties).
-pub fn cohesive_zone_advice(
-    model: &Model,
-    block: usize,
-) -> Result<Option<CohesiveZoneAdvice>, CoreError> {
+/// The solids beside an interface block, as the advisors read them from
+/// the model (see "Geometry read from the model" in the module
+/// documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AdjacentSolids {
+    /// Unit normal of the coarsest interface element.
+    pub normal: [f64; 3],
+    /// Unit direction of its shorter in-plane side.
+    pub along: [f64; 3],
+    /// Shorter in-plane side of the finest element.
+    pub element_length_min: f64,
+    /// Shorter in-plane side of the coarsest element.
+    pub element_length_max: f64,
+    /// Modulus across the interface `E_n` (the smaller of the two sides).
+    pub modulus_normal: f64,
+    /// Modulus along the (assumed) crack direction.
+    pub modulus_along: f64,
+    /// Thickness `h` of the thinner body on either side (infinite when
+    /// neither side has an extent along the normal).
+    pub arm_thickness: f64,
+}
+
+/// The solids beside interface block `block` of `model`, or `None` for an
+/// empty block. An error when no solid element touches the interface.
+pub fn adjacent_solids(model: &Model, block: usize) -> Result<Option<AdjacentSolids>, CoreError> {
     let mesh = &model.mesh;
     let b = mesh
         .blocks
         .get(block)
         .ok_or_else(|| CoreError::Invalid(format!("no block {block}")))?;
-    let Some(FractureProperties {
-        strength_normal,
-        strength_shear,
-        toughness_mode_i,
-        toughness_mode_ii,
-        ..
-    }) = model.elements[block].fracture_properties()
-    else {
-        return Ok(None);
-    };
     if b.is_empty() {
         return Ok(None);
     }
@@ -327,7 +336,7 @@ pub fn cohesive_zone_advice(
         (Some(a), None) | (None, Some(a)) => a,
         (None, None) => {
             return Err(CoreError::Invalid(format!(
-                "interface `{}`: no solid element touches it, so the cohesive-zone advice has no modulus",
+                "interface `{}`: no solid element touches it, so the advisors have no modulus",
                 b.name
             )))
         }
@@ -341,6 +350,49 @@ pub fn cohesive_zone_advice(
         .filter_map(|(bi, _)| model.elements[bi].directional_modulus(along))
         .fold(0.0f64, f64::max);
     let e_x = if e_x > 0.0 { e_x } else { e_n };
+    Ok(Some(AdjacentSolids {
+        normal,
+        along,
+        element_length_min: l_min,
+        element_length_max: l_max,
+        modulus_normal: e_n,
+        modulus_along: e_x,
+        arm_thickness: h,
+    }))
+}
+
+/// Advice for interface block `block` of `model`, or `None` if its law
+/// does not soften (no fracture properties).
+pub fn cohesive_zone_advice(
+    model: &Model,
+    block: usize,
+) -> Result<Option<CohesiveZoneAdvice>, CoreError> {
+    let b = model
+        .mesh
+        .blocks
+        .get(block)
+        .ok_or_else(|| CoreError::Invalid(format!("no block {block}")))?;
+    let Some(FractureProperties {
+        strength_normal,
+        strength_shear,
+        toughness_mode_i,
+        toughness_mode_ii,
+        ..
+    }) = model.elements[block].fracture_properties()
+    else {
+        return Ok(None);
+    };
+    let Some(AdjacentSolids {
+        element_length_min: l_min,
+        element_length_max: l_max,
+        modulus_normal: e_n,
+        modulus_along: e_x,
+        arm_thickness: h,
+        ..
+    }) = adjacent_solids(model, block)?
+    else {
+        return Ok(None);
+    };
     let mode_i = zone_lengths(strength_normal, toughness_mode_i, e_n, e_x, h, l_max);
     let mode_ii = zone_lengths(strength_shear, toughness_mode_ii, e_n, e_x, h, l_max);
     let length = mode_i.length.min(mode_ii.length);

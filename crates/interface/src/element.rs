@@ -520,6 +520,10 @@ impl Element for InterfaceElement {
         self.law.fracture_properties()
     }
 
+    fn penalty_role(&self) -> Option<junta_core::PenaltyRole> {
+        Some(self.law.penalty_role())
+    }
+
     fn warnings(&self) -> Vec<String> {
         self.law.warnings()
     }

@@ -15,8 +15,10 @@
 //!   `contact` (frictionless, for precracks).
 //! - [`cohesive_zone`]: mesh advice for softening interfaces (cohesive-zone
 //!   length, elements spanning it, Turon's strength reduction).
-//! - [`advisor`]: the paper's penalty choice from its error analysis
-//!   (eqs. 41-55) on an assembled model.
+//! - [`advisor`]: the penalty advice on an assembled model: the paper's
+//!   choice from its error analysis (eqs. 41-55) for constraint penalties,
+//!   Turon's bound `K >= 50 E_33 / t` and a stiff limit for cohesive laws
+//!   (each law says which it is: [`junta_core::InterfaceLaw::penalty_role`]).
 
 #![warn(missing_docs)]
 
@@ -25,7 +27,9 @@ pub mod cohesive_zone;
 pub mod element;
 pub mod law;
 
-pub use advisor::{penalty_advice, PenaltyAdvice, PenaltyVerdict};
+pub use advisor::{
+    penalty_advice, CohesivePenalty, CohesiveVerdict, PenaltyAdvice, PenaltyVerdict,
+};
 pub use cohesive_zone::{cohesive_zone_advice, CohesiveZoneAdvice, MeshVerdict};
 pub use element::{InterfaceElement, InterfaceRule};
 pub use law::linear_penalty::LinearPenalty;

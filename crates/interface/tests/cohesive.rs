@@ -750,3 +750,42 @@ fn triangle_interfaces_tangent_matches_fd_elastic_and_softening() {
         }
     }
 }
+
+/// Which laws' penalties are constraints (the paper's error analysis and
+/// its d_op apply) and which are part of a cohesive model (Turon's bound
+/// applies): every registered law says so.
+#[test]
+fn each_law_declares_its_penalty_role() {
+    use junta_core::PenaltyRole::{Cohesive, Constraint};
+    let cohesive =
+        format!("K = {K:e}\nN = {N}\nS = {S}\nG_Ic = {GIC}\nG_IIc = {GIIC}\neta = {ETA}\n");
+    let cases = [
+        ("linear_penalty", "d = 1e14".to_string(), Constraint),
+        (
+            "paper_debond",
+            "d = 1e14\ncriterion = { type = \"quadratic\", sigma_lim = 2.0e6, tau_lim = 4.0e6 }"
+                .to_string(),
+            Constraint,
+        ),
+        ("contact", "K = 1e6".to_string(), Constraint),
+        (
+            "coulomb_friction",
+            "K = 1e5\nmu = 0.4".to_string(),
+            Constraint,
+        ),
+        (
+            "mohr_coulomb",
+            "K = 1e5\nc = 0.5\nphi = 30.0".to_string(),
+            Constraint,
+        ),
+        ("bilinear", cohesive.clone(), Cohesive),
+        ("exponential", cohesive.clone(), Cohesive),
+        ("bilinear_friction", format!("{cohesive}mu = 0.3"), Cohesive),
+    ];
+    for (key, text, role) in cases {
+        let t: toml::Table = toml::from_str(&text).unwrap();
+        let law =
+            (find::<LawEntry>(key).unwrap().build)(&t).unwrap_or_else(|e| panic!("{key}: {e}"));
+        assert_eq!(law.penalty_role(), role, "{key}");
+    }
+}

@@ -78,7 +78,8 @@ pub struct CheckReport {
     pub penalty_lines: Vec<String>,
     /// Cohesive-zone (mesh) advice, one line per block.
     pub mesh_advice: Vec<String>,
-    /// Warnings about the laws' parameters.
+    /// Warnings about the laws' parameters and the mesh (thin blocks of
+    /// fully integrated H8 that lock in bending: [`crate::bending`]).
     pub warnings: Vec<String>,
     /// Notes from reading the input.
     pub notes: Vec<String>,
@@ -96,9 +97,10 @@ impl CheckReport {
         for (i, f) in m.f_ext.iter().enumerate() {
             total_force[i % 3] += f;
         }
-        let (penalty_advice, penalty_lines) =
+        let (penalty_advice, penalty_lines, _) =
             output::penalty_advice(m, &|b| p.thickness.get(b).copied())?;
-        let (_, mesh_advice, warnings) = output::cohesive_zone_advice(m)?;
+        let (_, mesh_advice, mut warnings) = output::cohesive_zone_advice(m)?;
+        warnings.extend(crate::bending::bending_warnings(m));
         let analysis = (p.analysis.kind == "static").then(|| {
             let n = &p.analysis.newton;
             format!(

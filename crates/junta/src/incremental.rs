@@ -620,16 +620,17 @@ fn run_totals(
     Ok(())
 }
 
-/// Mesh advice, law warnings and the linear solver's report.
+/// Mesh advice, law and mesh warnings and the linear solver's report.
 fn advice_and_solver(summary: &mut serde_json::Value, p: &Prepared, log: &RunLog) -> Result<()> {
     use junta_core::MatrixKind;
     let model = &p.model;
-    let (zone, zone_lines, law_warnings) = output::cohesive_zone_advice(model)?;
+    let (zone, zone_lines, mut warnings) = output::cohesive_zone_advice(model)?;
     if !zone_lines.is_empty() {
         summary["mesh_advice"] = zone;
     }
-    if !law_warnings.is_empty() {
-        summary["warnings"] = json!(law_warnings);
+    warnings.extend(crate::bending::bending_warnings(model));
+    if !warnings.is_empty() {
+        summary["warnings"] = json!(warnings);
     }
     let report = p.solver.report();
     let mut notes = p.notes.clone();

@@ -42,6 +42,7 @@ pub mod error;
 pub use error::{Context, Error, Result};
 
 pub mod auto;
+pub mod bending;
 pub mod catalog;
 pub mod check;
 pub mod checkpoint;

@@ -74,11 +74,10 @@ pub(crate) fn run_linear(
         write_result_files(dir, p, &res, &cells, &interfaces)?;
         notes.extend(prints.write(dir)?);
     }
-    let (advice, advice_lines) =
+    let (advice, _, advice_warnings) =
         output::penalty_advice(&p.model, &|b| p.thickness.get(b).copied())?;
-    for l in advice_lines.iter().filter(|l| !l.contains(": good:")) {
-        warnings.push(l.clone());
-    }
+    warnings.extend(advice_warnings);
+    warnings.extend(crate::bending::bending_warnings(&p.model));
     let reference = match &p.reference {
         Some((r, c)) => {
             let computed = p
@@ -138,6 +137,9 @@ pub(crate) fn run_linear(
         "notes": p.notes,
     });
     let mut summary = summary;
+    if !warnings.is_empty() {
+        summary["warnings"] = json!(warnings);
+    }
     if let Some(steps) = steps_summary {
         summary["steps"] = json!(steps);
     }

@@ -21,7 +21,9 @@
 use crate::error::{Context, Result};
 use junta_core::element::{ElementContext, StepInfo};
 use junta_core::state::StateStore;
-use junta_core::Model;
+use junta_core::{Model, PenaltyRole};
+use junta_interface::advisor::STIFF_FACTOR;
+use junta_interface::{CohesiveVerdict, PenaltyVerdict};
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -897,55 +899,145 @@ pub fn solid_summary(cells: &CellResults) -> Value {
     Value::Object(m)
 }
 
-/// The penalty advisor of every interface block, as JSON and as text lines.
+/// The penalty advisor of every interface block, as JSON and as text
+/// lines, and the lines that are warnings (a verdict other than good).
+///
+/// A constraint penalty gets the paper's error analysis (eqs. 41-55) and
+/// its recommended `d_op`; a cohesive law's penalty gets the compliance it
+/// adds to the solids and Turon's bound instead (see
+/// [`junta_interface::advisor`]).
 pub fn penalty_advice(
     model: &Model,
     thickness: &dyn Fn(&str) -> Option<f64>,
-) -> Result<(Value, Vec<String>)> {
+) -> Result<(Value, Vec<String>, Vec<String>)> {
     let mut m = serde_json::Map::new();
     let mut lines = Vec::new();
+    let mut warnings = Vec::new();
     for (bi, b) in model.mesh.blocks.iter().enumerate() {
         if !b.shape.is_interface() {
             continue;
         }
         let a = junta_interface::penalty_advice(model, bi, thickness(&b.name))?;
-        let verdict = match a.verdict {
-            junta_interface::PenaltyVerdict::TooLow => {
-                "too low: the constraint error dominates (interpenetration / slip)"
-            }
-            junta_interface::PenaltyVerdict::Good => "good: within 10x of the error balance",
-            junta_interface::PenaltyVerdict::TooHigh => {
-                "too high: round-off dominates (the solve loses digits)"
-            }
-        };
-        lines.push(format!(
-            "interface `{}`: k_min = {:.3e}, n = {}, eps_op = k_min/sqrt(n e_c) = {:.3e} (force/length); \
-             area per node pair {:.3e} -> recommended d_op = {:.3e}; scene d3 = {:.3e}: {verdict} \
-             (estimated constraint error {:.1e}, round-off {:.1e}; best attainable {:.1e}){}",
-            a.block,
-            a.k_min,
-            a.n,
-            a.eps_op,
-            a.area_per_pair,
-            a.d_op,
-            a.d_scene[2],
-            a.constraint_error,
-            a.roundoff_error,
-            a.best_error,
-            a.turon.map(|k| format!("; Turon K = 50 E/t = {k:.3e}")).unwrap_or_default()
-        ));
-        m.insert(
-            a.block.clone(),
-            json!({
+        let turon_t = a
+            .turon
+            .map(|k| format!("; Turon K = 50 E/t = {k:.3e}"))
+            .unwrap_or_default();
+        let (line, good, entry) = if a.role == PenaltyRole::Cohesive {
+            cohesive_penalty_line(&a, &turon_t)
+        } else {
+            let verdict = match a.verdict {
+                PenaltyVerdict::TooLow => {
+                    "too low: the constraint error dominates (interpenetration / slip)"
+                }
+                PenaltyVerdict::Good => "good: within 10x of the error balance",
+                PenaltyVerdict::TooHigh => "too high: round-off dominates (the solve loses digits)",
+            };
+            let line = format!(
+                "interface `{}`: k_min = {:.3e}, n = {}, eps_op = k_min/sqrt(n e_c) = {:.3e} (force/length); \
+                 area per node pair {:.3e} -> recommended d_op = {:.3e}; scene d3 = {:.3e}: {verdict} \
+                 (estimated constraint error {:.1e}, round-off {:.1e}; best attainable {:.1e}){turon_t}",
+                a.block,
+                a.k_min,
+                a.n,
+                a.eps_op,
+                a.area_per_pair,
+                a.d_op,
+                a.d_scene[2],
+                a.constraint_error,
+                a.roundoff_error,
+                a.best_error,
+            );
+            let entry = json!({
+                "role": a.role.name(),
                 "k_min": a.k_min, "n": a.n, "e_c": a.e_c, "eps_op": a.eps_op,
                 "area": a.area, "pairs": a.pairs, "area_per_pair": a.area_per_pair,
                 "d_op": a.d_op, "d_scene": a.d_scene,
                 "constraint_error": a.constraint_error, "roundoff_error": a.roundoff_error,
                 "best_error": a.best_error, "verdict": format!("{:?}", a.verdict), "turon": a.turon,
-            }),
-        );
+            });
+            (line, a.verdict == PenaltyVerdict::Good, entry)
+        };
+        if !good {
+            warnings.push(line.clone());
+        }
+        lines.push(line);
+        m.insert(a.block.clone(), entry);
     }
-    Ok((Value::Object(m), lines))
+    Ok((Value::Object(m), lines, warnings))
+}
+
+/// The advisor's line, verdict and JSON for a cohesive law's penalty
+/// (never the constraint optimum `d_op` as a recommendation: it appears
+/// only as the round-off ceiling).
+fn cohesive_penalty_line(
+    a: &junta_interface::PenaltyAdvice,
+    turon_t: &str,
+) -> (String, bool, Value) {
+    let Some(c) = a.cohesive else {
+        let line = format!(
+            "interface `{}`: cohesive law, K = {:.3e}: no solid of finite thickness with a modulus \
+             across the interface beside it, so the penalty cannot be judged against the solids' \
+             compliance (Turon: K >= 50 E_33 / t with t the thickness of the body beside it){turon_t}",
+            a.block, a.d_scene[2]
+        );
+        let entry = json!({
+            "role": a.role.name(), "d_scene": a.d_scene, "verdict": "unknown", "turon": a.turon,
+        });
+        return (line, true, entry);
+    };
+    let ceiling = if c.stiff_limit < STIFF_FACTOR * c.turon_bound {
+        format!(
+            "the round-off balance of the constraint analysis (eq. 55) {:.3e}",
+            c.stiff_limit
+        )
+    } else {
+        format!("{STIFF_FACTOR:.0e} x Turon's bound = {:.3e}", c.stiff_limit)
+    };
+    let verdict = match c.verdict {
+        CohesiveVerdict::TooCompliant => format!(
+            "too compliant: the penalty adds more than 2% compliance to the solids beside the \
+             interface: raise K to at least Turon's bound {:.3e}",
+            c.turon_bound
+        ),
+        CohesiveVerdict::Good => format!(
+            "good: K is {:.3} x Turon's bound and below the stiff limit ({ceiling})",
+            c.penalty / c.turon_bound,
+        ),
+        CohesiveVerdict::TooStiff => format!(
+            "too stiff: above {ceiling}: a stiffer penalty gains no accuracy but invites traction \
+             oscillations ahead of the crack and an ill-conditioned tangent; \
+             K = {:.3e} .. {:.3e} (1 to 10 x Turon's bound 50 E_33/t) suffices",
+            c.turon_bound,
+            10.0 * c.turon_bound
+        ),
+    };
+    let line = format!(
+        "interface `{}`: cohesive law (its penalty is part of the model, not a constraint): \
+         K = {:.3e}, E_33 = {:.4e}, arm thickness t = {:.4e}: the interface compliance 1/K = {:.3e} \
+         is {:.2}% of the arm's t/E_33 = {:.3e}; Turon's bound K >= 50 E_33/t = {:.3e}: {verdict}{turon_t}",
+        a.block,
+        c.penalty,
+        c.modulus_normal,
+        c.arm_thickness,
+        1.0 / c.penalty,
+        100.0 * c.compliance_ratio,
+        c.arm_thickness / c.modulus_normal,
+        c.turon_bound,
+    );
+    let entry = json!({
+        "role": a.role.name(),
+        "d_scene": a.d_scene,
+        "modulus_normal": c.modulus_normal,
+        "arm_thickness": c.arm_thickness,
+        "compliance_ratio": c.compliance_ratio,
+        "turon_bound": c.turon_bound,
+        "stiff_limit": c.stiff_limit,
+        "roundoff_limit": a.d_op,
+        "k_min": a.k_min, "n": a.n, "area_per_pair": a.area_per_pair,
+        "verdict": c.verdict.name(),
+        "turon": a.turon,
+    });
+    (line, c.verdict == CohesiveVerdict::Good, entry)
 }
 
 /// The linear solution scaled to each fraction of the load:

@@ -181,6 +181,11 @@ impl InterfaceLaw for BilinearFriction {
         self.cohesive.initial_stiffness()
     }
 
+    /// The `bilinear` cohesive law's `K` (see [`CohesiveLaw`]).
+    fn penalty_role(&self) -> junta_core::PenaltyRole {
+        junta_core::PenaltyRole::Cohesive
+    }
+
     fn wants_small_increments(&self, state: &[f64]) -> bool {
         self.cohesive
             .wants_small_increments(&state[..cohesive::slot::STATE_LEN.min(state.len())])

@@ -544,6 +544,12 @@ impl InterfaceLaw for CohesiveLaw {
         [self.k_s, self.k_s, self.k_n]
     }
 
+    /// `K` is the cohesive law's initial stiffness: it adds compliance
+    /// and sets the onset opening (Turon et al. 2007: `K >= 50 E_33 / t`).
+    fn penalty_role(&self) -> junta_core::PenaltyRole {
+        junta_core::PenaltyRole::Cohesive
+    }
+
     fn is_failed(&self, state: &[f64]) -> bool {
         state.get(slot::DAMAGE).copied().unwrap_or(0.0) >= output::DAMAGED_THRESHOLD
     }

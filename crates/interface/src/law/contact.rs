@@ -68,6 +68,11 @@ impl InterfaceLaw for Contact {
     fn initial_stiffness(&self) -> [f64; 3] {
         [0.0, 0.0, self.k]
     }
+
+    /// Non-interpenetration of the closed faces: a constraint penalty.
+    fn penalty_role(&self) -> junta_core::PenaltyRole {
+        junta_core::PenaltyRole::Constraint
+    }
 }
 
 inventory::submit! {

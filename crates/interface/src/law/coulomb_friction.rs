@@ -319,6 +319,12 @@ impl InterfaceLaw for CoulombFriction {
         [self.k_s, self.k_s, self.k_n]
     }
 
+    /// The stick and contact stiffnesses enforce sticking and
+    /// non-interpenetration: constraint penalties.
+    fn penalty_role(&self) -> junta_core::PenaltyRole {
+        junta_core::PenaltyRole::Constraint
+    }
+
     fn tangent_kind(&self) -> MatrixKind {
         MatrixKind::General
     }

@@ -65,6 +65,12 @@ impl InterfaceLaw for LinearPenalty {
     fn initial_stiffness(&self) -> [f64; 3] {
         self.d
     }
+
+    /// The paper's `D` bonds the faces (sections 3 and 5): a constraint
+    /// penalty, judged by the paper's error analysis.
+    fn penalty_role(&self) -> junta_core::PenaltyRole {
+        junta_core::PenaltyRole::Constraint
+    }
 }
 
 inventory::submit! {

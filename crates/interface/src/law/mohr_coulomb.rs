@@ -370,6 +370,13 @@ impl InterfaceLaw for MohrCoulomb {
         [self.k_s, self.k_s, self.k_n]
     }
 
+    /// The elastic jump before yield is a penalty on a bonded interface
+    /// (no fracture energy; the yield surface, not `K`, sets the response):
+    /// a constraint penalty.
+    fn penalty_role(&self) -> junta_core::PenaltyRole {
+        junta_core::PenaltyRole::Constraint
+    }
+
     fn tangent_kind(&self) -> MatrixKind {
         MatrixKind::General
     }

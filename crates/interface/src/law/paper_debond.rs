@@ -406,6 +406,13 @@ impl InterfaceLaw for PaperDebond {
         self.d
     }
 
+    /// The paper's `D` bonds the intact faces and `d3` is the contact
+    /// penalty after failure: constraint penalties (the paper's eqs. 41-55
+    /// choose them); the stress criterion, not the penalty, sets failure.
+    fn penalty_role(&self) -> junta_core::PenaltyRole {
+        junta_core::PenaltyRole::Constraint
+    }
+
     fn wants_small_increments(&self, state_committed: &[f64]) -> bool {
         state_committed.get(slot::STATUS) == Some(&RELEASING)
     }
