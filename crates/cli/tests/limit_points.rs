@@ -233,7 +233,13 @@ fn enf_snap_back_under_displacement_control() {
         s["status"].as_str().unwrap().starts_with("completed"),
         "{s}"
     );
-    assert_eq!(s["path_switches"][0]["to"], "arc_length");
+    // (the exact tangent may take over first: mode II with contact at the
+    // crack tip is not symmetric either)
+    let switches = s["path_switches"].as_array().unwrap();
+    assert!(
+        switches.iter().any(|w| w["to"] == "arc_length"),
+        "{switches:?}"
+    );
     let rows = curve(&dir.path().join("out"));
     let ipk = (0..rows.len())
         .max_by(|&i, &j| rows[i].1.total_cmp(&rows[j].1))

@@ -1171,6 +1171,7 @@ impl<'a> PathRun<'a> {
         let (model, end) = (self.model, self.end);
         let (w, pw, path, cur) = (&mut self.w, &mut self.pw, &mut self.path, &mut self.cur);
         self.state.commit();
+        w.stalled_attempts = 0;
         let lambda_new = lambda_now(w);
         for (e, &d) in w.free_dofs.iter().enumerate() {
             pw.delta_prev[e] = w.u[d] - w.u_conv[d];

@@ -597,6 +597,9 @@ pub(crate) struct Work<'m> {
     pub(crate) exact_solver: Option<Box<dyn LinearSolver>>,
     /// The switch to the exact tangent, for the next increment's report.
     pub(crate) exact_switch: Option<crate::path_switch::PathSwitch>,
+    /// Attempts of the current increment that stalled on the symmetric
+    /// part of the tangent (reset when an increment converges).
+    pub(crate) stalled_attempts: usize,
 }
 
 pub(crate) fn is_element_error(e: &CoreError) -> bool {
@@ -645,6 +648,7 @@ impl<'m> Work<'m> {
             exact: false,
             exact_solver: None,
             exact_switch: None,
+            stalled_attempts: 0,
         }
     }
 
@@ -800,9 +804,9 @@ impl<'m> Work<'m> {
         self.analyzed = false;
     }
 
-    /// After an attempt that failed by its iteration limit or by
-    /// stagnation on the symmetric part of a tangent that can be
-    /// nonsymmetric ([`Model::tangent_symmetrised`]): measure, at the
+    /// After the second attempt of an increment that failed by its
+    /// iteration limit or by stagnation on the symmetric part of a tangent
+    /// that can be nonsymmetric ([`Model::tangent_symmetrised`]): measure, at the
     /// attempt's last iterate, the largest skew entry of the exact
     /// tangent scaled by its diagonal ([`largest_scaled_skew`]). Above [`EXACT_TANGENT_SKEW`] (mixed-mode
     /// softening: the symmetric part is no Newton tangent any more) the
@@ -821,6 +825,12 @@ impl<'m> Work<'m> {
             IncrementFailure::IterationLimit | IncrementFailure::Stagnated { .. }
         );
         if self.exact || !stalled || !self.model.tangent_symmetrised() {
+            return Ok(false);
+        }
+        // a first failure may be an increment too long: its cut-back
+        // decides
+        self.stalled_attempts += 1;
+        if self.stalled_attempts < STALLS_BEFORE_EXACT_TANGENT {
             return Ok(false);
         }
         self.k.set_general(true);
@@ -1346,6 +1356,9 @@ fn largest_scaled_skew(k: &SymmetricCsc) -> f64 {
     largest
 }
 
+/// Stalled attempts of one increment before the exact tangent is tried.
+const STALLS_BEFORE_EXACT_TANGENT: usize = 2;
+
 /// Largest skew entry of the exact tangent, scaled by the diagonal
 /// ([`largest_scaled_skew`]), above which a Newton attempt stalled on the
 /// symmetric part switches to the exact tangent
@@ -1793,6 +1806,7 @@ impl LoadRun<'_> {
         let settings = self.settings;
         self.state.commit();
         self.w.u_conv.copy_from_slice(&self.w.u);
+        self.w.stalled_attempts = 0;
         let cur = &mut self.cur;
         let delta_lambda = inc.lambda_new - cur.lambda;
         let was_small = cur.small;
