@@ -156,7 +156,8 @@ fn arc_length_under_force_control_dissipates_the_whole_fracture_energy() {
         .replace("displacement = { z = 0.2 }\n", "")
         .replace(
             "[analysis]\n",
-            "[[load]]\nset = \"bar.z1\"\ntotal_force = [0.0, 0.0, 1.2]\n\n[analysis]\n",
+            // one H8 face: the consistent split is 1/4 per node, as the equal one
+            "[[load]]\nset = \"bar.z1\"\ntotal_force = [0.0, 0.0, 1.2]\nsplit = \"consistent\"\n\n[analysis]\n",
         );
     let file = dir.path().join("force.toml");
     std::fs::write(&file, text).unwrap();
@@ -442,10 +443,12 @@ fn mmb_snap_back(
 /// `examples/delamination/mmb50_short.toml` (G_II/G_T = 0.5, a0 = 0.4 L, the lever
 /// as its two forces): load control has no solution past the peak; the arc
 /// length passes it and follows the lever's load point back (snap-back).
-/// Measured: peak 388.9 N against corrected beam theory 409.9 N (-5.1 %);
-/// lever displacement 5.39 mm at the peak, down to 5.18 mm (beam theory
-/// 5.32 to 4.86 mm); past the snap-back the load is within 2 % of corrected
-/// beam theory at the crack length read from the damaged area.
+/// Measured (the lever forces split consistently over their load edges):
+/// peak 398.3 N against corrected beam theory 409.9 N (-2.8 %); lever
+/// displacement 5.10 mm at the peak, down to 4.92 mm (beam theory 5.32 to
+/// 4.86 mm); past the snap-back the load is within 2 % of corrected beam
+/// theory at the crack length read from the damaged area. (With
+/// `split = "equal"`: 388.3 N, 5.36 mm down to 5.17 mm.)
 #[test]
 fn mmb50_snap_back_against_corrected_beam_theory() {
     mmb_snap_back(
@@ -463,10 +466,11 @@ fn mmb50_snap_back_against_corrected_beam_theory() {
 /// `examples/delamination/mmb80_short.toml` (G_II/G_T = 0.8, a0 = 0.4 L)
 /// with the exact, nonsymmetric mixed-mode tangent (`tangent = "exact"`,
 /// solved by `lu`): traced through the whole snap-back to the mid-span.
-/// Measured: peak 649.6 N against corrected beam theory 716.4 N (-9.3 %),
-/// lever displacement 5.61 mm at the peak, down to 5.08 mm (beam theory
-/// 5.91 to 4.92 mm), then within -1.7 to +0.1 % of corrected beam theory
-/// from a = 23.5 to 49.5 mm, the mid-span (51 mm) reached at increment 40.
+/// Measured: peak 673.0 N against corrected beam theory 716.4 N (-6.1 %),
+/// lever displacement 5.48 mm at the peak, down to 4.89 mm (beam theory
+/// 5.91 to 4.92 mm), then within -1.2 to -0.2 % of corrected beam theory
+/// from a = 23.4 to 49.4 mm, the mid-span reached at increment 40. (With
+/// `split = "equal"`: 649.6 N, -9.3 %, 5.61 mm down to 5.08 mm.)
 /// With the symmetric part of the tangent the same run stagnated at
 /// a = 30.5 mm.
 #[test]
@@ -532,8 +536,8 @@ fn bad_path_following_input_names_the_key() {
 /// bending of the DCB specimen (a0 = 32.9 mm) at G_II/G_T = 0.2, 0.5, 0.8,
 /// the lever as its two forces. Load control stops at the load maximum;
 /// the arc length passes it. Peak against corrected beam theory (BK):
-/// measured 92.0 / 259.1 / 436.3 N against 92.2 / 263.7 / 457.4 N
-/// (-0.2, -1.7, -4.6 %); past the peak the load follows beam theory at the
+/// measured 92.1 / 258.7 / 436.9 N against 92.2 / 263.7 / 457.4 N
+/// (-0.2, -1.9, -4.5 %); past the peak the load follows beam theory at the
 /// crack length read from the damaged area.
 #[test]
 fn mmb_peaks_against_corrected_beam_theory() {
@@ -664,4 +668,86 @@ fn secant_predictor_stays_on_the_exact_path_and_restarts() {
     );
     // restart from the middle of the softening branch
     restart_repeats(&secant, &rs, dir.path(), rs.len() / 2);
+}
+
+/// The peak of a curve.csv: `(load, lever displacement)` at the largest
+/// load, and the first point `(load, displacement)` (elastic: no damage).
+fn mmb_peak_and_first(dir: &Path) -> ((f64, f64), (f64, f64)) {
+    let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |n: &str| head.iter().position(|h| *h == n).unwrap();
+    let (cp, cd, ca) = (col("reaction"), col("displacement"), col("damaged_area"));
+    let pts: Vec<(f64, f64, f64)> = lines
+        .map(|l| {
+            let f: Vec<f64> = l
+                .split(',')
+                .map(|v| v.parse().unwrap_or(f64::NAN))
+                .collect();
+            (f[cp], f[cd], f[ca])
+        })
+        .collect();
+    assert_eq!(pts[0].2, 0.0, "the first increment is elastic");
+    let pk = pts
+        .iter()
+        .copied()
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .unwrap();
+    ((pk.0, pk.1), (pts[0].0, pts[0].1))
+}
+
+/// `examples/delamination/mmb50.toml` (a0 = 32.9 mm) with the lever
+/// forces split consistently over their load edges (1/6, 2/3, 1/6 of each,
+/// the scene as written) and equally (1/3 each, `split = "equal"`). The
+/// equal split puts more of each force on the specimen's sides: a local
+/// compliance at the load points, which the elastic first increment
+/// measures (C = delta / P, 4 % more). The peak, which the crack front 33
+/// mm from the lever's end decides, is the same (within 0.5 %), and the
+/// lever displacement at the peak differs by that local compliance times
+/// the peak load (within 10 %), the consistent one smaller.
+/// Measured: peaks 258.7 / 259.1 N at 5.16 / 5.37 mm; C = 0.01915 /
+/// 0.01994 mm/N, (C_eq - C_cons) P = 0.204 mm against 0.208 mm.
+#[test]
+fn mmb_lever_displacement_loses_the_equal_splits_local_compliance() {
+    let scene = repo().join("examples/delamination/mmb50.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    assert_eq!(text.matches("split = \"consistent\"").count(), 2);
+    let dir = tempfile::tempdir().unwrap();
+    let equal = dir.path().join("mmb50_equal.toml");
+    std::fs::write(
+        &equal,
+        text.replace("split = \"consistent\"", "split = \"equal\"")
+            .replace(
+                "file = \"mmb50_beam_theory.csv\"",
+                &format!(
+                    "file = {:?}",
+                    scene
+                        .with_file_name("mmb50_beam_theory.csv")
+                        .display()
+                        .to_string()
+                ),
+            ),
+    )
+    .unwrap();
+    let (out_c, out_e) = (dir.path().join("c"), dir.path().join("e"));
+    run_ok_with(&scene, &out_c, &["--max-increments", "20"]);
+    run_ok_with(&equal, &out_e, &["--max-increments", "20"]);
+    let ((pc, dc), (p1c, d1c)) = mmb_peak_and_first(&out_c);
+    let ((pe, de), (p1e, d1e)) = mmb_peak_and_first(&out_e);
+    let (cc, ce) = (d1c / p1c, d1e / p1e);
+    assert!(ce / cc > 1.02, "compliance {ce} (equal) against {cc}");
+    assert!(
+        (pc / pe - 1.0).abs() < 0.005,
+        "peaks {pc} (consistent) and {pe} (equal)"
+    );
+    let drop = de - dc;
+    let local = (ce - cc) * pc;
+    assert!(
+        drop > 0.0,
+        "displacement at the peak {dc} (consistent) against {de}"
+    );
+    assert!(
+        (drop / local - 1.0).abs() < 0.1,
+        "drop {drop} against (C_eq - C_cons) P = {local}"
+    );
 }

@@ -20,8 +20,24 @@
 //! exact on every triangular face. On a flat Tri3 face each corner gets a
 //! third of the load; on a flat Tri6 face the corners get none and each
 //! mid-edge node a third (`int N_corner = 0`, `int N_mid = A / 3`).
+//!
+//! Line loads on element edges ([`add_edge_load`]): an edge of 2 nodes
+//! (linear elements) or 3 (ends then middle, quadratic elements) with the
+//! 1D shape functions `(1 -+ s) / 2`, or `s (s -+ 1) / 2` and `1 - s^2`
+//! on `s in [-1, 1]`, gets `f_a = int N_a q dl` (q force per length,
+//! 3 Gauss points: exact on straight edges). A straight quadratic edge
+//! of length L gives its ends L/6 and its middle 2L/3 per unit load.
+//!
+//! Total forces on node sets ([`set_weights`]): the share of each node of
+//! the set is the integral of its shape function over the element faces
+//! the set spans (all their nodes in the set), divided by the area of
+//! those faces; if the set holds no complete face, over the element edges
+//! it spans; if neither, the nodes share equally. On a flat 8-node face
+//! the corners get -1/12 and the mid-sides 1/3 of the face's part; on a
+//! 4-node face each corner 1/4; on a quadratic edge 1/6, 2/3, 1/6; on a
+//! linear edge 1/2, 1/2.
 
-use crate::quadrature::triangle_rule;
+use crate::quadrature::{gauss_legendre, triangle_rule};
 use crate::shape::surface_shape;
 use junta_core::mesh::{FaceRef, Mesh};
 use junta_core::topology::CellShape;
@@ -120,4 +136,198 @@ pub fn add_face_load(
         }
     }
     Ok(())
+}
+
+/// Add the consistent nodal forces of a line load `q` (force per length)
+/// on `edges` to `f` (length 3 x nodes). Each edge is its global node ids
+/// `[end, end]` or `[end, end, middle]`.
+///
+/// Errors: an edge that has neither 2 nor 3 nodes.
+pub fn add_edge_load(
+    mesh: &Mesh,
+    edges: &[Vec<usize>],
+    q: [f64; 3],
+    f: &mut [f64],
+) -> Result<(), CoreError> {
+    let rule = gauss_legendre(3).map_err(|e| CoreError::Invalid(e.to_string()))?;
+    for edge in edges {
+        if !(edge.len() == 2 || edge.len() == 3) {
+            return Err(CoreError::Invalid(format!(
+                "an element edge has 2 or 3 nodes, not {}",
+                edge.len()
+            )));
+        }
+        for (&s, &w) in rule.points.iter().zip(rule.weights) {
+            let (n, dn): ([f64; 3], [f64; 3]) = if edge.len() == 2 {
+                ([0.5 * (1.0 - s), 0.5 * (1.0 + s), 0.0], [-0.5, 0.5, 0.0])
+            } else {
+                (
+                    [0.5 * s * (s - 1.0), 0.5 * s * (s + 1.0), 1.0 - s * s],
+                    [s - 0.5, s + 0.5, -2.0 * s],
+                )
+            };
+            let mut t = [0.0; 3];
+            for (a, &node) in edge.iter().enumerate() {
+                let x = mesh.nodes[node];
+                for c in 0..3 {
+                    t[c] += dn[a] * x[c];
+                }
+            }
+            let dl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+            for (a, &node) in edge.iter().enumerate() {
+                for c in 0..3 {
+                    f[3 * node + c] += w * n[a] * dl * q[c];
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// What a node set spans, as found by [`set_weights`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum SetSpan {
+    /// Solid faces whose nodes all lie in the set (each counted once,
+    /// whatever element it is seen from).
+    Faces(Vec<FaceRef>),
+    /// Solid element edges whose nodes all lie in the set (no complete
+    /// face does), each as [`add_edge_load`] takes it.
+    Edges(Vec<Vec<usize>>),
+    /// Neither: isolated points.
+    Points,
+}
+
+/// The consistent shares of a total force over a node set.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SetWeights {
+    /// One weight per node of the set, in the set's order, summing to 1.
+    pub weights: Vec<f64>,
+    /// The faces or edges the weights come from.
+    pub span: SetSpan,
+    /// The face area or edge length those weights integrate over (0 for
+    /// [`SetSpan::Points`]).
+    pub measure: f64,
+    /// How many nodes of the set lie on none of the faces or edges (they
+    /// get 0; 0 for [`SetSpan::Points`]).
+    pub off_span: usize,
+}
+
+/// The edges of a solid face, each as `[end, end]` or `[end, end,
+/// middle]` in local face node order.
+fn face_edges(face: CellShape) -> &'static [&'static [usize]] {
+    match face {
+        CellShape::Quad4 => &[&[0, 1], &[1, 2], &[2, 3], &[3, 0]],
+        CellShape::Quad8 | CellShape::Quad9 => &[&[0, 1, 4], &[1, 2, 5], &[2, 3, 6], &[3, 0, 7]],
+        CellShape::Tri3 => &[&[0, 1], &[1, 2], &[2, 0]],
+        CellShape::Tri6 => &[&[0, 1, 3], &[1, 2, 4], &[2, 0, 5]],
+        _ => &[],
+    }
+}
+
+/// The consistent shares of a total force over the node set `set`: see
+/// the module docs. Faces and edges are those of the solid elements
+/// (hexahedra, wedges); a face or edge shared by several elements counts
+/// once; coincident faces with distinct nodes (the two sides of an
+/// interface) count each. Nodes of the set on no such face or edge get 0
+/// (except for [`SetSpan::Points`], where every node gets `1 / n`).
+///
+/// Errors: an empty set, or faces or edges of zero total measure.
+pub fn set_weights(mesh: &Mesh, set: &[usize]) -> Result<SetWeights, CoreError> {
+    if set.is_empty() {
+        return Err(CoreError::Invalid("the node set is empty".into()));
+    }
+    let mut in_set = vec![false; mesh.nodes.len()];
+    for &n in set {
+        in_set[n] = true;
+    }
+    let mut seen = std::collections::HashSet::new();
+    let mut faces = Vec::new();
+    let mut seen_edges = std::collections::HashSet::new();
+    let mut edges: Vec<Vec<usize>> = Vec::new();
+    for (b, block) in mesh.blocks.iter().enumerate() {
+        if !block.shape.is_solid() {
+            continue;
+        }
+        for e in 0..block.len() {
+            let conn = block.element(e);
+            for fi in 0..block.shape.num_faces() {
+                let local = block.shape.face_nodes(fi);
+                let nodes: Vec<usize> = local.iter().map(|&l| conn[l]).collect();
+                if nodes.iter().all(|&n| in_set[n]) {
+                    let mut key = nodes.clone();
+                    key.sort_unstable();
+                    if seen.insert(key) {
+                        faces.push(FaceRef {
+                            block: b,
+                            element: e,
+                            face: fi,
+                        });
+                    }
+                }
+                if !faces.is_empty() {
+                    continue;
+                }
+                let Some(fshape) = block.shape.face_shape_of(fi) else {
+                    continue;
+                };
+                for edge in face_edges(fshape) {
+                    let nodes: Vec<usize> = edge.iter().map(|&l| nodes[l]).collect();
+                    if nodes.iter().all(|&n| in_set[n]) {
+                        let mut key = nodes.clone();
+                        key.sort_unstable();
+                        if seen_edges.insert(key) {
+                            edges.push(nodes);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let mut f = vec![0.0; 3 * mesh.nodes.len()];
+    let span = if !faces.is_empty() {
+        add_face_load(mesh, &faces, FaceLoad::Traction([1.0, 0.0, 0.0]), &mut f)?;
+        SetSpan::Faces(faces)
+    } else if !edges.is_empty() {
+        add_edge_load(mesh, &edges, [1.0, 0.0, 0.0], &mut f)?;
+        SetSpan::Edges(edges)
+    } else {
+        return Ok(SetWeights {
+            weights: vec![1.0 / set.len() as f64; set.len()],
+            span: SetSpan::Points,
+            measure: 0.0,
+            off_span: 0,
+        });
+    };
+    let mut on_span = vec![false; mesh.nodes.len()];
+    match &span {
+        SetSpan::Faces(faces) => faces
+            .iter()
+            .flat_map(|&r| mesh.face_nodes(r))
+            .for_each(|n| on_span[n] = true),
+        SetSpan::Edges(edges) => edges.iter().flatten().for_each(|&n| on_span[n] = true),
+        SetSpan::Points => {}
+    }
+    let off_span = set.iter().filter(|&&n| !on_span[n]).count();
+    let measure: f64 = f.iter().step_by(3).sum();
+    if !(measure.is_finite() && measure > 0.0) {
+        return Err(CoreError::Invalid(format!(
+            "the {} the node set spans have zero total {}",
+            if matches!(span, SetSpan::Faces(_)) {
+                "faces"
+            } else {
+                "edges"
+            },
+            if matches!(span, SetSpan::Faces(_)) {
+                "area"
+            } else {
+                "length"
+            },
+        )));
+    }
+    Ok(SetWeights {
+        weights: set.iter().map(|&n| f[3 * n] / measure).collect(),
+        span,
+        measure,
+        off_span,
+    })
 }

@@ -440,10 +440,10 @@ fn prepare_scene(
     solver_overrides: &[String],
 ) -> Result<Prepared> {
     check_path_following(input, &sf.scene.analysis)?;
-    let model = scene::build_model(sf)?;
+    let mut notes = Vec::new();
+    let model = scene::build_model_with_notes(sf, &mut notes)?;
     let (mut key, mut table) = scene::solver_table(sf);
     apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
-    let mut notes = Vec::new();
     let t_choice = std::time::Instant::now();
     let solver = resolve_solver(
         &mut key,

@@ -392,8 +392,16 @@ pub struct LoadSpec {
     pub face_set: Option<Spanned<String>>,
     /// Force applied at *each* node of `set` (like `*CLOAD`).
     pub force: Option<[f64; 3]>,
-    /// Total force shared equally by the nodes of `set`.
+    /// Total force on the nodes of `set`, shared as `split` says.
     pub total_force: Option<[f64; 3]>,
+    /// How `total_force` is shared by the nodes of `set`:
+    /// `"consistent"` (the default) gives each node the integral of its
+    /// shape function over the element faces the set spans (all their
+    /// nodes in the set), divided by their area; if the set holds no
+    /// complete face, over the element edges it spans (a quadratic edge:
+    /// 1/6, 2/3, 1/6); isolated points share equally (with a note).
+    /// `"equal"` gives every node of the set the same share.
+    pub split: Option<Spanned<String>>,
     /// Pressure on `face_set`, positive pushing into the solid.
     pub pressure: Option<f64>,
     /// Traction vector (force per area) on `face_set`.
@@ -1153,6 +1161,13 @@ pub fn build_elements(
 
 /// Translate the whole scene into a model.
 pub fn build_model(sf: &SceneFile) -> Result<Model> {
+    build_model_with_notes(sf, &mut Vec::new())
+}
+
+/// Translate the whole scene into a model; notes about the input (e.g. a
+/// `total_force` shared equally because its set spans no face or edge) go
+/// to `notes`.
+pub fn build_model_with_notes(sf: &SceneFile, notes: &mut Vec<String>) -> Result<Model> {
     let materials =
         build_plugins::<MaterialEntry, _>(sf, "materials", &sf.scene.materials, |e, t| {
             (e.build)(t)
@@ -1222,18 +1237,70 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
                 let nodes = mesh
                     .node_set(set.get_ref())
                     .map_err(|e| err!("{}: key `load[{i}].set`: {e}", sf.at(set.span())))?;
-                let f = match (l.force, l.total_force) {
-                    (Some(f), None) => f,
-                    (None, Some(t)) if !nodes.is_empty() => t.map(|v| v / nodes.len() as f64),
+                if let Some(sp) = &l.split {
+                    if l.total_force.is_none() {
+                        bail!(
+                            "{}: key `load[{i}].split`: `split` goes with `total_force` on a node set (it says how the total is shared), not with `force`",
+                            sf.at(sp.span())
+                        );
+                    }
+                }
+                match (l.force, l.total_force) {
+                    (Some(f), None) => {
+                        for &n in nodes {
+                            for c in 0..3 {
+                                f_ext[3 * n + c] += f[c];
+                            }
+                        }
+                    }
+                    (None, Some(t)) if !nodes.is_empty() => {
+                        let split = l.split.as_ref().map(|s| (s.get_ref().as_str(), s.span()));
+                        let weights = match split {
+                            None | Some(("consistent", _)) => {
+                                let w = junta_elements::face_load::set_weights(&mesh, nodes)
+                                    .map_err(|e| {
+                                        err!("{}: key `load[{i}].total_force`: node set `{}`: {e}", sf.at(set.span()), set.get_ref())
+                                    })?;
+                                if w.span == junta_elements::face_load::SetSpan::Points {
+                                    notes.push(format!(
+                                        "{}: key `load[{i}]`: node set `{}` holds no complete element face or edge, so its {} nodes share `total_force` equally (write `split = \"equal\"` to say so)",
+                                        sf.at(set.span()),
+                                        set.get_ref(),
+                                        nodes.len()
+                                    ));
+                                } else {
+                                    let idle = w.off_span;
+                                    if idle > 0 {
+                                        notes.push(format!(
+                                            "{}: key `load[{i}]`: {idle} of the {} nodes of set `{}` lie on none of the element {} it spans and get no share of `total_force`",
+                                            sf.at(set.span()),
+                                            nodes.len(),
+                                            set.get_ref(),
+                                            match w.span {
+                                                junta_elements::face_load::SetSpan::Faces(_) => "faces",
+                                                _ => "edges",
+                                            }
+                                        ));
+                                    }
+                                }
+                                w.weights
+                            }
+                            Some(("equal", _)) => vec![1.0 / nodes.len() as f64; nodes.len()],
+                            Some((other, span)) => bail!(
+                                "{}: key `load[{i}].split`: `{other}` is not valid; use \"consistent\" (the default: shares from the element faces or edges the set spans) or \"equal\" (the same share for every node)",
+                                sf.at(span)
+                            ),
+                        };
+                        for (&n, w) in nodes.iter().zip(weights) {
+                            for c in 0..3 {
+                                f_ext[3 * n + c] += w * t[c];
+                            }
+                        }
+                    }
                     _ => bail!(
-                        "{}: key `load[{i}]`: a node-set load needs exactly one of `force = [fx, fy, fz]` (per node) or `total_force` (shared equally)",
+                        "{}: key `load[{i}]`: a node-set load needs exactly one of `force = [fx, fy, fz]` (per node) or `total_force` (shared by the set's nodes, see `split`)",
                         sf.at(set.span())
                     ),
-                };
-                for &n in nodes {
-                    for c in 0..3 {
-                        f_ext[3 * n + c] += f[c];
-                    }
                 }
             }
             (None, Some(fs)) => {
@@ -1241,6 +1308,12 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
                     .face_set(fs.get_ref())
                     .map_err(|e| err!("{}: key `load[{i}].face_set`: {e}", sf.at(fs.span())))?
                     .to_vec();
+                if let Some(sp) = &l.split {
+                    bail!(
+                        "{}: key `load[{i}].split`: `split` goes with `total_force` on a node set (`set`), not with `face_set`",
+                        sf.at(sp.span())
+                    );
+                }
                 let load = match (l.pressure, l.traction, l.force.or(l.total_force)) {
                     (Some(p), None, None) => junta_elements::face_load::FaceLoad::Pressure(p),
                     (None, Some(t), None) => junta_elements::face_load::FaceLoad::Traction(t),

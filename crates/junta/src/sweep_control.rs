@@ -9,8 +9,10 @@
 //! - **load control**: every prescribed (non-zero) displacement of the
 //!   scene becomes a total force on the same node set and component, of
 //!   magnitude 1.25 times the arc-length peak reaction with the sign of the
-//!   displacement, so the program asks for more than the structure can
-//!   carry and the run must stop at the load maximum.
+//!   displacement (shared by the set's nodes with `split = "consistent"`:
+//!   a uniform load over the faces or edges the set spans), so the program
+//!   asks for more than the structure can carry and the run must stop at
+//!   the load maximum.
 //!
 //! A scene loaded by forces only is run under load control and arc length
 //! (there is no displacement to control). Writes `control.csv` (method,
@@ -218,6 +220,9 @@ pub fn sweep_control(input: &Path, out: &Path) -> Result<Vec<ControlRun>> {
                     "total_force".into(),
                     toml::Value::Array(f.iter().map(|x| toml::Value::Float(*x)).collect()),
                 );
+                // shared as a uniform load over the faces or edges the set
+                // spans (see `split` in docs/scenes.md)
+                t.insert("split".into(), "consistent".into());
                 loads.push(toml::Value::Table(t));
             }
             load.insert("load".into(), toml::Value::Array(loads));
