@@ -155,6 +155,12 @@ fn dcb_without_regularisation_stops_past_the_peak_and_says_why() {
             ) + "\n"
         })
         .collect();
+    // displacement control alone (the default `auto` would take over)
+    let text = text.replacen(
+        "type = \"static\"",
+        "type = \"static\"\ncontrol = \"displacement\"",
+        1,
+    );
     let scene = dir.path().join("dcb_plain.toml");
     std::fs::write(&scene, text).unwrap();
     let out = junta()

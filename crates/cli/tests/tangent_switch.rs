@@ -42,13 +42,15 @@ fn first_peak(rows: &[[f64; 3]]) -> [f64; 2] {
 
 /// Largest distance of the points of `a` (up to the crack length `b`
 /// reaches) from the polyline of `b`, in units of `b`'s first peak
-/// (displacement and load scaled by it).
+/// (displacement and load scaled by it). Points of `a` above `b`'s peak
+/// load are left to the peak comparison: at the peak `b`'s polyline cuts
+/// the curve's corner (its chord lies below the sampled points).
 fn distance_from_curve(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
     let [d0, p0] = first_peak(b);
     let s = |r: &[f64; 3]| [r[0] / d0, r[1] / p0];
     let reach = b.last().unwrap()[2];
     let mut worst: f64 = 0.0;
-    for r in a.iter().filter(|r| r[2] <= reach) {
+    for r in a.iter().filter(|r| r[2] <= reach && r[1] <= p0) {
         let p = s(r);
         let mut best = f64::INFINITY;
         for w in b.windows(2) {
@@ -118,10 +120,11 @@ fn run_pair(
 /// stalls on the symmetric part past the peak, the driver measures the
 /// exact tangent's skew (1.2e-2 of the diagonal here; 1e-12 on the mode-I
 /// DCB, which keeps its symmetric tangent) and switches. Its first 32
-/// increments lie on the exact-tangent run's curve. Measured: switch at
-/// increment 21 (a = 27 mm), peak +0.02 %, largest distance 0.28 % of the
-/// peak's coordinates (at the peak, where the exact run's polyline cuts
-/// the curve).
+/// increments lie on the exact-tangent run's curve. Measured (consistent
+/// split of the lever forces): switch at increment 21, peak 676.05 N
+/// against 672.97 N (+0.46 %: one of its points falls nearer the corner),
+/// the other points within 0.2 % of the peak's coordinates from the
+/// exact run's curve.
 #[test]
 fn mmb80_switches_to_the_exact_tangent_and_stays_on_its_path() {
     let (s, a, b) = run_pair("examples/delamination/mmb80_short.toml", Some((32, 30)));

@@ -138,7 +138,7 @@ pub(crate) fn past_peak_hint(rows: &[CurveRow], kind: junta_core::MatrixKind) ->
     if kind == junta_core::MatrixKind::SymmetricPositiveDefinite {
         return String::new();
     }
-    const REMEDY: &str = "use path following (`[analysis] control = \"arc_length\"`, which follows snap-backs through the dissipated energy), or add a small `viscosity` to the softening law (its energy is reported apart)";
+    const REMEDY: &str = "leave `control` out (the default `auto` switches to path following at a limit point and back; for a deck, drop `--solver control=load`), or use path following throughout (`[analysis] control = \"arc_length\"`, which follows snap-backs through the dissipated energy), or add a small `viscosity` to the softening law (its energy is reported apart)";
     let unstable = rows
         .iter()
         .filter(|r| r.negative_pivots.unwrap_or(0) > 0)
