@@ -251,3 +251,119 @@ fn enf_snap_back_under_displacement_control() {
     let area = s["interfaces"]["bond"]["damaged_area"].as_f64().unwrap();
     assert!(area / b > 0.95 * (l - 25.0), "crack growth {} mm", area / b);
 }
+
+/// Load control takes over again after the limit point: the snap-back bar
+/// of crates/cli/tests/data/snapback_bar.toml (a cohesive point in series
+/// with a bar, closed form in its header) beside an elastic spring (an
+/// equal bar on a `linear_penalty` interface, d = 0.5 N/mm^3), both tops
+/// pulled by 0.2 mm, no `control`. Displacement control stops at the
+/// cohesive peak; path following traces the snap-back to separation; the
+/// spring alone then loads on a stable branch, where load control takes
+/// over to the end. Closed form at the end: the spring carries
+/// `0.2 / (1/(d A) + L/(E A)) = 0.2 / (2 + 0.1) = 0.0952381 N`, the
+/// separated bar nothing. Measured: switches at lambda 0.505 and 0.811,
+/// 30 increments.
+/// The scene of `load_control_takes_over_again_on_a_stable_branch`, in `dir`.
+fn bar_and_spring(dir: &Path) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(repo().join("crates/cli/tests/data/snapback_bar.toml"))
+        .unwrap()
+        .replace("control = \"arc_length\"\n", "")
+        .replace(
+            "[mesh]",
+            "[laws.soft]\ntype = \"linear_penalty\"\nd = 0.5\n\n[mesh]",
+        )
+        .replace(
+            "[[interface]]\nname = \"bond\"",
+            "[[mesh.boxes]]\nname = \"base2\"\norigin = [2.0, 0.0, 0.0]\nsize = [1.0, 1.0, 1.0]\n\
+             divisions = [1, 1, 1]\nelement = \"h8\"\nmaterial = \"rigid\"\n\
+             [[mesh.boxes]]\nname = \"spring\"\norigin = [2.0, 0.0, 1.0]\nsize = [1.0, 1.0, 10.0]\n\
+             divisions = [1, 1, 2]\nelement = \"h8\"\nmaterial = \"bar\"\n\n\
+             [[interface]]\nname = \"elastic\"\nbetween = [\"base2\", \"spring\"]\nlaw = \"soft\"\n\n\
+             [[interface]]\nname = \"bond\"",
+        )
+        .replace(
+            "[analysis]",
+            "[[boundary]]\nset = \"base2.z0\"\nfixed = \"all\"\n[[boundary]]\nset = \"base2.z1\"\n\
+             fixed = \"all\"\n[[boundary]]\nset = \"spring.z1\"\nfixed = [\"x\", \"y\"]\n\
+             displacement = { z = 0.2 }\n\n[analysis]",
+        );
+    assert!(text.contains("spring.z1") && !text.contains("control ="));
+    write(dir, "bar_and_spring.toml", &text)
+}
+
+#[test]
+fn load_control_takes_over_again_on_a_stable_branch() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = bar_and_spring(dir.path());
+    let s = run_ok(&scene, &dir.path().join("out"));
+    assert!(
+        s["status"].as_str().unwrap().starts_with("completed"),
+        "{s}"
+    );
+    let to: Vec<&str> = s["path_switches"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["to"].as_str().unwrap())
+        .collect();
+    assert_eq!(to, ["arc_length", "load"], "{}", s["path_switches"]);
+    let back = s["path_switches"][1]["lambda"].as_f64().unwrap();
+    let rows = curve(&dir.path().join("out"));
+    let after = &rows[s["path_switches"][1]["increment"].as_u64().unwrap() as usize..];
+    assert!(
+        !after.is_empty() && after.iter().all(|r| r.2 == "load"),
+        "{back}"
+    );
+    let spring = s["reactions"]["spring.z1"][2].as_f64().unwrap();
+    let bar = s["reactions"]["bar.z1"][2].as_f64().unwrap();
+    let closed_form = 0.2 / (1.0 / 0.5 + 10.0 / 100.0);
+    assert!(
+        rel(spring, closed_form) < 1e-9,
+        "{spring} against {closed_form}"
+    );
+    assert!(bar.abs() < 1e-9, "{bar}");
+}
+
+/// The rows of curve.csv without the wall-time column.
+fn rows_without_time(dir: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
+    let head: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let t = head.iter().position(|h| *h == "seconds").unwrap();
+    text.lines()
+        .map(|l| {
+            l.split(',')
+                .enumerate()
+                .filter(|(i, _)| *i != t)
+                .map(|(_, v)| v)
+                .collect::<Vec<_>>()
+                .join(",")
+        })
+        .collect()
+}
+
+/// A `control = "auto"` run stopped and restarted before the switch to
+/// path following, during it, and after the return to load control gives
+/// the uninterrupted run's increments, bit for bit (the load phase keeps
+/// what the switch needs in the checkpoint; the path phase its path state).
+#[test]
+fn restarted_auto_run_equals_the_uninterrupted_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = bar_and_spring(dir.path());
+    let full = dir.path().join("full");
+    run_ok(&scene, &full);
+    let reference = rows_without_time(&full);
+    for stop in [9, 16, 29] {
+        let part = dir.path().join(format!("part{stop}"));
+        run_ok_with(&scene, &part, &["--max-increments", &stop.to_string()]);
+        restart_ok(&part);
+        assert_eq!(rows_without_time(&part), reference, "stopped at {stop}");
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(part.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(
+            s["path_switches"].as_array().unwrap().len(),
+            2,
+            "stopped at {stop}"
+        );
+    }
+}

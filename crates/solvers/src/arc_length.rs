@@ -358,6 +358,12 @@ impl LoadReturn {
             && (r.lambda - self.lambda_switch) * sign > 0.0
             && stable;
         self.rising = if rising { self.rising + 1 } else { 0 };
+        self.ready()
+    }
+
+    /// Load control can take over (also at the start of a run restarted
+    /// from a checkpoint taken right where it could).
+    fn ready(&self) -> bool {
         self.passed && self.rising >= Self::RISING_INCREMENTS
     }
 }
@@ -671,6 +677,16 @@ where
     }
     let mut run = PathRun::new(w, state, cur, path, settings, arc, end)?;
     let mut end_reason = PathEnd::Completed;
+    if run
+        .path
+        .return_to_load
+        .as_ref()
+        .is_some_and(LoadReturn::ready)
+        && run.cur.t < 1.0
+    {
+        // restarted where load control was to take over
+        return run.finish(PathEnd::ReturnToLoad, timings, t_run);
+    }
     while run.cur.t < 1.0 {
         if run.cur.increment_index >= arc.max_increments {
             end_reason = PathEnd::IncrementLimit;
@@ -696,6 +712,7 @@ where
             residual_history: &run.w.history,
             cursor: run.cur,
             path: Some(&run.path),
+            track: None,
         };
         if observer(&view) == Control::Stop {
             run.summary.stopped_by_observer = true;

@@ -418,6 +418,10 @@ pub struct Checkpoint {
     /// The run switched to the exact (nonsymmetric) tangent.
     #[serde(default)]
     pub exact_tangent: bool,
+    /// What a `control = "auto"` run under load control keeps for a switch
+    /// to path following ([`crate::path_switch`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub load_track: Option<crate::path_switch::LoadTrack>,
 }
 
 impl Checkpoint {
@@ -439,6 +443,7 @@ impl Checkpoint {
         u: &[f64],
         state: &StateStore,
         path: Option<&crate::arc_length::PathState>,
+        track: Option<&crate::path_switch::LoadTrack>,
     ) -> Self {
         Checkpoint {
             step: c.step,
@@ -452,6 +457,7 @@ impl Checkpoint {
             state_committed: state.committed.clone(),
             path: path.cloned(),
             exact_tangent: c.exact,
+            load_track: track.cloned(),
         }
     }
 }
@@ -472,12 +478,13 @@ pub struct IncrementView<'a> {
     pub residual_history: &'a [f64],
     pub(crate) cursor: Cursor,
     pub(crate) path: Option<&'a crate::arc_length::PathState>,
+    pub(crate) track: Option<&'a crate::path_switch::LoadTrack>,
 }
 
 impl IncrementView<'_> {
     /// A restart point after this increment.
     pub fn checkpoint(&self) -> Checkpoint {
-        Checkpoint::new(&self.cursor, self.u, self.state, self.path)
+        Checkpoint::new(&self.cursor, self.u, self.state, self.path, self.track)
     }
 }
 
@@ -527,7 +534,7 @@ pub struct NonlinearRun {
 impl NonlinearRun {
     /// A restart point at the end of this run.
     pub fn checkpoint(&self) -> Checkpoint {
-        Checkpoint::new(&self.cursor, &self.u, &self.state, self.path.as_ref())
+        Checkpoint::new(&self.cursor, &self.u, &self.state, self.path.as_ref(), None)
     }
 }
 
@@ -1538,6 +1545,7 @@ where
             residual_history: &run.w.history,
             cursor: run.cur,
             path: None,
+            track: None,
         };
         if observer(&view) == Control::Stop {
             run.summary.stopped_by_observer = true;

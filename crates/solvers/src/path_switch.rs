@@ -100,11 +100,24 @@ where
     loop {
         let path_phase = from.as_ref().is_some_and(|c| c.path.is_some());
         if !path_phase {
-            let mut track = Track::default();
+            let mut track = match &from {
+                Some(c) => c
+                    .load_track
+                    .clone()
+                    .map_or_else(LoadTrack::default, |mut t| {
+                        t.u_last = c.u.clone();
+                        t
+                    }),
+                None => LoadTrack::default(),
+            };
             let outcome = {
                 let mut obs = |v: &IncrementView<'_>| {
                     track.record(v, program, model);
-                    forward(&mut observer, v, &mut pending)
+                    let view = IncrementView {
+                        track: Some(&track),
+                        ..*v
+                    };
+                    forward(&mut observer, &view, &mut pending)
                 };
                 let options = LoadOptions {
                     analyzed,
@@ -120,7 +133,11 @@ where
                     options,
                 )?
             };
-            analyzed = true;
+            analyzed |= match &outcome {
+                LoadOutcome::Finished(run) | LoadOutcome::Limit { run, .. } => {
+                    run.summary.analyze_count > 0
+                }
+            };
             match outcome {
                 LoadOutcome::Finished(run) => return Ok((add_totals(&mut totals, run), None)),
                 LoadOutcome::Limit { run, error, reason } => {
@@ -153,7 +170,7 @@ where
                 let obs = |v: &IncrementView<'_>| forward(&mut observer, v, &mut pending);
                 run_path(model, solver, end, settings, arc, Some(&c), obs, analyzed)?
             };
-            analyzed = true;
+            analyzed |= run.summary.analyze_count > 0;
             let done = run.cursor.step + 1 >= program.len();
             match end_reason {
                 PathEnd::ReturnToLoad => {
@@ -212,9 +229,13 @@ fn moves_away_from_zero(program: &[f64], step: usize) -> bool {
 }
 
 /// The last two converged increments of a load-controlled phase: what
-/// path following needs to start from the last one.
-#[derive(Default)]
-struct Track {
+/// path following needs to start from the last one. Part of a
+/// load-controlled checkpoint of a `control = "auto"` run, so that a
+/// restarted run switches where an uninterrupted one does.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct LoadTrack {
+    /// The last increment's displacement (the checkpoint's own `u`).
+    #[serde(skip)]
     u_last: Vec<f64>,
     u_before: Vec<f64>,
     lambda_last: f64,
@@ -231,7 +252,7 @@ struct Track {
     tau_max: f64,
 }
 
-impl Track {
+impl LoadTrack {
     fn record(&mut self, v: &IncrementView<'_>, program: &[f64], model: &Model) {
         std::mem::swap(&mut self.u_last, &mut self.u_before);
         self.u_last.clear();
