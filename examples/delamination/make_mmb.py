@@ -115,11 +115,14 @@ JUNTA = {
 # crack length read from the damaged area (a = 23.4 to 49.4 mm); the crack
 # reaches the mid-span at increment 40 and the run ends at increment 66,
 # 444 Newton iterations, about 19 s (with `split = "equal"`: peak
-# 649.6 N at 5.61 mm, -9.3 %, back to 5.08 mm). This needs `tangent = "exact"`: the
+# 649.6 N at 5.61 mm, -9.3 %, back to 5.08 mm). It uses `tangent = "exact"`: the
 # mixed-mode tangent is not symmetric when the mode ratio changes with
-# the jump, and with its symmetric part (the default) Newton stagnates
-# near a 3e-3 relative residual past a = 29 mm (150 increments end near
-# a = 30.5 mm). The exact tangent is solved by `lu` (row interchanges
+# the jump, and on its symmetric part (the default without this line)
+# Newton stalls past the peak; the driver then measures the exact
+# tangent's skew (1.2e-2) and switches to it by itself at increment 21,
+# on the same path (82 increments, crates/cli/tests/tangent_switch.rs;
+# before that switch existed the run crawled to a = 30.5 mm in 150
+# increments). The exact tangent is solved by `lu` (row interchanges
 # within panels: 1.7M stored entries, 26 ms per factorisation here);
 # `curve.csv` then has no negative-pivot count (an LU gives no inertia).
 # crates/cli/tests/path_following.rs checks the first 40 increments.""",

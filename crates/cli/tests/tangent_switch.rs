@@ -68,13 +68,28 @@ fn distance_from_curve(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
 
 /// `scene` with its `tangent = "exact"` line removed (`symmetric`) or
 /// added (`exact`), written into `dir`.
-fn with_tangent(dir: &Path, scene: &str, exact: bool) -> std::path::PathBuf {
+fn with_tangent(dir: &Path, scene: &str, exact: bool, to_the_end: bool) -> std::path::PathBuf {
     let text = std::fs::read_to_string(repo().join(scene)).unwrap();
     let plain: String = text
         .lines()
         .filter(|l| !l.starts_with("tangent ="))
         .map(|l| format!("{l}\n"))
         .collect();
+    // run to the end of the program, not to the scene's own increment cap
+    let plain = if to_the_end {
+        plain
+            .lines()
+            .map(|l| {
+                if l.starts_with("max_increments") {
+                    "max_increments = 400\n".to_string()
+                } else {
+                    format!("{l}\n")
+                }
+            })
+            .collect()
+    } else {
+        plain
+    };
     let text = if exact {
         plain.replacen("[laws.cz]\n", "[laws.cz]\ntangent = \"exact\"\n", 1)
     } else {
@@ -111,8 +126,17 @@ fn run_pair(
     let (a, b) = (args(&nd), args(&ne));
     let a: Vec<&str> = a.iter().map(String::as_str).collect();
     let b: Vec<&str> = b.iter().map(String::as_str).collect();
-    let s = run_ok_with(&with_tangent(d, scene, false), &d.join("default"), &a);
-    run_ok_with(&with_tangent(d, scene, true), &d.join("exact"), &b);
+    let to_the_end = increments.is_none();
+    let s = run_ok_with(
+        &with_tangent(d, scene, false, to_the_end),
+        &d.join("default"),
+        &a,
+    );
+    run_ok_with(
+        &with_tangent(d, scene, true, to_the_end),
+        &d.join("exact"),
+        &b,
+    );
     (s, curve(&d.join("default")), curve(&d.join("exact")))
 }
 
@@ -143,10 +167,13 @@ fn mmb80_switches_to_the_exact_tangent_and_stays_on_its_path() {
     assert!(growth > 9.0, "{growth} mm");
 }
 
-/// Both MMB examples with the default tangent, to their end (the crack at
-/// mid-span), against `tangent = "exact"`: the same peak and curve (0.5 %).
-/// Measured on mmb80_short: 82 increments (27 s in release) against 67
-/// (21 s). Long: `cargo test -p junta-cli --test tangent_switch -- --ignored`.
+/// Both MMB examples with the default tangent, to the end of their load
+/// program (the crack past mid-span, the load rising again; the scenes'
+/// own `max_increments` lifted), against `tangent = "exact"`: the same
+/// peak and curve (0.5 %). Measured (release build): mmb80_short 82
+/// increments, 27 s, against 67, 21 s; mmb50_short 73 increments, 5 s
+/// (switch at increment 72), against 66, 16 s. Long:
+/// `cargo test --release -p junta-cli --test tangent_switch -- --ignored`.
 #[test]
 #[ignore]
 fn mmb_examples_run_to_their_end_on_the_default_tangent() {
@@ -156,8 +183,7 @@ fn mmb_examples_run_to_their_end_on_the_default_tangent() {
     ] {
         let (s, a, b) = run_pair(scene, None);
         assert!(
-            s["status"].as_str().unwrap().starts_with("completed")
-                || s["status"].as_str().unwrap().contains("max_increments"),
+            s["status"].as_str().unwrap().starts_with("completed"),
             "{scene}: {}",
             s["status"]
         );
