@@ -775,6 +775,8 @@ fn path_start(
                 small: false,
                 force_peak: 0.0,
                 exact: false,
+                cutbacks_in_a_row: 0,
+                pivots: None,
             };
             let path = PathState {
                 mode: PathMode::Load,

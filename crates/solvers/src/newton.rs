@@ -386,6 +386,12 @@ pub(crate) struct Cursor {
     pub(crate) force_peak: f64,
     /// The exact tangent is in use ([`Work::try_exact_tangent`]).
     pub(crate) exact: bool,
+    /// Cut-backs since the last increment that converged at its full size
+    /// (load control's limit-point test).
+    pub(crate) cutbacks_in_a_row: usize,
+    /// Negative pivots of the last converged increment's tangent, when the
+    /// back end reports them.
+    pub(crate) pivots: Option<usize>,
 }
 
 /// A restart point after a converged increment. Serialisable, so that a
@@ -418,6 +424,13 @@ pub struct Checkpoint {
     /// The run switched to the exact (nonsymmetric) tangent.
     #[serde(default)]
     pub exact_tangent: bool,
+    /// Cut-backs since the last increment that converged at its full size.
+    #[serde(default)]
+    pub cutbacks_in_a_row: usize,
+    /// Negative pivots of the last converged increment's tangent, when
+    /// reported.
+    #[serde(default)]
+    pub negative_pivots: Option<usize>,
     /// What a `control = "auto"` run under load control keeps for a switch
     /// to path following ([`crate::path_switch`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -435,6 +448,8 @@ impl Checkpoint {
             small: self.small_increment_mode,
             force_peak: self.force_peak,
             exact: self.exact_tangent,
+            cutbacks_in_a_row: self.cutbacks_in_a_row,
+            pivots: self.negative_pivots,
         }
     }
 
@@ -457,6 +472,8 @@ impl Checkpoint {
             state_committed: state.committed.clone(),
             path: path.cloned(),
             exact_tangent: c.exact,
+            cutbacks_in_a_row: c.cutbacks_in_a_row,
+            negative_pivots: c.pivots,
             load_track: track.cloned(),
         }
     }
@@ -1363,6 +1380,12 @@ fn largest_scaled_skew(k: &SymmetricCsc) -> f64 {
     largest
 }
 
+/// Cut-backs in a row (no increment converging at its full size in
+/// between) taken for a limit point under `control = "auto"`: the
+/// increments shrink towards a maximum of the load factor
+/// ([`crate::path_switch`]).
+const LIMIT_CUTBACKS: usize = 6;
+
 /// Stalled attempts of one increment before the exact tangent is tried.
 const STALLS_BEFORE_EXACT_TANGENT: usize = 2;
 
@@ -1455,9 +1478,11 @@ pub(crate) struct LoadOptions {
     /// The solver holds the symbolic analysis of this model's pattern
     /// already (a driver before this one analysed it).
     pub(crate) analyzed: bool,
-    /// Stop at a limit point ([`LoadOutcome::Limit`]) as soon as a failed
-    /// attempt's tangent has more negative pivots than the last converged
-    /// increment's, instead of cutting back to `min_increment` first.
+    /// In a step loading away from zero, stop at a limit point
+    /// ([`LoadOutcome::Limit`]) as soon as a failed attempt's tangent has
+    /// more negative pivots than the last converged increment's, or after
+    /// [`LIMIT_CUTBACKS`] cut-backs in a row, instead of cutting back to
+    /// `min_increment` first.
     pub(crate) stop_at_limit: bool,
 }
 
@@ -1517,7 +1542,6 @@ where
         small_size: settings.small_increment(),
         initial_size: settings.initial_increment.min(settings.max_increment),
         stop_at_limit: options.stop_at_limit,
-        pivots_converged: None,
     };
     // residual of the starting point, so that a run with nothing to do
     // still returns a consistent residual
@@ -1618,6 +1642,8 @@ fn load_start(
                 small,
                 force_peak: 0.0,
                 exact: false,
+                cutbacks_in_a_row: 0,
+                pivots: None,
             }
         }
     };
@@ -1639,9 +1665,6 @@ struct LoadRun<'a> {
     initial_size: f64,
     /// See [`LoadOptions::stop_at_limit`].
     stop_at_limit: bool,
-    /// Negative pivots of the last converged increment's tangent, when the
-    /// back end reports them.
-    pivots_converged: Option<usize>,
 }
 
 /// A converged increment: where it ends (fraction of the step and load
@@ -1767,6 +1790,11 @@ impl LoadRun<'_> {
                         "increment failed ({reason}); cutting back"
                     );
                     let pivots = solver.report().negative_pivots;
+                    self.cur.cutbacks_in_a_row += 1;
+                    // the early signs of a limit point, where path
+                    // following can take over (a step loading away from 0)
+                    let early = self.stop_at_limit
+                        && crate::path_switch::moves_away_from_zero(self.program, cur.step);
                     let why = if next < self.settings.min_increment || span == 0.0 {
                         Some(format!(
                             "the increment was cut back below min_increment = {:e} of the step \
@@ -1774,11 +1802,18 @@ impl LoadRun<'_> {
                             self.settings.min_increment
                         ))
                     } else {
-                        match (self.stop_at_limit, self.pivots_converged, pivots) {
+                        match (early, cur.pivots, pivots) {
                             (true, Some(before), Some(now)) if now > before => Some(format!(
                                 "the tangent's inertia changed: {now} negative pivots in a \
                                  failed attempt against {before} at the last converged increment"
                             )),
+                            _ if early && self.cur.cutbacks_in_a_row >= LIMIT_CUTBACKS => {
+                                Some(format!(
+                                    "{} cut-backs in a row without an increment converging at its \
+                                 full size ({reason})",
+                                    self.cur.cutbacks_in_a_row
+                                ))
+                            }
                             _ => None,
                         }
                     };
@@ -1857,7 +1892,10 @@ impl LoadRun<'_> {
             switched: self.w.exact_switch.take().into_iter().collect(),
         };
         if report.negative_pivots.is_some() {
-            self.pivots_converged = report.negative_pivots;
+            self.cur.pivots = report.negative_pivots;
+        }
+        if inc.cutbacks == 0 {
+            self.cur.cutbacks_in_a_row = 0;
         }
         tracing::info!(
             increment = report.increment_index,

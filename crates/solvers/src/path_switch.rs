@@ -20,7 +20,13 @@
 //! - an attempt failed and its last tangent had more negative pivots than
 //!   the last converged increment's (the tangent's inertia changed: the
 //!   structure is past a stability limit), when the linear back end
-//!   reports the inertia (`ldlt`, `cholesky`).
+//!   reports the inertia (`ldlt`, `cholesky`), or
+//! - six cut-backs came in a row with no increment converging at its full
+//!   size in between: the increments shrink towards a maximum of the load
+//!   factor (the cascade down to `min_increment` would cost about as many
+//!   failed attempts again).
+//!
+//! The last two apply in a step loading away from zero only (below).
 //!
 //! # Switch to path following
 //!
@@ -220,7 +226,7 @@ where
 
 /// Whether step `step` of `program` loads away from zero (path following
 /// runs to its end load factor from any point of it).
-fn moves_away_from_zero(program: &[f64], step: usize) -> bool {
+pub(crate) fn moves_away_from_zero(program: &[f64], step: usize) -> bool {
     let Some(&end) = program.get(step) else {
         return false;
     };
@@ -366,6 +372,9 @@ fn load_checkpoint(mut c: Checkpoint, program: &[f64], settings: &NewtonSettings
     c.increment_size = ((c.lambda - previous_lambda).abs() / span.abs())
         .clamp(settings.min_increment, settings.max_increment);
     c.path = None;
+    // load control's limit-point tests start afresh
+    c.cutbacks_in_a_row = 0;
+    c.negative_pivots = None;
     c
 }
 
