@@ -1498,6 +1498,9 @@ pub(crate) enum LoadOutcome {
         run: NonlinearRun,
         error: NonlinearError,
         reason: String,
+        /// Taken on an early sign ([`LoadOptions::stop_at_limit`]), not at
+        /// `min_increment`: load control could still go on.
+        early: bool,
     },
 }
 
@@ -1555,7 +1558,13 @@ where
             Ok(inc) => inc,
             Err((error @ NonlinearError::IncrementTooSmall { .. }, reason)) => {
                 run.w.evaluate_at_rest(&mut run.state, &run.cur)?;
-                limit = Some((error, reason));
+                let early = matches!(
+                    &error,
+                    NonlinearError::IncrementTooSmall { increment, .. }
+                        if increment.abs() * settings.cutback
+                            >= settings.min_increment * step_span(program, run.cur.step)
+                );
+                limit = Some((error, reason, early));
                 break;
             }
             Err((error, _)) => return Err(error),
@@ -1594,8 +1603,19 @@ where
     };
     Ok(match limit {
         None => LoadOutcome::Finished(run),
-        Some((error, reason)) => LoadOutcome::Limit { run, error, reason },
+        Some((error, reason, early)) => LoadOutcome::Limit {
+            run,
+            error,
+            reason,
+            early,
+        },
     })
+}
+
+/// The load-factor range of step `step` of `program`.
+fn step_span(program: &[f64], step: usize) -> f64 {
+    let start = if step == 0 { 0.0 } else { program[step - 1] };
+    (program[step] - start).abs()
 }
 
 /// The starting point of a load-controlled run: state, full displacement

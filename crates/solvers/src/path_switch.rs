@@ -26,7 +26,11 @@
 //!   factor (the cascade down to `min_increment` would cost about as many
 //!   failed attempts again).
 //!
-//! The last two apply in a step loading away from zero only (below).
+//! The last two apply in a step loading away from zero only (below). When
+//! path following cannot make a single increment from a switch taken on
+//! one of them (the viscous `examples/delamination/dcb.toml` near 8 mm),
+//! load control goes on from the same state without them, cutting back as
+//! it would have without the switch.
 //!
 //! # Switch to path following
 //!
@@ -103,6 +107,10 @@ where
     let mut totals = NonlinearSummary::default();
     let mut analyzed = false;
     let mut pending: Option<PathSwitch> = None;
+    // the load-controlled state of a switch taken on an early sign, and
+    // whether the load phase now goes on without the early signs
+    let mut fallback: Option<Checkpoint> = None;
+    let mut early_signs = true;
     loop {
         let path_phase = from.as_ref().is_some_and(|c| c.path.is_some());
         if !path_phase {
@@ -127,7 +135,7 @@ where
                 };
                 let options = LoadOptions {
                     analyzed,
-                    stop_at_limit: true,
+                    stop_at_limit: early_signs,
                 };
                 run_load(
                     model,
@@ -146,11 +154,21 @@ where
             };
             match outcome {
                 LoadOutcome::Finished(run) => return Ok((add_totals(&mut totals, run), None)),
-                LoadOutcome::Limit { run, error, reason } => {
+                LoadOutcome::Limit {
+                    run,
+                    error,
+                    reason,
+                    early,
+                } => {
                     let c = run.checkpoint();
                     if !moves_away_from_zero(program, c.step) {
                         return Err(error);
                     }
+                    early_signs = true;
+                    fallback = early.then(|| Checkpoint {
+                        load_track: Some(track.clone()),
+                        ..c.clone()
+                    });
                     add_totals(&mut totals, run);
                     let switch = PathSwitch {
                         increment: c.increment_index,
@@ -172,10 +190,32 @@ where
         } else {
             let c = from.take().expect("a path phase starts from a checkpoint");
             let end = program[c.step.min(program.len() - 1)];
-            let (run, end_reason) = {
+            let result = {
                 let obs = |v: &IncrementView<'_>| forward(&mut observer, v, &mut pending);
-                run_path(model, solver, end, settings, arc, Some(&c), obs, analyzed)?
+                run_path(model, solver, end, settings, arc, Some(&c), obs, analyzed)
             };
+            let (run, end_reason) = match result {
+                Ok(r) => r,
+                // path following could not make a single increment from a
+                // switch taken on an early sign: load control goes on
+                // cutting back, as without the switch
+                Err(NonlinearError::IncrementTooSmall { .. })
+                    if pending.is_some() && fallback.is_some() =>
+                {
+                    let back = fallback.take().expect("checked");
+                    tracing::warn!(
+                        lambda = back.lambda,
+                        "path following could not start: load control goes on"
+                    );
+                    pending = None;
+                    early_signs = false;
+                    analyzed = true;
+                    from = Some(back);
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
+            fallback = None;
             analyzed |= run.summary.analyze_count > 0;
             let done = run.cursor.step + 1 >= program.len();
             match end_reason {
