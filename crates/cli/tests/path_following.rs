@@ -398,19 +398,9 @@ fn mmb_snap_back(
         dir.path(),
         &["--max-increments", &increments.to_string()],
     );
-    let text = std::fs::read_to_string(dir.path().join("curve.csv")).unwrap();
-    let mut lines = text.lines();
-    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |n: &str| head.iter().position(|h| *h == n).unwrap();
-    let (cp, cd, ca) = (col("reaction"), col("displacement"), col("damaged_area"));
-    let pts: Vec<(f64, f64, f64)> = lines
-        .map(|l| {
-            let f: Vec<f64> = l
-                .split(',')
-                .map(|v| v.parse().unwrap_or(f64::NAN))
-                .collect();
-            (f[cp], f[cd], 20.4 + f[ca] / 25.4)
-        })
+    let pts: Vec<(f64, f64, f64)> = load_displacement_area(dir.path())
+        .into_iter()
+        .map(|(p, d, area)| (p, d, 20.4 + area / 25.4))
         .collect();
     // the first peak: before the crack has grown by 3 mm
     let ipk = (0..pts.len())
@@ -670,15 +660,14 @@ fn secant_predictor_stays_on_the_exact_path_and_restarts() {
     restart_repeats(&secant, &rs, dir.path(), rs.len() / 2);
 }
 
-/// The peak of a curve.csv: `(load, lever displacement)` at the largest
-/// load, and the first point `(load, displacement)` (elastic: no damage).
-fn mmb_peak_and_first(dir: &Path) -> ((f64, f64), (f64, f64)) {
+/// `(reaction, displacement, damaged area)` of every row of curve.csv.
+fn load_displacement_area(dir: &Path) -> Vec<(f64, f64, f64)> {
     let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
     let mut lines = text.lines();
     let head: Vec<&str> = lines.next().unwrap().split(',').collect();
     let col = |n: &str| head.iter().position(|h| *h == n).unwrap();
     let (cp, cd, ca) = (col("reaction"), col("displacement"), col("damaged_area"));
-    let pts: Vec<(f64, f64, f64)> = lines
+    lines
         .map(|l| {
             let f: Vec<f64> = l
                 .split(',')
@@ -686,7 +675,13 @@ fn mmb_peak_and_first(dir: &Path) -> ((f64, f64), (f64, f64)) {
                 .collect();
             (f[cp], f[cd], f[ca])
         })
-        .collect();
+        .collect()
+}
+
+/// The peak of a curve.csv: `(load, lever displacement)` at the largest
+/// load, and the first point `(load, displacement)` (elastic: no damage).
+fn mmb_peak_and_first(dir: &Path) -> ((f64, f64), (f64, f64)) {
+    let pts = load_displacement_area(dir);
     assert_eq!(pts[0].2, 0.0, "the first increment is elastic");
     let pk = pts
         .iter()

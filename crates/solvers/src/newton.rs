@@ -1556,18 +1556,12 @@ where
         let before = run.w.timings;
         let inc = match run.converge_increment(solver) {
             Ok(inc) => inc,
-            Err((error @ NonlinearError::IncrementTooSmall { .. }, reason)) => {
+            Err((error, Some(sign))) => {
                 run.w.evaluate_at_rest(&mut run.state, &run.cur)?;
-                let early = matches!(
-                    &error,
-                    NonlinearError::IncrementTooSmall { increment, .. }
-                        if increment.abs() * settings.cutback
-                            >= settings.min_increment * step_span(program, run.cur.step)
-                );
-                limit = Some((error, reason, early));
+                limit = Some((error, sign));
                 break;
             }
-            Err((error, _)) => return Err(error),
+            Err((error, None)) => return Err(error),
         };
         let report = run.commit(solver, &inc, before);
         let view = IncrementView {
@@ -1603,19 +1597,13 @@ where
     };
     Ok(match limit {
         None => LoadOutcome::Finished(run),
-        Some((error, reason, early)) => LoadOutcome::Limit {
+        Some((error, sign)) => LoadOutcome::Limit {
             run,
             error,
-            reason,
-            early,
+            reason: sign.why,
+            early: sign.early,
         },
     })
-}
-
-/// The load-factor range of step `step` of `program`.
-fn step_span(program: &[f64], step: usize) -> f64 {
-    let start = if step == 0 { 0.0 } else { program[step - 1] };
-    (program[step] - start).abs()
 }
 
 /// The starting point of a load-controlled run: state, full displacement
@@ -1687,6 +1675,14 @@ struct LoadRun<'a> {
     stop_at_limit: bool,
 }
 
+/// Why a failed increment is taken for a limit point, and whether on an
+/// early sign ([`LoadOptions::stop_at_limit`]) rather than below
+/// `min_increment`.
+struct LimitSign {
+    why: String,
+    early: bool,
+}
+
 /// A converged increment: where it ends (fraction of the step and load
 /// factor), its last attempt's iterations, residual and energy, the size
 /// that converged and the cut-backs it took.
@@ -1727,14 +1723,15 @@ impl LoadRun<'_> {
     /// by `cutback`; below `min_increment` the run stops with
     /// [`NonlinearError::IncrementTooSmall`].
     ///
-    /// The error comes with why the stop is taken for a limit point: the
-    /// increment fell below `min_increment`, or (with `stop_at_limit`) the
-    /// failed attempt's tangent has more negative pivots than the last
-    /// converged one's.
+    /// An [`NonlinearError::IncrementTooSmall`] comes with why it is taken
+    /// for a limit point ([`LimitSign`]): the increment fell below
+    /// `min_increment`, or (with `stop_at_limit`) an early sign, the failed
+    /// attempt's tangent having more negative pivots than the last
+    /// converged one's or [`LIMIT_CUTBACKS`] cut-backs in a row.
     fn converge_increment(
         &mut self,
         solver: &mut dyn LinearSolver,
-    ) -> Result<LoadIncrement, (NonlinearError, String)> {
+    ) -> Result<LoadIncrement, (NonlinearError, Option<LimitSign>)> {
         let cur = self.cur;
         let start = if cur.step == 0 {
             0.0
@@ -1766,7 +1763,7 @@ impl LoadRun<'_> {
             let attempt = self
                 .w
                 .attempt(solver, &mut self.state, step, cur.force_peak)
-                .map_err(|e| (e, String::new()))?;
+                .map_err(|e| (e, None))?;
             match attempt {
                 Attempt::Converged {
                     iterations,
@@ -1791,7 +1788,7 @@ impl LoadRun<'_> {
                     let exact = self
                         .w
                         .try_exact_tangent(&mut self.state, step, &reason, cur.step)
-                        .map_err(|e| (e.into(), String::new()))?;
+                        .map_err(|e| (e.into(), None))?;
                     self.state.restore();
                     self.w.u.copy_from_slice(&self.w.u_conv);
                     if exact {
@@ -1815,7 +1812,8 @@ impl LoadRun<'_> {
                     // following can take over (a step loading away from 0)
                     let early = self.stop_at_limit
                         && crate::path_switch::moves_away_from_zero(self.program, cur.step);
-                    let why = if next < self.settings.min_increment || span == 0.0 {
+                    let below_min = next < self.settings.min_increment || span == 0.0;
+                    let why = if below_min {
                         Some(format!(
                             "the increment was cut back below min_increment = {:e} of the step \
                              ({reason})",
@@ -1846,7 +1844,11 @@ impl LoadRun<'_> {
                             iterations,
                             reason,
                         };
-                        return Err((error, why));
+                        let sign = LimitSign {
+                            why,
+                            early: !below_min,
+                        };
+                        return Err((error, Some(sign)));
                     }
                     size = next;
                 }
