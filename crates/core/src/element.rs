@@ -37,6 +37,21 @@ pub enum ElementError {
     },
 }
 
+/// Kinematics of an element, chosen per model (scene `[analysis] nlgeom`,
+/// deck `*STEP, NLGEOM`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Kinematics {
+    /// Small displacements and strains: strains linear in the
+    /// displacements, interfaces framed on their reference mid-surface.
+    #[default]
+    Small,
+    /// Large displacements and rotations: total-Lagrangian solids (Green
+    /// strain, second Piola-Kirchhoff stress), interfaces framed on their
+    /// current mid-surface.
+    Finite,
+}
+
 /// Increment information handed down to elements and laws.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StepInfo {
@@ -202,5 +217,9 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     /// [`StepInfo::exact_tangent`] asks. Default: false.
     fn symmetrises_tangent(&self) -> bool {
         false
+    }
+    /// The element's kinematics. Default: small.
+    fn kinematics(&self) -> Kinematics {
+        Kinematics::Small
     }
 }

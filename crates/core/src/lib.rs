@@ -35,7 +35,7 @@ pub mod topology;
 
 pub use criterion::{FailureCriterion, FailureMode, FailureResult, OnsetInput};
 pub use dual::Dual3;
-pub use element::{Element, ElementContext, ElementError, PointOutput};
+pub use element::{Element, ElementContext, ElementError, Kinematics, PointOutput};
 pub use error::CoreError;
 pub use law::{FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse, PenaltyRole};
 pub use material::{Material, Voigt6};

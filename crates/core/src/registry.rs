@@ -44,6 +44,8 @@ pub struct ElementBuild<'a> {
     pub law: Option<Arc<dyn InterfaceLaw>>,
     /// Element options (e.g. integration rule).
     pub options: &'a toml::Table,
+    /// Small or finite (large-deformation) kinematics, the model's.
+    pub kinematics: crate::Kinematics,
 }
 
 /// Registry entry of an element type.

@@ -250,6 +250,7 @@ impl IncompatibleHex8 {
     /// Build from a registry table (no options; a material is required).
     pub fn from_build(build: &ElementBuild<'_>) -> Result<Self, CoreError> {
         let _: H8iOptions = parse_params("element", "h8i", build.options)?;
+        crate::small_strain_only("h8i", build.kinematics)?;
         let material = build
             .material
             .clone()

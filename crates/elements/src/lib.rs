@@ -55,3 +55,19 @@ pub use material::{EngineeringConstants, Isotropic, Orientation, Orthotropic};
 pub use quadrature::{gauss_legendre, gauss_lobatto, tensor_2d, tensor_3d, Rule, Rule1D};
 pub use shape::{hex_shape, quad_shape, solid_shape, wedge_shape};
 pub use solid::{Integration, SolidElement};
+
+/// Refuse finite kinematics for an element that has no large-deformation
+/// form yet.
+pub fn small_strain_only(
+    key: &str,
+    k: junta_core::Kinematics,
+) -> Result<(), junta_core::CoreError> {
+    if k == junta_core::Kinematics::Finite {
+        return Err(junta_core::CoreError::InvalidParameters {
+            kind: "element",
+            key: key.into(),
+            message: format!("{key} has no large-deformation (nlgeom) form yet"),
+        });
+    }
+    Ok(())
+}

@@ -242,6 +242,7 @@ impl SolidElement {
         build: &ElementBuild<'_>,
     ) -> Result<Self, CoreError> {
         let opts: SolidOptions = parse_params("element", key, build.options)?;
+        crate::small_strain_only(key, build.kinematics)?;
         let integration = opts.integration.unwrap_or(default);
         if default == Integration::Reduced && integration == Integration::Full {
             return Err(CoreError::InvalidParameters {

@@ -62,6 +62,7 @@ fn build(
         material: Some(material),
         law: None,
         options: &options,
+        kinematics: Default::default(),
     })
 }
 
@@ -645,6 +646,7 @@ fn registry_builds_from_tables_and_reports_mistakes() {
         material: None,
         law: None,
         options: &opts,
+        kinematics: Default::default(),
     })
     .unwrap_err();
     assert!(

@@ -545,6 +545,7 @@ struct Options {
 
 fn build(shape: CellShape, key: &str, b: &ElementBuild<'_>) -> Result<Arc<dyn Element>, CoreError> {
     let o: Options = parse_params("element", key, b.options)?;
+    junta_elements::small_strain_only(key, b.kinematics)?;
     let law = b.law.clone().ok_or_else(|| CoreError::InvalidParameters {
         kind: "element",
         key: key.into(),

@@ -1168,6 +1168,7 @@ fn registry_entries() {
             material: None,
             law: None,
             options: &empty,
+            kinematics: Default::default(),
         })
         .unwrap_err()
         .to_string();
@@ -1177,6 +1178,7 @@ fn registry_entries() {
             material: None,
             law: Some(l.clone()),
             options: &empty,
+            kinematics: Default::default(),
         })
         .unwrap();
         assert_eq!(el.key(), key);
@@ -1194,6 +1196,7 @@ fn registry_entries() {
             material: None,
             law: Some(l.clone()),
             options: &opts,
+            kinematics: Default::default(),
         });
         if shape == CellShape::Inter12 {
             // no nodal rule for the quadratic triangle: a clear refusal
@@ -1224,6 +1227,7 @@ fn registry_entries() {
             material: None,
             law: Some(l.clone()),
             options: &opts,
+            kinematics: Default::default(),
         })
         .unwrap_err()
         .to_string();
@@ -1238,6 +1242,7 @@ fn registry_entries() {
             material: None,
             law: Some(l.clone()),
             options: &opts,
+            kinematics: Default::default(),
         })
         .unwrap_err()
         .to_string();

@@ -40,9 +40,11 @@
 //!
 //! # Incremental runs
 //!
-//! A deck whose model has a softening law (a material with damage) runs as
-//! an incremental static analysis (`junta_solvers::newton`), whatever
-//! NLGEOM says (Junta is small-strain: NLGEOM is noted and ignored). Each
+//! A deck whose model has a softening law (a material with damage), or a
+//! step with NLGEOM, runs as an incremental static analysis
+//! (`junta_solvers::newton`). NLGEOM makes every element large-deformation
+//! (total-Lagrangian solids, interfaces on their current mid-surface) for
+//! the whole run. Each
 //! `*STEP` is one step of the proportional load program: Abaqus ramps the
 //! loads and prescribed displacements linearly over the step, and the load
 //! factor runs over the step as `t / T`, so the first step goes 0 -> 1 with
@@ -98,7 +100,7 @@ use crate::readers::inp::{
 };
 use crate::scene::{AnalysisSpec, CurveSpec};
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
-use junta_core::{Element, Model};
+use junta_core::{Element, Kinematics, Model};
 use junta_elements::Orientation;
 use junta_solvers::arc_length::ArcLengthSettings;
 use junta_solvers::newton::NewtonSettings;
@@ -333,7 +335,9 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     if !softening {
         note_linear_riks(&deck, &file, &mut notes);
     }
-    let incremental = if softening {
+    // a softening law or NLGEOM: an incremental run (a linear deck with
+    // NLGEOM runs incrementally, as in CalculiX)
+    let incremental = if softening || deck_kinematics(&deck) == Kinematics::Finite {
         Some(incremental_program(&deck, &steps, &file, &mut notes)?)
     } else {
         None
@@ -391,6 +395,18 @@ fn build_elements(
     Ok((elements, softening))
 }
 
+/// Finite kinematics when a step asks for NLGEOM. Abaqus keeps NLGEOM on
+/// for the rest of the analysis once a step sets it; Junta takes it for the
+/// whole run (a small-strain first step before an NLGEOM step is noted in
+/// [`step_notes`]).
+fn deck_kinematics(deck: &InpDeck) -> Kinematics {
+    if deck.steps.iter().any(|s| s.nlgeom) {
+        Kinematics::Finite
+    } else {
+        Kinematics::Small
+    }
+}
+
 /// The material axes of block `bi` from its `*SOLID SECTION, ORIENTATION=`
 /// (none without one): `a`, `b`, and for a cylindrical system (two points
 /// of the axis) `system = "cylindrical"`; the elements then take the axes
@@ -442,6 +458,7 @@ fn block_element(
         material: None,
         law: None,
         options: &toml::Table::new(),
+        kinematics: deck_kinematics(deck),
     };
     let at = format!("{file}:{}: *MATERIAL, NAME={}", mat.line, mat.name);
     match (&mat.kind, b.shape.is_interface()) {
@@ -805,7 +822,15 @@ fn incremental_program(
                 lambda = t;
             }
         }
-        step_notes(file, s, step, program.len() == before, notes);
+        let deck_has_nlgeom = deck_kinematics(deck) == Kinematics::Finite;
+        step_notes(
+            file,
+            s,
+            step,
+            program.len() == before,
+            deck_has_nlgeom,
+            notes,
+        );
         let (n, pline) = step_newton(file, s, step)?;
         match &settings {
             None => settings = Some((n, pline)),
@@ -834,6 +859,7 @@ fn incremental_program(
             newton,
             control,
             arc_length,
+            nlgeom: deck_kinematics(deck) == Kinematics::Finite,
         },
         increment_limits: limits,
         deck_steps,
@@ -972,12 +998,13 @@ impl<'a> ProgramSteps<'a> {
 }
 
 /// The notes of one step of an incremental run: skipped (`skipped`: the
-/// load factor does not change), NLGEOM ignored, no `INC=`.
+/// load factor does not change), a step without the NLGEOM of another, no `INC=`.
 fn step_notes(
     file: &str,
     s: &DeckStep,
     step: Option<&InpStep>,
     skipped: bool,
+    deck_has_nlgeom: bool,
     notes: &mut Vec<String>,
 ) {
     if skipped {
@@ -986,9 +1013,9 @@ fn step_notes(
             s.line, s.name
         ));
     }
-    if step.is_some_and(|st| st.nlgeom) {
+    if step.is_some_and(|st| !st.nlgeom) && deck_has_nlgeom {
         notes.push(format!(
-            "{file}:{}: NLGEOM ignored: Junta's elements are small-strain",
+            "{file}:{}: this step has no NLGEOM but another step has: Junta runs the whole analysis with large deformation",
             s.line
         ));
     }

@@ -441,6 +441,14 @@ fn prepare_scene(
 ) -> Result<Prepared> {
     check_path_following(input, &sf.scene.analysis)?;
     let mut notes = Vec::new();
+    let mut analysis = sf.scene.analysis.clone();
+    if analysis.nlgeom && analysis.kind == "linear" {
+        analysis.kind = "static".into();
+        notes.push(
+            "nlgeom = true: the analysis runs incrementally (type = \"static\"), as a large-deformation run must"
+                .into(),
+        );
+    }
     let model = scene::build_model_with_notes(sf, &mut notes)?;
     let (mut key, mut table) = scene::solver_table(sf);
     apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
@@ -463,7 +471,7 @@ fn prepare_scene(
         vtu: sf.scene.output.vtu,
         probes: sf.scene.output.probes.clone(),
         fractions: sf.scene.output.fractions.clone(),
-        analysis: sf.scene.analysis.clone(),
+        analysis,
         curve: sf.scene.output.curve.clone(),
         every: sf.scene.output.every,
         reference: match &sf.scene.reference {

@@ -9,7 +9,7 @@ use crate::error::{bail, err, Context, Result};
 use junta_core::mesh::generate::{box_mesh, BoxSpec};
 use junta_core::mesh::Mesh;
 use junta_core::registry::{self, ElementBuild, ElementEntry, Entry, LawEntry, MaterialEntry};
-use junta_core::{Element, InterfaceLaw, Material, Model};
+use junta_core::{Element, InterfaceLaw, Kinematics, Material, Model};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -96,6 +96,11 @@ pub struct AnalysisSpec {
     /// `junta_solvers::arc_length::ArcLengthSettings`).
     #[serde(default)]
     pub arc_length: junta_solvers::arc_length::ArcLengthSettings,
+    /// Large deformation: total-Lagrangian solids and interfaces framed on
+    /// their current mid-surface (default `false`: small strains). A
+    /// `linear` analysis with it runs as `static` (incremental).
+    #[serde(default)]
+    pub nlgeom: bool,
 }
 
 /// `[analysis] control`.
@@ -130,6 +135,7 @@ impl Default for AnalysisSpec {
             newton: Default::default(),
             control: Control::Auto,
             arc_length: Default::default(),
+            nlgeom: false,
         }
     }
 }
@@ -1152,6 +1158,11 @@ pub fn build_elements(
             material,
             law,
             options: &options,
+            kinematics: if sf.scene.analysis.nlgeom {
+                Kinematics::Finite
+            } else {
+                Kinematics::Small
+            },
         })
         .map_err(|e| err!("{where_}: {e}"))?;
         out.push(el);
