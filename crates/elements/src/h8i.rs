@@ -85,20 +85,45 @@
 //! off the exact linear field, which h8i reproduces. A two-element skewed
 //! cantilever differs by 0.36 % (tip |u| 1.99897e-5 m here, 1.99176e-5 m ccx).
 //!
+//! ## Large deformation (`nlgeom`)
+//!
+//! Built with [`Kinematics::Finite`], the incompatible modes enhance the
+//! displacement gradient of the total-Lagrangian element
+//! ([`crate::total_lagrangian`]):
+//!
+//! ```text
+//! F = I + Σ_a u_a ⊗ g_a + Σ_k alpha_k ⊗ G_k,    E = (F^T F - I) / 2,   S = C E
+//! ```
+//!
+//! with `G_k` the (Taylor-modified) gradients of `P_k` above, as if the
+//! modes were three extra nodes. The internal parameters are no longer a
+//! linear function of `u`: for each `u` the element solves its own
+//! equations `r_alpha(u, alpha) = Σ_q w_q det J_q P G_k = 0` (`P = F S`) by
+//! Newton from the last converged `alpha` (stored as the element's state,
+//! 9 values), to `|Δalpha| <= 1e-12` of the element's size (at most 25
+//! iterations, then an error that cuts the increment back). With the full
+//! 33 x 33 tangent `[[K_uu, K_ua], [K_au, K_aa]]` of the total-Lagrangian
+//! element at the solution, the condensed tangent
+//! `K = K_uu - K_ua K_aa^-1 K_au` is exact (implicit function theorem) and
+//! symmetric. CalculiX's C3D8I under NLGEOM treats the modes as extra
+//! nodes of the same kind, which gives the same equations.
+//!
 //! ## Outputs and geometry check
 //!
 //! Per integration point, as the other solids: `stress` and `strain` (both
-//! including the incompatible-mode strain `B_a alpha`) and `mises`.
+//! including the incompatible-mode strain `B_a alpha`) and `mises`; under
+//! `nlgeom` the Cauchy stress, the Green strain and `pk2_stress`.
 //! [`Element::check_geometry`] asks `det J > 0` at the 8 Gauss points
 //! (reported as 0..7), the 8 corners (8..15) and the centre (16).
 
 use crate::quadrature::gauss_legendre_3d;
 use crate::shape::hex_shape;
 use crate::solid::von_mises;
+use crate::total_lagrangian as tl;
 use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
 use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
 use junta_core::topology::{CellShape, HEX27_NODES};
-use junta_core::{CoreError, Material, Voigt6};
+use junta_core::{CoreError, Kinematics, Material, Voigt6};
 use nalgebra::{Matrix3, SMatrix, SVector, Vector6};
 use serde::Deserialize;
 use std::sync::Arc;
@@ -148,6 +173,15 @@ struct PointB {
     c: Voigt6,
 }
 
+/// Reference gradients (8 nodes, then 3 modes), volume weight and
+/// elasticity at one Gauss point.
+#[derive(Clone, Copy)]
+struct PointGrad {
+    g: [[f64; 3]; 11],
+    dv: f64,
+    c: Voigt6,
+}
+
 /// The 8-node hexahedron with 9 condensed incompatible modes (see the
 /// module docs).
 #[derive(Clone)]
@@ -160,6 +194,7 @@ pub struct IncompatibleHex8 {
     points: [PointData; 8],
     corners: [PointData; 8],
     centre: PointData,
+    kinematics: Kinematics,
 }
 
 impl std::fmt::Debug for IncompatibleHex8 {
@@ -244,13 +279,19 @@ impl IncompatibleHex8 {
             points,
             corners,
             centre: PointData::new([0.0; 3], 0.0),
+            kinematics: Kinematics::Small,
         }
+    }
+
+    /// The same element with the given kinematics.
+    pub fn with_kinematics(mut self, kinematics: Kinematics) -> Self {
+        self.kinematics = kinematics;
+        self
     }
 
     /// Build from a registry table (no options; a material is required).
     pub fn from_build(build: &ElementBuild<'_>) -> Result<Self, CoreError> {
         let _: H8iOptions = parse_params("element", "h8i", build.options)?;
-        crate::small_strain_only("h8i", build.kinematics)?;
         let material = build
             .material
             .clone()
@@ -261,7 +302,7 @@ impl IncompatibleHex8 {
                           `orthotropic` material named by the block); none was given"
                     .into(),
             })?;
-        Ok(Self::new(material))
+        Ok(Self::new(material).with_kinematics(build.kinematics))
     }
 
     /// The material.
@@ -269,36 +310,57 @@ impl IncompatibleHex8 {
         &self.material
     }
 
-    /// `B_u`, `B_a`, `w det J` and `C` at the 8 Gauss points (`C` at the
-    /// trilinear position `Σ_a N_a x_a` when the material varies in space).
-    fn b_matrices(&self, coords: &[[f64; 3]]) -> Result<[PointB; 8], ElementError> {
+    /// The reference gradients at the 8 Gauss points: the 8 nodes' `g_a`,
+    /// then the 3 modes' Taylor-modified `G_k`; with `w det J` and `C`
+    /// (at the trilinear position `Σ_a N_a x_a` when the material varies
+    /// in space).
+    fn point_gradients(&self, coords: &[[f64; 3]]) -> Result<[PointGrad; 8], ElementError> {
         let (det0, j0inv) = jacobian(&self.centre, coords, 16)?;
+        let mut out = [PointGrad {
+            g: [[0.0; 3]; 11],
+            dv: 0.0,
+            c: self.c,
+        }; 8];
+        for (q, (p, o)) in self.points.iter().zip(out.iter_mut()).enumerate() {
+            let (det, jinv) = jacobian(p, coords, q)?;
+            for (ga, d) in o.g.iter_mut().zip(&p.dn) {
+                // ∂N/∂x_i = Σ_j (J^-1)_ji ∂N/∂xi_j
+                *ga = [0, 1, 2]
+                    .map(|i| jinv[(0, i)] * d[0] + jinv[(1, i)] * d[1] + jinv[(2, i)] * d[2]);
+            }
+            let scale = det0 / det;
+            for k in 0..3 {
+                // (det J0 / det J) J0^-T (-2 xi_k e_k)
+                let s = -2.0 * p.xi[k] * scale;
+                o.g[8 + k] = [0, 1, 2].map(|i| s * j0inv[(k, i)]);
+            }
+            o.dv = p.w * det;
+            if self.varies {
+                o.c = self.material.elasticity_at(position(p, coords));
+            }
+        }
+        Ok(out)
+    }
+
+    /// `B_u`, `B_a`, `w det J` and `C` at the 8 Gauss points.
+    fn b_matrices(&self, coords: &[[f64; 3]]) -> Result<[PointB; 8], ElementError> {
+        let grads = self.point_gradients(coords)?;
         let mut out = [PointB {
             bu: Bu::zeros(),
             ba: Ba::zeros(),
             dv: 0.0,
             c: self.c,
         }; 8];
-        for (q, (p, o)) in self.points.iter().zip(out.iter_mut()).enumerate() {
-            let (det, jinv) = jacobian(p, coords, q)?;
-            for (a, d) in p.dn.iter().enumerate() {
-                // ∂N/∂x_i = Σ_j (J^-1)_ji ∂N/∂xi_j
-                let g = [0, 1, 2]
-                    .map(|i| jinv[(0, i)] * d[0] + jinv[(1, i)] * d[1] + jinv[(2, i)] * d[2]);
+        for (o, pg) in out.iter_mut().zip(&grads) {
+            for (a, &g) in pg.g[..8].iter().enumerate() {
                 put_b(&mut o.bu, 3 * a, g);
             }
-            let scale = det0 / det;
-            for k in 0..3 {
-                // (det J0 / det J) J0^-T (-2 xi_k e_k)
-                let s = -2.0 * p.xi[k] * scale;
-                let g = [0, 1, 2].map(|i| s * j0inv[(k, i)]);
+            for (k, &g) in pg.g[8..].iter().enumerate() {
                 // mode k, component i: column 3 k + i
                 put_b(&mut o.ba, 3 * k, g);
             }
-            o.dv = p.w * det;
-            if self.varies {
-                o.c = self.material.elasticity_at(position(p, coords));
-            }
+            o.dv = pg.dv;
+            o.c = pg.c;
         }
         Ok(out)
     }
@@ -343,6 +405,168 @@ impl IncompatibleHex8 {
     }
 }
 
+/// Dofs of the total-Lagrangian element before condensation (24 + 9).
+const NT: usize = NU + NA;
+
+/// Internal force and full tangent of the uncondensed total-Lagrangian
+/// element at one `(u, alpha)`.
+struct FiniteState {
+    f: [f64; NT],
+    k: [f64; NT * NT],
+}
+
+impl IncompatibleHex8 {
+    /// Internal force (24 + 9) and, if `with_k`, the full 33 x 33 tangent
+    /// of the total-Lagrangian element at the displacements and modes `d`.
+    fn finite_state(
+        &self,
+        grads: &[PointGrad; 8],
+        d: &[f64; NT],
+        with_k: bool,
+        out: &mut FiniteState,
+    ) {
+        out.f.fill(0.0);
+        if with_k {
+            out.k.fill(0.0);
+        }
+        for pg in grads {
+            let f = tl::deformation_gradient(&pg.g, d);
+            let s = pg.c * tl::green_strain(&f);
+            tl::add_internal_force(&pg.g, &f, &s, pg.dv, &mut out.f);
+            if with_k {
+                tl::add_tangent(&pg.g, &f, &s, &pg.c, pg.dv, &mut out.k, NT);
+            }
+        }
+    }
+
+    /// Solve the modes' equations `r_alpha(u, alpha) = 0` by Newton from
+    /// `alpha0`; returns `(u, alpha)` stacked, with the force and full
+    /// tangent there in `out`.
+    fn solve_modes(
+        &self,
+        grads: &[PointGrad; 8],
+        coords: &[[f64; 3]],
+        disp: &[f64],
+        alpha0: &[f64],
+        out: &mut FiniteState,
+    ) -> Result<[f64; NT], ElementError> {
+        let mut d = [0.0; NT];
+        d[..NU].copy_from_slice(&disp[..NU]);
+        d[NU..].copy_from_slice(&alpha0[..NA]);
+        let size = element_size(coords);
+        for _ in 0..MODE_ITERATIONS {
+            self.finite_state(grads, &d, true, out);
+            let kaa = Kaa::from_fn(|r, c| out.k[(NU + r) * NT + NU + c]);
+            let ra = SVector::<f64, NA>::from_column_slice(&out.f[NU..]);
+            let step = kaa.lu().solve(&ra).ok_or_else(singular_modes)?;
+            for (x, dx) in d[NU..].iter_mut().zip(step.iter()) {
+                *x -= dx;
+            }
+            if !step.norm().is_finite() {
+                break;
+            }
+            if step.norm() <= 1e-12 * size {
+                self.finite_state(grads, &d, true, out);
+                return Ok(d);
+            }
+        }
+        Err(ElementError::Law {
+            point: 0,
+            message: format!(
+                "h8i: the incompatible modes did not converge in {MODE_ITERATIONS} Newton iterations (the element is too distorted for this increment)"
+            ),
+        })
+    }
+
+    /// Total-Lagrangian force and condensed tangent
+    /// `K_uu - K_ua K_aa^-1 K_au` (module docs), the modes into `state_trial`.
+    fn compute_finite(
+        &self,
+        ctx: &ElementContext<'_>,
+        state_trial: &mut [f64],
+        f_int: &mut [f64],
+        k: Option<&mut [f64]>,
+    ) -> Result<(), ElementError> {
+        let grads = self.point_gradients(ctx.coords)?;
+        let mut st = FiniteState {
+            f: [0.0; NT],
+            k: [0.0; NT * NT],
+        };
+        let d = self.solve_modes(&grads, ctx.coords, ctx.disp, ctx.state_committed, &mut st)?;
+        state_trial[..NA].copy_from_slice(&d[NU..]);
+        f_int[..NU].copy_from_slice(&st.f[..NU]);
+        if let Some(k) = k {
+            let kaa = Kaa::from_fn(|r, c| st.k[(NU + r) * NT + NU + c]);
+            let kua = Kua::from_fn(|r, c| st.k[r * NT + NU + c]);
+            let x = kaa
+                .lu()
+                .solve(&kua.transpose())
+                .ok_or_else(singular_modes)?;
+            let kc = Kuu::from_fn(|r, c| st.k[r * NT + c]) - kua * x;
+            for r in 0..NU {
+                for c in 0..NU {
+                    k[r * NU + c] = 0.5 * (kc[(r, c)] + kc[(c, r)]);
+                }
+            }
+        }
+        Ok(())
+    }
+    /// Point outputs under `nlgeom`: Cauchy `stress`, Green `strain`,
+    /// `pk2_stress`, with the modes solved from the committed ones.
+    fn point_outputs_finite(
+        &self,
+        ctx: &ElementContext<'_>,
+    ) -> Result<Vec<PointOutput>, ElementError> {
+        let grads = self.point_gradients(ctx.coords)?;
+        let mut st = FiniteState {
+            f: [0.0; NT],
+            k: [0.0; NT * NT],
+        };
+        let d = self.solve_modes(&grads, ctx.coords, ctx.disp, ctx.state_committed, &mut st)?;
+        let mut out = Vec::with_capacity(8);
+        for (p, pg) in self.points.iter().zip(&grads) {
+            let f = tl::deformation_gradient(&pg.g, &d);
+            let e = tl::green_strain(&f);
+            let s = pg.c * e;
+            let sigma = tl::cauchy_stress(&f, &s);
+            out.push(PointOutput {
+                position: position(p, ctx.coords),
+                values: vec![
+                    ("stress", sigma.to_vec()),
+                    ("strain", e.iter().copied().collect()),
+                    ("mises", vec![von_mises(&sigma)]),
+                    ("volume", vec![pg.dv]),
+                    ("pk2_stress", s.iter().copied().collect()),
+                ],
+            });
+        }
+        Ok(out)
+    }
+}
+
+/// Most Newton iterations of the modes' own equations under `nlgeom`.
+const MODE_ITERATIONS: usize = 25;
+
+fn singular_modes() -> ElementError {
+    ElementError::Law {
+        point: 0,
+        message: "h8i: the incompatible-mode tangent K_aa is singular (degenerate element, or a stress state at which the modes buckle)".into(),
+    }
+}
+
+/// The diagonal of the reference nodes' bounding box.
+fn element_size(coords: &[[f64; 3]]) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for x in &coords[..8] {
+        for i in 0..3 {
+            lo[i] = lo[i].min(x[i]);
+            hi[i] = hi[i].max(x[i]);
+        }
+    }
+    ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt()
+}
+
 impl Element for IncompatibleHex8 {
     fn key(&self) -> &'static str {
         "h8i"
@@ -359,18 +583,38 @@ impl Element for IncompatibleHex8 {
     fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
         self.material.directional_modulus(n)
     }
-    /// Small strains and a linear elastic material: `f = K u`.
+    /// Small strains and a linear elastic material: `f = K u`; not so
+    /// under `nlgeom`.
     fn is_linear(&self) -> bool {
-        true
+        self.kinematics == Kinematics::Small
+    }
+    fn kinematics(&self) -> Kinematics {
+        self.kinematics
+    }
+    /// Under `nlgeom` the 9 incompatible-mode parameters (module docs).
+    fn state_len(&self) -> usize {
+        match self.kinematics {
+            Kinematics::Small => 0,
+            Kinematics::Finite => NA,
+        }
+    }
+    fn tangent_kind(&self) -> junta_core::MatrixKind {
+        match self.kinematics {
+            Kinematics::Small => junta_core::MatrixKind::SymmetricPositiveDefinite,
+            Kinematics::Finite => junta_core::MatrixKind::SymmetricIndefinite,
+        }
     }
 
     fn compute(
         &self,
         ctx: &ElementContext<'_>,
-        _state_trial: &mut [f64],
+        state_trial: &mut [f64],
         f_int: &mut [f64],
         k: Option<&mut [f64]>,
     ) -> Result<(), ElementError> {
+        if self.kinematics == Kinematics::Finite {
+            return self.compute_finite(ctx, state_trial, f_int, k);
+        }
         debug_assert!(ctx.coords.len() >= 8 && ctx.disp.len() >= NU && f_int.len() >= NU);
         let b = self.b_matrices(ctx.coords)?;
         let (kua, kaa, kuu) = self.blocks(&b, k.is_some());
@@ -409,6 +653,9 @@ impl Element for IncompatibleHex8 {
     }
 
     fn point_outputs(&self, ctx: &ElementContext<'_>) -> Result<Vec<PointOutput>, ElementError> {
+        if self.kinematics == Kinematics::Finite {
+            return self.point_outputs_finite(ctx);
+        }
         let b = self.b_matrices(ctx.coords)?;
         let (kua, kaa, _) = self.blocks(&b, false);
         let u = SVector::<f64, NU>::from_column_slice(&ctx.disp[..NU]);

@@ -21,6 +21,9 @@
 //! * [`h8i`]: the 8-node hexahedron with incompatible modes
 //!   [`IncompatibleHex8`] (as C3D8I), registered as `h8i`: bends without
 //!   shear locking.
+//! * [`total_lagrangian`]: Green strain, second Piola-Kirchhoff stress and
+//!   the tangent with geometric stiffness, which every solid uses under
+//!   `nlgeom` ([`junta_core::Kinematics::Finite`]).
 //! * [`face_load`]: consistent nodal forces of pressures and tractions on
 //!   solid faces.
 //!
@@ -49,6 +52,7 @@ pub mod material;
 pub mod quadrature;
 pub mod shape;
 pub mod solid;
+pub mod total_lagrangian;
 
 pub use h8i::IncompatibleHex8;
 pub use material::{EngineeringConstants, Isotropic, Orientation, Orthotropic};

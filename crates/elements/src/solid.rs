@@ -1,5 +1,6 @@
-//! Isoparametric hexahedral solid elements (H8, H20, H27) for small-strain
-//! linear elasticity.
+//! Isoparametric hexahedral and wedge solid elements (H8, H20, H27, wedges)
+//! for linear elasticity: small strain, or total-Lagrangian large
+//! deformation under `nlgeom` ([`crate::total_lagrangian`]).
 //!
 //! ## Kinematics
 //!
@@ -70,18 +71,30 @@
 //! fine). Corner `c` is reported as point `num_points + c`. Collapsed
 //! (degenerate) hexahedra therefore fail the check.
 //!
+//! ## Large deformation (`nlgeom`)
+//!
+//! Built with [`Kinematics::Finite`], the element is total-Lagrangian: the
+//! same shape functions, rules and `C` (at the reference position), with
+//! the Green strain, the second Piola-Kirchhoff stress `S = C E` (St.
+//! Venant-Kirchhoff) and the tangent with its geometric stiffness of
+//! [`crate::total_lagrangian`]. The element is then no longer linear
+//! (`is_linear` is false) and its tangent may be indefinite.
+//!
 //! ## Outputs
 //!
-//! Per integration point: `stress` (6), `strain` (6, engineering shear) and
-//! `mises` (1): `sqrt(((sxx-syy)^2 + (syy-szz)^2 + (szz-sxx)^2)/2 +
+//! Per integration point: `stress` (6; under `nlgeom` the Cauchy stress
+//! on the current configuration, with the second Piola-Kirchhoff stress
+//! as `pk2_stress`), `strain` (6, engineering shear; under `nlgeom` the
+//! Green-Lagrange strain) and `mises` (1, of `stress`): `sqrt(((sxx-syy)^2 + (syy-szz)^2 + (szz-sxx)^2)/2 +
 //! 3 (sxy^2 + syz^2 + szx^2))`.
 
 use crate::quadrature::{gauss_legendre_3d, wedge_rule, Rule};
 use crate::shape::solid_shape;
+use crate::total_lagrangian as tl;
 use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
 use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
 use junta_core::topology::{CellShape, HEX27_NODES, WEDGE15_NODES};
-use junta_core::{CoreError, Material, Voigt6};
+use junta_core::{CoreError, Kinematics, Material, Voigt6};
 use nalgebra::{Matrix3, Vector6};
 use serde::Deserialize;
 use std::sync::Arc;
@@ -141,6 +154,7 @@ pub struct SolidElement {
     varies: bool,
     points: Vec<PointData>,
     corners: Vec<PointData>,
+    kinematics: Kinematics,
 }
 
 impl std::fmt::Debug for SolidElement {
@@ -230,7 +244,14 @@ impl SolidElement {
             varies,
             points,
             corners,
+            kinematics: Kinematics::Small,
         })
+    }
+
+    /// The same element with the given kinematics.
+    pub fn with_kinematics(mut self, kinematics: Kinematics) -> Self {
+        self.kinematics = kinematics;
+        self
     }
 
     /// Build for registry key `key` (its shape and default integration),
@@ -242,7 +263,6 @@ impl SolidElement {
         build: &ElementBuild<'_>,
     ) -> Result<Self, CoreError> {
         let opts: SolidOptions = parse_params("element", key, build.options)?;
-        crate::small_strain_only(key, build.kinematics)?;
         let integration = opts.integration.unwrap_or(default);
         if default == Integration::Reduced && integration == Integration::Full {
             return Err(CoreError::InvalidParameters {
@@ -265,14 +285,15 @@ impl SolidElement {
                  material named by the block); none was given"
             ),
             })?;
-        Self::new(shape, integration, material).map_err(|e| match e {
+        let el = Self::new(shape, integration, material).map_err(|e| match e {
             CoreError::InvalidParameters { message, .. } => CoreError::InvalidParameters {
                 kind: "element",
                 key: key.into(),
                 message,
             },
             e => e,
-        })
+        })?;
+        Ok(el.with_kinematics(build.kinematics))
     }
 
     /// The integration rule in use.
@@ -384,31 +405,11 @@ pub fn von_mises(s: &[f64; 6]) -> f64 {
         .sqrt()
 }
 
-impl Element for SolidElement {
-    fn key(&self) -> &'static str {
-        self.key
-    }
-    fn shape(&self) -> CellShape {
-        self.shape
-    }
-    fn num_points(&self) -> usize {
-        self.points.len()
-    }
-    fn reference_modulus(&self) -> Option<f64> {
-        Some(self.material.reference_modulus())
-    }
-    fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
-        self.material.directional_modulus(n)
-    }
-    /// Small strains and a linear elastic material: `f = K u`.
-    fn is_linear(&self) -> bool {
-        true
-    }
-
-    fn compute(
+impl SolidElement {
+    /// Small strain: `f = K u` with `K = ∫ B^T C B dV`.
+    fn compute_small(
         &self,
         ctx: &ElementContext<'_>,
-        _state_trial: &mut [f64],
         f_int: &mut [f64],
         mut k: Option<&mut [f64]>,
     ) -> Result<(), ElementError> {
@@ -476,6 +477,106 @@ impl Element for SolidElement {
         Ok(())
     }
 
+    /// Total-Lagrangian: `f_a = ∫ F S g_a dV0`, `K` with the geometric
+    /// stiffness ([`crate::total_lagrangian`]).
+    fn compute_finite(
+        &self,
+        ctx: &ElementContext<'_>,
+        f_int: &mut [f64],
+        mut k: Option<&mut [f64]>,
+    ) -> Result<(), ElementError> {
+        let nn = self.shape.num_nodes();
+        let ndof = 3 * nn;
+        let f_int = &mut f_int[..ndof];
+        f_int.fill(0.0);
+        if let Some(k) = k.as_deref_mut() {
+            k[..ndof * ndof].fill(0.0);
+        }
+        let mut g = [[0.0; 3]; MAX_NODES];
+        for (q, p) in self.points.iter().enumerate() {
+            let dv = p.w * self.gradients(p, ctx.coords, q, &mut g)?;
+            let c = self.elasticity(p, ctx.coords);
+            let f = tl::deformation_gradient(&g[..nn], ctx.disp);
+            let s = c * tl::green_strain(&f);
+            tl::add_internal_force(&g[..nn], &f, &s, dv, f_int);
+            if let Some(k) = k.as_deref_mut() {
+                tl::add_tangent(&g[..nn], &f, &s, &c, dv, k, ndof);
+            }
+        }
+        Ok(())
+    }
+
+    /// Stress (Cauchy under `nlgeom`), strain (Green's under `nlgeom`) and,
+    /// under `nlgeom`, the second Piola-Kirchhoff stress at point data `p`
+    /// with gradients `g`.
+    fn point_stress(
+        &self,
+        p: &PointData,
+        g: &[[f64; 3]; MAX_NODES],
+        ctx: &ElementContext<'_>,
+    ) -> ([f64; 6], Vector6<f64>, Option<[f64; 6]>) {
+        let c = self.elasticity(p, ctx.coords);
+        match self.kinematics {
+            Kinematics::Small => {
+                let eps = self.strain(g, ctx.disp);
+                ((c * eps).into(), eps, None)
+            }
+            Kinematics::Finite => {
+                let f = tl::deformation_gradient(&g[..self.shape.num_nodes()], ctx.disp);
+                let e = tl::green_strain(&f);
+                let s = c * e;
+                (tl::cauchy_stress(&f, &s), e, Some(s.into()))
+            }
+        }
+    }
+}
+
+impl Element for SolidElement {
+    fn key(&self) -> &'static str {
+        self.key
+    }
+    fn shape(&self) -> CellShape {
+        self.shape
+    }
+    fn num_points(&self) -> usize {
+        self.points.len()
+    }
+    fn reference_modulus(&self) -> Option<f64> {
+        Some(self.material.reference_modulus())
+    }
+    fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
+        self.material.directional_modulus(n)
+    }
+    /// Small strains and a linear elastic material: `f = K u`; not so
+    /// under `nlgeom`.
+    fn is_linear(&self) -> bool {
+        self.kinematics == Kinematics::Small
+    }
+    fn kinematics(&self) -> Kinematics {
+        self.kinematics
+    }
+    /// Symmetric positive definite; under `nlgeom` the geometric stiffness
+    /// makes it indefinite under compression (buckling).
+    fn tangent_kind(&self) -> junta_core::MatrixKind {
+        match self.kinematics {
+            Kinematics::Small => junta_core::MatrixKind::SymmetricPositiveDefinite,
+            Kinematics::Finite => junta_core::MatrixKind::SymmetricIndefinite,
+        }
+    }
+
+    fn compute(
+        &self,
+        ctx: &ElementContext<'_>,
+        _state_trial: &mut [f64],
+        f_int: &mut [f64],
+        k: Option<&mut [f64]>,
+    ) -> Result<(), ElementError> {
+        match self.kinematics {
+            Kinematics::Small => self.compute_small(ctx, f_int, k),
+            Kinematics::Finite => self.compute_finite(ctx, f_int, k),
+        }
+    }
+
     fn check_geometry(&self, coords: &[[f64; 3]]) -> Result<(), ElementError> {
         let mut g = [[0.0; 3]; MAX_NODES];
         for (q, p) in self.points.iter().enumerate() {
@@ -493,18 +594,19 @@ impl Element for SolidElement {
         let mut out = Vec::with_capacity(self.points.len());
         for (q, p) in self.points.iter().enumerate() {
             let det = self.gradients(p, ctx.coords, q, &mut g)?;
-            let eps = self.strain(&g, ctx.disp);
-            let sig = self.elasticity(p, ctx.coords) * eps;
-            let position = self.position(p, ctx.coords);
-            let s: [f64; 6] = sig.into();
+            let (s, eps, pk2) = self.point_stress(p, &g, ctx);
+            let mut values = vec![
+                ("stress", s.to_vec()),
+                ("strain", eps.iter().copied().collect()),
+                ("mises", vec![von_mises(&s)]),
+                ("volume", vec![p.w * det]),
+            ];
+            if let Some(pk2) = pk2 {
+                values.push(("pk2_stress", pk2.to_vec()));
+            }
             out.push(PointOutput {
-                position,
-                values: vec![
-                    ("stress", s.to_vec()),
-                    ("strain", eps.iter().copied().collect()),
-                    ("mises", vec![von_mises(&s)]),
-                    ("volume", vec![p.w * det]),
-                ],
+                position: self.position(p, ctx.coords),
+                values,
             });
         }
         Ok(out)
