@@ -337,6 +337,7 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     }
     // a softening law or NLGEOM: an incremental run (a linear deck with
     // NLGEOM runs incrementally, as in CalculiX)
+    note_nlgeom_pressures(&deck, &file, &mut notes);
     let incremental = if softening || deck_kinematics(&deck) == Kinematics::Finite {
         Some(incremental_program(&deck, &steps, &file, &mut notes)?)
     } else {
@@ -404,6 +405,26 @@ fn deck_kinematics(deck: &InpDeck) -> Kinematics {
         Kinematics::Finite
     } else {
         Kinematics::Small
+    }
+}
+
+/// Under NLGEOM, a note on the first face pressure: Junta applies it on
+/// the reference face (a dead load), CalculiX and Abaqus make it follow the
+/// deformed face.
+fn note_nlgeom_pressures(deck: &InpDeck, file: &str, notes: &mut Vec<String>) {
+    use crate::readers::inp::InpDloadKind;
+    if deck_kinematics(deck) != Kinematics::Finite {
+        return;
+    }
+    if let Some(d) = deck
+        .dloads
+        .iter()
+        .find(|d| matches!(d.kind, InpDloadKind::Pressure(_)))
+    {
+        notes.push(format!(
+            "{file}:{}: under NLGEOM this pressure acts on the reference face, in its reference direction (a dead load); CalculiX and Abaqus make a pressure follow the deformed face, so their answers differ once the face turns",
+            d.line
+        ));
     }
 }
 

@@ -132,7 +132,7 @@ pub const C3D27_TO_OURS: [usize; 27] = [
 pub const SUPPORTED_KEYWORDS: &str =
     "*HEADING, *NODE, *ELEMENT, *NSET, *ELSET, *MATERIAL, *ELASTIC, *DENSITY, \
 *DAMAGE INITIATION, *DAMAGE EVOLUTION, *DAMAGE STABILIZATION, \
-*SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *AMPLITUDE, *DLOAD, *DSLOAD, *SURFACE, *EQUATION, *STEP, *STATIC, *END STEP, \
+*SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *AMPLITUDE, *DLOAD, *DSLOAD, *SURFACE, *EQUATION, *STEP, *STATIC, *CONTROLS, *END STEP, \
 *NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT, *INCLUDE";
 
 /// Element types the reader understands (for messages).
@@ -1581,6 +1581,7 @@ impl<'a> Parser<'a> {
             "DAMAGE EVOLUTION" => self.damage_evolution(line, params, data),
             "DAMAGE STABILIZATION" => self.damage_stabilization(line, params, data),
             "DENSITY" => self.density(line, params, data),
+            "CONTROLS" => self.controls(line, params),
             "SOLID SECTION" => self.solid_section(line, params, data),
             "COHESIVE SECTION" => self.cohesive_section(line, params, data),
             "ORIENTATION" => self.orientation(line, params, data),
@@ -1704,6 +1705,22 @@ impl<'a> Parser<'a> {
         }
         self.deck.notes.push(format!(
             "line {line}: *DENSITY of material `{name}` read but unused (static analysis)"
+        ));
+        Ok(())
+    }
+
+    /// `*CONTROLS [, PARAMETERS=] [, RESET]`: CalculiX's and Abaqus'
+    /// solution controls (convergence criteria, time incrementation),
+    /// read and noted as unused: Junta's Newton criteria apply.
+    fn controls(&mut self, line: usize, params: &Params) -> Result<(), InpError> {
+        self.check_params(
+            line,
+            "CONTROLS",
+            params,
+            &["PARAMETERS", "RESET", "ANALYSIS", "TYPE"],
+        )?;
+        self.deck.notes.push(format!(
+            "line {line}: *CONTROLS read but unused: Junta's own Newton criteria apply (out-of-balance force 1e-6 of the largest force, see [analysis.newton] in docs/path-following.md)"
         ));
         Ok(())
     }
