@@ -52,22 +52,85 @@
 //!   triangle (mid-edges, weights 1/6) gives the corners zero weight, so
 //!   the corner node pairs would carry no stiffness at all.
 //!
-//! Small displacements: the frame is built on the reference geometry.
+//! # Kinematics
 //!
-//! Tangent storage: unless the law declares a general (nonsymmetric)
-//! tangent, the element assembles the symmetric part `(D + D^T) / 2` of the
-//! law's tangent (mixed-mode softening laws have a slightly nonsymmetric
-//! exact tangent where the mode ratio changes with the jump).
+//! Small displacements ([`Kinematics::Small`], the default): the frame and
+//! the area factor are built on the reference geometry, so `B` is constant
+//! and the element is linear in the displacements for a linear law.
+//!
+//! Large rotation ([`Kinematics::Finite`], scene `[analysis] nlgeom =
+//! true`, deck `*STEP, NLGEOM`): the same formulas on the *current*
+//! mid-surface. With `x_a = X_a + u_a`,
+//!
+//! ```text
+//! mid-surface     x(xi, eta) = sum_a N_a (x_bot,a + x_top,a) / 2
+//! tangents        V_xi = dx/dxi,  V_eta = dx/deta       (current)
+//! frame           e1, e2, e3, theta as above, on V_xi, V_eta
+//! gap             g = sum_a N_a (u_top,a - u_bot,a)     (global)
+//! jump            delta = theta^T g
+//! area factor     j = |V_xi x V_eta|                    (current area)
+//! force           F = j theta t(delta)                  (global, per point)
+//!                 f_top,a = + sum_q w_q N_a F,   f_bot,a = - sum_q w_q N_a F
+//! ```
+//!
+//! so a rigid rotation `R` of the loaded element leaves `delta` and `t`
+//! unchanged and turns the forces by `R`. The law still sees `[s1, s2, n]`
+//! and never knows the kinematics.
+//!
+//! Tangent. `V_xi, V_eta` depend on both faces with weight 1/2
+//! (`dV_xi = sum_b dN_b/dxi (du_bot,b + du_top,b) / 2`), `g` on their
+//! difference. Writing `de_i = A_i dV_xi + C_i dV_eta` for the frame,
+//!
+//! ```text
+//! A_1 = (I - e1 e1^T) / |V_xi|                      C_1 = 0
+//! A_3 = -(I - e3 e3^T) [V_eta]x / j                 C_3 = (I - e3 e3^T) [V_xi]x / j
+//! A_2 = -[e1]x A_3 + [e3]x A_1                      C_2 = -[e1]x C_3
+//! dj  = (V_eta x e3) . dV_xi + (e3 x V_xi) . dV_eta
+//! ```
+//!
+//! (`[v]x` the cross-product matrix, `e2 = e3 x e1`), and with `D = dt /
+//! ddelta` the law's exact tangent, the derivative of `F` is
+//!
+//! ```text
+//! dF    = Q dg + P_xi dV_xi + P_eta dV_eta
+//! Q     = j theta D theta^T
+//! P_xi  = j (sum_i t_i A_i + theta D G_xi) + (theta t) (V_eta x e3)^T,  (G_xi)_k = g^T A_k
+//! P_eta = j (sum_i t_i C_i + theta D G_eta) + (theta t) (e3 x V_xi)^T,  (G_eta)_k = g^T C_k
+//! ```
+//!
+//! Summed over the points into the `3m x 3m` blocks `B_ab = sum_q w_q N_a
+//! N_b Q` and `H_ab = sum_q w_q N_a (P_xi dN_b/dxi + P_eta dN_b/deta) / 2`,
+//! the element tangent is
+//!
+//! ```text
+//! K = [[ B - H,  -B - H ],
+//!      [ H - B,   B + H ]]        over (bottom, top) nodes.
+//! ```
+//!
+//! `H` (the frame and area terms) is not symmetric, nor is `D` then
+//! assembled symmetrised: under finite kinematics the element always
+//! assembles the full nonsymmetric tangent with the law's exact `D` and
+//! reports [`MatrixKind::General`]. `check_geometry` still checks the
+//! reference geometry; a current surface that degenerates (crushed to a
+//! line) is a [`ElementError::DegenerateSurface`] at that iteration.
+//!
+//! Tangent storage (small kinematics): unless the law declares a general
+//! (nonsymmetric) tangent, the element assembles the symmetric part `(D +
+//! D^T) / 2` of the law's tangent (mixed-mode softening laws have a
+//! slightly nonsymmetric exact tangent where the mode ratio changes with
+//! the jump).
 //!
 //! Point outputs: `jump`, `traction`, `frame`, `area`, `state`, `failed`,
 //! `failure_index`, then every scalar the law names in
 //! [`InterfaceLaw::output_names`] (e.g. `damage`, `dissipated_energy`).
+//! Under finite kinematics the frame and the area are the current ones; the
+//! output position is on the reference mid-surface.
 
 use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
 use junta_core::law::{InterfaceLaw, LawContext, LawResponse};
 use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
 use junta_core::topology::CellShape;
-use junta_core::CoreError;
+use junta_core::{CoreError, Kinematics, MatrixKind};
 use junta_elements::quadrature::{
     gauss_legendre_2d, gauss_lobatto_2d, triangle_rule, triangle_vertex_rule,
 };
@@ -96,18 +159,22 @@ pub struct InterfaceElement {
     weights: Vec<f64>,
     law: Arc<dyn InterfaceLaw>,
     key: &'static str,
+    kinematics: Kinematics,
 }
 
 /// Local frame and area factor at one point.
 #[derive(Debug, Clone, Copy)]
 struct Frame {
     /// Rows: e1, e2, e3.
-    e: [[f64; 3]; 3],
+    e: M3,
     /// |V_xi x V_eta|.
     jac: f64,
-    /// Mid-surface position.
-    x: [f64; 3],
+    /// The tangents V_xi, V_eta.
+    v: [[f64; 3]; 2],
 }
+
+/// A 3 x 3 matrix, rows first.
+type M3 = [[f64; 3]; 3];
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
@@ -118,6 +185,99 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 fn norm(a: [f64; 3]) -> f64 {
     (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
+fn mat_mul(a: &M3, b: &M3) -> M3 {
+    let mut c = [[0.0; 3]; 3];
+    for (ci, ai) in c.iter_mut().zip(a) {
+        for (k, bk) in b.iter().enumerate() {
+            for (x, y) in ci.iter_mut().zip(bk) {
+                *x += ai[k] * y;
+            }
+        }
+    }
+    c
+}
+/// `[v]x`: the matrix of `w -> v x w`.
+fn skew(v: [f64; 3]) -> M3 {
+    [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]]
+}
+/// `(I - e e^T) / len`: the derivative of `v / |v|` with `e = v / |v|`,
+/// `len = |v|`.
+fn unit_derivative(e: [f64; 3], len: f64) -> M3 {
+    let mut p = [[0.0; 3]; 3];
+    for (i, row) in p.iter_mut().enumerate() {
+        for (j, x) in row.iter_mut().enumerate() {
+            let delta = if i == j { 1.0 } else { 0.0 };
+            *x = (delta - e[i] * e[j]) / len;
+        }
+    }
+    p
+}
+
+/// Derivatives of the frame rows and of the area factor with respect to
+/// one tangent vector `V` (V_xi or V_eta): `de_i = de[i] dV`, `dj = dj . dV`.
+struct FrameDerivative {
+    de: [M3; 3],
+    dj: [f64; 3],
+}
+
+/// The frame's derivatives with respect to V_xi and V_eta (module docs:
+/// `A_i`, `C_i` and the area terms).
+fn frame_derivatives(fr: &Frame) -> [FrameDerivative; 2] {
+    let [e1, _, e3] = fr.e;
+    let [vxi, veta] = fr.v;
+    let neg = |m: M3| m.map(|r| r.map(|x| -x));
+    // e1 = V_xi / |V_xi|; e3 = n / j with dn = -[V_eta]x dV_xi + [V_xi]x dV_eta
+    let a1 = unit_derivative(e1, norm(vxi));
+    let d3 = unit_derivative(e3, fr.jac);
+    let a3 = neg(mat_mul(&d3, &skew(veta)));
+    let c3 = mat_mul(&d3, &skew(vxi));
+    // e2 = e3 x e1: de2 = -[e1]x de3 + [e3]x de1
+    let (s1, s3) = (skew(e1), skew(e3));
+    let (s1a3, s3a1) = (mat_mul(&s1, &a3), mat_mul(&s3, &a1));
+    let a2 = [0, 1, 2].map(|i| [0, 1, 2].map(|j| s3a1[i][j] - s1a3[i][j]));
+    let c2 = neg(mat_mul(&s1, &c3));
+    [
+        FrameDerivative {
+            de: [a1, a2, a3],
+            dj: cross(veta, e3),
+        },
+        FrameDerivative {
+            de: [[[0.0; 3]; 3], c2, c3],
+            dj: cross(e3, vxi),
+        },
+    ]
+}
+
+/// `P = j (sum_i t_i de_i + theta D G) + (theta t) dj^T` with `G_k = g^T
+/// de_k`: the derivative of the point force `F = j theta t` with respect to
+/// one tangent vector (module docs), for traction `t`, law tangent `d` and
+/// global gap `g`.
+fn frame_force_derivative(
+    fr: &Frame,
+    fd: &FrameDerivative,
+    t: [f64; 3],
+    d: &M3,
+    g: [f64; 3],
+) -> M3 {
+    let e = &fr.e;
+    // G_k = g^T de_k, then D G
+    let gk = fd
+        .de
+        .map(|a| [0, 1, 2].map(|c| g[0] * a[0][c] + g[1] * a[1][c] + g[2] * a[2][c]));
+    let dg = mat_mul(d, &gk);
+    let tg = [0, 1, 2].map(|c| e[0][c] * t[0] + e[1][c] * t[1] + e[2][c] * t[2]);
+    let mut p = [[0.0; 3]; 3];
+    for (c, row) in p.iter_mut().enumerate() {
+        for (k, x) in row.iter_mut().enumerate() {
+            let mut s = 0.0;
+            for i in 0..3 {
+                s += t[i] * fd.de[i][c][k] + e[i][c] * dg[i][k];
+            }
+            *x = fr.jac * s + tg[c] * fd.dj[k];
+        }
+    }
+    p
 }
 
 impl InterfaceElement {
@@ -166,7 +326,16 @@ impl InterfaceElement {
             weights: r.weights,
             law,
             key,
+            kinematics: Kinematics::Small,
         })
+    }
+
+    /// The same element with kinematics `k` (small by default; finite
+    /// frames the jump on the current mid-surface: see the
+    /// [module docs](self)).
+    pub fn with_kinematics(mut self, k: Kinematics) -> Self {
+        self.kinematics = k;
+        self
     }
 
     /// The traction law.
@@ -188,25 +357,57 @@ impl InterfaceElement {
         self.face.num_nodes()
     }
 
-    /// Shape functions and frame at point `q`.
+    /// Shape functions `n` and their derivatives `dn` at point `q`.
+    fn shape_at(&self, q: usize, n: &mut [f64; 9], dn: &mut [[f64; 2]; 9]) {
+        let m = self.m();
+        surface_shape(self.face, self.points[q], &mut n[..m], &mut dn[..m]);
+    }
+
+    /// Shape functions and frame at point `q` on the reference geometry.
     fn frame(
         &self,
         coords: &[[f64; 3]],
         q: usize,
         n: &mut [f64; 9],
     ) -> Result<Frame, ElementError> {
-        let m = self.m();
         let mut dn = [[0.0; 2]; 9];
-        surface_shape(self.face, self.points[q], &mut n[..m], &mut dn[..m]);
+        self.shape_at(q, n, &mut dn);
+        self.frame_on(q, &dn, |a, c| coords[a][c])
+    }
+
+    /// Shape functions and frame at point `q` in the element's kinematics:
+    /// on the reference geometry (small) or on the current one (finite).
+    fn point_frame(
+        &self,
+        ctx: &ElementContext<'_>,
+        q: usize,
+        n: &mut [f64; 9],
+        dn: &mut [[f64; 2]; 9],
+    ) -> Result<Frame, ElementError> {
+        self.shape_at(q, n, dn);
+        let (x, u) = (ctx.coords, ctx.disp);
+        match self.kinematics {
+            Kinematics::Small => self.frame_on(q, dn, |a, c| x[a][c]),
+            Kinematics::Finite => self.frame_on(q, dn, |a, c| x[a][c] + u[3 * a + c]),
+        }
+    }
+
+    /// Frame at point `q` (shape derivatives `dn`) of the mid-surface of
+    /// the nodal positions `pos(node, component)`.
+    fn frame_on(
+        &self,
+        q: usize,
+        dn: &[[f64; 2]; 9],
+        pos: impl Fn(usize, usize) -> f64,
+    ) -> Result<Frame, ElementError> {
+        let m = self.m();
         let mut vxi = [0.0; 3];
         let mut veta = [0.0; 3];
-        let mut x = [0.0; 3];
-        for a in 0..m {
+        for (a, d) in dn.iter().enumerate().take(m) {
             for c in 0..3 {
-                let xm = 0.5 * (coords[a][c] + coords[m + a][c]);
-                x[c] += n[a] * xm;
-                vxi[c] += dn[a][0] * xm;
-                veta[c] += dn[a][1] * xm;
+                let xm = 0.5 * (pos(a, c) + pos(m + a, c));
+                vxi[c] += d[0] * xm;
+                veta[c] += d[1] * xm;
             }
         }
         let nv = cross(vxi, veta);
@@ -225,12 +426,24 @@ impl InterfaceElement {
         Ok(Frame {
             e: [e1, e2, e3],
             jac,
-            x,
+            v: [vxi, veta],
         })
     }
 
-    /// Local jump at point `q`.
-    fn jump(&self, f: &Frame, n: &[f64; 9], disp: &[f64]) -> [f64; 3] {
+    /// Reference mid-surface position at shape functions `n`.
+    fn reference_position(&self, coords: &[[f64; 3]], n: &[f64; 9]) -> [f64; 3] {
+        let m = self.m();
+        let mut x = [0.0; 3];
+        for a in 0..m {
+            for c in 0..3 {
+                x[c] += n[a] * (0.5 * (coords[a][c] + coords[m + a][c]));
+            }
+        }
+        x
+    }
+
+    /// Global gap `g = sum_a N_a (u_top,a - u_bot,a)` at shape functions `n`.
+    fn gap(&self, n: &[f64; 9], disp: &[f64]) -> [f64; 3] {
         let m = self.m();
         let mut g = [0.0; 3];
         for a in 0..m {
@@ -238,6 +451,12 @@ impl InterfaceElement {
                 g[c] += n[a] * (disp[3 * (m + a) + c] - disp[3 * a + c]);
             }
         }
+        g
+    }
+
+    /// Local jump at a point (frame `f`, shape functions `n`).
+    fn jump(&self, f: &Frame, n: &[f64; 9], disp: &[f64]) -> [f64; 3] {
+        let g = self.gap(n, disp);
         [0, 1, 2].map(|i| f.e[i][0] * g[0] + f.e[i][1] * g[1] + f.e[i][2] * g[2])
     }
     /// The law's response at point `q` (frame `fr`, shape functions `n`),
@@ -299,7 +518,102 @@ impl InterfaceElement {
             })?;
         Ok(Some(&own[..np]))
     }
+
+    /// `B += N_a N_b theta D theta^T da`, the jump block of one point.
+    fn add_jump_block(&self, bk: &mut FaceBlock, n: &[f64; 9], fr: &Frame, dt: &M3, da: f64) {
+        let m = self.m();
+        let e = &fr.e;
+        // G = theta D theta^T (global 3x3)
+        let mut g = [[0.0; 3]; 3];
+        for c in 0..3 {
+            for d in 0..3 {
+                let mut s = 0.0;
+                for i in 0..3 {
+                    for j in 0..3 {
+                        s += e[i][c] * dt[i][j] * e[j][d];
+                    }
+                }
+                g[c][d] = s * da;
+            }
+        }
+        for a in 0..m {
+            if n[a] == 0.0 {
+                continue;
+            }
+            for b in 0..m {
+                let w = n[a] * n[b];
+                for (c, gc) in g.iter().enumerate() {
+                    let row = &mut bk[3 * a + c][3 * b..3 * b + 3];
+                    for (x, gcd) in row.iter_mut().zip(gc) {
+                        *x += w * gcd;
+                    }
+                }
+            }
+        }
+    }
+
+    /// `H += w N_a (P_xi dN_b/dxi + P_eta dN_b/deta) / 2`, the frame and
+    /// area block of one point (finite kinematics; weight `w`).
+    fn add_frame_block(
+        &self,
+        hk: &mut FaceBlock,
+        n: &[f64; 9],
+        dn: &[[f64; 2]; 9],
+        p: [&M3; 2],
+        w: f64,
+    ) {
+        let m = self.m();
+        for a in 0..m {
+            if n[a] == 0.0 {
+                continue;
+            }
+            let s = 0.5 * w * n[a];
+            for b in 0..m {
+                let (sx, se) = (s * dn[b][0], s * dn[b][1]);
+                for c in 0..3 {
+                    let row = &mut hk[3 * a + c][3 * b..3 * b + 3];
+                    for (d, x) in row.iter_mut().enumerate() {
+                        *x += sx * p[0][c][d] + se * p[1][c][d];
+                    }
+                }
+            }
+        }
+    }
+
+    /// Write `K = [[B - H, -B - H], [H - B, B + H]]` (row-major, 6m x 6m);
+    /// `H = 0` (`None`) under small kinematics.
+    fn write_tangent(&self, k: &mut [f64], bk: &FaceBlock, hk: Option<&FaceBlock>) {
+        let h = 3 * self.m();
+        let nd = 2 * h;
+        for i in 0..h {
+            let (top, bottom) = (i * nd, (h + i) * nd);
+            for j in 0..h {
+                let v = bk[i][j];
+                match hk {
+                    None => {
+                        k[top + j] = v;
+                        k[top + h + j] = -v;
+                        k[bottom + j] = -v;
+                        k[bottom + h + j] = v;
+                    }
+                    Some(hk) => {
+                        let g = hk[i][j];
+                        k[top + j] = v - g;
+                        k[top + h + j] = -v - g;
+                        k[bottom + j] = g - v;
+                        k[bottom + h + j] = v + g;
+                    }
+                }
+            }
+        }
+    }
 }
+
+/// Most dofs of one face (INTER18: 9 nodes).
+const MAX_FACE_DOFS: usize = 3 * 9;
+
+/// A `3m x 3m` block over one face's dofs.
+type FaceBlock = [[f64; MAX_FACE_DOFS]; MAX_FACE_DOFS];
 
 /// Most integration points of an interface element (INTER18: 9).
 const MAX_POINTS: usize = 16;
@@ -334,21 +648,23 @@ impl Element for InterfaceElement {
         k: Option<&mut [f64]>,
     ) -> Result<(), ElementError> {
         let m = self.m();
-        let nd = 6 * m;
-        f_int[..nd].iter_mut().for_each(|v| *v = 0.0);
-        // K = [[B, -B], [-B, B]] over (bottom, top) nodes, with the 3m x 3m
-        // block B = sum_q N_a N_b G_q da accumulated first
-        const MAX: usize = 3 * 9;
-        let mut bk = [[0.0f64; MAX]; MAX];
+        f_int[..6 * m].iter_mut().for_each(|v| *v = 0.0);
+        // K = [[B - H, -B - H], [H - B, B + H]] over (bottom, top) nodes,
+        // with the 3m x 3m blocks B = sum_q N_a N_b G_q da and (finite
+        // kinematics only) H, the frame and area terms, accumulated first
+        let mut bk = [[0.0f64; MAX_FACE_DOFS]; MAX_FACE_DOFS];
+        let mut hk = [[0.0f64; MAX_FACE_DOFS]; MAX_FACE_DOFS];
         let want_k = k.is_some();
+        let finite = self.kinematics == Kinematics::Finite;
         let sl = self.law.state_len();
         let symmetric =
-            self.law.tangent_kind() != junta_core::MatrixKind::General && !ctx.step.exact_tangent;
+            !finite && self.law.tangent_kind() != MatrixKind::General && !ctx.step.exact_tangent;
         let mut n = [0.0; 9];
+        let mut dn = [[0.0; 2]; 9];
         let mut own = [LawResponse::default(); MAX_POINTS];
         let batch = self.batch_responses(ctx, state_trial, &mut own)?;
         for q in 0..self.points.len() {
-            let fr = self.frame(ctx.coords, q, &mut n)?;
+            let fr = self.point_frame(ctx, q, &mut n, &mut dn)?;
             let r = match batch {
                 Some(rs) => rs[q],
                 None => {
@@ -380,47 +696,18 @@ impl Element for InterfaceElement {
                         dt[j][i] = a;
                     }
                 }
-                // G = theta D theta^T (global 3x3)
-                let mut g = [[0.0; 3]; 3];
-                for c in 0..3 {
-                    for d in 0..3 {
-                        let mut s = 0.0;
-                        for i in 0..3 {
-                            for j in 0..3 {
-                                s += e[i][c] * dt[i][j] * e[j][d];
-                            }
-                        }
-                        g[c][d] = s * da;
-                    }
-                }
-                for a in 0..m {
-                    if n[a] == 0.0 {
-                        continue;
-                    }
-                    for b in 0..m {
-                        let w = n[a] * n[b];
-                        for (c, gc) in g.iter().enumerate() {
-                            let row = &mut bk[3 * a + c][3 * b..3 * b + 3];
-                            for (x, gcd) in row.iter_mut().zip(gc) {
-                                *x += w * gcd;
-                            }
-                        }
-                    }
+                self.add_jump_block(&mut bk, &n, &fr, &dt, da);
+                if finite {
+                    let g = self.gap(&n, ctx.disp);
+                    let [dx, de] = frame_derivatives(&fr);
+                    let px = frame_force_derivative(&fr, &dx, r.traction, &dt, g);
+                    let pe = frame_force_derivative(&fr, &de, r.traction, &dt, g);
+                    self.add_frame_block(&mut hk, &n, &dn, [&px, &pe], self.weights[q]);
                 }
             }
         }
         if let Some(k) = k {
-            let h = 3 * m;
-            for (i, row) in bk.iter().enumerate().take(h) {
-                let src = &row[..h];
-                let (top, bottom) = (i * nd, (h + i) * nd);
-                for (j, &v) in src.iter().enumerate() {
-                    k[top + j] = v;
-                    k[top + h + j] = -v;
-                    k[bottom + j] = -v;
-                    k[bottom + h + j] = v;
-                }
-            }
+            self.write_tangent(k, &bk, finite.then_some(&hk));
         }
         Ok(())
     }
@@ -435,8 +722,9 @@ impl Element for InterfaceElement {
         out: &mut [[f64; 3]],
     ) -> Result<(), ElementError> {
         let mut n = [0.0; 9];
+        let mut dn = [[0.0; 2]; 9];
         for (q, j) in out.iter_mut().enumerate().take(self.points.len()) {
-            let fr = self.frame(ctx.coords, q, &mut n)?;
+            let fr = self.point_frame(ctx, q, &mut n, &mut dn)?;
             *j = self.jump(&fr, &n, ctx.disp);
         }
         Ok(())
@@ -454,12 +742,13 @@ impl Element for InterfaceElement {
         let sl = self.law.state_len();
         let mut trial = vec![0.0; sl];
         let mut n = [0.0; 9];
+        let mut dn = [[0.0; 2]; 9];
         let mut out = Vec::with_capacity(self.points.len());
         let mut own = [LawResponse::default(); MAX_POINTS];
         let mut trial_all = vec![0.0; sl * self.points.len()];
         let batch = self.batch_responses(ctx, &mut trial_all, &mut own)?;
         for q in 0..self.points.len() {
-            let fr = self.frame(ctx.coords, q, &mut n)?;
+            let fr = self.point_frame(ctx, q, &mut n, &mut dn)?;
             let jump = self.jump(&fr, &n, ctx.disp);
             let committed = &ctx.state_committed[q * sl..(q + 1) * sl];
             let r = match batch {
@@ -496,7 +785,7 @@ impl Element for InterfaceElement {
                     .map(|(n, v)| (*n, vec![*v])),
             );
             out.push(PointOutput {
-                position: fr.x,
+                position: self.reference_position(ctx.coords, &n),
                 values,
             });
         }
@@ -507,13 +796,22 @@ impl Element for InterfaceElement {
         Some(self.law.initial_stiffness())
     }
 
-    fn tangent_kind(&self) -> junta_core::MatrixKind {
-        self.law.tangent_kind()
+    fn tangent_kind(&self) -> MatrixKind {
+        match self.kinematics {
+            Kinematics::Small => self.law.tangent_kind(),
+            // the frame and area terms make the tangent nonsymmetric
+            Kinematics::Finite => MatrixKind::General,
+        }
     }
 
     fn symmetrises_tangent(&self) -> bool {
-        self.law.tangent_kind() != junta_core::MatrixKind::General
+        self.kinematics == Kinematics::Small
+            && self.law.tangent_kind() != MatrixKind::General
             && self.law.tangent_is_symmetrised()
+    }
+
+    fn kinematics(&self) -> Kinematics {
+        self.kinematics
     }
 
     fn fracture_properties(&self) -> Option<junta_core::FractureProperties> {
@@ -545,18 +843,16 @@ struct Options {
 
 fn build(shape: CellShape, key: &str, b: &ElementBuild<'_>) -> Result<Arc<dyn Element>, CoreError> {
     let o: Options = parse_params("element", key, b.options)?;
-    junta_elements::small_strain_only(key, b.kinematics)?;
     let law = b.law.clone().ok_or_else(|| CoreError::InvalidParameters {
         kind: "element",
         key: key.into(),
         message: "an interface element needs a traction law (e.g. `law = \"linear_penalty\"`)"
             .into(),
     })?;
-    Ok(Arc::new(InterfaceElement::new(
-        shape,
-        o.integration.unwrap_or(InterfaceRule::Gauss),
-        law,
-    )?))
+    Ok(Arc::new(
+        InterfaceElement::new(shape, o.integration.unwrap_or(InterfaceRule::Gauss), law)?
+            .with_kinematics(b.kinematics),
+    ))
 }
 
 const OPTIONS: &[ParamDoc] = &[ParamDoc {
