@@ -241,3 +241,32 @@ fn nlgeom_decks_match_calculix() {
         }
     }
 }
+
+/// Under nlgeom the VTU names both stresses: `stress` (Cauchy) and
+/// `pk2_stress`; a small-strain run writes no `pk2_stress`.
+#[test]
+fn nlgeom_vtu_names_cauchy_and_second_piola_kirchhoff_stress() {
+    let tmp = tempfile::tempdir().unwrap();
+    for nlgeom in [true, false] {
+        let scene = format!(
+            "[materials.m]\ntype = \"isotropic\"\nE = 1000.0\nnu = 0.3\n[mesh]\ntype = \"box\"\nsize = [4.0, 1.0, 1.0]\ndivisions = [2, 1, 1]\nelement = \"h8\"\nmaterial = \"m\"\n[[boundary]]\nset = \"x0\"\nfixed = \"all\"\n[[boundary]]\nset = \"x1\"\ndisplacement = {{ x = 1.0 }}\n[analysis]\ntype = \"static\"\nnlgeom = {nlgeom}\n"
+        );
+        let input = tmp.path().join(format!("bar_{nlgeom}.toml"));
+        std::fs::write(&input, scene).unwrap();
+        let out = tmp.path().join(format!("bar_{nlgeom}"));
+        run_ok(&input, &out);
+        let frames: Vec<_> = std::fs::read_dir(out.join("frames")).unwrap().collect();
+        let last = frames
+            .iter()
+            .map(|f| f.as_ref().unwrap().path())
+            .max()
+            .unwrap();
+        let vtu = std::fs::read_to_string(last).unwrap();
+        assert!(vtu.contains("Name=\"stress\""));
+        assert_eq!(
+            vtu.contains("Name=\"pk2_stress\""),
+            nlgeom,
+            "nlgeom = {nlgeom}"
+        );
+    }
+}

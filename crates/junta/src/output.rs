@@ -38,6 +38,9 @@ pub struct CellResults {
     pub stress: Vec<[f64; 6]>,
     /// Average von Mises stress per cell.
     pub mises: Vec<f64>,
+    /// Average second Piola-Kirchhoff stress per cell, when an element
+    /// reports it (large deformation: `stress` is then the Cauchy stress).
+    pub pk2_stress: Option<Vec<[f64; 6]>>,
 }
 
 /// Average integration-point outputs over each solid cell.
@@ -55,6 +58,8 @@ pub fn cell_results_at(
 ) -> Result<CellResults> {
     let mut stress = Vec::with_capacity(model.mesh.num_elements());
     let mut mises = Vec::with_capacity(model.mesh.num_elements());
+    let mut pk2 = Vec::with_capacity(model.mesh.num_elements());
+    let mut any_pk2 = false;
     let mut ranges = Vec::new();
     for (bi, b) in model.mesh.blocks.iter().enumerate() {
         if !b.shape.is_solid() {
@@ -73,6 +78,7 @@ pub fn cell_results_at(
                 }
             }
             let mut s = [0.0; 6];
+            let mut s2 = [0.0; 6];
             let mut m = 0.0;
             let np = pts.len().max(1) as f64;
             for p in &pts {
@@ -81,11 +87,18 @@ pub fn cell_results_at(
                         s[k] += v[k] / np;
                     }
                 }
+                if let Some(v) = p.get("pk2_stress") {
+                    any_pk2 = true;
+                    for k in 0..6 {
+                        s2[k] += v[k] / np;
+                    }
+                }
                 if let Some(v) = p.get("mises") {
                     m += v[0] / np;
                 }
             }
             stress.push(s);
+            pk2.push(s2);
             mises.push(m);
         }
         ranges.push((b.name.clone(), lo, hi));
@@ -94,6 +107,7 @@ pub fn cell_results_at(
         ranges,
         stress,
         mises,
+        pk2_stress: any_pk2.then_some(pk2),
     })
 }
 
@@ -277,6 +291,14 @@ pub fn write_vtu(path: &Path, model: &Model, u: &[f64], cells: &CellResults) -> 
             cells.stress.iter().flat_map(|s| s.iter().copied()),
         )?;
         write_array(&mut w, "mises", 1, cells.mises.iter().copied())?;
+        if let Some(pk2) = &cells.pk2_stress {
+            write_array(
+                &mut w,
+                "pk2_stress",
+                6,
+                pk2.iter().flat_map(|s| s.iter().copied()),
+            )?;
+        }
         write_array(&mut w, "block", 1, block_ids)?;
         write_ints(&mut w, "element_id", "Int64", element_ids)?;
         writeln!(w, "      </CellData>")?;
