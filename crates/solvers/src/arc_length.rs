@@ -1773,7 +1773,10 @@ impl PathAttempt<'_, '_> {
     /// step leaves the constraint unmet; the next iteration's constraint,
     /// written on the accumulated increment, restores it. This breaks the
     /// two-cycle of Newton across the kink of a softening law (elastic <->
-    /// damaging). The trial point and `Δu` move by `s (du, dlambda)`.
+    /// damaging). Under finite kinematics the full step is taken whenever
+    /// the elements evaluate at it, as in the Newton driver
+    /// (`Work::takes_full_step`). The trial point and `Δu` move by
+    /// `s (du, dlambda)`.
     fn line_search(&mut self, it: usize, dl: f64) -> Result<(), Abort<Attempt>> {
         self.w.u_base.copy_from_slice(&self.w.u);
         let lambda_base = self.lambda;
@@ -1796,7 +1799,9 @@ impl PathAttempt<'_, '_> {
                 if !matches!(best, Some((_, b)) if b <= ev.abs) {
                     best = Some((step_len, ev.abs));
                 }
-                if ev.abs <= (1.0 - 1e-4 * step_len) * rho_before {
+                if ev.abs <= (1.0 - 1e-4 * step_len) * rho_before
+                    || self.w.takes_full_step(step_len)
+                {
                     break;
                 }
             }

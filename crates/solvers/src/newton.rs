@@ -1214,7 +1214,7 @@ impl<'m> Work<'m> {
     /// `crates/cli/tests/large_deformation.rs`) then needs 13 iterations
     /// where the full ones need 8. The step is still halved when an
     /// element fails (an inverted element, the modes of `h8i` not found).
-    fn takes_full_step(&self, s: f64) -> bool {
+    pub(crate) fn takes_full_step(&self, s: f64) -> bool {
         self.finite_kinematics && s == 1.0
     }
 
