@@ -89,6 +89,14 @@
 //!
 //! Per integration point, as the other solids: `stress` and `strain` (both
 //! including the incompatible-mode strain `B_a alpha`) and `mises`.
+//!
+//! ## Thermal strain
+//!
+//! With a thermal strain `eps_th` ([`crate::thermal`]) the stress is
+//! `C (B_u u + B_a alpha - eps_th)` and the modes' balance gains the
+//! thermal force `f_a = ∫ B_a^T C eps_th dV`: `alpha = -K_aa^-1 (K_au u -
+//! f_a)` (zero extra for a uniform `eps_th` and `C`, since `∫ B_a dV = 0`).
+//! The tangent does not change.
 //! [`Element::check_geometry`] asks `det J > 0` at the 8 Gauss points
 //! (reported as 0..7), the 8 corners (8..15) and the centre (16).
 
@@ -375,11 +383,13 @@ impl Element for IncompatibleHex8 {
         let b = self.b_matrices(ctx.coords)?;
         let (kua, kaa, kuu) = self.blocks(&b, k.is_some());
         let u = SVector::<f64, NU>::from_column_slice(&ctx.disp[..NU]);
-        let (alpha, chol) = Self::condense(&kua, kaa, &u)?;
+        let (mut alpha, chol) = Self::condense(&kua, kaa, &u)?;
+        let th = self.thermal_strains(ctx);
+        alpha += chol.solve(&thermal_mode_force(&b, &th));
         // f_int from the stresses (= K u for this linear element)
         let mut f = SVector::<f64, NU>::zeros();
-        for p in &b {
-            let sig = p.c * (p.bu * u + p.ba * alpha);
+        for (p, th) in b.iter().zip(&th) {
+            let sig = p.c * (p.bu * u + p.ba * alpha - th);
             f += p.bu.transpose() * sig * p.dv;
         }
         f_int[..NU].copy_from_slice(f.as_slice());
@@ -412,11 +422,13 @@ impl Element for IncompatibleHex8 {
         let b = self.b_matrices(ctx.coords)?;
         let (kua, kaa, _) = self.blocks(&b, false);
         let u = SVector::<f64, NU>::from_column_slice(&ctx.disp[..NU]);
-        let (alpha, _) = Self::condense(&kua, kaa, &u)?;
+        let (mut alpha, chol) = Self::condense(&kua, kaa, &u)?;
+        let th = self.thermal_strains(ctx);
+        alpha += chol.solve(&thermal_mode_force(&b, &th));
         let mut out = Vec::with_capacity(8);
-        for (p, pb) in self.points.iter().zip(&b) {
+        for ((p, pb), th) in self.points.iter().zip(&b).zip(&th) {
             let eps: Vector6<f64> = pb.bu * u + pb.ba * alpha;
-            let s: [f64; 6] = (pb.c * eps).into();
+            let s: [f64; 6] = (pb.c * (eps - th)).into();
             let position = position(p, ctx.coords);
             out.push(PointOutput {
                 position,
@@ -427,9 +439,33 @@ impl Element for IncompatibleHex8 {
                     ("volume", vec![pb.dv]),
                 ],
             });
+            if ctx.temperature.is_some() {
+                let v = &mut out.last_mut().expect("pushed").values;
+                v.push(("thermal_strain", th.iter().copied().collect()));
+            }
         }
         Ok(out)
     }
+}
+
+impl IncompatibleHex8 {
+    /// The thermal strain at the 8 Gauss points ([`crate::thermal`]).
+    fn thermal_strains(&self, ctx: &ElementContext<'_>) -> [Vector6<f64>; 8] {
+        let m = &*self.material;
+        self.points
+            .map(|p| crate::thermal::point_thermal_strain(m, &p.n, ctx.coords, ctx.temperature))
+    }
+}
+
+/// The modes' thermal force `∫ B_a^T C eps_th dV` (module docs).
+fn thermal_mode_force(b: &[PointB; 8], th: &[Vector6<f64>; 8]) -> SVector<f64, NA> {
+    let mut f = SVector::<f64, NA>::zeros();
+    for (p, th) in b.iter().zip(th) {
+        if *th != Vector6::zeros() {
+            f += p.ba.transpose() * (p.c * th) * p.dv;
+        }
+    }
+    f
 }
 
 const H8I_PARAMS: &[ParamDoc] = &[];

@@ -23,6 +23,8 @@
 //!   shear locking.
 //! * [`face_load`]: consistent nodal forces of pressures and tractions on
 //!   solid faces.
+//! * [`thermal`]: the thermal strain of a temperature change at an
+//!   integration point (the materials' expansion coefficients).
 //!
 //! Every material and element is registered in the
 //! [`junta_core::registry`] with `inventory`; a binary that wants them must
@@ -49,6 +51,7 @@ pub mod material;
 pub mod quadrature;
 pub mod shape;
 pub mod solid;
+pub mod thermal;
 
 pub use h8i::IncompatibleHex8;
 pub use material::{EngineeringConstants, Isotropic, Orientation, Orthotropic};

@@ -72,12 +72,17 @@
 //!
 //! ## Outputs
 //!
+//! Under a temperature change the stress is `C (eps - eps_th)` with the
+//! thermal strain of [`crate::thermal`] (`thermal_strain` is then an
+//! output too); the tangent does not change.
+//!
 //! Per integration point: `stress` (6), `strain` (6, engineering shear) and
 //! `mises` (1): `sqrt(((sxx-syy)^2 + (syy-szz)^2 + (szz-sxx)^2)/2 +
 //! 3 (sxy^2 + syz^2 + szx^2))`.
 
 use crate::quadrature::{gauss_legendre_3d, wedge_rule, Rule};
 use crate::shape::solid_shape;
+use crate::thermal::point_thermal_strain;
 use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
 use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
 use junta_core::topology::{CellShape, HEX27_NODES, WEDGE15_NODES};
@@ -428,7 +433,9 @@ impl Element for SolidElement {
             let det = self.gradients(p, ctx.coords, q, &mut g)?;
             let dv = p.w * det;
             let c = &self.elasticity(p, ctx.coords);
-            let eps = self.strain(&g, ctx.disp);
+            let eps_th =
+                point_thermal_strain(&*self.material, &p.n[..nn], ctx.coords, ctx.temperature);
+            let eps = self.strain(&g, ctx.disp) - eps_th;
             let sig = c * eps;
             let s: [f64; 6] = sig.into();
             for a in 0..nn {
@@ -494,7 +501,10 @@ impl Element for SolidElement {
         for (q, p) in self.points.iter().enumerate() {
             let det = self.gradients(p, ctx.coords, q, &mut g)?;
             let eps = self.strain(&g, ctx.disp);
-            let sig = self.elasticity(p, ctx.coords) * eps;
+            let nn = self.shape.num_nodes();
+            let eps_th =
+                point_thermal_strain(&*self.material, &p.n[..nn], ctx.coords, ctx.temperature);
+            let sig = self.elasticity(p, ctx.coords) * (eps - eps_th);
             let position = self.position(p, ctx.coords);
             let s: [f64; 6] = sig.into();
             out.push(PointOutput {
@@ -506,6 +516,10 @@ impl Element for SolidElement {
                     ("volume", vec![p.w * det]),
                 ],
             });
+            if ctx.temperature.is_some() {
+                let v = &mut out.last_mut().expect("pushed").values;
+                v.push(("thermal_strain", eps_th.iter().copied().collect()));
+            }
         }
         Ok(out)
     }

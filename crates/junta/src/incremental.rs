@@ -196,6 +196,7 @@ impl Engine<'_> {
             delta_load_factor: r.delta_lambda,
             secant: false,
             exact_tangent: false,
+            temperature_factor: r.temperature_factor,
         };
         let ifs = output::interface_results_at(model, v.u, v.state, step)?;
         let row = self.row_of(v, &ifs)?;
@@ -293,6 +294,7 @@ impl Engine<'_> {
             control: r.control.name().to_string(),
             conjugate,
             frictional: energy.frictional_dissipation,
+            temperature_factor: r.temperature_factor,
         })
     }
 
@@ -521,6 +523,7 @@ fn finish(
         delta_load_factor: 0.0,
         secant: false,
         exact_tangent: false,
+        temperature_factor: log.rows.last().map_or(0.0, |r| r.temperature_factor),
     };
     // the state the run ends on: the driver's, else the last converged one
     let converged_here = log.last_increment > log.start_increment;

@@ -12,6 +12,18 @@
 //! unloads. Force control and displacement control are the same thing here:
 //! it depends on what the model prescribes.
 //!
+//! A model with a temperature field ([`Model::temperature`]) has a second,
+//! non-proportional load: the temperature factor `theta` of
+//! [`Model::temperature_steps`] goes linearly over each step like `lambda`
+//! (from the previous step's end value), so a step with `lambda` held and
+//! `theta` moving is a thermal step (a cool-down before the mechanical
+//! load: the program `[0, lambda_1, ...]` with `theta = [1]`). Both are
+//! functions of the cursor (step, fraction), so checkpoints need nothing
+//! more. The force scale of the convergence test includes the thermal
+//! force `|theta f_th,f|` (`f_th` the internal force of the temperature
+//! field at zero displacement), so that a free body expanding under a
+//! temperature change, with no load and no reaction, has a scale.
+//!
 //! Increment sizes are *fractions of the step* (`t` in `[0, 1]`,
 //! `lambda = lambda_start + t (lambda_end - lambda_start)`); the last
 //! increment of a step is shortened to end exactly on `lambda_end`.
@@ -350,6 +362,9 @@ pub struct IncrementReport {
     pub energy: f64,
     /// Cut-backs before this increment converged.
     pub cutbacks: usize,
+    /// Temperature factor reached ([`Model::temperature_factor`]; 1 for a
+    /// model without temperature steps).
+    pub temperature_factor: f64,
     /// Seconds spent on this increment, failed attempts included
     /// (`analyze` only on the run's first increment; `pattern` unused).
     pub seconds: Timings,
@@ -591,6 +606,9 @@ pub(crate) struct Work<'m> {
     /// The reduced external force `T^T f_ext` (by equation).
     pub(crate) fext_f: Vec<f64>,
     pub(crate) fext_free_norm: f64,
+    /// `|f_th,f|`: the reduced internal force of the temperature field at
+    /// zero displacement and temperature factor 1 (0 without one).
+    pub(crate) fth_free_norm: f64,
     pub(crate) f_int: Vec<f64>,
     /// `f_int - lambda f_ext` (full length: reactions on constrained dofs).
     pub(crate) res: Vec<f64>,
@@ -626,6 +644,41 @@ pub(crate) struct Work<'m> {
     pub(crate) stalled_attempts: usize,
 }
 
+/// `|f_th,f|` of [`Work::fth_free_norm`]: one assembly at zero
+/// displacement and temperature factor 1 (0 without a temperature field,
+/// or if that assembly fails: the run's own assemblies report the error).
+fn thermal_force_norm(model: &Model, asm: &Assembler) -> f64 {
+    if model.temperature.is_none() {
+        return 0.0;
+    }
+    let ndof = model.dofs.num_dofs();
+    let mut f = vec![0.0; ndof];
+    let mut state = model.initial_state();
+    let u0 = vec![0.0; ndof];
+    if asm
+        .assemble(
+            &model.mesh,
+            &model.elements,
+            &model.dofs,
+            &u0,
+            &mut state,
+            StepInfo::default(),
+            None,
+            &mut f,
+        )
+        .is_err()
+    {
+        return 0.0;
+    }
+    model
+        .dofs
+        .reduce(&f)
+        .iter()
+        .map(|v| v * v)
+        .sum::<f64>()
+        .sqrt()
+}
+
 pub(crate) fn is_element_error(e: &CoreError) -> bool {
     matches!(e, CoreError::Element { .. })
 }
@@ -643,6 +696,7 @@ impl<'m> Work<'m> {
         let nf = free_dofs.len();
         let fext_f = model.dofs.reduce(&model.f_ext);
         let fext_free_norm = fext_f.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let fth_free_norm = thermal_force_norm(model, &asm);
         Work {
             model,
             k: asm.pattern.clone(),
@@ -652,6 +706,7 @@ impl<'m> Work<'m> {
             free_dofs,
             fext_f,
             fext_free_norm,
+            fth_free_norm,
             f_int: vec![0.0; u_start.len()],
             res: vec![0.0; u_start.len()],
             res_f: vec![0.0; nf],
@@ -753,7 +808,9 @@ impl<'m> Work<'m> {
         m.dofs.reduce_into(&self.res, &mut self.res_f);
         let free2: f64 = self.res_f.iter().map(|r| r * r).sum();
         let abs = free2.sqrt();
-        let scale_now = (lambda.abs() * self.fext_free_norm).max(reac2.sqrt());
+        let scale_now = (lambda.abs() * self.fext_free_norm)
+            .max(step.temperature_factor.abs() * self.fth_free_norm)
+            .max(reac2.sqrt());
         let scale = scale_now
             .max(self.settings.force_floor * force_peak)
             .max(f64::MIN_POSITIVE);
@@ -812,6 +869,7 @@ impl<'m> Work<'m> {
             delta_load_factor: 0.0,
             secant: false,
             exact_tangent: false,
+            temperature_factor: self.model.temperature_factor(cur.step, cur.t),
         };
         let ev = self.evaluate(state, step, cur.lambda, cur.force_peak)?;
         state.restore();
@@ -1740,6 +1798,13 @@ impl LoadRun<'_> {
         };
         let end = self.program[cur.step];
         let span = end - start;
+        // a step where neither the load factor nor the temperature moves
+        let model = self.w.model;
+        let span = if span == 0.0 && model.temperature.is_some() {
+            model.temperature_factor(cur.step, 1.0) - model.temperature_factor(cur.step, 0.0)
+        } else {
+            span
+        };
         let mut size = cur.size;
         let mut cutbacks = 0;
         loop {
@@ -1751,7 +1816,7 @@ impl LoadRun<'_> {
             let lambda_new = if t_new == 1.0 {
                 end
             } else {
-                start + t_new * span
+                start + t_new * (end - start)
             };
             let step = StepInfo {
                 increment: cur.increment_index + 1,
@@ -1759,6 +1824,7 @@ impl LoadRun<'_> {
                 delta_load_factor: lambda_new - cur.lambda,
                 secant: false,
                 exact_tangent: false,
+                temperature_factor: model.temperature_factor(cur.step, t_new),
             };
             let attempt = self
                 .w
@@ -1897,6 +1963,7 @@ impl LoadRun<'_> {
             lambda: cur.lambda,
             delta_lambda,
             step_fraction: cur.t,
+            temperature_factor: self.w.model.temperature_factor(cur.step, cur.t),
             iterations: inc.iterations,
             residual: inc.eval.rel,
             energy: inc.energy,
