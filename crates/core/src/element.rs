@@ -249,6 +249,11 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     fn symmetrises_tangent(&self) -> bool {
         false
     }
+    /// Whether the element's material expands with temperature (solids;
+    /// [`crate::Material::has_thermal_expansion`]). Default: false.
+    fn has_thermal_expansion(&self) -> bool {
+        false
+    }
     /// The element's kinematics. Default: small.
     fn kinematics(&self) -> Kinematics {
         Kinematics::Small

@@ -367,6 +367,9 @@ impl Element for IncompatibleHex8 {
     fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
         self.material.directional_modulus(n)
     }
+    fn has_thermal_expansion(&self) -> bool {
+        self.material.has_thermal_expansion()
+    }
     /// Small strains and a linear elastic material: `f = K u`.
     fn is_linear(&self) -> bool {
         true

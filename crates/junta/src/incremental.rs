@@ -592,6 +592,14 @@ fn base_summary(input: &Path, p: &Prepared, log: &RunLog, status: &str) -> serde
         "control": p.analysis.control,
         "limit_points": limit_points(rows),
         "path_switches": log.path_switches,
+        "temperature": p.temperature.clone().map(|mut t| {
+            // the fraction of the change applied at the end, and the
+            // increments that moved the temperature with the loads held
+            t["factor"] = json!(rows.last().map(|r| r.temperature_factor));
+            let thermal = |r: &CurveRow| r.lambda == 0.0 && r.step == 0;
+            t["thermal_step_increments"] = json!(rows.iter().filter(|r| thermal(r)).count());
+            t
+        }),
     })
 }
 

@@ -99,6 +99,7 @@ pub(crate) fn run_linear(
         "title": p.title,
         "units": p.units,
         "analysis": "linear_static",
+        "temperature": p.temperature,
         "nodes": p.model.mesh.nodes.len(),
         "dofs": p.model.dofs.num_dofs(),
         "equations": p.model.dofs.num_free,
