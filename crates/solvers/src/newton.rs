@@ -75,8 +75,10 @@
 //! largest force scale `max(|lambda f_ext,f|, |reactions|)` met at a
 //! converged increment of the run so far: it keeps the criterion meaningful
 //! when the current load is zero (e.g. at the end of an unloading step).
-//! An increment that changes nothing (zero load-factor increment) may
-//! converge with zero iterations; a model without free dofs always does.
+//! An increment that changes nothing (zero load-factor increment, or any
+//! increment of a model whose load pattern is zero, e.g. after the thermal
+//! step of a temperature-only program) may converge with zero iterations;
+//! a model without free dofs always does.
 //!
 //! # Cut-back
 //!
@@ -609,6 +611,10 @@ pub(crate) struct Work<'m> {
     /// `|f_th,f|`: the reduced internal force of the temperature field at
     /// zero displacement and temperature factor 1 (0 without one).
     pub(crate) fth_free_norm: f64,
+    /// The model's load pattern is zero (no force, no non-zero prescribed
+    /// displacement): the load factor moves nothing (a temperature-only
+    /// program after its thermal step).
+    pub(crate) no_load: bool,
     pub(crate) f_int: Vec<f64>,
     /// `f_int - lambda f_ext` (full length: reactions on constrained dofs).
     pub(crate) res: Vec<f64>,
@@ -697,6 +703,7 @@ impl<'m> Work<'m> {
         let fext_f = model.dofs.reduce(&model.f_ext);
         let fext_free_norm = fext_f.iter().map(|v| v * v).sum::<f64>().sqrt();
         let fth_free_norm = thermal_force_norm(model, &asm);
+        let no_load = fext_free_norm == 0.0 && model.dofs.prescribed.iter().all(|p| *p == 0.0);
         Work {
             model,
             k: asm.pattern.clone(),
@@ -707,6 +714,7 @@ impl<'m> Work<'m> {
             fext_f,
             fext_free_norm,
             fth_free_norm,
+            no_load,
             f_int: vec![0.0; u_start.len()],
             res: vec![0.0; u_start.len()],
             res_f: vec![0.0; nf],
@@ -1048,7 +1056,8 @@ impl<'m> Work<'m> {
     /// Start of an attempt: `u` = the converged free displacements with the
     /// constrained dofs at `lambda * prescribed` (dependents follow), and
     /// its residual. `Some` when there is nothing to iterate: no free dofs,
-    /// or a zero load-factor increment already in balance.
+    /// or an increment that moves nothing (a zero load-factor increment, or
+    /// a model whose load pattern is zero) already in balance.
     fn first_residual(
         &mut self,
         state: &mut StateStore,
@@ -1075,7 +1084,11 @@ impl<'m> Work<'m> {
         }
         self.history.push(a.ev.rel);
         let nf = self.free_dofs.len();
-        if nf == 0 || (a.step.delta_load_factor == 0.0 && a.ev.rel <= self.settings.tol_force) {
+        // an increment that moves nothing (no load-factor change, or a zero
+        // load pattern) and starts in balance has converged: its first
+        // residual is round-off, whose work ratios mean nothing
+        let moves_nothing = a.step.delta_load_factor == 0.0 || self.no_load;
+        if nf == 0 || (moves_nothing && a.ev.rel <= self.settings.tol_force) {
             return Ok(Some(Attempt::Converged {
                 iterations: 0,
                 eval: a.ev,
