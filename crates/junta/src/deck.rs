@@ -76,6 +76,15 @@
 //!
 //! (The same rules give each step's loads in an incremental run.)
 //!
+//! # Temperatures
+//!
+//! `*EXPANSION` becomes the material's `alpha` (`alpha1..3`, `alpha`);
+//! each step's temperature change from the initial temperatures
+//! ([`DeckStep::temperature`]) is its thermal load in a linear run; an
+//! incremental run scales the first change by a temperature factor per
+//! program step (`temperature_pattern`), ramped over the step like the
+//! loads (docs/decks.md, "Thermal loads").
+//!
 //! # Amplitudes
 //!
 //! A load or prescribed displacement with `AMPLITUDE=` is multiplied by the

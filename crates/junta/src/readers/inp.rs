@@ -26,7 +26,11 @@
 //! number of steps), `*STATIC [, DIRECT] [, SOLVER=]` (data line `dt0, T, dtmin,
 //! dtmax`; SOLVER is mapped to a back end by the CLI; TIME RESET, TOTAL TIME
 //! AT START, ALLSDTOL, CONTINUE, FACTOR noted and skipped; RIKS,
-//! STABILIZE, FULLY PLASTIC, LONG TERM refused), `*END STEP`; the output requests `*NODE PRINT` (kept in [`InpDeck::node_prints`]: the CLI writes its `U` and `RF` as CSV) and `*EL PRINT` ([`InpDeck::el_prints`]: `S` and `E` as CSV), `*NODE FILE`,
+//! STABILIZE, FULLY PLASTIC, LONG TERM refused), `*END STEP`; thermal
+//! loads: `*EXPANSION [, TYPE=ISO|ORTHO|ANISO] [, ZERO=]` in a material
+//! ([`InpExpansion`]), `*INITIAL CONDITIONS, TYPE=TEMPERATURE` and
+//! `*TEMPERATURE [, OP=]` in a step ([`InpTemperature`]); `*MEMBRANE` on
+//! an element set without elements (noted); the output requests `*NODE PRINT` (kept in [`InpDeck::node_prints`]: the CLI writes its `U` and `RF` as CSV) and `*EL PRINT` ([`InpDeck::el_prints`]: `S` and `E` as CSV), `*NODE FILE`,
 //! `*EL FILE`, `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*OUTPUT` are
 //! skipped with a note (Junta's outputs are chosen in the scene);
 //! `*INCLUDE, INPUT=file` ([`read_inp`] puts the file's text in its place,
