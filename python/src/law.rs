@@ -745,6 +745,7 @@ pub fn evaluate_law<'py>(
         delta_load_factor,
         secant,
         exact_tangent: false,
+        temperature_factor: 1.0,
     };
     if let Err(f) = l.call_evaluate(py, &jump, &state, step, &mut trial, &mut out) {
         return Err(match f {
@@ -813,6 +814,7 @@ pub fn evaluate_registered<'py>(
         delta_load_factor,
         secant,
         exact_tangent: false,
+        temperature_factor: 1.0,
     };
     let mut trial = vec![0.0; n * k];
     let mut t = Vec::with_capacity(3 * n);

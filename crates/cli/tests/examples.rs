@@ -70,6 +70,8 @@ examples! {
     prism_tension => "paper/prism_tension.toml";
     punch_compression => "paper/punch_compression.toml";
     punch_tension => "paper/punch_tension.toml";
+    bimetal => "thermal/bimetal.toml";
+    cool_down => "thermal/cool_down.toml";
     /// [126 s: viscous regularisation, small increments]
     #[ignore]
     dcb_viscous => "delamination/dcb.toml";

@@ -49,6 +49,10 @@ pub struct Assembler {
     /// Stiffness of the linear elements, built by the first
     /// [`Assembler::assemble_cached`].
     linear: Option<LinearCache>,
+    /// Temperature change of every node at temperature factor 1
+    /// ([`Assembler::set_temperature`]); the elements get it times
+    /// [`StepInfo::temperature_factor`].
+    temperature: Option<Vec<f64>>,
 }
 
 /// The constant part of an incremental analysis: the elements whose
@@ -63,8 +67,9 @@ pub struct Assembler {
 struct LinearCache {
     /// Sum of the linear elements' matrices, in the pattern.
     values: Vec<f64>,
-    /// Linear elements by colour, with the offset of their matrix in `mats`.
-    linear_colors: Vec<Vec<(ElementRef, usize)>>,
+    /// Linear elements by colour, with the offset of their matrix in `mats`
+    /// and of their thermal force in `thermal`.
+    linear_colors: Vec<Vec<(ElementRef, usize, usize)>>,
     /// Nonlinear elements by colour.
     nonlinear_colors: Vec<Vec<ElementRef>>,
     /// Where the entries of each nonlinear element's matrix go in the
@@ -72,6 +77,11 @@ struct LinearCache {
     nonlinear_map: Option<ScatterMap>,
     /// Element matrices (packed upper triangles).
     mats: Vec<f64>,
+    /// Internal force of each linear element at zero displacement and
+    /// temperature factor 1 (minus its thermal force, `nd` values at the
+    /// third offset of `linear_colors`), when the assembler has a
+    /// temperature field: a linear element's force is `K_e u_e + theta f_e`.
+    thermal: Vec<f64>,
 }
 
 /// Largest number of element-matrix entries whose pattern positions
@@ -101,6 +111,8 @@ struct Scratch {
     dofs: Vec<usize>,
     f: Vec<f64>,
     k: Vec<f64>,
+    /// Nodal temperature changes of the element.
+    temp: Vec<f64>,
 }
 
 impl Scratch {
@@ -112,6 +124,7 @@ impl Scratch {
             dofs: vec![0; n],
             f: vec![0.0; n],
             k: vec![0.0; n * n],
+            temp: vec![0.0; max_nodes],
         }
     }
 }
@@ -218,7 +231,24 @@ impl Assembler {
             pattern,
             colors,
             linear: None,
+            temperature: None,
         }
+    }
+
+    /// Set the temperature change of every node at temperature factor 1
+    /// (from the stress-free temperature; `None`: no thermal load). Every
+    /// assembly hands each element its nodes' changes times
+    /// [`StepInfo::temperature_factor`] ([`ElementContext::temperature`]);
+    /// interface elements get none. Drops the kept linear part of
+    /// [`Assembler::assemble_cached`].
+    pub fn set_temperature(&mut self, temperature: Option<Vec<f64>>) {
+        self.temperature = temperature;
+        self.linear = None;
+    }
+
+    /// The nodal temperature field ([`Assembler::set_temperature`]).
+    pub fn temperature(&self) -> Option<&[f64]> {
+        self.temperature.as_deref()
     }
 
     /// [`Assembler::assemble`] for repeated assemblies of one model (an
@@ -257,10 +287,12 @@ impl Assembler {
             f_int,
         )?;
         let fv = SharedMut(f_int.as_mut_ptr());
+        let theta = step.temperature_factor;
+        let thermal = !cache.thermal.is_empty() && theta != 0.0;
         for color in &cache.linear_colors {
             color.par_iter().for_each_init(
                 || (Vec::<f64>::new(), Vec::<f64>::new()),
-                |(ue, fe), &(er, off)| {
+                |(ue, fe), &(er, off, toff)| {
                     let conn = mesh.blocks[er.block].element(er.element);
                     let nd = 3 * conn.len();
                     ue.clear();
@@ -284,6 +316,11 @@ impl Assembler {
                             *fb += k * ua;
                         }
                         fe[a] += acc;
+                    }
+                    if thermal {
+                        for (f, t) in fe.iter_mut().zip(&cache.thermal[toff..toff + nd]) {
+                            *f += theta * t;
+                        }
                     }
                     for (a, &f) in fe.iter().enumerate() {
                         // SAFETY: elements of one colour share no node.
@@ -315,6 +352,7 @@ impl Assembler {
         let mut linear_colors = Vec::new();
         let mut nonlinear_colors = Vec::new();
         let mut mats = Vec::new();
+        let mut thermal = Vec::new();
         let mut values = vec![0.0; self.pattern.values.len()];
         for color in &self.colors {
             let mut lin = Vec::new();
@@ -335,12 +373,20 @@ impl Assembler {
                     }
                 }
                 s.disp[..nd].iter_mut().for_each(|v| *v = 0.0);
+                let temperature = gather_temperature(
+                    self.temperature.as_deref(),
+                    1.0,
+                    el_is_solid(mesh, er),
+                    conn,
+                    &mut s.temp,
+                );
                 let ctx = ElementContext {
                     coords: &s.coords[..n],
                     disp: &s.disp[..nd],
                     state_committed: &[],
                     step: StepInfo::default(),
                     law_responses: None,
+                    temperature,
                 };
                 let ke = &mut s.k[..nd * nd];
                 elements[er.block]
@@ -360,7 +406,11 @@ impl Assembler {
                     non.push(*er);
                     continue;
                 }
-                lin.push((*er, mats.len()));
+                lin.push((*er, mats.len(), thermal.len()));
+                if self.temperature.is_some() {
+                    // f_int(u = 0) at temperature factor 1: minus the thermal force
+                    thermal.extend_from_slice(&s.f[..nd]);
+                }
                 for a in 0..nd {
                     mats.extend_from_slice(&ke[a * nd + a..(a + 1) * nd]);
                 }
@@ -381,6 +431,7 @@ impl Assembler {
             nonlinear_colors,
             nonlinear_map,
             mats,
+            thermal,
         })
     }
 
@@ -543,6 +594,13 @@ impl Assembler {
                         }
                     }
                     let r = ranges[er.block][er.element].clone();
+                    let temperature = gather_temperature(
+                        self.temperature.as_deref(),
+                        step.temperature_factor,
+                        el_is_solid(mesh, er),
+                        conn,
+                        &mut s.temp,
+                    );
                     let ctx = ElementContext {
                         coords: &s.coords[..n],
                         disp: &s.disp[..nd],
@@ -552,6 +610,7 @@ impl Assembler {
                             let np = el.num_points();
                             batches[er.block].get(er.element * np..(er.element + 1) * np)
                         },
+                        temperature,
                     };
                     // SAFETY: each element owns its state range.
                     let trial_slice = unsafe { trial.slice(r) };
@@ -605,6 +664,34 @@ impl Assembler {
         }
         Ok(())
     }
+}
+
+/// Whether element `er` is a solid (it gets the nodal temperatures;
+/// interface elements carry no thermal strain).
+#[inline]
+fn el_is_solid(mesh: &Mesh, er: &ElementRef) -> bool {
+    mesh.blocks[er.block].shape.is_solid()
+}
+
+/// The temperature changes of the nodes `conn` (`theta` times `field`) in
+/// `buf`, for a solid element of a model with a temperature field and a
+/// non-zero factor; `None` otherwise.
+#[inline]
+fn gather_temperature<'a>(
+    field: Option<&[f64]>,
+    theta: f64,
+    solid: bool,
+    conn: &[usize],
+    buf: &'a mut [f64],
+) -> Option<&'a [f64]> {
+    let field = field?;
+    if !solid || theta == 0.0 {
+        return None;
+    }
+    for (t, &node) in buf.iter_mut().zip(conn) {
+        *t = theta * field[node];
+    }
+    Some(&buf[..conn.len()])
 }
 
 /// Add the upper-triangle entries of an element matrix `ke` (`nd x nd`,
@@ -759,6 +846,7 @@ pub fn batch_law_responses(
                 state_committed: &state.committed[r],
                 step,
                 law_responses: None,
+                temperature: None,
             };
             el.jumps_into(&ctx, &mut jumps[e * np..(e + 1) * np])
                 .map_err(|source| CoreError::Element {

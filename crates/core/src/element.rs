@@ -53,7 +53,7 @@ pub enum Kinematics {
 }
 
 /// Increment information handed down to elements and laws.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StepInfo {
     /// Index of the increment being computed: 1 + the number of converged
     /// increments (1-based; the same on every iteration and cut-back retry).
@@ -74,6 +74,28 @@ pub struct StepInfo {
     /// switching to the exact tangent when Newton stagnated on the
     /// symmetric part ([`crate::Element::symmetrises_tangent`]).
     pub exact_tangent: bool,
+    /// Temperature factor at the end of the current increment: the
+    /// temperature change of every node is this factor times the model's
+    /// [`crate::Model::temperature`] (the change from the stress-free
+    /// temperature at the end of the thermal program). 1 by default (a
+    /// linear analysis applies the whole change); the incremental drivers
+    /// set it from the program's temperature steps.
+    pub temperature_factor: f64,
+}
+
+impl Default for StepInfo {
+    /// Increment 0, load factor 0, no secant or exact tangent, temperature
+    /// factor 1 (the whole temperature change of the model, if it has one).
+    fn default() -> Self {
+        StepInfo {
+            increment: 0,
+            load_factor: 0.0,
+            delta_load_factor: 0.0,
+            secant: false,
+            exact_tangent: false,
+            temperature_factor: 1.0,
+        }
+    }
 }
 
 /// Everything an element kernel reads. Buffers are owned by the caller.
@@ -92,6 +114,13 @@ pub struct ElementContext<'a> {
     /// assembler evaluates the whole block first and the element uses these
     /// instead of calling the law (`None` for every other law).
     pub law_responses: Option<&'a [crate::law::LawResponse]>,
+    /// Temperature change of each node from the stress-free temperature
+    /// (len = `num_nodes`) when the model carries a temperature field
+    /// (already scaled by [`StepInfo::temperature_factor`]), `None`
+    /// otherwise. Solids interpolate it to their integration points and
+    /// subtract the material's thermal strain; interfaces ignore it (they
+    /// see the jump the solids' expansion makes).
+    pub temperature: Option<&'a [f64]>,
 }
 
 /// Output at one integration point: position and named values.
@@ -182,8 +211,10 @@ pub trait Element: Send + Sync + std::fmt::Debug {
         false
     }
     /// True when the internal force is `K u` with a constant `K` (linear
-    /// elastic solids, no state): an incremental driver may then compute
-    /// the element's matrix once and reuse it
+    /// elastic solids, no state), plus, under a temperature change, a
+    /// thermal force linear in the nodal temperature changes
+    /// ([`ElementContext::temperature`]): an incremental driver may then
+    /// compute the element's matrix and its thermal force once and reuse them
     /// ([`crate::assembly::Assembler::assemble_cached`]).
     fn is_linear(&self) -> bool {
         false
@@ -216,6 +247,11 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     /// symmetric kind), and assembles the exact one in full when
     /// [`StepInfo::exact_tangent`] asks. Default: false.
     fn symmetrises_tangent(&self) -> bool {
+        false
+    }
+    /// Whether the element's material expands with temperature (solids;
+    /// [`crate::Material::has_thermal_expansion`]). Default: false.
+    fn has_thermal_expansion(&self) -> bool {
         false
     }
     /// The element's kinematics. Default: small.

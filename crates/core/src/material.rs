@@ -32,6 +32,24 @@ pub trait Material: Send + Sync + std::fmt::Debug {
     }
     /// A representative Young's modulus (for diagnostics such as the penalty advisor).
     fn reference_modulus(&self) -> f64;
+    /// Whether the material has a non-zero thermal expansion: elements then
+    /// ask [`Material::thermal_expansion_at`] at each integration point
+    /// when the model carries a temperature change. Default `false`.
+    fn has_thermal_expansion(&self) -> bool {
+        false
+    }
+    /// Thermal strain per unit temperature change in the global frame at
+    /// the point `x` (reference coordinates), Voigt order
+    /// `[xx, yy, zz, xy, yz, zx]` with engineering shear strains
+    /// (`gamma_xy = 2 alpha_xy`): the thermal strain of a temperature
+    /// change `dT` is `dT` times this vector, and the stress is
+    /// `sigma = C (eps - eps_th)`. The material's coefficients are rotated
+    /// from its axes at `x` like its stiffness. Default: zero. Called once
+    /// per integration point in element loops: must not allocate.
+    fn thermal_expansion_at(&self, x: [f64; 3]) -> [f64; 6] {
+        let _ = x;
+        [0.0; 6]
+    }
     /// Young's modulus along the unit direction `n`: the ratio of stress
     /// to strain in a uniaxial stress state along `n`,
     /// `1 / E(n) = v^T S v` with `S = C^-1` and `v` the Voigt form of

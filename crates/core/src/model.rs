@@ -27,6 +27,19 @@ pub struct Model {
     pub reaction_sets: Vec<String>,
     /// Linear equations eliminated in `dofs` ([`Model::add_equations`]).
     pub equations: Vec<crate::dof::LinearEquation>,
+    /// Thermal load: the temperature change of every node from the
+    /// stress-free temperature at temperature factor 1 (length = number of
+    /// nodes), or `None` (no thermal strain anywhere). Element kernels get
+    /// it scaled by [`crate::element::StepInfo::temperature_factor`].
+    pub temperature: Option<Vec<f64>>,
+    /// Temperature factor at the end of each step of an incremental load
+    /// program ([`Model::temperature_factor`]): inside step `s` it goes
+    /// linearly from the previous step's value (0 before the first step)
+    /// to `temperature_steps[s]`, as the load factor does; steps past the
+    /// end keep the last value. Empty: 1 throughout (the whole change from
+    /// the first increment). A cool-down before a mechanical load is the
+    /// program `[0, lambda_1, ...]` with `temperature_steps = [1]`.
+    pub temperature_steps: Vec<f64>,
 }
 
 impl Model {
@@ -73,6 +86,8 @@ impl Model {
             f_ext,
             reaction_sets,
             equations: Vec::new(),
+            temperature: None,
+            temperature_steps: Vec::new(),
         })
     }
 
@@ -152,9 +167,54 @@ impl Model {
             && self.elements.iter().any(|e| e.symmetrises_tangent())
     }
 
-    /// Sparsity pattern and colouring for this model.
+    /// Set the nodal temperature changes ([`Model::temperature`]); an
+    /// error unless there is one finite value per node.
+    pub fn set_temperature(&mut self, delta: Option<Vec<f64>>) -> Result<(), CoreError> {
+        if let Some(d) = &delta {
+            if d.len() != self.mesh.nodes.len() {
+                return Err(CoreError::Invalid(format!(
+                    "{} temperature changes for {} nodes",
+                    d.len(),
+                    self.mesh.nodes.len()
+                )));
+            }
+            if let Some(i) = d.iter().position(|t| !t.is_finite()) {
+                return Err(CoreError::Invalid(format!(
+                    "temperature change {} at node {} is not finite",
+                    d[i],
+                    self.mesh.node_labels.get(i).copied().unwrap_or(i)
+                )));
+            }
+        }
+        self.temperature = delta;
+        Ok(())
+    }
+
+    /// The temperature factor at the fraction `t` (0..=1) of step `step`
+    /// of an incremental program ([`Model::temperature_steps`]).
+    pub fn temperature_factor(&self, step: usize, t: f64) -> f64 {
+        let p = &self.temperature_steps;
+        let Some(&last) = p.last() else {
+            return 1.0;
+        };
+        let end = p.get(step).copied().unwrap_or(last);
+        let start = match step {
+            0 => 0.0,
+            s => p.get(s - 1).copied().unwrap_or(last),
+        };
+        if t >= 1.0 {
+            end
+        } else {
+            start + t * (end - start)
+        }
+    }
+
+    /// Sparsity pattern and colouring for this model, with its temperature
+    /// field ([`Model::temperature`]).
     pub fn assembler(&self) -> Assembler {
-        Assembler::new(&self.mesh, &self.dofs)
+        let mut asm = Assembler::new(&self.mesh, &self.dofs);
+        asm.set_temperature(self.temperature.clone());
+        asm
     }
 
     /// State storage with every element's initial state.
@@ -219,6 +279,7 @@ impl Model {
                     state_committed: &state.committed[state.range(b, e)],
                     step: crate::element::StepInfo::default(),
                     law_responses: None,
+                    temperature: None,
                 };
                 let pts = el
                     .point_outputs(&ctx)

@@ -40,6 +40,7 @@ fn bench(c: &mut Criterion) {
             state_committed: &[],
             step: StepInfo::default(),
             law_responses: None,
+            temperature: None,
         };
         group.bench_function(name, |b| {
             b.iter(|| {

@@ -108,11 +108,22 @@
 //! symmetric. CalculiX's C3D8I under NLGEOM treats the modes as extra
 //! nodes of the same kind, which gives the same equations.
 //!
-//! ## Outputs and geometry check
+//! ## Outputs
 //!
 //! Per integration point, as the other solids: `stress` and `strain` (both
 //! including the incompatible-mode strain `B_a alpha`) and `mises`; under
 //! `nlgeom` the Cauchy stress, the Green strain and `pk2_stress`.
+//!
+//! ## Thermal strain
+//!
+//! With a thermal strain `eps_th` ([`crate::thermal`]) the stress is
+//! `C (B_u u + B_a alpha - eps_th)` and the modes' balance gains the
+//! thermal force `f_a = ∫ B_a^T C eps_th dV`: `alpha = -K_aa^-1 (K_au u -
+//! f_a)` (zero extra for a uniform `eps_th` and `C`, since `∫ B_a dV = 0`).
+//! The tangent does not change.
+//!
+//! ## Geometry check
+//!
 //! [`Element::check_geometry`] asks `det J > 0` at the 8 Gauss points
 //! (reported as 0..7), the 8 corners (8..15) and the centre (16).
 
@@ -421,6 +432,7 @@ impl IncompatibleHex8 {
     fn finite_state(
         &self,
         grads: &[PointGrad; 8],
+        thermal: &[Vector6<f64>; 8],
         d: &[f64; NT],
         with_k: bool,
         out: &mut FiniteState,
@@ -429,9 +441,9 @@ impl IncompatibleHex8 {
         if with_k {
             out.k.fill(0.0);
         }
-        for pg in grads {
+        for (pg, th) in grads.iter().zip(thermal) {
             let f = tl::deformation_gradient(&pg.g, d);
-            let s = pg.c * tl::green_strain(&f);
+            let s = pg.c * (tl::green_strain(&f) - th);
             tl::add_internal_force(&pg.g, &f, &s, pg.dv, &mut out.f);
             if with_k {
                 tl::add_tangent(&pg.g, &f, &s, &pg.c, pg.dv, &mut out.k, NT);
@@ -445,6 +457,7 @@ impl IncompatibleHex8 {
     fn solve_modes(
         &self,
         grads: &[PointGrad; 8],
+        thermal: &[Vector6<f64>; 8],
         coords: &[[f64; 3]],
         disp: &[f64],
         alpha0: &[f64],
@@ -455,7 +468,7 @@ impl IncompatibleHex8 {
         d[NU..].copy_from_slice(&alpha0[..NA]);
         let size = element_size(coords);
         for _ in 0..MODE_ITERATIONS {
-            self.finite_state(grads, &d, true, out);
+            self.finite_state(grads, thermal, &d, true, out);
             let kaa = Kaa::from_fn(|r, c| out.k[(NU + r) * NT + NU + c]);
             let ra = SVector::<f64, NA>::from_column_slice(&out.f[NU..]);
             let step = kaa.lu().solve(&ra).ok_or_else(singular_modes)?;
@@ -466,7 +479,7 @@ impl IncompatibleHex8 {
                 break;
             }
             if step.norm() <= 1e-12 * size {
-                self.finite_state(grads, &d, true, out);
+                self.finite_state(grads, thermal, &d, true, out);
                 return Ok(d);
             }
         }
@@ -492,7 +505,15 @@ impl IncompatibleHex8 {
             f: [0.0; NT],
             k: [0.0; NT * NT],
         };
-        let d = self.solve_modes(&grads, ctx.coords, ctx.disp, ctx.state_committed, &mut st)?;
+        let th = self.thermal_strains(ctx);
+        let d = self.solve_modes(
+            &grads,
+            &th,
+            ctx.coords,
+            ctx.disp,
+            ctx.state_committed,
+            &mut st,
+        )?;
         state_trial[..NA].copy_from_slice(&d[NU..]);
         f_int[..NU].copy_from_slice(&st.f[..NU]);
         if let Some(k) = k {
@@ -522,12 +543,20 @@ impl IncompatibleHex8 {
             f: [0.0; NT],
             k: [0.0; NT * NT],
         };
-        let d = self.solve_modes(&grads, ctx.coords, ctx.disp, ctx.state_committed, &mut st)?;
+        let th = self.thermal_strains(ctx);
+        let d = self.solve_modes(
+            &grads,
+            &th,
+            ctx.coords,
+            ctx.disp,
+            ctx.state_committed,
+            &mut st,
+        )?;
         let mut out = Vec::with_capacity(8);
-        for (p, pg) in self.points.iter().zip(&grads) {
+        for ((p, pg), th) in self.points.iter().zip(&grads).zip(&th) {
             let f = tl::deformation_gradient(&pg.g, &d);
             let e = tl::green_strain(&f);
-            let s = pg.c * e;
+            let s = pg.c * (e - th);
             let sigma = tl::cauchy_stress(&f, &s);
             out.push(PointOutput {
                 position: position(p, ctx.coords),
@@ -539,6 +568,10 @@ impl IncompatibleHex8 {
                     ("pk2_stress", s.iter().copied().collect()),
                 ],
             });
+            if ctx.temperature.is_some() {
+                let v = &mut out.last_mut().expect("pushed").values;
+                v.push(("thermal_strain", th.iter().copied().collect()));
+            }
         }
         Ok(out)
     }
@@ -583,6 +616,9 @@ impl Element for IncompatibleHex8 {
     fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
         self.material.directional_modulus(n)
     }
+    fn has_thermal_expansion(&self) -> bool {
+        self.material.has_thermal_expansion()
+    }
     /// Small strains and a linear elastic material: `f = K u`; not so
     /// under `nlgeom`.
     fn is_linear(&self) -> bool {
@@ -619,11 +655,13 @@ impl Element for IncompatibleHex8 {
         let b = self.b_matrices(ctx.coords)?;
         let (kua, kaa, kuu) = self.blocks(&b, k.is_some());
         let u = SVector::<f64, NU>::from_column_slice(&ctx.disp[..NU]);
-        let (alpha, chol) = Self::condense(&kua, kaa, &u)?;
+        let (mut alpha, chol) = Self::condense(&kua, kaa, &u)?;
+        let th = self.thermal_strains(ctx);
+        alpha += chol.solve(&thermal_mode_force(&b, &th));
         // f_int from the stresses (= K u for this linear element)
         let mut f = SVector::<f64, NU>::zeros();
-        for p in &b {
-            let sig = p.c * (p.bu * u + p.ba * alpha);
+        for (p, th) in b.iter().zip(&th) {
+            let sig = p.c * (p.bu * u + p.ba * alpha - th);
             f += p.bu.transpose() * sig * p.dv;
         }
         f_int[..NU].copy_from_slice(f.as_slice());
@@ -659,11 +697,13 @@ impl Element for IncompatibleHex8 {
         let b = self.b_matrices(ctx.coords)?;
         let (kua, kaa, _) = self.blocks(&b, false);
         let u = SVector::<f64, NU>::from_column_slice(&ctx.disp[..NU]);
-        let (alpha, _) = Self::condense(&kua, kaa, &u)?;
+        let (mut alpha, chol) = Self::condense(&kua, kaa, &u)?;
+        let th = self.thermal_strains(ctx);
+        alpha += chol.solve(&thermal_mode_force(&b, &th));
         let mut out = Vec::with_capacity(8);
-        for (p, pb) in self.points.iter().zip(&b) {
+        for ((p, pb), th) in self.points.iter().zip(&b).zip(&th) {
             let eps: Vector6<f64> = pb.bu * u + pb.ba * alpha;
-            let s: [f64; 6] = (pb.c * eps).into();
+            let s: [f64; 6] = (pb.c * (eps - th)).into();
             let position = position(p, ctx.coords);
             out.push(PointOutput {
                 position,
@@ -674,9 +714,33 @@ impl Element for IncompatibleHex8 {
                     ("volume", vec![pb.dv]),
                 ],
             });
+            if ctx.temperature.is_some() {
+                let v = &mut out.last_mut().expect("pushed").values;
+                v.push(("thermal_strain", th.iter().copied().collect()));
+            }
         }
         Ok(out)
     }
+}
+
+impl IncompatibleHex8 {
+    /// The thermal strain at the 8 Gauss points ([`crate::thermal`]).
+    fn thermal_strains(&self, ctx: &ElementContext<'_>) -> [Vector6<f64>; 8] {
+        let m = &*self.material;
+        self.points
+            .map(|p| crate::thermal::point_thermal_strain(m, &p.n, ctx.coords, ctx.temperature))
+    }
+}
+
+/// The modes' thermal force `∫ B_a^T C eps_th dV` (module docs).
+fn thermal_mode_force(b: &[PointB; 8], th: &[Vector6<f64>; 8]) -> SVector<f64, NA> {
+    let mut f = SVector::<f64, NA>::zeros();
+    for (p, th) in b.iter().zip(th) {
+        if *th != Vector6::zeros() {
+            f += p.ba.transpose() * (p.c * th) * p.dv;
+        }
+    }
+    f
 }
 
 const H8I_PARAMS: &[ParamDoc] = &[];

@@ -26,6 +26,8 @@
 //!   `nlgeom` ([`junta_core::Kinematics::Finite`]).
 //! * [`face_load`]: consistent nodal forces of pressures and tractions on
 //!   solid faces.
+//! * [`thermal`]: the thermal strain of a temperature change at an
+//!   integration point (the materials' expansion coefficients).
 //!
 //! Every material and element is registered in the
 //! [`junta_core::registry`] with `inventory`; a binary that wants them must
@@ -52,6 +54,7 @@ pub mod material;
 pub mod quadrature;
 pub mod shape;
 pub mod solid;
+pub mod thermal;
 pub mod total_lagrangian;
 
 pub use h8i::IncompatibleHex8;

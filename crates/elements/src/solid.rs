@@ -82,6 +82,11 @@
 //!
 //! ## Outputs
 //!
+//! Under a temperature change the stress is `C (eps - eps_th)` (small
+//! strain) or `S = C (E - eps_th)` (`nlgeom`) with the thermal strain of
+//! [`crate::thermal`] (`thermal_strain` is then an output too); the
+//! tangent does not change.
+//!
 //! Per integration point: `stress` (6; under `nlgeom` the Cauchy stress
 //! on the current configuration, with the second Piola-Kirchhoff stress
 //! as `pk2_stress`), `strain` (6, engineering shear; under `nlgeom` the
@@ -90,6 +95,7 @@
 
 use crate::quadrature::{gauss_legendre_3d, wedge_rule, Rule};
 use crate::shape::solid_shape;
+use crate::thermal::point_thermal_strain;
 use crate::total_lagrangian as tl;
 use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
 use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
@@ -405,8 +411,16 @@ pub fn von_mises(s: &[f64; 6]) -> f64 {
         .sqrt()
 }
 
+/// The stresses and strains at one point ([`SolidElement::point_stress`]).
+struct PointStress {
+    stress: [f64; 6],
+    strain: Vector6<f64>,
+    thermal: Vector6<f64>,
+    pk2: Option<[f64; 6]>,
+}
+
 impl SolidElement {
-    /// Small strain: `f = K u` with `K = ∫ B^T C B dV`.
+    /// Small strain: `f = K u + f_th` with `K = ∫ B^T C B dV`.
     fn compute_small(
         &self,
         ctx: &ElementContext<'_>,
@@ -429,7 +443,9 @@ impl SolidElement {
             let det = self.gradients(p, ctx.coords, q, &mut g)?;
             let dv = p.w * det;
             let c = &self.elasticity(p, ctx.coords);
-            let eps = self.strain(&g, ctx.disp);
+            let eps_th =
+                point_thermal_strain(&*self.material, &p.n[..nn], ctx.coords, ctx.temperature);
+            let eps = self.strain(&g, ctx.disp) - eps_th;
             let sig = c * eps;
             let s: [f64; 6] = sig.into();
             for a in 0..nn {
@@ -496,8 +512,10 @@ impl SolidElement {
         for (q, p) in self.points.iter().enumerate() {
             let dv = p.w * self.gradients(p, ctx.coords, q, &mut g)?;
             let c = self.elasticity(p, ctx.coords);
+            let eps_th =
+                point_thermal_strain(&*self.material, &p.n[..nn], ctx.coords, ctx.temperature);
             let f = tl::deformation_gradient(&g[..nn], ctx.disp);
-            let s = c * tl::green_strain(&f);
+            let s = c * (tl::green_strain(&f) - eps_th);
             tl::add_internal_force(&g[..nn], &f, &s, dv, f_int);
             if let Some(k) = k.as_deref_mut() {
                 tl::add_tangent(&g[..nn], &f, &s, &c, dv, k, ndof);
@@ -506,26 +524,39 @@ impl SolidElement {
         Ok(())
     }
 
-    /// Stress (Cauchy under `nlgeom`), strain (Green's under `nlgeom`) and,
-    /// under `nlgeom`, the second Piola-Kirchhoff stress at point data `p`
-    /// with gradients `g`.
+    /// At point data `p` with gradients `g`: the stress (Cauchy under
+    /// `nlgeom`), the strain (Green's under `nlgeom`), the thermal strain
+    /// and, under `nlgeom`, the second Piola-Kirchhoff stress.
     fn point_stress(
         &self,
         p: &PointData,
         g: &[[f64; 3]; MAX_NODES],
         ctx: &ElementContext<'_>,
-    ) -> ([f64; 6], Vector6<f64>, Option<[f64; 6]>) {
+    ) -> PointStress {
+        let nn = self.shape.num_nodes();
         let c = self.elasticity(p, ctx.coords);
+        let thermal =
+            point_thermal_strain(&*self.material, &p.n[..nn], ctx.coords, ctx.temperature);
         match self.kinematics {
             Kinematics::Small => {
-                let eps = self.strain(g, ctx.disp);
-                ((c * eps).into(), eps, None)
+                let strain = self.strain(g, ctx.disp);
+                PointStress {
+                    stress: (c * (strain - thermal)).into(),
+                    strain,
+                    thermal,
+                    pk2: None,
+                }
             }
             Kinematics::Finite => {
-                let f = tl::deformation_gradient(&g[..self.shape.num_nodes()], ctx.disp);
-                let e = tl::green_strain(&f);
-                let s = c * e;
-                (tl::cauchy_stress(&f, &s), e, Some(s.into()))
+                let f = tl::deformation_gradient(&g[..nn], ctx.disp);
+                let strain = tl::green_strain(&f);
+                let s = c * (strain - thermal);
+                PointStress {
+                    stress: tl::cauchy_stress(&f, &s),
+                    strain,
+                    thermal,
+                    pk2: Some(s.into()),
+                }
             }
         }
     }
@@ -546,6 +577,9 @@ impl Element for SolidElement {
     }
     fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
         self.material.directional_modulus(n)
+    }
+    fn has_thermal_expansion(&self) -> bool {
+        self.material.has_thermal_expansion()
     }
     /// Small strains and a linear elastic material: `f = K u`; not so
     /// under `nlgeom`.
@@ -594,15 +628,18 @@ impl Element for SolidElement {
         let mut out = Vec::with_capacity(self.points.len());
         for (q, p) in self.points.iter().enumerate() {
             let det = self.gradients(p, ctx.coords, q, &mut g)?;
-            let (s, eps, pk2) = self.point_stress(p, &g, ctx);
+            let ps = self.point_stress(p, &g, ctx);
             let mut values = vec![
-                ("stress", s.to_vec()),
-                ("strain", eps.iter().copied().collect()),
-                ("mises", vec![von_mises(&s)]),
+                ("stress", ps.stress.to_vec()),
+                ("strain", ps.strain.iter().copied().collect()),
+                ("mises", vec![von_mises(&ps.stress)]),
                 ("volume", vec![p.w * det]),
             ];
-            if let Some(pk2) = pk2 {
+            if let Some(pk2) = ps.pk2 {
                 values.push(("pk2_stress", pk2.to_vec()));
+            }
+            if ctx.temperature.is_some() {
+                values.push(("thermal_strain", ps.thermal.iter().copied().collect()));
             }
             out.push(PointOutput {
                 position: self.position(p, ctx.coords),

@@ -135,6 +135,7 @@ impl Kernel {
             state_committed: &self.state,
             step: StepInfo::default(),
             law_responses: None,
+            temperature: None,
         }
     }
     /// Internal force and, if asked, the tangent at `disp`.

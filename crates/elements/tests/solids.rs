@@ -77,6 +77,7 @@ fn ctx<'a>(coords: &'a [[f64; 3]], disp: &'a [f64]) -> ElementContext<'a> {
         state_committed: &[],
         step: StepInfo::default(),
         law_responses: None,
+        temperature: None,
     }
 }
 

@@ -237,6 +237,7 @@ pub fn penalty_advice(
                 state_committed: &state,
                 step: StepInfo::default(),
                 law_responses: None,
+                temperature: None,
             })
             .map_err(|source| CoreError::Element {
                 block: ib.name.clone(),
@@ -275,6 +276,7 @@ pub fn penalty_advice(
                     state_committed: &[],
                     step: StepInfo::default(),
                     law_responses: None,
+                    temperature: None,
                 },
                 &mut state,
                 &mut f,

@@ -45,6 +45,7 @@ fn ctx(jump: [f64; 3], committed: &[f64], increment: usize) -> LawContext<'_> {
             delta_load_factor: 0.0,
             secant: false,
             exact_tangent: false,
+            temperature_factor: 1.0,
         },
     }
 }
@@ -564,8 +565,10 @@ fn inter8_top_face_pulled_uniformly() {
                     delta_load_factor: 0.0,
                     secant: false,
                     exact_tangent: false,
+                    temperature_factor: 1.0,
                 },
                 law_responses: None,
+                temperature: None,
             },
             &mut trial,
             &mut f,

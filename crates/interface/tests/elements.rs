@@ -229,6 +229,7 @@ fn ctx<'a>(coords: &'a [V3], disp: &'a [f64], state: &'a [f64]) -> ElementContex
         state_committed: state,
         step: Default::default(),
         law_responses: None,
+        temperature: None,
     }
 }
 

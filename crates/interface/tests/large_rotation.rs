@@ -172,6 +172,7 @@ fn step() -> StepInfo {
         delta_load_factor: 0.5,
         secant: false,
         exact_tangent: false,
+        ..Default::default()
     }
 }
 
@@ -182,6 +183,7 @@ fn ctx<'a>(coords: &'a [V3], disp: &'a [f64], state: &'a [f64]) -> ElementContex
         state_committed: state,
         step: step(),
         law_responses: None,
+        temperature: None,
     }
 }
 

@@ -55,12 +55,16 @@ pub struct CurveRow {
     pub conjugate: f64,
     /// Energy dissipated by friction / interface plasticity so far.
     pub frictional: f64,
+    /// Temperature factor reached (`temperature_factor` column): the
+    /// fraction of the model's temperature change applied, 0 -> 1 over a
+    /// cool-down step; 1 without a temperature program.
+    pub temperature_factor: f64,
 }
 
 /// Header line of `curve.csv` (with its newline): the column names of
 /// [`CurveRow::csv`], in order.
 pub const CURVE_HEADER: &str =
-    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation\n";
+    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation,temperature_factor\n";
 
 fn opt(v: Option<f64>) -> String {
     v.map(|x| format!("{x:e}")).unwrap_or_default()
@@ -71,7 +75,7 @@ impl CurveRow {
     /// [`CURVE_HEADER`], floats in `{:e}` form, `None` as an empty field).
     pub fn csv(&self) -> String {
         format!(
-            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e}\n",
+            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e},{:e}\n",
             self.increment,
             self.step,
             self.lambda,
@@ -91,19 +95,21 @@ impl CurveRow {
             self.load_sign,
             self.control,
             self.conjugate,
-            self.frictional
+            self.frictional,
+            self.temperature_factor
         )
     }
 
     /// A row from a line of `curve.csv` (without its newline), or `None` if
     /// it is not one. Reads files of older runs too: 14 columns (before the
-    /// path-following and frictional columns), 16 or 17; a missing column
-    /// takes its neutral value (`load_sign` 0, `control` `load`, 0.0).
+    /// path-following and frictional columns), 16, 17 or 18 (before the
+    /// temperature factor); a missing column takes its neutral value
+    /// (`load_sign` 0, `control` `load`, 0.0, temperature factor 1).
     pub fn parse(line: &str) -> Option<CurveRow> {
         let f: Vec<&str> = line.split(',').collect();
         // 14 columns: a run written before the path-following and
         // frictional columns
-        if ![14, 16, 17, 18].contains(&f.len()) {
+        if ![14, 16, 17, 18, 19].contains(&f.len()) {
             return None;
         }
         Some(CurveRow {
@@ -125,6 +131,7 @@ impl CurveRow {
             control: f.get(15).map_or("load", |v| v.trim()).to_string(),
             conjugate: f.get(16).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
             frictional: f.get(17).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
+            temperature_factor: f.get(18).and_then(|v| v.trim().parse().ok()).unwrap_or(1.0),
         })
     }
 }
@@ -324,6 +331,7 @@ impl Curve {
             ("load_increment_sign", Box::new(|r| r.load_sign as f64)),
             ("conjugate_displacement", Box::new(|r| r.conjugate)),
             ("frictional_dissipation", Box::new(|r| r.frictional)),
+            ("temperature_factor", Box::new(|r| r.temperature_factor)),
         ];
         Curve {
             columns: cols
@@ -369,8 +377,8 @@ mod tests {
 
     #[test]
     fn columns_follow_the_csv_header_and_read_back_the_rows() {
-        let line = "3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0";
-        let row = CurveRow::parse(line).expect("18 columns");
+        let line = "3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0,7.5e-1";
+        let row = CurveRow::parse(line).expect("19 columns");
         assert_eq!(row.csv().trim_end(), line);
         let c = Curve::from_rows(&[row]);
         let header: Vec<&str> = CURVE_HEADER

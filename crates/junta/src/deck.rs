@@ -76,6 +76,15 @@
 //!
 //! (The same rules give each step's loads in an incremental run.)
 //!
+//! # Temperatures
+//!
+//! `*EXPANSION` becomes the material's `alpha` (`alpha1..3`, `alpha`);
+//! each step's temperature change from the initial temperatures
+//! ([`DeckStep::temperature`]) is its thermal load in a linear run; an
+//! incremental run scales the first change by a temperature factor per
+//! program step (`temperature_pattern`), ramped over the step like the
+//! loads (docs/decks.md, "Thermal loads").
+//!
 //! # Amplitudes
 //!
 //! A load or prescribed displacement with `AMPLITUDE=` is multiplied by the
@@ -96,7 +105,8 @@
 
 use crate::error::{bail, err, Result};
 use crate::readers::inp::{
-    read_inp, InpDeck, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening, InpStep,
+    read_inp, InpDeck, InpExpansion, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset,
+    InpSoftening, InpStep,
 };
 use crate::scene::{AnalysisSpec, CurveSpec};
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
@@ -186,6 +196,10 @@ pub struct DeckIncremental {
     /// The load pattern the load factor scales (the first step's loads, at
     /// amplitude 1 when it has one).
     pub pattern: DeckStep,
+    /// The temperature change the temperature factor scales and the
+    /// factor at the end of each program step ([`junta_core::Model::temperature_steps`]),
+    /// when the deck changes temperatures.
+    pub temperature: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 /// The interface law of a cohesive material: registry key and parameters
@@ -349,7 +363,27 @@ pub fn build_model(path: &Path) -> Result<DeckModel> {
     let title = deck.heading.lines().next().unwrap_or("").trim().to_string();
     let every = deck.every;
     let prints = print_tables(&mut deck);
-    let model = model_of_deck(deck, elements, first, reaction_sets, &file, &mut notes)?;
+    // the temperature change: the first step's (linear), or the pattern
+    // the program's temperature factor scales (incremental)
+    let (temperature, temperature_steps) = match &incremental {
+        Some(inc) => match &inc.temperature {
+            Some((field, factors)) => (Some(field.clone()), factors.clone()),
+            None => (None, Vec::new()),
+        },
+        None => (steps[0].temperature.clone(), Vec::new()),
+    };
+    if steps.iter().any(|s| s.temperature.is_some())
+        && !deck.temperatures.iter().any(|t| t.step.is_none())
+    {
+        notes.push(format!(
+            "{file}: *TEMPERATURE without *INITIAL CONDITIONS, TYPE=TEMPERATURE: the initial (stress-free) temperature is 0"
+        ));
+    }
+    let mut model = model_of_deck(deck, elements, first, reaction_sets, &file, &mut notes)?;
+    model
+        .set_temperature(temperature)
+        .map_err(|e| err!("{file}: *TEMPERATURE: {e}"))?;
+    model.temperature_steps = temperature_steps;
     Ok(DeckModel {
         model,
         notes,
@@ -483,28 +517,85 @@ fn block_element(
     };
     let at = format!("{file}:{}: *MATERIAL, NAME={}", mat.line, mat.name);
     match (&mat.kind, b.shape.is_interface()) {
-        (InpMaterialKind::Isotropic { e, nu }, false) => {
-            let m = registry::find::<MaterialEntry>("isotropic")?;
-            build.material =
-                Some((m.build)(&table(&[("E", *e), ("nu", *nu)])).map_err(|e| err!("{at}: {e}"))?);
-        }
+        (InpMaterialKind::Isotropic { e, nu }, false) => match &mat.expansion {
+            // orthotropic expansion: an orthotropic material with
+            // isotropic constants, in the section's axes
+            Some(InpExpansion::Orthotropic(a)) => {
+                let g = e / (2.0 * (1.0 + nu));
+                let t = table(&[
+                    ("E1", *e),
+                    ("E2", *e),
+                    ("E3", *e),
+                    ("nu12", *nu),
+                    ("nu13", *nu),
+                    ("nu23", *nu),
+                    ("G12", g),
+                    ("G13", g),
+                    ("G23", g),
+                    ("alpha1", a[0]),
+                    ("alpha2", a[1]),
+                    ("alpha3", a[2]),
+                ]);
+                let m = registry::find::<MaterialEntry>("orthotropic")?;
+                build.material = Some((m.build)(&with_axes(t)).map_err(|e| err!("{at}: {e}"))?);
+            }
+            Some(InpExpansion::Anisotropic(_)) => {
+                return Err(err!(
+                    "{at}: *EXPANSION, TYPE=ANISO needs *ELASTIC, TYPE=ANISO (or give TYPE=ISO or ORTHO)"
+                ))
+            }
+            iso => {
+                let mut pairs = vec![("E", *e), ("nu", *nu)];
+                if let Some(InpExpansion::Isotropic(a)) = iso {
+                    pairs.push(("alpha", *a));
+                }
+                let m = registry::find::<MaterialEntry>("isotropic")?;
+                build.material = Some((m.build)(&table(&pairs)).map_err(|e| err!("{at}: {e}"))?);
+            }
+        },
         (InpMaterialKind::EngineeringConstants(c), false) => {
             let names = ["E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23"];
-            let pairs: Vec<(&str, f64)> = names.iter().copied().zip(c.iter().copied()).collect();
+            let mut pairs: Vec<(&str, f64)> =
+                names.iter().copied().zip(c.iter().copied()).collect();
+            let a = match &mat.expansion {
+                None => None,
+                Some(InpExpansion::Isotropic(a)) => Some([*a; 3]),
+                Some(InpExpansion::Orthotropic(a)) => Some(*a),
+                Some(InpExpansion::Anisotropic(_)) => {
+                    return Err(err!(
+                        "{at}: *EXPANSION, TYPE=ANISO needs *ELASTIC, TYPE=ANISO (or give TYPE=ISO or ORTHO)"
+                    ))
+                }
+            };
+            if let Some(a) = a {
+                pairs.extend([("alpha1", a[0]), ("alpha2", a[1]), ("alpha3", a[2])]);
+            }
             let m = registry::find::<MaterialEntry>("orthotropic")?;
             build.material =
                 Some((m.build)(&with_axes(table(&pairs))).map_err(|e| err!("{at}: {e}"))?);
         }
         (InpMaterialKind::Anisotropic(d), false) => {
             let mut t = toml::Table::new();
-            t.insert(
-                "D".into(),
-                toml::Value::Array(d.iter().map(|&x| toml::Value::Float(x)).collect()),
-            );
+            let floats = |v: &[f64]| toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect());
+            t.insert("D".into(), floats(&d[..]));
+            let a = match &mat.expansion {
+                None => None,
+                Some(InpExpansion::Isotropic(a)) => Some([*a, *a, *a, 0.0, 0.0, 0.0]),
+                Some(InpExpansion::Orthotropic(a)) => Some([a[0], a[1], a[2], 0.0, 0.0, 0.0]),
+                Some(InpExpansion::Anisotropic(a)) => Some(*a),
+            };
+            if let Some(a) = a {
+                t.insert("alpha".into(), floats(&a));
+            }
             let m = registry::find::<MaterialEntry>("anisotropic")?;
             build.material = Some((m.build)(&with_axes(t)).map_err(|e| err!("{at}: {e}"))?);
         }
         (InpMaterialKind::Traction(_), true) => {
+            if mat.expansion.is_some() {
+                notes.push(format!(
+                    "{at}: *EXPANSION of a cohesive material ignored: interfaces carry no thermal strain (they see the jump the solids' expansion makes)"
+                ));
+            }
             let thickness = section_thickness(deck, mat, file)?;
             let (key, t) = cohesive_law_table(mat, thickness, period(deck, 0), file, notes)?;
             softening = key != "linear_penalty";
@@ -828,19 +919,32 @@ fn incremental_program(
     let mut settings: Option<(NewtonSettings, usize)> = None;
     let ps = ProgramSteps::new(deck, steps.len(), file)?;
     let pattern = ps.pattern(steps)?;
-    let mut lambda = 0.0;
+    let temperature = temperature_pattern(steps, file)?;
+    let mut temperature_steps = Vec::with_capacity(steps.len());
+    let (mut lambda, mut theta) = (0.0, 0.0);
     for (k, s) in steps.iter().enumerate() {
         let targets = ps.targets(&pattern, k, s, lambda, notes)?;
         let step = deck.steps.get(k);
         let limit = step.and_then(|st| st.max_increments.map(|n| (n, st.line)));
         let before = program.len();
+        let c = temperature.as_ref().map_or(0.0, |(_, f)| f[k]);
+        if c != theta && targets.len() > 1 {
+            bail!(
+                "{file}:{}: {}: its temperatures change in a step whose loads follow an amplitude; Junta ramps the temperature linearly over a step: give the temperature change its own step",
+                s.line,
+                s.name
+            );
+        }
         for t in targets {
-            // a segment that does not move the load is no step at all
-            if t != lambda {
+            // a segment that moves neither the load nor the temperature is
+            // no step at all
+            if t != lambda || c != theta {
                 program.push(t);
                 limits.push(limit);
                 deck_steps.push(k);
+                temperature_steps.push(c);
                 lambda = t;
+                theta = c;
             }
         }
         let deck_has_nlgeom = deck_kinematics(deck) == Kinematics::Finite;
@@ -885,6 +989,7 @@ fn incremental_program(
         increment_limits: limits,
         deck_steps,
         pattern,
+        temperature: temperature.map(|(field, _)| (field, temperature_steps)),
     })
 }
 
@@ -1199,6 +1304,85 @@ pub struct DeckStep {
     pub constraints: Vec<(usize, f64)>,
     /// Nodal forces (length = dofs).
     pub f_ext: Vec<f64>,
+    /// Temperature change of every node from its initial temperature
+    /// (`*INITIAL CONDITIONS, TYPE=TEMPERATURE`, 0 where none is given) at
+    /// the end of the step (`*TEMPERATURE` of this and earlier steps);
+    /// `None` when nothing changes.
+    pub temperature: Option<Vec<f64>>,
+}
+
+/// The temperature change of every node at the end of step `k`: the
+/// initial temperatures, then every `*TEMPERATURE` of steps up to `k` in
+/// order (`OP=NEW` goes back to the initial ones first; a node not given
+/// keeps its earlier value, as in CalculiX and Abaqus). `None` when no node
+/// changes.
+fn step_temperature(deck: &InpDeck, k: usize) -> Option<Vec<f64>> {
+    if deck.temperatures.is_empty() {
+        return None;
+    }
+    let mut t0 = vec![0.0; deck.mesh.nodes.len()];
+    for t in deck.temperatures.iter().filter(|t| t.step.is_none()) {
+        for &n in &t.nodes {
+            t0[n] = t.value;
+        }
+    }
+    let mut t = t0.clone();
+    let mut cleared = None;
+    for tl in deck
+        .temperatures
+        .iter()
+        .filter(|t| t.step.is_some_and(|s| s <= k))
+    {
+        if tl.op_new && cleared != tl.step {
+            t.clone_from(&t0);
+            cleared = tl.step;
+        }
+        for &n in &tl.nodes {
+            t[n] = tl.value;
+        }
+    }
+    let d: Vec<f64> = t.iter().zip(&t0).map(|(a, b)| a - b).collect();
+    d.iter().any(|x| *x != 0.0).then_some(d)
+}
+
+/// The temperature changes of an incremental deck as one pattern: the
+/// first step's non-zero change, and per deck step the multiple of it
+/// reached at the step's end (the temperature factor, ramped over the step
+/// like the loads). A change that is not a multiple of the pattern is an
+/// error naming the step (Junta scales one temperature field).
+fn temperature_pattern(steps: &[DeckStep], file: &str) -> Result<Option<(Vec<f64>, Vec<f64>)>> {
+    let Some(pattern) = steps.iter().find_map(|s| s.temperature.clone()) else {
+        return Ok(None);
+    };
+    let (imax, pmax) = pattern
+        .iter()
+        .enumerate()
+        .fold(
+            (0, 0.0f64),
+            |(i, m), (j, v)| if v.abs() > m { (j, v.abs()) } else { (i, m) },
+        );
+    let mut factors = Vec::with_capacity(steps.len());
+    for s in steps {
+        let c = match &s.temperature {
+            None => 0.0,
+            Some(d) => {
+                let c = d[imax] / pattern[imax];
+                if d.iter()
+                    .zip(&pattern)
+                    .any(|(a, p)| (a - c * p).abs() > 1e-12 * pmax)
+                {
+                    bail!(
+                        "{file}:{}: {}: its temperatures (*TEMPERATURE) are not a multiple of the first temperature change; an incremental run scales one temperature field (give the same nodes proportional values, or split the deck)",
+                        s.line,
+                        s.name
+                    );
+                }
+                c
+            }
+        };
+        factors.push(c);
+    }
+    Ok(Some((pattern, factors)))
 }
 
 /// Add the consistent nodal forces of the `*DLOAD` / `*DSLOAD` loads
@@ -1424,6 +1608,7 @@ fn deck_steps_scaled(
             line: step.map_or(0, |s| s.line),
             constraints: bcs.into_iter().map(|(d, (v, _, _))| (d, v)).collect(),
             f_ext,
+            temperature: step_temperature(deck, k),
         });
     }
     Ok(out)

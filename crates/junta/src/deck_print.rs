@@ -30,9 +30,9 @@
 //! strains with tensor shear components (`e_xy = gamma_xy / 2`); for an
 //! element with an `*ORIENTATION` (rectangular or cylindrical) in its
 //! material axes at the point (`Q^T sigma Q`), as CalculiX prints them,
-//! unless the request says `GLOBAL=YES`. `ME` (mechanical strains)
-//! prints as `E` (no thermal strains), `ENER` the energy density
-//! `sigma : eps / 2` at each point, `COORD` the points' global
+//! unless the request says `GLOBAL=YES`. `ME` (mechanical strains) is
+//! `E` less the thermal strain (the same without a temperature change),
+//! `ENER` the energy density `sigma : eps_mech / 2` at each point, `COORD` the points' global
 //! coordinates, and per element (empty `point`) `ELSE` the strain energy
 //! `sum_q sigma : eps / 2 dV_q` and `EVOL` the volume `sum_q dV_q` (`dV_q`
 //! = weight x det J, the elements' `volume` output); unused columns are
@@ -269,6 +269,16 @@ fn el_rows(
                     junta_core::element::StepInfo::default(),
                 )?;
                 let at = |pt: &junta_core::PointOutput, key: &str| -> Result<Vec<f64>> {
+                    if key == "mechanical_strain" {
+                        // the total strain less the thermal strain, if any
+                        let mut e = pt.get("strain").map(<[f64]>::to_vec).ok_or_else(|| {
+                            err!("element {label} reports no strain at its integration points")
+                        })?;
+                        if let Some(th) = pt.get("thermal_strain") {
+                            e.iter_mut().zip(th).for_each(|(e, t)| *e -= t);
+                        }
+                        return Ok(e);
+                    }
                     pt.get(key).map(<[f64]>::to_vec).ok_or_else(|| {
                         err!("element {label} reports no {key} at its integration points")
                     })
@@ -280,7 +290,8 @@ fn el_rows(
                         let dv = at(pt, "volume")?[0];
                         sum += match kind {
                             ElVariable::Energy => {
-                                energy_density(&at(pt, "stress")?, &at(pt, "strain")?) * dv
+                                energy_density(&at(pt, "stress")?, &at(pt, "mechanical_strain")?)
+                                    * dv
                             }
                             _ => dv,
                         };
@@ -290,11 +301,11 @@ fn el_rows(
                 }
                 for (q, pt) in pts.iter().enumerate() {
                     let vals: Vec<f64> = match kind {
-                        ElVariable::Stress | ElVariable::Strain => {
-                            let (x, shear) = if kind == ElVariable::Stress {
-                                (at(pt, "stress")?, 1.0)
-                            } else {
-                                (at(pt, "strain")?, 0.5)
+                        ElVariable::Stress | ElVariable::Strain | ElVariable::MechanicalStrain => {
+                            let (x, shear) = match kind {
+                                ElVariable::Stress => (at(pt, "stress")?, 1.0),
+                                ElVariable::Strain => (at(pt, "strain")?, 0.5),
+                                _ => (at(pt, "mechanical_strain")?, 0.5),
                             };
                             // ours: xx, yy, zz, xy, yz, zx (engineering shear
                             // for strains); CalculiX: xx, yy, zz, xy, xz, yz
@@ -306,7 +317,10 @@ fn el_rows(
                             c.to_vec()
                         }
                         ElVariable::EnergyDensity => {
-                            vec![energy_density(&at(pt, "stress")?, &at(pt, "strain")?)]
+                            vec![energy_density(
+                                &at(pt, "stress")?,
+                                &at(pt, "mechanical_strain")?,
+                            )]
                         }
                         ElVariable::Coordinates => pt.position.to_vec(),
                         ElVariable::Energy | ElVariable::Volume => {
@@ -335,9 +349,10 @@ fn el_rows(
 enum ElVariable {
     /// `S`: stresses at the integration points.
     Stress,
-    /// `E` and `ME` (mechanical strains: the same without thermal strain):
-    /// strains with tensor shear components.
+    /// `E`: total strains with tensor shear components.
     Strain,
+    /// `ME`: mechanical strains, `E` less the thermal strain.
+    MechanicalStrain,
     /// `ENER`: strain energy density `sigma : eps / 2` at the points.
     EnergyDensity,
     /// `ELSE`: strain energy of the element, `int sigma : eps / 2 dV`.
@@ -352,7 +367,8 @@ impl ElVariable {
     fn of(name: &str) -> Option<Self> {
         Some(match name {
             "S" => ElVariable::Stress,
-            "E" | "ME" => ElVariable::Strain,
+            "E" => ElVariable::Strain,
+            "ME" => ElVariable::MechanicalStrain,
             "ENER" => ElVariable::EnergyDensity,
             "ELSE" => ElVariable::Energy,
             "EVOL" => ElVariable::Volume,

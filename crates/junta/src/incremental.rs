@@ -196,6 +196,7 @@ impl Engine<'_> {
             delta_load_factor: r.delta_lambda,
             secant: false,
             exact_tangent: false,
+            temperature_factor: r.temperature_factor,
         };
         let ifs = output::interface_results_at(model, v.u, v.state, step)?;
         let row = self.row_of(v, &ifs)?;
@@ -293,6 +294,7 @@ impl Engine<'_> {
             control: r.control.name().to_string(),
             conjugate,
             frictional: energy.frictional_dissipation,
+            temperature_factor: r.temperature_factor,
         })
     }
 
@@ -521,6 +523,7 @@ fn finish(
         delta_load_factor: 0.0,
         secant: false,
         exact_tangent: false,
+        temperature_factor: log.rows.last().map_or(0.0, |r| r.temperature_factor),
     };
     // the state the run ends on: the driver's, else the last converged one
     let converged_here = log.last_increment > log.start_increment;
@@ -589,6 +592,14 @@ fn base_summary(input: &Path, p: &Prepared, log: &RunLog, status: &str) -> serde
         "control": p.analysis.control,
         "limit_points": limit_points(rows),
         "path_switches": log.path_switches,
+        "temperature": p.temperature.clone().map(|mut t| {
+            // the fraction of the change applied at the end, and the
+            // increments that moved the temperature with the loads held
+            t["factor"] = json!(rows.last().map(|r| r.temperature_factor));
+            let thermal = |r: &CurveRow| r.lambda == 0.0 && r.step == 0;
+            t["thermal_step_increments"] = json!(rows.iter().filter(|r| thermal(r)).count());
+            t
+        }),
     })
 }
 

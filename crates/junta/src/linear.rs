@@ -99,6 +99,7 @@ pub(crate) fn run_linear(
         "title": p.title,
         "units": p.units,
         "analysis": "linear_static",
+        "temperature": p.temperature,
         "nodes": p.model.mesh.nodes.len(),
         "dofs": p.model.dofs.num_dofs(),
         "equations": p.model.dofs.num_free,
@@ -206,8 +207,13 @@ fn solve_deck_steps(
     let mut last = None;
     let mut k = 0;
     while k < steps.len() {
+        // steps with the same constrained dofs and temperatures share a
+        // factorisation
         let mut end = k + 1;
-        while end < steps.len() && dofs_of(&steps[end]) == dofs_of(&steps[k]) {
+        while end < steps.len()
+            && dofs_of(&steps[end]) == dofs_of(&steps[k])
+            && steps[end].temperature == steps[k].temperature
+        {
             end += 1;
         }
         if k > 0 {
@@ -227,6 +233,10 @@ fn solve_deck_steps(
             .map_err(|e| err!("{file}: {} (line {}): {e}", steps[k].name, steps[k].line))?;
             p.solver = build_solver(&p.solver_key, &p.solver_table, &file)?;
         }
+        // the steps' temperature change (their thermal load and stresses)
+        p.model
+            .set_temperature(steps[k].temperature.clone())
+            .map_err(|e| err!("{file}: {} (line {}): {e}", steps[k].name, steps[k].line))?;
         let ndof = p.model.dofs.num_dofs();
         let prescribed: Vec<Vec<f64>> = steps[k..end]
             .iter()

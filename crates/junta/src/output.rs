@@ -43,7 +43,8 @@ pub struct CellResults {
     pub pk2_stress: Option<Vec<[f64; 6]>>,
 }
 
-/// Average integration-point outputs over each solid cell.
+/// Average integration-point outputs over each solid cell (a linear
+/// analysis: the model's whole temperature change, if it has one).
 pub fn cell_results(model: &Model, u: &[f64], state: &StateStore) -> Result<CellResults> {
     cell_results_at(model, u, state, StepInfo::default())
 }
@@ -127,12 +128,24 @@ pub fn element_points(
         .iter()
         .flat_map(|&n| u[3 * n..3 * n + 3].iter().copied())
         .collect();
+    // solids see the temperature change of the increment (interfaces none)
+    let temperature: Option<Vec<f64>> = model
+        .temperature
+        .as_ref()
+        .filter(|_| b.shape.is_solid())
+        .map(|t| {
+            nodes
+                .iter()
+                .map(|&n| step.temperature_factor * t[n])
+                .collect()
+        });
     let ctx = ElementContext {
         coords: &coords,
         disp: &disp,
         state_committed: &state.committed[state.range(bi, e)],
         step,
         law_responses: None,
+        temperature: temperature.as_deref(),
     };
     model.elements[bi]
         .point_outputs(&ctx)
@@ -1075,7 +1088,12 @@ pub fn write_fractions(
     let mut frames = Vec::new();
     for &f in fractions {
         let uf: Vec<f64> = u.iter().map(|v| v * f).collect();
-        let cells = cell_results(model, &uf, state)?;
+        // the temperature change scales with the loads (superposition)
+        let step = StepInfo {
+            temperature_factor: f,
+            ..StepInfo::default()
+        };
+        let cells = cell_results_at(model, &uf, state, step)?;
         let name = format!("results_{:03}.vtu", (f * 100.0).round() as i64);
         write_vtu(&dir.join(&name), model, &uf, &cells)?;
         frames.push((f, name));

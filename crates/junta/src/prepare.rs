@@ -56,6 +56,10 @@ pub struct Prepared {
     /// Parameters of the solver (its `[solver]` table without `type`, with
     /// the `--solver` overrides applied).
     pub solver_table: toml::Table,
+    /// What `summary.json` `temperature` reports of the model's
+    /// temperature change (stress-free and final temperatures, how it is
+    /// applied); `None` without one.
+    pub temperature: Option<serde_json::Value>,
     /// The load cases of a linear deck with several `*STEP`s (empty
     /// otherwise).
     pub deck_steps: Vec<deck::DeckStep>,
@@ -245,6 +249,7 @@ pub fn prepare_model(model: Model, analysis: scene::AnalysisSpec, key: &str) -> 
     let t_choice = std::time::Instant::now();
     let solver = resolve_solver(&mut key, &table, &model, where_, &mut notes)?;
     let choose_solver_seconds = t_choice.elapsed().as_secs_f64();
+    let temperature = temperature_summary(&model, None, "as the model's temperature_steps say");
     Ok(Prepared {
         model,
         solver,
@@ -269,7 +274,32 @@ pub fn prepare_model(model: Model, analysis: scene::AnalysisSpec, key: &str) -> 
         prints: Default::default(),
         read_seconds: 0.0,
         choose_solver_seconds,
+        temperature,
     })
+}
+
+/// `summary.json` `temperature` of a model with a temperature change: the
+/// range of the nodal changes, with `stress_free` (a scene's) the final
+/// temperatures, and how the change is `applied`.
+pub(crate) fn temperature_summary(
+    model: &Model,
+    stress_free: Option<f64>,
+    applied: &str,
+) -> Option<serde_json::Value> {
+    let d = model.temperature.as_ref()?;
+    let lo = d.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = d.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let mut v = serde_json::json!({
+        "change_min": lo,
+        "change_max": hi,
+        "applied": applied,
+    });
+    if let Some(t0) = stress_free {
+        v["stress_free"] = serde_json::json!(t0);
+        v["final_min"] = serde_json::json!(t0 + lo);
+        v["final_max"] = serde_json::json!(t0 + hi);
+    }
+    Some(v)
 }
 
 /// Set `path` (dotted; an array index is a number, `boundary.1.value`) of
@@ -382,6 +412,15 @@ fn prepare_unchecked(input: &Path, options: &crate::Options) -> Result<Prepared>
                 &mut notes,
             )?;
             let choose_solver_seconds = t_choice.elapsed().as_secs_f64();
+            let deck_temperature = temperature_summary(
+                &d.model,
+                None,
+                if d.incremental.is_some() {
+                    "ramped over the first step (*TEMPERATURE), from *INITIAL CONDITIONS"
+                } else {
+                    "with each step's loads (*TEMPERATURE), from *INITIAL CONDITIONS"
+                },
+            );
             let (analysis, (increment_limits, program_deck_steps), deck_steps) = match d.incremental
             {
                 // the load program holds the steps
@@ -422,6 +461,7 @@ fn prepare_unchecked(input: &Path, options: &crate::Options) -> Result<Prepared>
                 increment_limits,
                 program_deck_steps,
                 prints: d.prints,
+                temperature: deck_temperature,
                 read_seconds: 0.0,
                 choose_solver_seconds,
             })
@@ -449,7 +489,8 @@ fn prepare_scene(
                 .into(),
         );
     }
-    let model = scene::build_model_with_notes(sf, &mut notes)?;
+    let mut model = scene::build_model_with_notes(sf, &mut notes)?;
+    let temperature = thermal_program(input, sf, &mut analysis, &mut model, &mut notes)?;
     let (mut key, mut table) = scene::solver_table(sf);
     apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
     let t_choice = std::time::Instant::now();
@@ -494,7 +535,48 @@ fn prepare_scene(
         prints: Default::default(),
         read_seconds: 0.0,
         choose_solver_seconds,
+        temperature,
     })
+}
+
+/// How a scene's `[temperature]` enters the run: a linear run applies it
+/// with the loads; a `static` run with `ramp = "before"` gets a thermal
+/// step ahead of its program (load factor held at 0, temperature factor 0
+/// -> 1: `steps` gains a leading 0), with `"with_first"` the temperature
+/// ramps with the first step. Returns the summary's `temperature`.
+fn thermal_program(
+    input: &Path,
+    sf: &scene::SceneFile,
+    analysis: &mut scene::AnalysisSpec,
+    model: &mut Model,
+    notes: &mut Vec<String>,
+) -> Result<Option<serde_json::Value>> {
+    let Some(t) = &sf.scene.temperature else {
+        return Ok(None);
+    };
+    let applied = if analysis.kind != "static" {
+        "with the loads (linear analysis)"
+    } else {
+        model.temperature_steps = vec![1.0];
+        if analysis.control == scene::Control::ArcLength {
+            bail!(
+                "{}: key `temperature`: the temperature changes under load control (a thermal step, or with the first step), and `analysis.control = \"arc_length\"` follows the path throughout; use control = \"auto\" (the default: path following takes over at a limit point of the mechanical steps) or \"load\"",
+                input.display()
+            );
+        }
+        match t.ramp {
+            scene::Ramp::Before => {
+                analysis.steps.insert(0, 0.0);
+                notes.push(format!(
+                    "{}: [temperature]: a thermal step (step 0 of curve.csv, load factor 0, temperature factor 0 -> 1) runs before the load program",
+                    input.display()
+                ));
+                "thermal step before the load program"
+            }
+            scene::Ramp::WithFirst => "ramped with the first step of the load program",
+        }
+    };
+    Ok(temperature_summary(model, Some(t.stress_free), applied))
 }
 
 /// `--solver control=load|displacement|auto|arc_length`: the control of an

@@ -61,6 +61,55 @@ pub struct Scene {
     /// Analysis type: linear (default) or incremental-iterative.
     #[serde(default)]
     pub analysis: AnalysisSpec,
+    /// A temperature change of the solids from their stress-free
+    /// temperature (thermal strains; cure residual stresses).
+    pub temperature: Option<TemperatureSpec>,
+}
+
+/// `[temperature]`: the stress-free temperature, the temperature of every
+/// node (uniform `value`, then per node or element set, later entries
+/// winning) and, in a `static` run, when it is applied (`ramp`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TemperatureSpec {
+    /// Temperature at which the solids carry no thermal strain (e.g. the
+    /// cure temperature of a laminate).
+    pub stress_free: f64,
+    /// Temperature of every node not in `sets` (default: `stress_free`).
+    pub value: Option<f64>,
+    /// Temperatures of node sets or element sets (the nodes of their
+    /// elements), in order: a later entry overrides an earlier one.
+    #[serde(default)]
+    pub sets: Vec<TemperatureSet>,
+    /// In a `static` run: `"before"` (default) a thermal step ahead of the
+    /// load program (the temperature goes from `stress_free` to its values
+    /// with the loads and prescribed displacements at zero, then stays
+    /// while the program runs), or `"with_first"` (ramped with the first
+    /// step of the program, in proportion to its loads). A linear run
+    /// applies it with the loads.
+    #[serde(default)]
+    pub ramp: Ramp,
+}
+
+/// `[[temperature.sets]]`: one set's temperature.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TemperatureSet {
+    /// A node set, or an element set (the nodes of its elements).
+    pub set: Spanned<String>,
+    /// Its nodes' temperature.
+    pub value: f64,
+}
+
+/// `[temperature] ramp`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Ramp {
+    /// A thermal step before the load program.
+    #[default]
+    Before,
+    /// With the first step of the load program.
+    WithFirst,
 }
 
 /// `[analysis]`: `type = "linear"` (default, one solve) or `"static"`
@@ -1351,8 +1400,68 @@ pub fn build_model_with_notes(sf: &SceneFile, notes: &mut Vec<String>) -> Result
         ),
         crate::limits::model_bytes(&mesh),
     )?;
-    Model::new(mesh, elements, &constraints, f_ext, reaction_sets)
-        .map_err(|e| err!("{}: {e}", sf.path.display()))
+    let mut model = Model::new(mesh, elements, &constraints, f_ext, reaction_sets)
+        .map_err(|e| err!("{}: {e}", sf.path.display()))?;
+    if let Some(t) = &sf.scene.temperature {
+        let delta = temperature_change(sf, t, &model, notes)?;
+        model
+            .set_temperature(Some(delta))
+            .map_err(|e| err!("{}: key `temperature`: {e}", sf.path.display()))?;
+    }
+    Ok(model)
+}
+
+/// The temperature change of every node from `[temperature]`
+/// `stress_free`: `value` everywhere, then each `sets` entry on its nodes.
+/// Notes when nothing changes or no material expands.
+fn temperature_change(
+    sf: &SceneFile,
+    t: &TemperatureSpec,
+    model: &Model,
+    notes: &mut Vec<String>,
+) -> Result<Vec<f64>> {
+    let file = sf.path.display();
+    let finite = |key: &str, v: f64| -> Result<()> {
+        if !v.is_finite() {
+            bail!("{file}: key `temperature.{key}`: {v} is not a finite temperature");
+        }
+        Ok(())
+    };
+    finite("stress_free", t.stress_free)?;
+    let value = t.value.unwrap_or(t.stress_free);
+    finite("value", value)?;
+    let mesh = &model.mesh;
+    let mut temp = vec![value; mesh.nodes.len()];
+    for (i, s) in t.sets.iter().enumerate() {
+        finite(&format!("sets[{i}].value"), s.value)?;
+        let name = s.set.get_ref();
+        let nodes: Vec<usize> = match (mesh.node_set(name), mesh.element_set(name)) {
+            (Ok(n), _) => n.to_vec(),
+            (_, Ok(els)) => els
+                .iter()
+                .flat_map(|er| mesh.blocks[er.block].element(er.element).iter().copied())
+                .collect(),
+            (Err(e), Err(_)) => bail!(
+                "{}: key `temperature.sets[{i}].set`: {e} (an element set works too: its elements' nodes)",
+                sf.at(s.set.span())
+            ),
+        };
+        for n in nodes {
+            temp[n] = s.value;
+        }
+    }
+    let delta: Vec<f64> = temp.iter().map(|x| x - t.stress_free).collect();
+    if delta.iter().all(|d| *d == 0.0) {
+        notes.push(format!(
+            "{file}: [temperature]: every node is at the stress-free temperature {}: no thermal strain",
+            t.stress_free
+        ));
+    } else if !model.elements.iter().any(|e| e.has_thermal_expansion()) {
+        notes.push(format!(
+            "{file}: [temperature]: no solid's material has a thermal expansion coefficient (alpha; alpha1, alpha2, alpha3): the temperature change makes no strain"
+        ));
+    }
+    Ok(delta)
 }
 
 /// The solver table of the scene (`type` plus parameters), or the default.

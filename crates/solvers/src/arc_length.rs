@@ -490,6 +490,7 @@ impl Coupling {
                 state_committed: &state.committed[r],
                 step,
                 law_responses: None,
+                temperature: None,
             };
             el.compute(&ctx, &mut self.trial, &mut self.fbuf, Some(&mut self.kbuf))
                 .map_err(|source| CoreError::Element {
@@ -670,6 +671,17 @@ where
     arc.validate()?;
     settings.validate()?;
     let (state, u_start, cur, path) = path_start(model, settings, end, restart)?;
+    if model.temperature.is_some()
+        && model.temperature_factor(cur.step, 0.0) != model.temperature_factor(cur.step, 1.0)
+    {
+        return Err(CoreError::Invalid(format!(
+            "step {} of the program changes the temperature: path following needs the \
+             temperature held (a thermal step runs under load control: control = \"auto\" or \
+             \"load\")",
+            cur.step + 1
+        ))
+        .into());
+    }
     let (mut w, timings) = Work::for_run(model, solver, u_start, settings);
     w.analyzed = analyzed;
     if cur.exact {
@@ -1075,6 +1087,7 @@ impl<'a> PathRun<'a> {
             delta_load_factor: lambda - self.cur.lambda,
             secant: false,
             exact_tangent: false,
+            temperature_factor: self.w.model.temperature_factor(self.cur.step, 1.0),
         };
         let program_step = self.cur.step;
         if !self
@@ -1326,6 +1339,7 @@ impl<'a> PathRun<'a> {
             lambda: cur.lambda,
             delta_lambda: c.delta_lambda,
             step_fraction: cur.t,
+            temperature_factor: self.w.model.temperature_factor(cur.step, 1.0),
             iterations: conv.iterations,
             residual: conv.rel,
             energy: 0.0,
@@ -1578,6 +1592,7 @@ impl PathAttempt<'_, '_> {
             delta_load_factor: self.lambda - self.cur.lambda,
             secant: self.secant,
             exact_tangent: false,
+            temperature_factor: self.w.model.temperature_factor(self.cur.step, 1.0),
         }
     }
 

@@ -11,6 +11,10 @@
 //!
 //! For linear elements this is exact in one step; the residual on the free
 //! dofs after the solve measures the solve's accuracy and is reported.
+//!
+//! A model's temperature field ([`Model::temperature`]) is applied whole
+//! (temperature factor 1): its thermal force is part of `f_int(u0)`, so
+//! the solve answers the loads and the temperature change together.
 
 use junta_core::dof::CONSTRAINED;
 use junta_core::element::StepInfo;
@@ -145,6 +149,7 @@ pub fn solve_linear_static_cases(
         delta_load_factor: 1.0,
         secant: false,
         exact_tangent: false,
+        temperature_factor: 1.0,
     };
     let initial = |case: &LoadCase<'_>| -> Vec<f64> {
         let mut u: Vec<f64> = (0..ndof)

@@ -12,6 +12,18 @@
 //! unloads. Force control and displacement control are the same thing here:
 //! it depends on what the model prescribes.
 //!
+//! A model with a temperature field ([`Model::temperature`]) has a second,
+//! non-proportional load: the temperature factor `theta` of
+//! [`Model::temperature_steps`] goes linearly over each step like `lambda`
+//! (from the previous step's end value), so a step with `lambda` held and
+//! `theta` moving is a thermal step (a cool-down before the mechanical
+//! load: the program `[0, lambda_1, ...]` with `theta = [1]`). Both are
+//! functions of the cursor (step, fraction), so checkpoints need nothing
+//! more. The force scale of the convergence test includes the thermal
+//! force `|theta f_th,f|` (`f_th` the internal force of the temperature
+//! field at zero displacement), so that a free body expanding under a
+//! temperature change, with no load and no reaction, has a scale.
+//!
 //! Increment sizes are *fractions of the step* (`t` in `[0, 1]`,
 //! `lambda = lambda_start + t (lambda_end - lambda_start)`); the last
 //! increment of a step is shortened to end exactly on `lambda_end`.
@@ -63,8 +75,10 @@
 //! largest force scale `max(|lambda f_ext,f|, |reactions|)` met at a
 //! converged increment of the run so far: it keeps the criterion meaningful
 //! when the current load is zero (e.g. at the end of an unloading step).
-//! An increment that changes nothing (zero load-factor increment) may
-//! converge with zero iterations; a model without free dofs always does.
+//! An increment that changes nothing (zero load-factor increment, or any
+//! increment of a model whose load pattern is zero, e.g. after the thermal
+//! step of a temperature-only program) may converge with zero iterations;
+//! a model without free dofs always does.
 //!
 //! # Cut-back
 //!
@@ -350,6 +364,9 @@ pub struct IncrementReport {
     pub energy: f64,
     /// Cut-backs before this increment converged.
     pub cutbacks: usize,
+    /// Temperature factor reached ([`Model::temperature_factor`]; 1 for a
+    /// model without temperature steps).
+    pub temperature_factor: f64,
     /// Seconds spent on this increment, failed attempts included
     /// (`analyze` only on the run's first increment; `pattern` unused).
     pub seconds: Timings,
@@ -591,6 +608,13 @@ pub(crate) struct Work<'m> {
     /// The reduced external force `T^T f_ext` (by equation).
     pub(crate) fext_f: Vec<f64>,
     pub(crate) fext_free_norm: f64,
+    /// `|f_th,f|`: the reduced internal force of the temperature field at
+    /// zero displacement and temperature factor 1 (0 without one).
+    pub(crate) fth_free_norm: f64,
+    /// The model's load pattern is zero (no force, no non-zero prescribed
+    /// displacement): the load factor moves nothing (a temperature-only
+    /// program after its thermal step).
+    pub(crate) no_load: bool,
     pub(crate) f_int: Vec<f64>,
     /// `f_int - lambda f_ext` (full length: reactions on constrained dofs).
     pub(crate) res: Vec<f64>,
@@ -629,6 +653,41 @@ pub(crate) struct Work<'m> {
     pub(crate) stalled_attempts: usize,
 }
 
+/// `|f_th,f|` of [`Work::fth_free_norm`]: one assembly at zero
+/// displacement and temperature factor 1 (0 without a temperature field,
+/// or if that assembly fails: the run's own assemblies report the error).
+fn thermal_force_norm(model: &Model, asm: &Assembler) -> f64 {
+    if model.temperature.is_none() {
+        return 0.0;
+    }
+    let ndof = model.dofs.num_dofs();
+    let mut f = vec![0.0; ndof];
+    let mut state = model.initial_state();
+    let u0 = vec![0.0; ndof];
+    if asm
+        .assemble(
+            &model.mesh,
+            &model.elements,
+            &model.dofs,
+            &u0,
+            &mut state,
+            StepInfo::default(),
+            None,
+            &mut f,
+        )
+        .is_err()
+    {
+        return 0.0;
+    }
+    model
+        .dofs
+        .reduce(&f)
+        .iter()
+        .map(|v| v * v)
+        .sum::<f64>()
+        .sqrt()
+}
+
 pub(crate) fn is_element_error(e: &CoreError) -> bool {
     matches!(e, CoreError::Element { .. })
 }
@@ -646,6 +705,8 @@ impl<'m> Work<'m> {
         let nf = free_dofs.len();
         let fext_f = model.dofs.reduce(&model.f_ext);
         let fext_free_norm = fext_f.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let fth_free_norm = thermal_force_norm(model, &asm);
+        let no_load = fext_free_norm == 0.0 && model.dofs.prescribed.iter().all(|p| *p == 0.0);
         Work {
             model,
             k: asm.pattern.clone(),
@@ -655,6 +716,8 @@ impl<'m> Work<'m> {
             free_dofs,
             fext_f,
             fext_free_norm,
+            fth_free_norm,
+            no_load,
             f_int: vec![0.0; u_start.len()],
             res: vec![0.0; u_start.len()],
             res_f: vec![0.0; nf],
@@ -760,7 +823,9 @@ impl<'m> Work<'m> {
         m.dofs.reduce_into(&self.res, &mut self.res_f);
         let free2: f64 = self.res_f.iter().map(|r| r * r).sum();
         let abs = free2.sqrt();
-        let scale_now = (lambda.abs() * self.fext_free_norm).max(reac2.sqrt());
+        let scale_now = (lambda.abs() * self.fext_free_norm)
+            .max(step.temperature_factor.abs() * self.fth_free_norm)
+            .max(reac2.sqrt());
         let scale = scale_now
             .max(self.settings.force_floor * force_peak)
             .max(f64::MIN_POSITIVE);
@@ -819,6 +884,7 @@ impl<'m> Work<'m> {
             delta_load_factor: 0.0,
             secant: false,
             exact_tangent: false,
+            temperature_factor: self.model.temperature_factor(cur.step, cur.t),
         };
         let ev = self.evaluate(state, step, cur.lambda, cur.force_peak)?;
         state.restore();
@@ -997,7 +1063,8 @@ impl<'m> Work<'m> {
     /// Start of an attempt: `u` = the converged free displacements with the
     /// constrained dofs at `lambda * prescribed` (dependents follow), and
     /// its residual. `Some` when there is nothing to iterate: no free dofs,
-    /// or a zero load-factor increment already in balance.
+    /// or an increment that moves nothing (a zero load-factor increment, or
+    /// a model whose load pattern is zero) already in balance.
     fn first_residual(
         &mut self,
         state: &mut StateStore,
@@ -1024,7 +1091,11 @@ impl<'m> Work<'m> {
         }
         self.history.push(a.ev.rel);
         let nf = self.free_dofs.len();
-        if nf == 0 || (a.step.delta_load_factor == 0.0 && a.ev.rel <= self.settings.tol_force) {
+        // an increment that moves nothing (no load-factor change, or a zero
+        // load pattern) and starts in balance has converged: its first
+        // residual is round-off, whose work ratios mean nothing
+        let moves_nothing = a.step.delta_load_factor == 0.0 || self.no_load;
+        if nf == 0 || (moves_nothing && a.ev.rel <= self.settings.tol_force) {
             return Ok(Some(Attempt::Converged {
                 iterations: 0,
                 eval: a.ev,
@@ -1762,6 +1833,13 @@ impl LoadRun<'_> {
         };
         let end = self.program[cur.step];
         let span = end - start;
+        // a step where neither the load factor nor the temperature moves
+        let model = self.w.model;
+        let span = if span == 0.0 && model.temperature.is_some() {
+            model.temperature_factor(cur.step, 1.0) - model.temperature_factor(cur.step, 0.0)
+        } else {
+            span
+        };
         let mut size = cur.size;
         let mut cutbacks = 0;
         loop {
@@ -1773,7 +1851,7 @@ impl LoadRun<'_> {
             let lambda_new = if t_new == 1.0 {
                 end
             } else {
-                start + t_new * span
+                start + t_new * (end - start)
             };
             let step = StepInfo {
                 increment: cur.increment_index + 1,
@@ -1781,6 +1859,7 @@ impl LoadRun<'_> {
                 delta_load_factor: lambda_new - cur.lambda,
                 secant: false,
                 exact_tangent: false,
+                temperature_factor: model.temperature_factor(cur.step, t_new),
             };
             let attempt = self
                 .w
@@ -1919,6 +1998,7 @@ impl LoadRun<'_> {
             lambda: cur.lambda,
             delta_lambda,
             step_fraction: cur.t,
+            temperature_factor: self.w.model.temperature_factor(cur.step, cur.t),
             iterations: inc.iterations,
             residual: inc.eval.rel,
             energy: inc.energy,

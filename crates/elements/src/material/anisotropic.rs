@@ -15,6 +15,11 @@
 //! definite. An optional orientation `a`, `b` [, `system`] (as for
 //! `orthotropic`, rectangular or cylindrical) gives `C_g = T C_l T^T` (see
 //! [`super`]), for a cylindrical system at each integration point.
+//!
+//! Thermal expansion: `alpha = [a11, a22, a33, a12, a13, a23]` (optional,
+//! default 0), the tensor components of the expansion per unit temperature
+//! in the material axes in the order of Abaqus / CalculiX `*EXPANSION,
+//! TYPE=ANISO`, rotated like a strain tensor ([`crate::thermal`]).
 
 use super::orthotropic::{orientation_of, Axes, Orientation, System};
 use super::rotate_symmetric;
@@ -33,6 +38,10 @@ pub struct Anisotropic {
     c_local: Voigt6,
     c_global: Voigt6,
     reference: f64,
+    /// Expansion tensor in the material axes.
+    alpha: nalgebra::Matrix3<f64>,
+    /// Global Voigt expansion in the reference axes.
+    alpha_global: [f64; 6],
 }
 
 /// Parameter table of `anisotropic`.
@@ -50,6 +59,9 @@ pub struct AnisotropicParams {
     pub b: Option<[f64; 3]>,
     /// `"rectangular"` (default) or `"cylindrical"` (`a`, `b` points of the axis).
     pub system: Option<System>,
+    /// Thermal expansion `[a11, a22, a33, a12, a13, a23]` (tensor
+    /// components, material axes; optional, default 0).
+    pub alpha: Option<[f64; 6]>,
 }
 
 fn invalid(message: String) -> CoreError {
@@ -105,7 +117,20 @@ impl Anisotropic {
             c_local,
             c_global,
             reference,
+            alpha: nalgebra::Matrix3::zeros(),
+            alpha_global: [0.0; 6],
         })
+    }
+
+    /// The same material with the thermal expansion `[a11, a22, a33, a12,
+    /// a13, a23]` (tensor components in the material axes, per unit
+    /// temperature); an error unless finite.
+    pub fn with_expansion(mut self, alpha: [f64; 6]) -> Result<Self, CoreError> {
+        crate::thermal::check_coefficients(&["a11", "a22", "a33", "a12", "a13", "a23"], &alpha)
+            .map_err(invalid)?;
+        self.alpha = crate::thermal::expansion_tensor(&alpha);
+        self.alpha_global = crate::thermal::rotate_expansion(&self.alpha, &self.axes.reference());
+        Ok(self)
     }
 
     /// Build from a parameter table (unknown keys rejected).
@@ -118,7 +143,7 @@ impl Anisotropic {
             ))
         })?;
         let orientation = orientation_of(p.a, p.b, p.system).map_err(invalid)?;
-        Self::new(&d, orientation)
+        Self::new(&d, orientation)?.with_expansion(p.alpha.unwrap_or([0.0; 6]))
     }
 }
 
@@ -143,6 +168,15 @@ impl Material for Anisotropic {
     fn reference_modulus(&self) -> f64 {
         self.reference
     }
+    fn has_thermal_expansion(&self) -> bool {
+        self.alpha != nalgebra::Matrix3::zeros()
+    }
+    fn thermal_expansion_at(&self, x: [f64; 3]) -> [f64; 6] {
+        match self.axes {
+            Axes::Fixed(_) => self.alpha_global,
+            _ => crate::thermal::rotate_expansion(&self.alpha, &self.axes.at(x)),
+        }
+    }
 }
 
 inventory::submit! {
@@ -154,6 +188,7 @@ inventory::submit! {
             ParamDoc { name: "a", doc: "optional [x, y, z]: material axis 1 (with b; default global x)" },
             ParamDoc { name: "b", doc: "optional [x, y, z]: a vector in the material 1-2 plane (with a)" },
             ParamDoc { name: "system", doc: "optional \"rectangular\" (default) or \"cylindrical\": a, b two points of the axis, material axes r, theta, z at each integration point" },
+            ParamDoc { name: "alpha", doc: "optional [a11, a22, a33, a12, a13, a23]: thermal expansion per unit temperature, tensor components in the material axes (*EXPANSION, TYPE=ANISO order; default 0)" },
         ],
         build: |t| Ok(Arc::new(Anisotropic::from_table(t)?)),
     }

@@ -19,9 +19,13 @@
 //!     | 0           0           0           0   0   mu |
 //! ```
 //!
+//! Thermal expansion: `alpha` (optional, default 0) per unit temperature,
+//! the same in every direction: thermal strain `alpha dT [1, 1, 1, 0, 0, 0]`
+//! ([`crate::thermal`]).
+//!
 //! TOML: `{ type = "isotropic", E = 210e9, nu = 0.3 }` (the `type` key is
-//! the scene's, not ours: the table handed to the constructor holds `E`
-//! and `nu` only).
+//! the scene's, not ours: the table handed to the constructor holds `E`,
+//! `nu` and the optional `alpha`).
 
 use junta_core::registry::{parse_params, MaterialEntry, ParamDoc};
 use junta_core::{CoreError, Material, Voigt6};
@@ -34,6 +38,8 @@ pub struct Isotropic {
     e: f64,
     nu: f64,
     c: Voigt6,
+    /// Thermal expansion per unit temperature.
+    alpha: f64,
 }
 
 /// Parameter table of `isotropic`.
@@ -45,6 +51,8 @@ pub struct IsotropicParams {
     pub e: f64,
     /// Poisson's ratio.
     pub nu: f64,
+    /// Thermal expansion coefficient (optional, default 0).
+    pub alpha: Option<f64>,
 }
 
 fn invalid(message: String) -> CoreError {
@@ -89,13 +97,31 @@ impl Isotropic {
             c[(i, i)] = lambda + 2.0 * mu;
             c[(i + 3, i + 3)] = mu;
         }
-        Ok(Isotropic { e, nu, c })
+        Ok(Isotropic {
+            e,
+            nu,
+            c,
+            alpha: 0.0,
+        })
+    }
+
+    /// The same material with the thermal expansion coefficient `alpha`
+    /// (per unit temperature); an error unless finite.
+    pub fn with_expansion(mut self, alpha: f64) -> Result<Self, CoreError> {
+        crate::thermal::check_coefficients(&["alpha"], &[alpha]).map_err(invalid)?;
+        self.alpha = alpha;
+        Ok(self)
+    }
+
+    /// Thermal expansion coefficient.
+    pub fn expansion(&self) -> f64 {
+        self.alpha
     }
 
     /// Build from a parameter table (`E`, `nu`; unknown keys rejected).
     pub fn from_table(table: &toml::Table) -> Result<Self, CoreError> {
         let p: IsotropicParams = parse_params("material", "isotropic", table)?;
-        Self::new(p.e, p.nu)
+        Self::new(p.e, p.nu)?.with_expansion(p.alpha.unwrap_or(0.0))
     }
 
     /// Young's modulus.
@@ -126,6 +152,13 @@ impl Material for Isotropic {
     fn reference_modulus(&self) -> f64 {
         self.e
     }
+    fn has_thermal_expansion(&self) -> bool {
+        self.alpha != 0.0
+    }
+    fn thermal_expansion_at(&self, _x: [f64; 3]) -> [f64; 6] {
+        let a = self.alpha;
+        [a, a, a, 0.0, 0.0, 0.0]
+    }
 }
 
 inventory::submit! {
@@ -135,6 +168,7 @@ inventory::submit! {
         params: &[
             ParamDoc { name: "E", doc: "Young's modulus, > 0 (stress units, e.g. Pa)" },
             ParamDoc { name: "nu", doc: "Poisson's ratio, -1 < nu < 0.5" },
+            ParamDoc { name: "alpha", doc: "optional thermal expansion coefficient per unit temperature (default 0; see [temperature] in scenes.md)" },
         ],
         build: |t| Ok(Arc::new(Isotropic::from_table(t)?)),
     }

@@ -52,6 +52,13 @@
 //! CalculiX's fixed perpendicular to `e3`; [`Material::elasticity`] of a
 //! cylindrical material is `C` in those on-axis axes.
 //!
+//! ## Thermal expansion
+//!
+//! `alpha1, alpha2, alpha3` (optional, default 0): expansion per unit
+//! temperature along the material axes, rotated to the global frame as a
+//! strain tensor at each integration point like the stiffness
+//! ([`crate::thermal::rotate_expansion`]).
+//!
 //! TOML: `E1 = 135e9, E2 = 9e9, E3 = 9e9, nu12 = 0.3, nu13 = 0.3, nu23 = 0.45,
 //! G12 = 5e9, G13 = 5e9, G23 = 3.1e9, a = [1, 1, 0], b = [-1, 1, 0]`
 //! (add `system = "cylindrical"` for a cylindrical system).
@@ -310,6 +317,10 @@ pub struct Orthotropic {
     axes: Axes,
     c_local: Voigt6,
     c_global: Voigt6,
+    /// Expansion along the material axes.
+    alpha: [f64; 3],
+    /// Global Voigt expansion in the reference axes.
+    alpha_global: [f64; 6],
 }
 
 /// Parameter table of `orthotropic`.
@@ -346,6 +357,12 @@ pub struct OrthotropicParams {
     pub b: Option<[f64; 3]>,
     /// `"rectangular"` (default) or `"cylindrical"` (`a`, `b` points of the axis).
     pub system: Option<System>,
+    /// Thermal expansion along material axis 1 (optional, default 0).
+    pub alpha1: Option<f64>,
+    /// Thermal expansion along material axis 2 (optional, default 0).
+    pub alpha2: Option<f64>,
+    /// Thermal expansion along material axis 3 (optional, default 0).
+    pub alpha3: Option<f64>,
 }
 
 fn invalid(message: String) -> CoreError {
@@ -417,7 +434,30 @@ impl Orthotropic {
             axes,
             c_local,
             c_global,
+            alpha: [0.0; 3],
+            alpha_global: [0.0; 6],
         })
+    }
+
+    /// The same material with the thermal expansion `alpha` along its
+    /// material axes 1, 2, 3 (per unit temperature); an error unless finite.
+    pub fn with_expansion(mut self, alpha: [f64; 3]) -> Result<Self, CoreError> {
+        crate::thermal::check_coefficients(&["alpha1", "alpha2", "alpha3"], &alpha)
+            .map_err(invalid)?;
+        self.alpha = alpha;
+        self.alpha_global = self.expansion_in(&self.axes.reference());
+        Ok(self)
+    }
+
+    /// Thermal expansion along the material axes 1, 2, 3.
+    pub fn expansion(&self) -> [f64; 3] {
+        self.alpha
+    }
+
+    /// The global Voigt expansion for material axes `q`.
+    fn expansion_in(&self, q: &Matrix3<f64>) -> [f64; 6] {
+        let a = Matrix3::from_diagonal(&Vector3::from(self.alpha));
+        crate::thermal::rotate_expansion(&a, q)
     }
 
     /// Build from a parameter table (unknown keys rejected).
@@ -437,7 +477,12 @@ impl Orthotropic {
                 g23: p.g23,
             },
             orientation,
-        )
+        )?
+        .with_expansion([
+            p.alpha1.unwrap_or(0.0),
+            p.alpha2.unwrap_or(0.0),
+            p.alpha3.unwrap_or(0.0),
+        ])
     }
 
     /// The engineering constants.
@@ -482,6 +527,15 @@ impl Material for Orthotropic {
             .max(self.constants.e2)
             .max(self.constants.e3)
     }
+    fn has_thermal_expansion(&self) -> bool {
+        self.alpha != [0.0; 3]
+    }
+    fn thermal_expansion_at(&self, x: [f64; 3]) -> [f64; 6] {
+        match self.axes {
+            Axes::Fixed(_) => self.alpha_global,
+            _ => self.expansion_in(&self.axes.at(x)),
+        }
+    }
 }
 
 inventory::submit! {
@@ -501,6 +555,9 @@ inventory::submit! {
             ParamDoc { name: "a", doc: "optional [x, y, z]: material axis 1 (with b; default global x)" },
             ParamDoc { name: "b", doc: "optional [x, y, z]: a vector in the material 1-2 plane (with a)" },
             ParamDoc { name: "system", doc: "optional \"rectangular\" (default) or \"cylindrical\": a, b two points of the axis, material axes r, theta, z at each integration point" },
+            ParamDoc { name: "alpha1", doc: "optional thermal expansion per unit temperature along material axis 1 (default 0)" },
+            ParamDoc { name: "alpha2", doc: "optional thermal expansion per unit temperature along material axis 2 (default 0)" },
+            ParamDoc { name: "alpha3", doc: "optional thermal expansion per unit temperature along material axis 3 (default 0)" },
         ],
         build: |t| Ok(Arc::new(Orthotropic::from_table(t)?)),
     }

@@ -26,7 +26,11 @@
 //! number of steps), `*STATIC [, DIRECT] [, SOLVER=]` (data line `dt0, T, dtmin,
 //! dtmax`; SOLVER is mapped to a back end by the CLI; TIME RESET, TOTAL TIME
 //! AT START, ALLSDTOL, CONTINUE, FACTOR noted and skipped; RIKS,
-//! STABILIZE, FULLY PLASTIC, LONG TERM refused), `*END STEP`; the output requests `*NODE PRINT` (kept in [`InpDeck::node_prints`]: the CLI writes its `U` and `RF` as CSV) and `*EL PRINT` ([`InpDeck::el_prints`]: `S` and `E` as CSV), `*NODE FILE`,
+//! STABILIZE, FULLY PLASTIC, LONG TERM refused), `*END STEP`; thermal
+//! loads: `*EXPANSION [, TYPE=ISO|ORTHO|ANISO] [, ZERO=]` in a material
+//! ([`InpExpansion`]), `*INITIAL CONDITIONS, TYPE=TEMPERATURE` and
+//! `*TEMPERATURE [, OP=]` in a step ([`InpTemperature`]); `*MEMBRANE` on
+//! an element set without elements (noted); the output requests `*NODE PRINT` (kept in [`InpDeck::node_prints`]: the CLI writes its `U` and `RF` as CSV) and `*EL PRINT` ([`InpDeck::el_prints`]: `S` and `E` as CSV), `*NODE FILE`,
 //! `*EL FILE`, `*NODE OUTPUT`, `*ELEMENT OUTPUT`, `*OUTPUT` are
 //! skipped with a note (Junta's outputs are chosen in the scene);
 //! `*INCLUDE, INPUT=file` ([`read_inp`] puts the file's text in its place,
@@ -132,7 +136,8 @@ pub const C3D27_TO_OURS: [usize; 27] = [
 pub const SUPPORTED_KEYWORDS: &str =
     "*HEADING, *NODE, *ELEMENT, *NSET, *ELSET, *MATERIAL, *ELASTIC, *DENSITY, \
 *DAMAGE INITIATION, *DAMAGE EVOLUTION, *DAMAGE STABILIZATION, \
-*SOLID SECTION, *COHESIVE SECTION, *BOUNDARY, *CLOAD, *AMPLITUDE, *DLOAD, *DSLOAD, *SURFACE, *EQUATION, *STEP, *STATIC, *CONTROLS, *END STEP, \
+*EXPANSION, *SOLID SECTION, *COHESIVE SECTION, *MEMBRANE (on an empty element set), *BOUNDARY, *CLOAD, *AMPLITUDE, *DLOAD, *DSLOAD, *SURFACE, *EQUATION, \
+*INITIAL CONDITIONS (TYPE=TEMPERATURE), *TEMPERATURE, *STEP, *STATIC, *CONTROLS, *END STEP, \
 *NODE PRINT, *NODE FILE, *EL PRINT, *EL FILE, *NODE OUTPUT, *ELEMENT OUTPUT, *OUTPUT, *INCLUDE";
 
 /// Element types the reader understands (for messages).
@@ -321,6 +326,44 @@ pub struct InpMaterial {
     pub damage_evolution: Option<InpDamageEvolution>,
     /// `*DAMAGE STABILIZATION`, if given.
     pub damage_stabilization: Option<InpDamageStabilization>,
+    /// `*EXPANSION`, if given.
+    pub expansion: Option<InpExpansion>,
+}
+
+/// `*EXPANSION [, TYPE=ISO | ORTHO | ANISO] [, ZERO=]`: thermal expansion
+/// coefficients, constant in temperature (one data line; a temperature
+/// given on it is ignored with a note). With constant coefficients
+/// `ZERO=` (the reference temperature of the secant coefficients) does not
+/// change the thermal strain `alpha (T - T_initial)` and is noted.
+#[derive(Debug, Clone, PartialEq)]
+pub enum InpExpansion {
+    /// `TYPE=ISO` (default): `alpha`.
+    Isotropic(f64),
+    /// `TYPE=ORTHO`: `alpha_11, alpha_22, alpha_33` in the material axes.
+    Orthotropic([f64; 3]),
+    /// `TYPE=ANISO`: `alpha_11, alpha_22, alpha_33, alpha_12, alpha_13,
+    /// alpha_23` (tensor components, material axes).
+    Anisotropic([f64; 6]),
+}
+
+/// A temperature data line of `*INITIAL CONDITIONS, TYPE=TEMPERATURE` or
+/// `*TEMPERATURE`: `node or node set, temperature`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpTemperature {
+    /// Node set name or node label, as written.
+    pub target: String,
+    /// 0-based node ids.
+    pub nodes: Vec<usize>,
+    /// The temperature.
+    pub value: f64,
+    /// `*TEMPERATURE`: index of its step in [`InpDeck::steps`] (`None` for
+    /// an initial condition).
+    pub step: Option<usize>,
+    /// The `*TEMPERATURE` keyword had `OP=NEW`: the temperatures of earlier
+    /// steps are dropped (back to the initial ones) from this step on.
+    pub op_new: bool,
+    /// Line of the data line.
+    pub line: usize,
 }
 
 impl InpMaterial {
@@ -630,6 +673,9 @@ pub struct InpDeck {
     pub block_orientations: Vec<Option<usize>>,
     /// `*AMPLITUDE`s, in input order.
     pub amplitudes: Vec<InpAmplitude>,
+    /// `*INITIAL CONDITIONS, TYPE=TEMPERATURE` and `*TEMPERATURE` data
+    /// lines, in deck order.
+    pub temperatures: Vec<InpTemperature>,
 }
 
 /// A tabular `*AMPLITUDE`: the factor `a(t)` by which the loads and
@@ -1112,6 +1158,7 @@ struct PendingMaterial {
     line: usize,
     elastic: Option<(InpMaterialKind, usize)>,
     density: Option<f64>,
+    expansion: Option<(InpExpansion, usize)>,
     initiation: Option<InpDamageInitiation>,
     evolution: Option<InpDamageEvolution>,
     stabilization: Option<InpDamageStabilization>,
@@ -1151,6 +1198,8 @@ struct Parser<'a> {
     step_open: Option<usize>,
     boundary_targets: Vec<PendingTarget>,
     cload_targets: Vec<PendingTarget>,
+    /// `*MEMBRANE` lines and their ELSET (checked to be empty at the end).
+    membranes: Vec<(usize, String)>,
     /// `*EQUATION`s as written: `(line, [(node or set, dof, a)])`.
     equation_terms: Vec<(usize, Vec<WrittenTerm>)>,
     /// Element surfaces: name (upper case) -> `(line, [(element or
@@ -1380,6 +1429,196 @@ impl<'a> Parser<'a> {
         }
     }
 
+    /// `*EXPANSION [, TYPE=ISO | ORTHO | ANISO] [, ZERO=]` ([`InpExpansion`]).
+    fn expansion(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "EXPANSION";
+        self.check_params(line, kw, params, &["TYPE", "ZERO"])?;
+        let Some(m) = &self.current_material else {
+            return Err(self.invalid(line, kw, "*EXPANSION must follow *MATERIAL"));
+        };
+        if m.expansion.is_some() {
+            return Err(self.invalid(
+                line,
+                kw,
+                format!("material `{}` has two *EXPANSION", m.name),
+            ));
+        }
+        let ty = Self::param(params, "TYPE")
+            .and_then(|(_, v)| v.as_deref())
+            .map(norm_key)
+            .unwrap_or_else(|| "ISO".into());
+        let names: &[&str] = match ty.as_str() {
+            "ISO" | "ISOTROPIC" => &["alpha"],
+            "ORTHO" | "ORTHOTROPIC" => &["alpha_11", "alpha_22", "alpha_33"],
+            "ANISO" | "ANISOTROPIC" => &[
+                "alpha_11", "alpha_22", "alpha_33", "alpha_12", "alpha_13", "alpha_23",
+            ],
+            _ => {
+                return Err(InpError::Parameter {
+                    file: self.file.into(),
+                    line,
+                    keyword: kw.into(),
+                    parameter: format!("TYPE={ty}"),
+                    valid: "TYPE=ISO, TYPE=ORTHO, TYPE=ANISO".into(),
+                })
+            }
+        };
+        let Some(&(dl, f, _)) = data.first() else {
+            return Err(self.invalid(
+                line,
+                kw,
+                format!("TYPE={ty} expects a data line with {}", names.join(", ")),
+            ));
+        };
+        if let Some(&(d2, _, _)) = data.get(1) {
+            return Err(self.invalid(
+                d2,
+                kw,
+                "temperature-dependent expansion is not supported (one set of coefficients only)",
+            ));
+        }
+        let values: Vec<&str> = f.iter().copied().filter(|s| !s.is_empty()).collect();
+        if values.len() < names.len() || values.len() > names.len() + 1 {
+            return Err(self.invalid(
+                dl,
+                kw,
+                format!(
+                    "TYPE={ty} expects {} value(s) ({}) and optionally the temperature, found {}",
+                    names.len(),
+                    names.join(", "),
+                    values.len()
+                ),
+            ));
+        }
+        let mut v = Vec::with_capacity(names.len());
+        for (name, t) in names.iter().zip(&values) {
+            v.push(self.float(dl, kw, name, t)?);
+        }
+        if let Some(t) = values.get(names.len()) {
+            let t = self.float(dl, kw, "temperature", t)?;
+            self.deck.notes.push(format!(
+                "line {dl}: *EXPANSION at temperature {t}: one set of coefficients, used at every temperature"
+            ));
+        }
+        if let Some((_, z)) = Self::param(params, "ZERO") {
+            let z = z.as_deref().unwrap_or("");
+            self.float(line, kw, "ZERO", z)?;
+            self.deck.notes.push(format!(
+                "line {line}: *EXPANSION, ZERO={z}: with coefficients constant in temperature the thermal strain is alpha (T - T_initial) whatever the reference temperature"
+            ));
+        }
+        let e = match v.len() {
+            1 => InpExpansion::Isotropic(v[0]),
+            3 => InpExpansion::Orthotropic([v[0], v[1], v[2]]),
+            _ => InpExpansion::Anisotropic([v[0], v[1], v[2], v[3], v[4], v[5]]),
+        };
+        if let Some(m) = self.current_material.as_mut() {
+            m.expansion = Some((e, dl));
+        }
+        Ok(())
+    }
+
+    /// `node or node set, temperature` data lines of `kw` into
+    /// [`InpDeck::temperatures`].
+    fn temperature_lines(
+        &mut self,
+        kw: &str,
+        data: &[(usize, &[&str], bool)],
+        step: Option<usize>,
+        op_new: bool,
+    ) -> Result<(), InpError> {
+        for &(dl, f, _) in data {
+            let values: Vec<&str> = f.iter().copied().filter(|s| !s.is_empty()).collect();
+            if values.len() != 2 {
+                return Err(self.invalid(dl, kw, "expected `node or node set, temperature`"));
+            }
+            let value = self.float(dl, kw, "temperature", values[1])?;
+            self.deck.temperatures.push(InpTemperature {
+                target: values[0].into(),
+                nodes: Vec::new(),
+                value,
+                step,
+                op_new,
+                line: dl,
+            });
+        }
+        Ok(())
+    }
+
+    /// `*INITIAL CONDITIONS, TYPE=TEMPERATURE`: the initial (stress-free)
+    /// temperature of nodes; other types are refused.
+    fn initial_conditions(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "INITIAL CONDITIONS";
+        self.check_params(line, kw, params, &["TYPE"])?;
+        self.model_data_only(line, kw)?;
+        let ty = Self::param(params, "TYPE")
+            .and_then(|(_, v)| v.as_deref())
+            .map(norm_key)
+            .unwrap_or_default();
+        if ty != "TEMPERATURE" {
+            return Err(InpError::Parameter {
+                file: self.file.into(),
+                line,
+                keyword: kw.into(),
+                parameter: format!("TYPE={ty}"),
+                valid: "TYPE=TEMPERATURE".into(),
+            });
+        }
+        self.temperature_lines(kw, data, None, false)
+    }
+
+    /// `*TEMPERATURE [, OP=MOD | NEW]` inside a step: the temperature of
+    /// nodes at the end of the step.
+    fn temperature(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "TEMPERATURE";
+        self.check_params(line, kw, params, &["OP"])?;
+        if self.step_open.is_none() {
+            return Err(self.invalid(
+                line,
+                kw,
+                "*TEMPERATURE belongs inside a *STEP (the initial temperature is *INITIAL CONDITIONS, TYPE=TEMPERATURE)",
+            ));
+        }
+        let op_new = self.op_new(line, kw, params)?;
+        let step = Some(self.deck.steps.len() - 1);
+        self.temperature_lines(kw, data, step, op_new)
+    }
+
+    /// `*MEMBRANE, ELSET=, MATERIAL=`: accepted on an element set without
+    /// elements (CalculiX's test decks carry such lines), refused otherwise
+    /// (checked when the sets are complete).
+    fn membrane(
+        &mut self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<(), InpError> {
+        let kw = "MEMBRANE";
+        self.check_params(line, kw, params, &["ELSET", "MATERIAL", "ORIENTATION"])?;
+        self.model_data_only(line, kw)?;
+        let elset = self.required(line, kw, params, "ELSET")?;
+        if data.len() > 1 {
+            return Err(self.invalid(data[1].0, kw, "expected one data line (the thickness)"));
+        }
+        self.membranes.push((line, elset));
+        Ok(())
+    }
+
     fn model_data_only(&self, line: usize, keyword: &str) -> Result<(), InpError> {
         if let Some(s) = self.step_open {
             return Err(self.invalid(
@@ -1437,6 +1676,7 @@ impl<'a> Parser<'a> {
                 damage_initiation: m.initiation,
                 damage_evolution: m.evolution,
                 damage_stabilization: m.stabilization,
+                expansion: m.expansion.map(|e| e.0),
             });
         }
         Ok(())
@@ -1545,6 +1785,7 @@ impl<'a> Parser<'a> {
                 name.as_str(),
                 "ELASTIC"
                     | "DENSITY"
+                    | "EXPANSION"
                     | "DAMAGE INITIATION"
                     | "DAMAGE EVOLUTION"
                     | "DAMAGE STABILIZATION"
@@ -1582,6 +1823,10 @@ impl<'a> Parser<'a> {
             "DAMAGE STABILIZATION" => self.damage_stabilization(line, params, data),
             "DENSITY" => self.density(line, params, data),
             "CONTROLS" => self.controls(line, params),
+            "EXPANSION" => self.expansion(line, params, data),
+            "INITIAL CONDITIONS" => self.initial_conditions(line, params, data),
+            "TEMPERATURE" => self.temperature(line, params, data),
+            "MEMBRANE" => self.membrane(line, params, data),
             "SOLID SECTION" => self.solid_section(line, params, data),
             "COHESIVE SECTION" => self.cohesive_section(line, params, data),
             "ORIENTATION" => self.orientation(line, params, data),
@@ -1672,6 +1917,7 @@ impl<'a> Parser<'a> {
             line,
             elastic: None,
             density: None,
+            expansion: None,
             initiation: None,
             evolution: None,
             stabilization: None,
@@ -2340,6 +2586,22 @@ impl<'a> Parser<'a> {
             .map(norm_key)
             .unwrap_or_else(|| "ISOTROPIC".into());
         let (count, names) = self.elastic_type(line, &ty)?;
+        // one set of constants at one temperature (`E, nu, T`): constant
+        let lines_needed = count.div_ceil(8);
+        let nonempty = |f: &[&str]| f.iter().filter(|s| !s.is_empty()).count();
+        let total: usize = data.iter().take(lines_needed).map(|d| nonempty(d.1)).sum();
+        let last: Vec<&str>;
+        let mut data_vec: Vec<(usize, &[&str], bool)> = data.to_vec();
+        if data.len() == lines_needed && total == count + 1 {
+            let (dl, f, c) = data[lines_needed - 1];
+            last = f.iter().copied().filter(|s| !s.is_empty()).collect();
+            let t = self.float(dl, kw, "temperature", last[last.len() - 1])?;
+            self.deck.notes.push(format!(
+                "line {dl}: *ELASTIC at temperature {t}: one set of constants, used at every temperature"
+            ));
+            data_vec[lines_needed - 1] = (dl, &last[..last.len() - 1], c);
+        }
+        let data = &data_vec[..];
         let mut v = self.elastic_values(line, &ty, count, names, data)?;
         if ty == "ORTHO" || ty == "ORTHOTROPIC" {
             v = self.ortho_to_engineering(data[0].0, &v)?;
@@ -3783,6 +4045,31 @@ impl<'a> Parser<'a> {
         for (k, p) in self.cload_targets.iter().enumerate() {
             self.deck.cloads[k].nodes = self.node_target(p.line, p.keyword, &p.target)?;
         }
+        for k in 0..self.deck.temperatures.len() {
+            let t = &self.deck.temperatures[k];
+            let kw = if t.step.is_some() {
+                "TEMPERATURE"
+            } else {
+                "INITIAL CONDITIONS"
+            };
+            self.deck.temperatures[k].nodes = self.node_target(t.line, kw, &t.target)?;
+        }
+        for &(line, ref elset) in &self.membranes {
+            let members = self
+                .elset_index
+                .get(&elset.to_uppercase())
+                .map_or(0, |&i| self.elsets[i].members.len());
+            if members > 0 {
+                return Err(self.invalid(
+                    line,
+                    "MEMBRANE",
+                    format!("ELSET={elset} has {members} element(s): membrane elements are not supported (Junta's elements are solids and interfaces)"),
+                ));
+            }
+            self.deck.notes.push(format!(
+                "line {line}: *MEMBRANE, ELSET={elset} ignored: the set has no elements"
+            ));
+        }
         self.assign_sections()?;
         for m in self.deck.materials.iter().filter(|m| m.has_damage()) {
             if !self
@@ -4206,6 +4493,7 @@ pub fn parse_inp(text: &str, file_name: &str) -> Result<InpDeck, InpError> {
         step_open: None,
         boundary_targets: Vec::new(),
         cload_targets: Vec::new(),
+        membranes: Vec::new(),
         amplitude_refs: Vec::new(),
         equation_terms: Vec::new(),
         surfaces: HashMap::new(),
