@@ -385,3 +385,40 @@ fn thermal_input_errors_name_the_key_or_line() {
         );
     }
 }
+
+/// A free cube heated under nlgeom: its Green strain equals the thermal
+/// strain (S = C (E - alpha dT) = 0), so it stretches by
+/// `sqrt(1 + 2 alpha dT)` in every direction, not by the small-strain
+/// `1 + alpha dT`: with alpha dT = 0.05, 0.048809 against 0.05 (closed
+/// form of the St. Venant-Kirchhoff material).
+#[test]
+fn free_cube_heated_under_nlgeom_stretches_by_the_green_strain() {
+    let dir = tempfile::tempdir().unwrap();
+    for (nlgeom, expect) in [(true, (1.1f64).sqrt() - 1.0), (false, 0.05)] {
+        let scene = format!(
+            "[materials.m]\ntype = \"isotropic\"\nE = 1000.0\nnu = 0.3\nalpha = 0.0005\n\
+             [mesh]\ntype = \"box\"\nsize = [1.0, 1.0, 1.0]\ndivisions = [2, 2, 2]\n\
+             element = \"h20\"\nmaterial = \"m\"\n\
+             [[boundary]]\nset = \"x0\"\nfixed = [\"x\"]\n\
+             [[boundary]]\nset = \"y0\"\nfixed = [\"y\"]\n\
+             [[boundary]]\nset = \"z0\"\nfixed = [\"z\"]\n\
+             [temperature]\nstress_free = 0.0\nvalue = 100.0\n\
+             [analysis]\ntype = \"static\"\nnlgeom = {nlgeom}\n\
+             [output]\ncurve = {{ reaction_set = \"x0\", reaction_component = \"x\", point_set = \"x1\", point_component = \"x\" }}\n"
+        );
+        let out = dir.path().join(format!("cube_{nlgeom}"));
+        run_ok(
+            &write(dir.path(), &format!("cube_{nlgeom}.toml"), &scene),
+            &out,
+        );
+        let text = std::fs::read_to_string(out.join("curve.csv")).unwrap();
+        let head: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+        let col = head.iter().position(|h| *h == "displacement").unwrap();
+        let last = text.lines().last().unwrap().split(',').nth(col).unwrap();
+        let stretch: f64 = last.parse().unwrap();
+        assert!(
+            rel(stretch, expect) < 1e-9,
+            "nlgeom = {nlgeom}: {stretch} against {expect}"
+        );
+    }
+}
