@@ -401,6 +401,10 @@ struct Coupling {
     fbuf: Vec<f64>,
     coords: Vec<[f64; 3]>,
     disp: Vec<f64>,
+    /// The element's nodal temperature changes (scaled by the step's
+    /// temperature factor): the stress, hence the geometric stiffness of
+    /// an nlgeom solid, depends on them.
+    temps: Vec<f64>,
     dofs: Vec<usize>,
 }
 
@@ -443,6 +447,7 @@ impl Coupling {
             fbuf: Vec::new(),
             coords: Vec::new(),
             disp: Vec::new(),
+            temps: Vec::new(),
             dofs: Vec::new(),
         }
     }
@@ -472,6 +477,11 @@ impl Coupling {
             self.coords.clear();
             self.disp.clear();
             self.dofs.clear();
+            self.temps.clear();
+            if let Some(t) = &model.temperature {
+                let theta = step.temperature_factor;
+                self.temps.extend(conn.iter().map(|&n| theta * t[n]));
+            }
             for &n in conn {
                 self.coords.push(model.mesh.nodes[n]);
                 for c in 0..3 {
@@ -490,7 +500,8 @@ impl Coupling {
                 state_committed: &state.committed[r],
                 step,
                 law_responses: None,
-                temperature: None,
+                temperature: (model.temperature.is_some() && !el.shape().is_interface())
+                    .then_some(self.temps.as_slice()),
             };
             el.compute(&ctx, &mut self.trial, &mut self.fbuf, Some(&mut self.kbuf))
                 .map_err(|source| CoreError::Element {
