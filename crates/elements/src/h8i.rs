@@ -419,6 +419,16 @@ impl IncompatibleHex8 {
 /// Dofs of the total-Lagrangian element before condensation (24 + 9).
 const NT: usize = NU + NA;
 
+/// An element's state under `nlgeom` at given displacements
+/// ([`IncompatibleHex8::finite_solution`]).
+struct FiniteSolution {
+    grads: [PointGrad; 8],
+    thermal: [Vector6<f64>; 8],
+    /// Displacements and solved modes, stacked (24 + 9).
+    d: [f64; NT],
+    state: FiniteState,
+}
+
 /// Internal force and full tangent of the uncondensed total-Lagrangian
 /// element at one `(u, alpha)`.
 struct FiniteState {
@@ -491,6 +501,31 @@ impl IncompatibleHex8 {
         })
     }
 
+    /// The gradients, thermal strains, modes (solved from the committed
+    /// ones) and the uncondensed force and tangent at `ctx`'s displacements.
+    fn finite_solution(&self, ctx: &ElementContext<'_>) -> Result<FiniteSolution, ElementError> {
+        let grads = self.point_gradients(ctx.coords)?;
+        let thermal = self.thermal_strains(ctx);
+        let mut state = FiniteState {
+            f: [0.0; NT],
+            k: [0.0; NT * NT],
+        };
+        let d = self.solve_modes(
+            &grads,
+            &thermal,
+            ctx.coords,
+            ctx.disp,
+            ctx.state_committed,
+            &mut state,
+        )?;
+        Ok(FiniteSolution {
+            grads,
+            thermal,
+            d,
+            state,
+        })
+    }
+
     /// Total-Lagrangian force and condensed tangent
     /// `K_uu - K_ua K_aa^-1 K_au` (module docs), the modes into `state_trial`.
     fn compute_finite(
@@ -500,20 +535,7 @@ impl IncompatibleHex8 {
         f_int: &mut [f64],
         k: Option<&mut [f64]>,
     ) -> Result<(), ElementError> {
-        let grads = self.point_gradients(ctx.coords)?;
-        let mut st = FiniteState {
-            f: [0.0; NT],
-            k: [0.0; NT * NT],
-        };
-        let th = self.thermal_strains(ctx);
-        let d = self.solve_modes(
-            &grads,
-            &th,
-            ctx.coords,
-            ctx.disp,
-            ctx.state_committed,
-            &mut st,
-        )?;
+        let FiniteSolution { d, state: st, .. } = self.finite_solution(ctx)?;
         state_trial[..NA].copy_from_slice(&d[NU..]);
         f_int[..NU].copy_from_slice(&st.f[..NU]);
         if let Some(k) = k {
@@ -538,20 +560,12 @@ impl IncompatibleHex8 {
         &self,
         ctx: &ElementContext<'_>,
     ) -> Result<Vec<PointOutput>, ElementError> {
-        let grads = self.point_gradients(ctx.coords)?;
-        let mut st = FiniteState {
-            f: [0.0; NT],
-            k: [0.0; NT * NT],
-        };
-        let th = self.thermal_strains(ctx);
-        let d = self.solve_modes(
-            &grads,
-            &th,
-            ctx.coords,
-            ctx.disp,
-            ctx.state_committed,
-            &mut st,
-        )?;
+        let FiniteSolution {
+            grads,
+            thermal: th,
+            d,
+            ..
+        } = self.finite_solution(ctx)?;
         let mut out = Vec::with_capacity(8);
         for ((p, pg), th) in self.points.iter().zip(&grads).zip(&th) {
             let f = tl::deformation_gradient(&pg.g, &d);
