@@ -289,7 +289,12 @@ impl Model {
                         source,
                     })?;
                 for p in &pts {
-                    let area = p.get("area").map_or(0.0, |a| a[0]);
+                    // under nlgeom the reference area (see `interface_energy`
+                    // in the run API): a failed point keeps its energy
+                    let area = p
+                        .get("reference_area")
+                        .or_else(|| p.get("area"))
+                        .map_or(0.0, |a| a[0]);
                     for name in [DISSIPATED_ENERGY, VISCOUS_ENERGY] {
                         if let Some(d) = p.get(name) {
                             total += d[0] * area;

@@ -262,6 +262,9 @@ pub fn penalty_advice(
         let mut k = vec![0.0; nd * nd];
         let mut f = vec![0.0; nd];
         let disp = vec![0.0; nd];
+        // the reference state: zero displacement and zero committed state
+        // (an element with state, e.g. H8I under nlgeom, reads it)
+        let committed = vec![0.0; el.state_len()];
         let mut state = vec![0.0; el.state_len()];
         for e in 0..b.len() {
             let nodes = b.element(e);
@@ -273,7 +276,7 @@ pub fn penalty_advice(
                 &ElementContext {
                     coords: &coords,
                     disp: &disp,
-                    state_committed: &[],
+                    state_committed: &committed,
                     step: StepInfo::default(),
                     law_responses: None,
                     temperature: None,

@@ -75,7 +75,10 @@
 //!
 //! so a rigid rotation `R` of the loaded element leaves `delta` and `t`
 //! unchanged and turns the forces by `R`. The law still sees `[s1, s2, n]`
-//! and never knows the kinematics.
+//! and never knows the kinematics. The point outputs give the current
+//! `area` and the `reference_area` (on the undeformed mid-surface); crack
+//! areas and dissipated energies are integrated over the reference one
+//! (a peeled-off point's current mid-surface shrinks as its faces part).
 //!
 //! Tangent. `V_xi, V_eta` depend on both faces with weight 1/2
 //! (`dV_xi = sum_b dN_b/dxi (du_bot,b + du_top,b) / 2`), `g` on their
@@ -778,6 +781,14 @@ impl Element for InterfaceElement {
                     vec![self.law.failure_index(committed).unwrap_or(0.0)],
                 ),
             ];
+            if self.kinematics == Kinematics::Finite {
+                // the point's area on the reference mid-surface: what the
+                // crack areas and the dissipated energies are integrated
+                // over (a failed point's energy does not change when its
+                // faces move apart and the current mid-surface shrinks)
+                let fr0 = self.frame(ctx.coords, q, &mut [0.0; 9])?;
+                values.push(("reference_area", vec![fr0.jac * self.weights[q]]));
+            }
             values.extend(
                 names[..nl]
                     .iter()

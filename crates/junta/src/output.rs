@@ -495,7 +495,19 @@ pub fn interface_energy(r: &InterfaceResults) -> InterfaceEnergy {
     use junta_core::law::output;
     let mut e = InterfaceEnergy::default();
     for p in &r.points {
-        let area = p.get("area").map_or(0.0, |a| a[0]);
+        // Under nlgeom a point reports its current `area` and its
+        // `reference_area`: energies and crack areas are integrated over
+        // the reference one (the crack's extent on the undeformed surface;
+        // the current mid-surface of a peeled-off point shrinks as its faces
+        // move apart, e.g. by 1/sqrt(2) once the faces stand at 90 degrees,
+        // while its dissipated energy stays). The law's densities are per
+        // current area while a point softens, so the energy is exact where
+        // the mid-surface keeps its area while the point softens (openings
+        // small against the element).
+        let area = p
+            .get("reference_area")
+            .or_else(|| p.get("area"))
+            .map_or(0.0, |a| a[0]);
         if let Some(d) = p.get(output::DISSIPATED_ENERGY) {
             e.dissipated_energy += d[0] * area;
         }

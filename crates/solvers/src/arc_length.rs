@@ -64,7 +64,10 @@
 //! when a converged increment dissipated more than `switch_dissipation`
 //! times the stored energy *and* the laws' own state reports dissipated
 //! energy ([`junta_core::Model::dissipated_energy`]); a model whose laws
-//! dissipate nothing stays on the cylindrical constraint. When the
+//! dissipate nothing stays on the cylindrical constraint, and so does a
+//! model under large deformation (any element with
+//! [`Kinematics::Finite`], scene `nlgeom`: see [`energy_balance_holds`]).
+//! When the
 //! dissipation constraint cannot be met any more (nothing left that can
 //! dissipate, e.g. the crack stopped under a contact zone: the dissipation
 //! constraint's correction is not finite, or `tau` fell below 1e-3 of its
@@ -145,7 +148,7 @@ use crate::newton::{
     NonlinearError, NonlinearRun, NonlinearSummary, SolveClock, Work,
 };
 use junta_core::dof::CONSTRAINED;
-use junta_core::element::{ElementContext, StepInfo};
+use junta_core::element::{ElementContext, Kinematics, StepInfo};
 use junta_core::state::StateStore;
 use junta_core::{CoreError, LinearSolver, Model};
 use serde::{Deserialize, Serialize};
@@ -550,6 +553,23 @@ fn work_measures(model: &Model, coupling: &Coupling, u: &[f64], f_int: &[f64]) -
     (a, p)
 }
 
+/// Whether the dissipation constraint's energy balance holds for `model`:
+/// the stored energy is `½ u . f_int` (Clapeyron) only where the solids
+/// are linear, i.e. every element under small kinematics. Under large
+/// deformation (`nlgeom`) it is not: on an elastic path that stiffens as
+/// it turns (a peeled arm swinging round to its load) the balance reads
+/// unloading as dissipation, and a dissipation-controlled run unloads
+/// elastically while it believes a crack is running. Such a model is
+/// followed by the cylindrical arc length throughout (no switch to the
+/// dissipation constraint, no dissipation rescue, no `max_arc_dissipation`
+/// test, which reads the same balance).
+pub(crate) fn energy_balance_holds(model: &Model) -> bool {
+    model
+        .elements
+        .iter()
+        .all(|e| e.kinematics() == Kinematics::Small)
+}
+
 /// Converged state at the start of an increment.
 #[derive(Debug, Clone, Copy)]
 struct Base {
@@ -837,6 +857,8 @@ struct PathRun<'a> {
     /// Energy the laws' state reports dissipated at the last converged
     /// increment.
     dissipated_laws: f64,
+    /// [`energy_balance_holds`]: the dissipation constraint may be used.
+    balance: bool,
     summary: NonlinearSummary,
 }
 
@@ -934,6 +956,7 @@ impl<'a> PathRun<'a> {
             path,
             base,
             dissipated_laws,
+            balance: energy_balance_holds(model),
             summary,
         })
     }
@@ -996,7 +1019,7 @@ impl<'a> PathRun<'a> {
                 r.extrapolate = false;
                 continue;
             }
-            if r.mode == PathMode::Arc && !r.rescued {
+            if r.mode == PathMode::Arc && !r.rescued && self.balance {
                 r.rescued = true;
                 if let Some((conv, tau)) = self.rescue(solver)? {
                     return Ok(Some(PathIncrement {
@@ -1071,6 +1094,7 @@ impl<'a> PathRun<'a> {
                 .max(1e-9 * self.path.stored_max);
             let dissipation = c.dissipation;
             if r.mode != PathMode::Dissipation
+                && self.balance
                 && dissipation > self.arc.max_arc_dissipation * stored
             {
                 outcome = failed(
@@ -1307,7 +1331,9 @@ impl<'a> PathRun<'a> {
                 }
             }
         }
+        let balance = self.balance;
         if control != PathMode::Dissipation
+            && balance
             && c.laws_dissipate
             && dissipation > arc.switch_dissipation * c.stored.abs()
         {
@@ -1322,7 +1348,8 @@ impl<'a> PathRun<'a> {
             // stay on the arc length until the laws dissipate again
             path.mode = PathMode::Arc;
             path.size = size;
-            if c.laws_dissipate && dissipation > arc.switch_dissipation * c.stored.abs() {
+            if balance && c.laws_dissipate && dissipation > arc.switch_dissipation * c.stored.abs()
+            {
                 path.mode = PathMode::Dissipation;
                 path.tau0 = dissipation;
                 path.size = dissipation;

@@ -349,8 +349,12 @@ impl LoadTrack {
         // the dissipation constraint follows it where the arc may turn
         // back onto the loading branch (a snap-back at more than 90
         // degrees); its size a quarter of the largest increment's
-        // dissipation, the driver adapts it
-        let (mode, size, tau0) = if self.dissipating && self.tau_max > 0.0 {
+        // dissipation, the driver adapts it (not under large deformation,
+        // where its energy balance does not hold: `energy_balance_holds`)
+        let (mode, size, tau0) = if self.dissipating
+            && self.tau_max > 0.0
+            && crate::arc_length::energy_balance_holds(model)
+        {
             let tau = FIRST_ARC_OF_LARGEST * self.tau_max;
             (PathMode::Dissipation, tau, tau)
         } else {
