@@ -93,10 +93,10 @@ examples! {
     /// [6 s]
     #[ignore]
     mmb80 => "delamination/mmb80.toml";
-    /// [60 s: nlgeom, 563 path-following increments]
+    /// [106 s: nlgeom, 563 path-following increments]
     #[ignore]
     peel90 => "large_deformation/peel90.toml";
-    /// [50 s: nlgeom, 555 path-following increments]
+    /// [83 s: nlgeom, 555 path-following increments]
     #[ignore]
     peel45 => "large_deformation/peel45.toml";
 }

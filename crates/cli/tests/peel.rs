@@ -358,7 +358,7 @@ fn check_of_the_peel_examples_gives_the_cohesive_zone_advice() {
 /// (the damaged area moves in steps of 0.25 mm^2, one row of points).
 /// Measured: 90 degrees mean -0.19 %, -2.5 .. +2.6 %, G 0.995, work /
 /// dissipation 0.999; 45 degrees mean +0.06 %, -1.8 .. +1.3 %, G 0.997,
-/// 1.0006. [ignored: about 60 s each in a release build; run with `cargo
+/// 1.0006. [ignored: 106 s and 83 s in a release build; run with `cargo
 /// test --release -p junta-cli --test peel -- --ignored`]
 #[test]
 #[ignore]
