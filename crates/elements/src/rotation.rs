@@ -54,7 +54,7 @@ const MAX_NODES: usize = 27;
 /// when `det F <= 0` (an inverted element) or `F` is not finite.
 pub fn polar_rotation(f: &Matrix3<f64>) -> Option<Matrix3<f64>> {
     let det = f.determinant();
-    if !(det > 0.0) || !det.is_finite() {
+    if !det.is_finite() || det <= 0.0 {
         return None;
     }
     let mut x = *f;
