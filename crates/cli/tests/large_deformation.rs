@@ -15,6 +15,13 @@ use std::path::Path;
 /// 0.60325, 0.81061 and u/L = 0.05643, 0.25442, 0.55500 at alpha = 1, 3,
 /// 10; the test checks the shooting against them first.
 fn elastica(alpha: f64) -> (f64, f64) {
+    let s = elastica_tip(alpha);
+    (s[3], 1.0 - s[2])
+}
+
+/// The tip of the elastica of [`elastica`]: `[theta, theta', x, w]` at
+/// `s = 1` (lengths over L).
+fn elastica_tip(alpha: f64) -> [f64; 4] {
     let shoot = |kappa: f64| {
         let n = 4000;
         let h = 1.0 / n as f64;
@@ -40,8 +47,7 @@ fn elastica(alpha: f64) -> (f64, f64) {
             hi = mid;
         }
     }
-    let s = shoot(lo);
-    (s[3], 1.0 - s[2])
+    shoot(lo)
 }
 
 /// The displacement column of `curve.csv` by load factor.
@@ -282,6 +288,129 @@ fn nlgeom_vtu_names_cauchy_and_second_piola_kirchhoff_stress() {
     }
 }
 
+/// The 100 x 2 x 2 cantilever of [`cantilever`] (20 x 1 x 1 H20, E = 1000,
+/// nu = 0) under a dead end load making `P L^2 / EI = alpha`, small
+/// strain or `nlgeom`, `type` "linear" or "static" (one step to load
+/// factor 1). Returns the summary, the tip deflection (mean `uz` of the
+/// end face, from `curve.csv` for static runs) and stderr.
+fn cantilever_at(
+    dir: &Path,
+    alpha: f64,
+    nlgeom: bool,
+    kind: &str,
+) -> (serde_json::Value, Option<f64>, String) {
+    let traction = alpha * (4000.0 / 3.0) / 100.0f64.powi(2) / 4.0;
+    let scene = format!(
+        r#"
+[materials.m]
+type = "isotropic"
+E = 1000.0
+nu = 0.0
+[mesh]
+type = "box"
+size = [100.0, 2.0, 2.0]
+divisions = [20, 1, 1]
+element = "h20"
+material = "m"
+[[boundary]]
+set = "x0"
+fixed = "all"
+[[load]]
+face_set = "x1"
+traction = [0.0, 0.0, -{traction}]
+[analysis]
+type = "{kind}"
+nlgeom = {nlgeom}
+steps = [1.0]
+[output]
+vtu = false
+curve = {{ reaction_set = "x0", reaction_component = "z", point_set = "x1", point_component = "z" }}
+"#
+    );
+    let name = format!("a{alpha}_{nlgeom}_{kind}");
+    let input = dir.join(format!("{name}.toml"));
+    std::fs::write(&input, scene).unwrap();
+    let out = dir.join(&name);
+    let run = junta()
+        .arg("run")
+        .arg(&input)
+        .arg("-o")
+        .arg(&out)
+        .arg("-q")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr).to_string();
+    assert!(run.status.success(), "{stderr}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let tip = (kind == "static").then(|| -curve_by_load(&out).last().unwrap().1);
+    (summary, tip, stderr)
+}
+
+/// The largest element rotation against beam theory and the elastica: a
+/// small-strain cantilever at `P L^2 / EI = 0.1` turns its tip element
+/// (centre at x = 97.5) by `atan(theta(x))`, `theta(x) = P (L x - x^2 / 2)
+/// / EI` (the rotation factor of a linear field, see
+/// `junta_elements::rotation`); under `nlgeom` at `P L^2 / EI = 1` by the
+/// elastica's tip angle (26.4 degrees, less 0.03 % for the half element).
+/// The small-strain run reports the ratio to the limit, below 1, and no
+/// warning; the `nlgeom` run no ratio.
+#[test]
+fn largest_rotation_against_beam_theory_and_the_elastica() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (s, _, stderr) = cantilever_at(tmp.path(), 0.1, false, "linear");
+    let r = &s["largest_rotation"];
+    let x: f64 = 97.5 / 100.0;
+    let theory = (0.1 * (x - x * x / 2.0)).atan();
+    let got = r["radians"].as_f64().unwrap();
+    assert!(rel(got, theory) < 2e-3, "{got} against {theory}");
+    assert!((r["degrees"].as_f64().unwrap() - got.to_degrees()).abs() < 1e-9);
+    assert_eq!(r["kinematics"], "small");
+    assert_eq!(r["block"], "solid", "{r}");
+    let ratio = r["ratio"].as_f64().unwrap();
+    assert!((ratio - got / r["threshold_radians"].as_f64().unwrap()).abs() < 1e-12);
+    assert!(ratio < 1.0, "{r}");
+    assert!(!stderr.contains("warning: small strain"), "{stderr}");
+    assert!(s.get("warnings").is_none(), "{s}");
+
+    let (s, _, stderr) = cantilever_at(tmp.path(), 1.0, true, "static");
+    let r = &s["largest_rotation"];
+    let got = r["radians"].as_f64().unwrap();
+    let tip = elastica_tip(1.0)[0];
+    assert!(rel(got, tip) < 3e-3, "{got} against the elastica's {tip}");
+    assert_eq!(r["kinematics"], "finite");
+    assert!(r.get("ratio").is_none(), "{r}");
+    assert!(!stderr.contains("warning: small strain"), "{stderr}");
+}
+
+/// A small-strain cantilever at `P L^2 / EI = 1` (tip slope 0.5) passes
+/// the rotation limit: the run (linear, and incremental) ends with a
+/// warning on stderr that recommends `nlgeom`, and `summary.json` has the
+/// ratio above 1 and the warning.
+#[test]
+fn small_strain_cantilever_past_the_rotation_limit_is_warned() {
+    let tmp = tempfile::tempdir().unwrap();
+    for kind in ["linear", "static"] {
+        let (s, _, stderr) = cantilever_at(tmp.path(), 1.0, false, kind);
+        let r = &s["largest_rotation"];
+        let ratio = r["ratio"].as_f64().unwrap();
+        // atan(x - x^2 / 2) at x = 0.975 (0.463 rad), over 0.147
+        assert!(ratio > 3.0 && ratio < 3.2, "{kind}: {r}");
+        assert!(
+            stderr.contains("warning: small strain: the largest element rotation is")
+                && stderr.contains("`[analysis] nlgeom = true`"),
+            "{kind}: {stderr}"
+        );
+        let warnings = s["warnings"].as_array().unwrap();
+        assert!(
+            warnings
+                .iter()
+                .any(|w| w.as_str().unwrap().contains("nlgeom = true")),
+            "{kind}: {s}"
+        );
+    }
+}
+
 /// curve.csv without its wall-clock column.
 fn curve_rows(dir: &Path) -> Vec<String> {
     let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
@@ -312,4 +441,73 @@ fn restarted_nlgeom_run_equals_the_uninterrupted_one() {
     let (a, b) = (curve_rows(&whole), curve_rows(&parts));
     assert!(a.len() > 5, "{a:?}");
     assert_eq!(a, b);
+}
+
+/// `junta::rotation::SMALL_STRAIN_ROTATION_LIMIT` is where it says: at
+/// `P L^2 / EI = 0.3` the small-strain cantilever's largest rotation is
+/// the limit (within 2 %) and its tip deflection is 1 % (0.9 to 1.15 %)
+/// above the `nlgeom` run's; at 0.2 and 0.4 the drift is on either side.
+/// Measured: 0.456 %, 1.021 %, 1.804 % at rotations 0.0996, 0.1488,
+/// 0.1972 rad (the constant's table).
+#[test]
+fn small_strain_drift_reaches_one_percent_at_the_rotation_limit() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut drift = Vec::new();
+    for alpha in [0.2, 0.3, 0.4] {
+        let (small, w_small, _) = cantilever_at(tmp.path(), alpha, false, "static");
+        let (_, w_large, _) = cantilever_at(tmp.path(), alpha, true, "static");
+        let (w_small, w_large) = (w_small.unwrap(), w_large.unwrap());
+        let d = w_small / w_large - 1.0;
+        let r = &small["largest_rotation"];
+        println!(
+            "P L^2/EI = {alpha}: largest rotation {:.4} rad ({:.2} deg), ratio {:.3}, tip {w_small:.5} small, {w_large:.5} nlgeom, drift {:.3} %",
+            r["radians"].as_f64().unwrap(),
+            r["degrees"].as_f64().unwrap(),
+            r["ratio"].as_f64().unwrap(),
+            100.0 * d
+        );
+        drift.push((alpha, r["ratio"].as_f64().unwrap(), d));
+    }
+    let (_, ratio, d) = drift[1];
+    assert!((ratio - 1.0).abs() < 0.02, "{drift:?}");
+    assert!(d > 0.009 && d < 0.0115, "{drift:?}");
+    assert!(drift[0].2 < 0.008 && drift[2].2 > 0.012, "{drift:?}");
+}
+
+/// `junta check` cannot know a rotation before the solve: for a
+/// small-strain model it says that the run reports the largest rotation
+/// and warns past the limit, naming the switch (`nlgeom = true` for a
+/// scene); for an nlgeom model it names the kinematics.
+#[test]
+fn check_says_what_the_run_reports_about_rotations() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = std::fs::read_to_string(repo().join("examples/cantilever.toml")).unwrap();
+    let small = write(tmp.path(), "small.toml", &scene);
+    let large = write(
+        tmp.path(),
+        "large.toml",
+        &format!("{scene}\n[analysis]\nnlgeom = true\n"),
+    );
+    let check = |p: &Path| {
+        let out = junta().arg("check").arg(p).output().unwrap();
+        assert!(out.status.success());
+        String::from_utf8_lossy(&out.stdout).to_string()
+    };
+    let text = check(&small);
+    let line = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("rotation: "))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(
+        line.contains("small strain")
+            && line.contains("largest_rotation")
+            && line.contains("0.147 rad")
+            && line.contains("`[analysis] nlgeom = true`"),
+        "{line}"
+    );
+    let text = check(&large);
+    assert!(
+        text.contains("rotation: large deformation (nlgeom)"),
+        "{text}"
+    );
 }

@@ -24,6 +24,9 @@
 //! * [`total_lagrangian`]: Green strain, second Piola-Kirchhoff stress and
 //!   the tangent with geometric stiffness, which every solid uses under
 //!   `nlgeom` ([`junta_core::Kinematics::Finite`]).
+//! * [`rotation`]: the rigid rotation of a solid element (the polar
+//!   decomposition of the deformation gradient at its centre), for the
+//!   run's largest-rotation diagnostic.
 //! * [`face_load`]: consistent nodal forces of pressures and tractions on
 //!   solid faces.
 //! * [`thermal`]: the thermal strain of a temperature change at an
@@ -52,6 +55,7 @@ pub mod face_load;
 pub mod h8i;
 pub mod material;
 pub mod quadrature;
+pub mod rotation;
 pub mod shape;
 pub mod solid;
 pub mod thermal;

@@ -83,6 +83,12 @@ pub struct CheckReport {
     pub warnings: Vec<String>,
     /// Notes from reading the input.
     pub notes: Vec<String>,
+    /// The kinematics of the run (`small`, or `finite` under `nlgeom`).
+    pub kinematics: junta_core::Kinematics,
+    /// What the run reports about rotations and when it warns
+    /// ([`crate::rotation::check_note`]; a rotation is known only after
+    /// the solve). `None` without solid elements.
+    pub rotation: Option<String>,
 }
 
 fn sizes<V>(m: &BTreeMap<String, Vec<V>>) -> Vec<(String, usize)> {
@@ -150,6 +156,8 @@ impl CheckReport {
             mesh_advice,
             warnings,
             notes: p.notes.clone(),
+            kinematics: crate::rotation::model_kinematics(m),
+            rotation: crate::rotation::check_note(m, crate::rotation::is_deck(input)),
         })
     }
 }
@@ -218,6 +226,9 @@ impl fmt::Display for CheckReport {
         }
         for n in &self.notes {
             writeln!(f, "  note: {n}")?;
+        }
+        if let Some(r) = &self.rotation {
+            writeln!(f, "  rotation: {r}")?;
         }
         Ok(())
     }

@@ -342,6 +342,9 @@ pub(crate) struct Ending {
     pub failure: Option<NonlinearError>,
     /// Whether an observer interrupted the run (Ctrl-C).
     pub interrupted: bool,
+    /// Warnings for the user about the end state (a small-strain run past
+    /// the rotation limit: [`crate::rotation`]).
+    pub warnings: Vec<String>,
 }
 
 /// Run the incremental analysis of `p`, from the start or from `restart`
@@ -493,6 +496,7 @@ fn ending_of(
         status,
         failure,
         interrupted,
+        warnings: Vec::new(),
     }
 }
 
@@ -503,7 +507,7 @@ fn finish(
     engine: Engine<'_>,
     observers: &mut [&mut dyn Observer],
     run: Option<NonlinearRun>,
-    ending: Ending,
+    mut ending: Ending,
     t0: Instant,
 ) -> Result<(Ending, serde_json::Value, RunLog)> {
     let Engine {
@@ -546,6 +550,18 @@ fn finish(
         }
     }
     advice_and_solver(&mut summary, p, &log)?;
+    if let Some(u) = u {
+        let (rotation, warning) =
+            crate::rotation::summary_entry(model, u, crate::rotation::is_deck(input));
+        summary["largest_rotation"] = rotation;
+        if let Some(w) = warning {
+            match summary["warnings"].as_array_mut() {
+                Some(list) => list.push(json!(w)),
+                None => summary["warnings"] = json!([w]),
+            }
+            ending.warnings.push(w);
+        }
+    }
     let end = RunEnd {
         model: &p.model,
         u: u.map(|v| v.as_slice()),

@@ -19,6 +19,7 @@
 //! | read a scene / a deck / its print requests | [`scene`], [`validate`], [`deck`], [`deck_print`] |
 //! | build the model, choose the solver | [`prepare`], [`auto`], [`limits`] |
 //! | check it | [`check`] |
+//! | diagnose a converged state (largest element rotation) | [`rotation`] |
 //! | run it: linear, incremental | `linear`, [`incremental`] |
 //! | report increments | [`observer`] ([`Observer`], [`Flow`], [`FrameCollector`]) |
 //! | write files | [`writers`] (curve, frames, checkpoint, prints, summary), [`output`], [`plot`] |
@@ -60,6 +61,7 @@ pub mod plot;
 pub mod prepare;
 pub mod readers;
 pub mod results;
+pub mod rotation;
 pub mod scene;
 pub mod simulation;
 pub mod sweep;

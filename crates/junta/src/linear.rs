@@ -78,6 +78,9 @@ pub(crate) fn run_linear(
         output::penalty_advice(&p.model, &|b| p.thickness.get(b).copied())?;
     warnings.extend(advice_warnings);
     warnings.extend(crate::bending::bending_warnings(&p.model));
+    let (largest_rotation, rotation_warning) =
+        crate::rotation::summary_entry(&p.model, &res.u, crate::rotation::is_deck(input));
+    warnings.extend(rotation_warning);
     let reference = match &p.reference {
         Some((r, c)) => {
             let computed = p
@@ -106,6 +109,7 @@ pub(crate) fn run_linear(
         "elements": output::element_counts(&p.model),
         "reactions": reactions,
         "displacement_max": output::displacement_max(&res.u),
+        "largest_rotation": largest_rotation,
         "probes": probes,
         "solids": output::solid_summary(&cells),
         "interfaces": output::interface_summary(&p.model, &interfaces),

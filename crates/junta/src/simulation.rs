@@ -321,9 +321,10 @@ fn run_static(
         stop_when_separated: p.analysis.stop_when_separated,
         increment_limits: p.increment_limits.clone(),
     };
-    let (ending, summary, log) =
+    let (mut ending, summary, log) =
         run_incremental(input, p, restart.map(|r| (r, past)), limits, &mut all)?;
     let notes = standard.map(|s| s.prints.notes).unwrap_or_default();
+    let warnings = std::mem::take(&mut ending.warnings);
     let status = if ending.interrupted {
         Status::Interrupted
     } else if ending.failure.is_some() {
@@ -349,7 +350,7 @@ fn run_static(
         rows: log.rows,
         output: dir,
         notes,
-        warnings: Vec::new(),
+        warnings,
         failure,
         frame: None,
     })
