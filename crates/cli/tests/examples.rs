@@ -72,6 +72,7 @@ examples! {
     punch_tension => "paper/punch_tension.toml";
     bimetal => "thermal/bimetal.toml";
     cool_down => "thermal/cool_down.toml";
+    cure_dcb => "thermal/cure_dcb.toml";
     /// [126 s: viscous regularisation, small increments]
     #[ignore]
     dcb_viscous => "delamination/dcb.toml";

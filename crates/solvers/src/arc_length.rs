@@ -53,6 +53,13 @@
 //! ΔD ≈ ½ (lambda_0 Δa - Δlambda a_0 + p_0 Δlambda - lambda_0 Δp) = tau
 //! ```
 //!
+//! With a temperature change held over the step (a cure cool-down before
+//! the load) the solids' internal force is `K u - f_th`, and the stored
+//! energy `½ u . f_int - ½ u . f_th` (up to a constant): the balance gains
+//! the term `½ f_th . Δu` (all dofs, prescribed ones included), linear in
+//! `du` and `dlambda` like the rest. `f_th` is minus the internal force at
+//! zero displacement at the step's temperature.
+//!
 //! For pure force control this is Verhoosel's
 //! `½ f^T (lambda_0 Δu - Δlambda u_0)`; for pure displacement control its
 //! mirror in the reaction. It is linear in `Δu` and `Δlambda` except for
@@ -392,6 +399,9 @@ pub enum PathEnd {
 
 /// Element matrices needed for `q`, `g`, `h` (see the module doc).
 struct Coupling {
+    /// The thermal force `f_th` of the step's temperature change (module
+    /// doc), if the model has one.
+    thermal: Option<ThermalForce>,
     /// Elements `(block, element)` with a prescribed non-zero displacement.
     elements: Vec<(usize, usize)>,
     /// `ubar` (full length; zero on free dofs).
@@ -412,7 +422,10 @@ struct Coupling {
 }
 
 impl Coupling {
-    fn new(model: &Model) -> Self {
+    /// `f0`: the internal force at zero displacement at the step's
+    /// temperature ([`crate::newton::internal_force_at_zero`]), if the
+    /// model has a temperature field.
+    fn new(model: &Model, f0: Option<Vec<f64>>) -> Self {
         // the prescribed values, and the dependents of linear equations
         // that follow them (`u = T u_f + lambda ubar`)
         let mut ubar: Vec<f64> = model
@@ -441,7 +454,9 @@ impl Coupling {
                 }
             }
         }
+        let thermal = f0.map(|f| ThermalForce::new(model, &ubar, f));
         Coupling {
+            thermal,
             elements,
             c: ubar.iter().map(|v| v * v).sum(),
             ubar,
@@ -539,10 +554,46 @@ impl Coupling {
     }
 }
 
+/// The thermal force of a step whose temperature is held: `f_th` by dof,
+/// its reduction to the equations and `f_th . ubar_c`.
+struct ThermalForce {
+    by_dof: Vec<f64>,
+    by_equation: Vec<f64>,
+    prescribed: f64,
+}
+
+impl ThermalForce {
+    /// From the internal force at zero displacement `f0 = -f_th`.
+    fn new(model: &Model, ubar: &[f64], f0: Vec<f64>) -> Self {
+        let by_dof: Vec<f64> = f0.iter().map(|v| -v).collect();
+        let by_equation = model.dofs.reduce(&by_dof);
+        let prescribed = by_dof.iter().zip(ubar).map(|(f, u)| f * u).sum();
+        ThermalForce {
+            by_dof,
+            by_equation,
+            prescribed,
+        }
+    }
+}
+
+/// `f_th . u` over all dofs (0 without a thermal force).
+fn thermal_measure(coupling: &Coupling, u: &[f64]) -> f64 {
+    coupling
+        .thermal
+        .as_ref()
+        .map_or(0.0, |t| t.by_dof.iter().zip(u).map(|(f, v)| f * v).sum())
+}
+
 /// Energy measures of a state: `a = f_ext,f . u_f`, `p = ubar_c . f_int,c`
 /// (with linear equations: `a` over the free and dependent dofs, `p` over
-/// the prescribed dofs and the dependents that follow them).
-fn work_measures(model: &Model, coupling: &Coupling, u: &[f64], f_int: &[f64]) -> (f64, f64) {
+/// the prescribed dofs and the dependents that follow them), and `t = f_th
+/// . u` ([`thermal_measure`]).
+fn work_measures(
+    model: &Model,
+    coupling: &Coupling,
+    u: &[f64],
+    f_int: &[f64],
+) -> (f64, f64, f64) {
     let (mut a, mut p) = (0.0, 0.0);
     for (d, &eq) in model.dofs.eq.iter().enumerate() {
         if eq != CONSTRAINED || model.dofs.dependents.contains(d) {
@@ -550,7 +601,7 @@ fn work_measures(model: &Model, coupling: &Coupling, u: &[f64], f_int: &[f64]) -
         }
         p += coupling.ubar[d] * f_int[d];
     }
-    (a, p)
+    (a, p, thermal_measure(coupling, u))
 }
 
 /// Whether the dissipation constraint's energy balance holds for `model`:
@@ -576,16 +627,19 @@ struct Base {
     lambda: f64,
     a: f64,
     p: f64,
+    /// `f_th . u` ([`thermal_measure`]).
+    t: f64,
 }
 
 impl Base {
-    /// `ΔD = ½ (lambda_0 Δa - Δlambda a_0 + p_0 Δlambda - lambda_0 Δp)`:
-    /// the energy dissipated from this state to one with the measures `a`,
-    /// `p` at the load factor `lambda` (module doc).
-    fn dissipation(&self, a: f64, p: f64, lambda: f64) -> f64 {
+    /// `ΔD = ½ (lambda_0 Δa - Δlambda a_0 + p_0 Δlambda - lambda_0 Δp +
+    /// Δt)`: the energy dissipated from this state to one with the measures
+    /// `a`, `p`, `t` at the load factor `lambda` (module doc).
+    fn dissipation(&self, a: f64, p: f64, t: f64, lambda: f64) -> f64 {
         0.5 * (self.lambda * (a - self.a) - (lambda - self.lambda) * self.a
             + self.p * (lambda - self.lambda)
-            - self.lambda * (p - self.p))
+            - self.lambda * (p - self.p)
+            + (t - self.t))
     }
 }
 
@@ -916,7 +970,11 @@ impl<'a> PathRun<'a> {
     ) -> Result<Self, NonlinearError> {
         let model = w.model;
         let nf = model.dofs.num_free;
-        let coupling = Coupling::new(model);
+        let theta = model.temperature_factor(cur.step, 1.0);
+        let coupling = Coupling::new(
+            model,
+            crate::newton::internal_force_at_zero(model, &w.asm, theta),
+        );
         let mut pw = PathWork {
             q: vec![0.0; nf],
             g: vec![0.0; nf],
@@ -936,11 +994,12 @@ impl<'a> PathRun<'a> {
         };
         // state and measures of the starting point
         w.evaluate_at_rest(&mut state, &cur)?;
-        let (a0, p0) = work_measures(model, &coupling, &w.u, &w.f_int);
+        let (a0, p0, t0) = work_measures(model, &coupling, &w.u, &w.f_int);
         let base = Base {
             lambda: cur.lambda,
             a: a0,
             p: p0,
+            t: t0,
         };
         let dissipated_laws = model.dissipated_energy(&w.u_conv, &state)?;
         Ok(PathRun {
@@ -1088,7 +1147,7 @@ impl<'a> PathRun<'a> {
             }
         }
         if let Attempt::Converged(c) = outcome {
-            let (a1, p1) = work_measures(self.model, &self.coupling, &self.w.u, &self.w.f_int);
+            let (a1, p1, _) = work_measures(self.model, &self.coupling, &self.w.u, &self.w.f_int);
             let stored = (0.5 * lambda_now(&self.w) * (a1 + p1))
                 .abs()
                 .max(1e-9 * self.path.stored_max);
@@ -1149,8 +1208,8 @@ impl<'a> PathRun<'a> {
         solver: &mut dyn LinearSolver,
     ) -> Result<Option<(Convergence, f64)>, NonlinearError> {
         let base = self.base;
-        let (a1, p1) = work_measures(self.model, &self.coupling, &self.w.u, &self.w.f_int);
-        let d_try = base.dissipation(a1, p1, lambda_now(&self.w));
+        let (a1, p1, t1) = work_measures(self.model, &self.coupling, &self.w.u, &self.w.f_int);
+        let d_try = base.dissipation(a1, p1, t1, lambda_now(&self.w));
         let stored = 0.5 * base.lambda * (base.a + base.p);
         if d_try.is_finite() && d_try > self.arc.switch_dissipation * stored.abs() {
             let tau = d_try.min(self.arc.max_arc_dissipation * stored.abs());
@@ -1256,7 +1315,7 @@ impl<'a> PathRun<'a> {
         path.previous_lambda = cur.lambda;
         w.u_conv.copy_from_slice(&w.u);
         let delta_lambda = lambda_new - cur.lambda;
-        let (a1, p1) = work_measures(model, &self.coupling, &w.u, &w.f_int);
+        let (a1, p1, t1) = work_measures(model, &self.coupling, &w.u, &w.f_int);
         let stored = (0.5 * lambda_new * (a1 + p1)).abs();
         path.stored_max = path.stored_max.max(stored);
         let stored = stored.max(1e-9 * path.stored_max);
@@ -1267,6 +1326,7 @@ impl<'a> PathRun<'a> {
             lambda: lambda_new,
             a: a1,
             p: p1,
+            t: t1,
         };
         cur.lambda = lambda_new;
         cur.t = if inc.control == PathMode::Load && lambda_new == end {
@@ -1789,8 +1849,9 @@ impl PathAttempt<'_, '_> {
     }
 
     /// The dissipation constraint `phi = ΔD - tau = 0`, linearised: `phi +
-    /// w . du + c_l dlambda = 0` with `w = ½ lambda_0 (f_ext,f - g)` and
-    /// `c_l = ½ (p_0 - a_0 - lambda_0 h)` (module doc). A non-finite or
+    /// w . du + c_l dlambda = 0` with `w = ½ lambda_0 (f_ext,f - g) + ½
+    /// f_th,f` and `c_l = ½ (p_0 - a_0 - lambda_0 h + f_th . ubar_c)`
+    /// (module doc; `f_th` = 0 without a temperature change). A non-finite or
     /// degenerate solution fails the attempt.
     fn dissipation_dlambda(&self, it: usize, tau: f64, h: f64) -> Result<f64, Abort<Attempt>> {
         let (w, pw, base) = (&*self.w, &*self.pw, self.base);
@@ -1798,12 +1859,15 @@ impl PathAttempt<'_, '_> {
         // dphi = w . du + c_l dlambda
         let mut wdu1 = 0.0;
         let mut wdu2 = 0.0;
+        let thermal = self.coupling.thermal.as_ref();
         for e in 0..w.free_dofs.len() {
-            let wv = 0.5 * base.lambda * (w.fext_f[e] - pw.g[e]);
+            let fth = thermal.map_or(0.0, |t| t.by_equation[e]);
+            let wv = 0.5 * (base.lambda * (w.fext_f[e] - pw.g[e]) + fth);
             wdu1 += wv * w.du[e];
             wdu2 += wv * pw.du2[e];
         }
-        let c_l = 0.5 * (base.p - base.a - base.lambda * h);
+        let fth_c = thermal.map_or(0.0, |t| t.prescribed);
+        let c_l = 0.5 * (base.p - base.a - base.lambda * h + fth_c);
         let den = wdu2 + c_l;
         let dl = -(phi + wdu1) / den;
         if !dl.is_finite() || den.abs() <= 1e-14 * (wdu2.abs() + c_l.abs()) {
@@ -1814,8 +1878,8 @@ impl PathAttempt<'_, '_> {
 
     /// `ΔD` from the base state to the trial point.
     fn dissipation(&self) -> f64 {
-        let (a, p) = work_measures(self.w.model, self.coupling, &self.w.u, &self.w.f_int);
-        self.base.dissipation(a, p, self.lambda)
+        let (a, p, t) = work_measures(self.w.model, self.coupling, &self.w.u, &self.w.f_int);
+        self.base.dissipation(a, p, t, self.lambda)
     }
 
     /// Backtracking line search on `|r_f|` along `(du, dlambda)`, from the

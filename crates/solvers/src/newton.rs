@@ -653,39 +653,50 @@ pub(crate) struct Work<'m> {
     pub(crate) stalled_attempts: usize,
 }
 
-/// `|f_th,f|` of [`Work::fth_free_norm`]: one assembly at zero
-/// displacement and temperature factor 1 (0 without a temperature field,
-/// or if that assembly fails: the run's own assemblies report the error).
+/// `|f_th,f|` of [`Work::fth_free_norm`]: the free part of
+/// [`internal_force_at_zero`] at temperature factor 1 (0 without a
+/// temperature field, or if that assembly fails: the run's own assemblies
+/// report the error).
 fn thermal_force_norm(model: &Model, asm: &Assembler) -> f64 {
-    if model.temperature.is_none() {
-        return 0.0;
+    match internal_force_at_zero(model, asm, 1.0) {
+        Some(f) => model
+            .dofs
+            .reduce(&f)
+            .iter()
+            .map(|v| v * v)
+            .sum::<f64>()
+            .sqrt(),
+        None => 0.0,
     }
+}
+
+/// The internal force at zero displacement from the initial state at
+/// temperature factor `theta`, by dof: `-f_th`, the thermal force of the
+/// solids' temperature change (interfaces carry no thermal strain and no
+/// force at zero jump in their initial state). `None` without a
+/// temperature field or if the assembly fails.
+pub(crate) fn internal_force_at_zero(model: &Model, asm: &Assembler, theta: f64) -> Option<Vec<f64>> {
+    model.temperature.as_ref()?;
     let ndof = model.dofs.num_dofs();
     let mut f = vec![0.0; ndof];
     let mut state = model.initial_state();
     let u0 = vec![0.0; ndof];
-    if asm
-        .assemble(
-            &model.mesh,
-            &model.elements,
-            &model.dofs,
-            &u0,
-            &mut state,
-            StepInfo::default(),
-            None,
-            &mut f,
-        )
-        .is_err()
-    {
-        return 0.0;
-    }
-    model
-        .dofs
-        .reduce(&f)
-        .iter()
-        .map(|v| v * v)
-        .sum::<f64>()
-        .sqrt()
+    let step = StepInfo {
+        temperature_factor: theta,
+        ..StepInfo::default()
+    };
+    asm.assemble(
+        &model.mesh,
+        &model.elements,
+        &model.dofs,
+        &u0,
+        &mut state,
+        step,
+        None,
+        &mut f,
+    )
+    .ok()?;
+    Some(f)
 }
 
 pub(crate) fn is_element_error(e: &CoreError) -> bool {
