@@ -27,6 +27,7 @@ pub mod exponential;
 pub mod linear_penalty;
 pub mod mohr_coulomb;
 pub mod paper_debond;
+pub mod superposed;
 
 use junta_core::CoreError;
 
