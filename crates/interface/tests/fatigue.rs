@@ -730,3 +730,35 @@ fn parameter_errors_name_the_key() {
         "{e}"
     );
 }
+
+#[test]
+fn a_jump_that_changes_within_the_increment_takes_the_end_rate() {
+    // backward Euler in the jump: D = max(D_committed, D_static(lam_end))
+    // + dN r(lam_end), mode I, loading and unloading within the increment
+    let m = mode(0.0, 1.0);
+    let lam_a = m.lam0 + D_S * (m.lam_f - m.lam0);
+    for (lam_b, what) in [
+        (m.lam0 + 2.0 * D_S * (m.lam_f - m.lam0), "loading"),
+        (0.8 * lam_a, "unloading"),
+    ] {
+        let mut p = Point::new(build(""));
+        p.step([0.0, 0.0, lam_a], 0.0);
+        let d_c = m.energy_damage(p.damage());
+        // a fifth of the cycles the end rate needs to fail the point
+        let dn = 0.2 * (1.0 - 2.0 * D_S) / m.rate(lam_b, 0.0, L_CZ);
+        p.step([0.0, 0.0, lam_b], dn);
+        let d_s = ((lam_b - m.lam0) / (m.lam_f - m.lam0)).max(0.0);
+        let big_d = d_c.max(d_s) + dn * m.rate(lam_b, 0.0, L_CZ);
+        let expected = m.lam_f * big_d / (m.lam0 + big_d * (m.lam_f - m.lam0));
+        assert!(
+            (p.damage() - expected).abs() < 1e-12,
+            "{what}: d = {} against {expected}",
+            p.damage()
+        );
+        let e = p.out(output::DISSIPATED_ENERGY);
+        assert!(
+            (e - m.g_c * big_d).abs() < 1e-12 * m.g_c,
+            "{what}: energy {e}"
+        );
+    }
+}

@@ -138,6 +138,16 @@
 //!
 //! `StepInfo::delta_cycles` (`dN >= 0`; 0: the static law) and
 //! `StepInfo::load_ratio` (`0 <= R < 1`, checked when `dN > 0`).
+//!
+//! What a cycle-jump driver must do: load to the envelope maximum in
+//! ordinary increments (`delta_cycles = 0`), then hold the load and give
+//! each fatigue increment `delta_cycles = dN > 0`, `cycles = N` at its end
+//! and the step's `load_ratio`, the same on every Newton iteration and
+//! cut-back retry of the increment (the law starts from the committed
+//! state each time, so a cut-back is a smaller `dN`). A bound on the
+//! damage growth per increment is `dN = dD_max / max r` over the committed
+//! `damage_rate` outputs; `N` itself is the driver's to checkpoint (the
+//! law's state holds no cycle count).
 
 use super::bilinear::LinearSoftening;
 use super::cohesive::{CohesiveLaw, Equivalent, Softening};
@@ -390,7 +400,7 @@ impl FatigueBilinear {
         for i in 0..=20 {
             let b = i as f64 / 20.0;
             let m = paris.exponent(b);
-            if !(m > 0.0) {
+            if m.is_nan() || m <= 0.0 {
                 return Err(invalid(format!(
                     "`m_m` = {m_m} makes the Paris exponent m(B) = {m:.4} <= 0 at mode ratio B = {b:.2}; valid m_m keep m_I + m_m B + (m_II - m_I - m_m) B^2 > 0 on [0, 1]"
                 )));
@@ -436,7 +446,7 @@ impl FatigueBilinear {
     pub fn damage_rate(&self, eq: &Equivalent, r_ratio: f64) -> (Dual3, Dual3) {
         let g_max = Self::energy_release_rate(eq);
         let dg = g_max * (1.0 - r_ratio * r_ratio);
-        if !(dg.v > 0.0) || dg.v <= self.paris.g_th {
+        if dg.v.is_nan() || dg.v <= 0.0 || dg.v <= self.paris.g_th {
             return (Dual3::cst(0.0), g_max);
         }
         let x = dg / eq.g_c;
@@ -470,12 +480,12 @@ impl FatigueBilinear {
         }
         let dn = ctx.step.delta_cycles;
         let r_ratio = ctx.step.load_ratio;
-        if !(dn >= 0.0 && dn.is_finite()) {
+        if dn < 0.0 || !dn.is_finite() {
             return Err(LawError::Failed(format!(
                 "{KEY}: delta_cycles = {dn} must be >= 0 and finite"
             )));
         }
-        if dn > 0.0 && !((0.0..1.0).contains(&r_ratio)) {
+        if dn > 0.0 && !(0.0..1.0).contains(&r_ratio) {
             return Err(LawError::Failed(format!(
                 "{KEY}: load ratio R = {r_ratio} outside [0, 1) (DG = (1 - R^2) G_max holds for 0 <= R < 1)"
             )));
