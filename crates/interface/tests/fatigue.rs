@@ -762,3 +762,65 @@ fn a_jump_that_changes_within_the_increment_takes_the_end_rate() {
         );
     }
 }
+
+/// The interface element hands the step's cycle information to the law:
+/// an INTER8 under a uniform held opening grows the damage of every point
+/// by the fatigue rate times `delta_cycles` (mode I closed form).
+#[test]
+fn interface_element_passes_the_cycles_to_the_law() {
+    use junta_core::element::{Element, ElementContext};
+    use junta_core::topology::CellShape;
+    use junta_interface::{InterfaceElement, InterfaceRule};
+    let el = InterfaceElement::new(CellShape::Inter8, InterfaceRule::Gauss, build("")).unwrap();
+    let face = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ];
+    let coords: Vec<[f64; 3]> = face.iter().chain(face.iter()).copied().collect();
+    let m = mode(0.0, 1.0);
+    let lam = m.lam0 + D_S * (m.lam_f - m.lam0);
+    let mut disp = vec![0.0; 24];
+    for a in 4..8 {
+        disp[3 * a + 2] = lam;
+    }
+    let rate = m.rate(lam, 0.0, L_CZ);
+    let dn = 0.25 * (1.0 - D_S) / rate;
+    let mut state = vec![0.0; el.state_len()];
+    el.init_state(&mut state);
+    let mut f = vec![0.0; 24];
+    let mut k = vec![0.0; 24 * 24];
+    for (inc, dn) in [(1, 0.0), (2, dn)] {
+        let mut trial = vec![0.0; el.state_len()];
+        el.compute(
+            &ElementContext {
+                coords: &coords,
+                disp: &disp,
+                state_committed: &state,
+                step: step(inc, dn, dn, 0.0),
+                law_responses: None,
+                temperature: None,
+            },
+            &mut trial,
+            &mut f,
+            Some(&mut k),
+        )
+        .unwrap();
+        state = trial;
+    }
+    let big_d = D_S + dn * rate;
+    let expected = m.lam_f * big_d / (m.lam0 + big_d * (m.lam_f - m.lam0));
+    for s in state.chunks(slot::STATE_LEN) {
+        assert!(
+            (s[slot::DAMAGE] - expected).abs() < 1e-12,
+            "d = {} against {expected}",
+            s[slot::DAMAGE]
+        );
+        assert!((s[slot::DAMAGE_RATE] - rate).abs() < 1e-10 * rate);
+    }
+    // the opening force of the unit square: (1 - d) K lam
+    let fz: f64 = (4..8).map(|a| f[3 * a + 2]).sum();
+    let t = (1.0 - expected) * K * lam;
+    assert!((fz - t).abs() < 1e-9 * t, "F_z = {fz} against {t}");
+}
