@@ -64,8 +64,8 @@
 //! **Energy release rate** `G_max`: a law sees one point, not the crack
 //! front, so Junta estimates `G_max` locally, as the area under the static
 //! bilinear curve up to the point's current equivalent jump (the J
-//! integral of a cohesive zone on its static curve, taken along a path
-//! that crosses the interface at this point):
+//! integral of the part of a cohesive zone ahead of the point, on its
+//! static curve: Rice 1968, `J = int_0^lam tau dlam`):
 //!
 //! ```text
 //! G_max(lam) = K_B lam^2 / 2                                   lam <= lam_0
@@ -74,12 +74,14 @@
 //! ```
 //!
 //! It depends on the jump only (and on `B`), is continuous, rises
-//! monotonically and reaches `G_c` at full separation. Turon et al. 2007
-//! take `G_max` from the structure (the crack-tip energy release rate); a
-//! crack-tip or process-zone J integral needs the element and its
-//! neighbours and belongs to the driver (see the fatigue issue); this
-//! local estimate is what a law can do alone, and it is this choice, not
-//! Turon's rate, that a DCB Paris-consistency check will judge.
+//! monotonically and reaches `G_c` at full separation. The Paris law is
+//! written for the energy release rate of the crack, a structural
+//! quantity; a crack-tip or process-zone J integral needs the element and
+//! its neighbours and belongs to the driver (see the fatigue issue). This
+//! local estimate is what a law can do alone (we did not check it against
+//! the estimate in Turon et al. 2007's own implementation), and it is this
+//! choice, not Turon's rate, that a DCB Paris-consistency check will
+//! judge.
 //!
 //! **Where fatigue acts**: in the process zone only, that is at a point past
 //! onset at its current jump (`I >= 1`) or already damaged (`d > 0`), with
