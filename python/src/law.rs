@@ -746,6 +746,9 @@ pub fn evaluate_law<'py>(
         secant,
         exact_tangent: false,
         temperature_factor: 1.0,
+        cycles: 0.0,
+        delta_cycles: 0.0,
+        load_ratio: 0.0,
     };
     if let Err(f) = l.call_evaluate(py, &jump, &state, step, &mut trial, &mut out) {
         return Err(match f {
@@ -815,6 +818,9 @@ pub fn evaluate_registered<'py>(
         secant,
         exact_tangent: false,
         temperature_factor: 1.0,
+        cycles: 0.0,
+        delta_cycles: 0.0,
+        load_ratio: 0.0,
     };
     let mut trial = vec![0.0; n * k];
     let mut t = Vec::with_capacity(3 * n);

@@ -81,11 +81,26 @@ pub struct StepInfo {
     /// linear analysis applies the whole change); the incremental drivers
     /// set it from the program's temperature steps.
     pub temperature_factor: f64,
+    /// Cycle count `N` at the end of the current increment of a fatigue
+    /// step (a cycle-jump step holds the load at the envelope maximum of a
+    /// constant-amplitude cycle and counts cycles as pseudo-time). 0 outside
+    /// fatigue steps.
+    pub cycles: f64,
+    /// Cycles advanced in the current increment, `dN >= 0`. Fatigue laws
+    /// grow their damage by their rate per cycle times `dN`; 0 (the
+    /// default, and every non-fatigue step) means the law behaves as its
+    /// static counterpart.
+    pub delta_cycles: f64,
+    /// Load ratio `R = min / max` of the constant-amplitude cycle of a
+    /// fatigue step (0 by default). Laws use it through the cyclic energy
+    /// release rate (`(1 - R^2) G_max`).
+    pub load_ratio: f64,
 }
 
 impl Default for StepInfo {
     /// Increment 0, load factor 0, no secant or exact tangent, temperature
-    /// factor 1 (the whole temperature change of the model, if it has one).
+    /// factor 1 (the whole temperature change of the model, if it has one),
+    /// no cycles (`cycles = delta_cycles = load_ratio = 0`).
     fn default() -> Self {
         StepInfo {
             increment: 0,
@@ -94,6 +109,9 @@ impl Default for StepInfo {
             secant: false,
             exact_tangent: false,
             temperature_factor: 1.0,
+            cycles: 0.0,
+            delta_cycles: 0.0,
+            load_ratio: 0.0,
         }
     }
 }

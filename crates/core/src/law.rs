@@ -66,6 +66,15 @@ pub mod output {
     /// Energy dissipated per unit area by friction or interface plasticity
     /// (`int t . d jump_p`, never negative).
     pub const FRICTIONAL_DISSIPATION: &str = "frictional_dissipation";
+    /// Fatigue laws: the part of the energy damage `D` (fraction of the
+    /// toughness dissipated) grown by fatigue cycles.
+    pub const FATIGUE_DAMAGE: &str = "fatigue_damage";
+    /// Fatigue laws: the energy release rate `G_max` the law's Paris rate
+    /// used at the last evaluation (energy/area).
+    pub const ENERGY_RELEASE_RATE: &str = "energy_release_rate";
+    /// Fatigue laws: the energy-damage rate `dD/dN` per cycle of the last
+    /// evaluation (0 outside the process zone or under the threshold).
+    pub const DAMAGE_RATE: &str = "damage_rate";
     /// Damage from which a point counts as fully damaged (damaged area).
     pub const DAMAGED_THRESHOLD: f64 = 0.99;
 }

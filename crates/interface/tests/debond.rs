@@ -46,6 +46,9 @@ fn ctx(jump: [f64; 3], committed: &[f64], increment: usize) -> LawContext<'_> {
             secant: false,
             exact_tangent: false,
             temperature_factor: 1.0,
+            cycles: 0.0,
+            delta_cycles: 0.0,
+            load_ratio: 0.0,
         },
     }
 }
@@ -566,6 +569,9 @@ fn inter8_top_face_pulled_uniformly() {
                     secant: false,
                     exact_tangent: false,
                     temperature_factor: 1.0,
+                    cycles: 0.0,
+                    delta_cycles: 0.0,
+                    load_ratio: 0.0,
                 },
                 law_responses: None,
                 temperature: None,

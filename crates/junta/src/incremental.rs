@@ -197,6 +197,9 @@ impl Engine<'_> {
             secant: false,
             exact_tangent: false,
             temperature_factor: r.temperature_factor,
+            cycles: 0.0,
+            delta_cycles: 0.0,
+            load_ratio: 0.0,
         };
         let ifs = output::interface_results_at(model, v.u, v.state, step)?;
         let row = self.row_of(v, &ifs)?;
@@ -528,6 +531,9 @@ fn finish(
         secant: false,
         exact_tangent: false,
         temperature_factor: log.rows.last().map_or(0.0, |r| r.temperature_factor),
+        cycles: 0.0,
+        delta_cycles: 0.0,
+        load_ratio: 0.0,
     };
     // the state the run ends on: the driver's, else the last converged one
     let converged_here = log.last_increment > log.start_increment;

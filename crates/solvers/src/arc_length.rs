@@ -1182,6 +1182,9 @@ impl<'a> PathRun<'a> {
             secant: false,
             exact_tangent: false,
             temperature_factor: self.w.model.temperature_factor(self.cur.step, 1.0),
+            cycles: 0.0,
+            delta_cycles: 0.0,
+            load_ratio: 0.0,
         };
         let program_step = self.cur.step;
         if !self
@@ -1691,6 +1694,9 @@ impl PathAttempt<'_, '_> {
             secant: self.secant,
             exact_tangent: false,
             temperature_factor: self.w.model.temperature_factor(self.cur.step, 1.0),
+            cycles: 0.0,
+            delta_cycles: 0.0,
+            load_ratio: 0.0,
         }
     }
 

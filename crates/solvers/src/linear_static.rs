@@ -150,6 +150,9 @@ pub fn solve_linear_static_cases(
         secant: false,
         exact_tangent: false,
         temperature_factor: 1.0,
+        cycles: 0.0,
+        delta_cycles: 0.0,
+        load_ratio: 0.0,
     };
     let initial = |case: &LoadCase<'_>| -> Vec<f64> {
         let mut u: Vec<f64> = (0..ndof)

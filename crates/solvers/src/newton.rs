@@ -896,6 +896,9 @@ impl<'m> Work<'m> {
             secant: false,
             exact_tangent: false,
             temperature_factor: self.model.temperature_factor(cur.step, cur.t),
+            cycles: 0.0,
+            delta_cycles: 0.0,
+            load_ratio: 0.0,
         };
         let ev = self.evaluate(state, step, cur.lambda, cur.force_peak)?;
         state.restore();
@@ -1871,6 +1874,9 @@ impl LoadRun<'_> {
                 secant: false,
                 exact_tangent: false,
                 temperature_factor: model.temperature_factor(cur.step, t_new),
+                cycles: 0.0,
+                delta_cycles: 0.0,
+                load_ratio: 0.0,
             };
             let attempt = self
                 .w

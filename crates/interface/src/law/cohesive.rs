@@ -605,6 +605,71 @@ impl InterfaceLaw for CohesiveLaw {
     }
 }
 
+/// The equivalent one-dimensional law at a jump (see the module doc), in
+/// dual numbers seeded on the jump: what [`CohesiveLaw::equivalent`]
+/// returns for laws built on this machinery (`fatigue_bilinear`).
+#[derive(Debug, Clone, Copy)]
+pub struct Equivalent {
+    /// Twice the undamaged elastic energy `2 psi = K_B lam^2`.
+    pub two_psi: Dual3,
+    /// Mode ratio `B = G_II / G_T`.
+    pub b: Dual3,
+    /// Onset index `I` of the undamaged traction (`>= 1`: past onset).
+    pub index: Dual3,
+    /// Equivalent jump `lam`.
+    pub lam: Dual3,
+    /// Onset jump `lam_0` along the current direction.
+    pub lam0: Dual3,
+    /// Equivalent penalty `K_B`.
+    pub k_b: Dual3,
+    /// Toughness `G_c(B)`.
+    pub g_c: Dual3,
+}
+
+impl CohesiveLaw {
+    /// The equivalent one-dimensional law at the jump `dj` (dual numbers):
+    /// `None` when nothing drives damage (`2 psi = 0`: closed and no slip).
+    pub fn equivalent(&self, dj: [Dual3; 3]) -> Result<Option<Equivalent>, LawError> {
+        let (ks, kn) = (self.k_s, self.k_n);
+        let dn_pos = dj[2].pos();
+        let t0 = [dj[0] * ks, dj[1] * ks, dn_pos * kn];
+        let shear2 = (dj[0] * dj[0] + dj[1] * dj[1]) * ks;
+        let two_psi = shear2 + dn_pos * dn_pos * kn;
+        if two_psi.v <= 0.0 {
+            return Ok(None);
+        }
+        let b = shear2 / two_psi;
+        let index = self
+            .criterion
+            .onset_index(&OnsetInput {
+                traction: t0,
+                jump: [dj[0], dj[1], dn_pos],
+                penalty: [ks, ks, kn],
+            })
+            .ok_or_else(|| {
+                LawError::Failed(format!(
+                    "{}: criterion `{}` gives no onset index",
+                    self.key,
+                    self.criterion.key()
+                ))
+            })?;
+        let t0_norm = (t0[0] * t0[0] + t0[1] * t0[1] + t0[2] * t0[2]).sqrt();
+        let lam = two_psi / t0_norm;
+        let lam0 = lam * index.powf(-1.0 / self.criterion.degree());
+        let k_b = (1.0 - b) * kn + b * ks;
+        let g_c = self.propagation.toughness(b, self.g_ic, self.g_iic);
+        Ok(Some(Equivalent {
+            two_psi,
+            b,
+            index,
+            lam,
+            lam0,
+            k_b,
+            g_c,
+        }))
+    }
+}
+
 impl CohesiveLaw {
     /// The law in dual numbers seeded on the jump: the traction and the
     /// damage the traction uses (`d`, or the viscous `d_v`), each with its
@@ -635,36 +700,21 @@ impl CohesiveLaw {
         trial.copy_from_slice(c);
         let (ks, kn) = (self.k_s, self.k_n);
         let dj = Dual3::seeds(ctx.jump);
-        let dn_pos = dj[2].pos();
-        let t0 = [dj[0] * ks, dj[1] * ks, dn_pos * kn];
-        let shear2 = (dj[0] * dj[0] + dj[1] * dj[1]) * ks;
-        let two_psi = shear2 + dn_pos * dn_pos * kn;
         let d_hist = c[DAMAGE_HISTORY];
         let mut d = Dual3::cst(d_hist);
-        if two_psi.v > 0.0 {
-            let b = shear2 / two_psi;
+        if let Some(eq) = self.equivalent(dj)? {
+            let Equivalent {
+                two_psi,
+                b,
+                index: idx,
+                lam,
+                lam0,
+                k_b,
+                g_c,
+            } = eq;
             trial[MODE_RATIO] = b.v;
-            let idx = self
-                .criterion
-                .onset_index(&OnsetInput {
-                    traction: t0,
-                    jump: [dj[0], dj[1], dn_pos],
-                    penalty: [ks, ks, kn],
-                })
-                .ok_or_else(|| {
-                    LawError::Failed(format!(
-                        "{}: criterion `{}` gives no onset index",
-                        self.key,
-                        self.criterion.key()
-                    ))
-                })?;
             trial[INDEX] = idx.v;
             if idx.v > 1.0 && d_hist < 1.0 {
-                let t0_norm = (t0[0] * t0[0] + t0[1] * t0[1] + t0[2] * t0[2]).sqrt();
-                let lam = two_psi / t0_norm;
-                let lam0 = lam * idx.powf(-1.0 / self.criterion.degree());
-                let k_b = (1.0 - b) * kn + b * ks;
-                let g_c = self.propagation.toughness(b, self.g_ic, self.g_iic);
                 let mut d_b = self.shape.damage(lam, lam0, g_c, k_b);
                 if d_b.v >= FULL {
                     d_b = Dual3::cst(1.0);
