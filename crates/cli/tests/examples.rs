@@ -82,6 +82,9 @@ examples! {
     /// [7 s]
     #[ignore]
     enf => "delamination/enf.toml";
+    /// [15 s; run in the suite by r_curve.rs]
+    #[ignore]
+    dcb_r_curve => "delamination/dcb_r_curve.toml";
     /// [16 s]
     #[ignore]
     mmb80_short => "delamination/mmb80_short.toml";
