@@ -208,3 +208,33 @@ fn coarse_dcb_warns_of_an_unresolved_process_zone() {
     assert!(s["warnings"].to_string().contains("process zone"), "{}", s["warnings"]);
     assert!(s["crack"]["process_zone_points_min_while_growing"].as_u64().unwrap() < 3);
 }
+
+/// A wrong `[output] crack` names its key and what would be valid.
+#[test]
+fn crack_key_errors_name_the_key() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(scene(tmp.path(), 20)).unwrap();
+    let line = "crack = { direction = [1.0, 0.0, 0.0], origin = [0.0, 0.0, 0.0], width = 25.4 }";
+    assert!(text.contains(line));
+    for (crack, words) in [
+        (
+            "crack = { direction = [1.0, 0.0, 0.0], interface = \"glue\" }",
+            &["output.crack.interface", "`glue`", "bond"][..],
+        ),
+        (
+            "crack = { direction = [0.0, 0.0, 0.0] }",
+            &["output.crack.direction", "non-zero"][..],
+        ),
+        (
+            "crack = { direction = [1.0, 0.0, 0.0], width = -1.0 }",
+            &["output.crack.width", "positive"][..],
+        ),
+    ] {
+        let p = tmp.path().join("bad_crack.toml");
+        std::fs::write(&p, text.replace(line, crack)).unwrap();
+        let err = run_err(&p);
+        for w in words {
+            assert!(err.contains(w), "{crack}: `{w}` not in\n{err}");
+        }
+    }
+}
