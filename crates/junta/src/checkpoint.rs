@@ -37,6 +37,11 @@ pub struct RestartFile {
     /// every interface point failed): a restart has nothing to do.
     #[serde(default)]
     pub finished: Option<String>,
+    /// External forces of the checkpoint's increment
+    /// ([`crate::observer::RunLog::external_force`]); empty in files of
+    /// older runs.
+    #[serde(default)]
+    pub external_force: Vec<f64>,
 }
 
 /// When the first interface point failed.

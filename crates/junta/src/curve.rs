@@ -59,12 +59,30 @@ pub struct CurveRow {
     /// fraction of the model's temperature change applied, 0 -> 1 over a
     /// cool-down step; 1 without a temperature program.
     pub temperature_factor: f64,
+    /// Energy dissipated by the laws' viscous regularisation so far
+    /// (`viscous_energy` column).
+    pub viscous: f64,
+    /// Work of the reactions of the prescribed dofs and of the applied
+    /// loads so far (`external_work` column): the trapezoid rule over the
+    /// converged increments.
+    pub external_work: f64,
+    /// Damaged area over the crack width (`crack_length`); `None` without
+    /// damage ([`crate::crack`]).
+    pub crack_length: Option<f64>,
+    /// Largest coordinate of a damaged point along the crack direction,
+    /// from the origin (`crack_front`); `None` before the first.
+    pub crack_front: Option<f64>,
+    /// Extent of the process zone ahead of the front along the direction
+    /// (`process_zone_length`).
+    pub process_zone_length: Option<f64>,
+    /// Process-zone points along the direction (`process_zone_points`).
+    pub process_zone_points: Option<usize>,
 }
 
 /// Header line of `curve.csv` (with its newline): the column names of
 /// [`CurveRow::csv`], in order.
 pub const CURVE_HEADER: &str =
-    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation,temperature_factor\n";
+    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation,temperature_factor,viscous_energy,external_work,crack_length,crack_front,process_zone_length,process_zone_points\n";
 
 fn opt(v: Option<f64>) -> String {
     v.map(|x| format!("{x:e}")).unwrap_or_default()
@@ -75,7 +93,7 @@ impl CurveRow {
     /// [`CURVE_HEADER`], floats in `{:e}` form, `None` as an empty field).
     pub fn csv(&self) -> String {
         format!(
-            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e},{:e}\n",
+            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e},{:e},{:e},{:e},{},{},{},{}\n",
             self.increment,
             self.step,
             self.lambda,
@@ -96,20 +114,29 @@ impl CurveRow {
             self.control,
             self.conjugate,
             self.frictional,
-            self.temperature_factor
+            self.temperature_factor,
+            self.viscous,
+            self.external_work,
+            opt(self.crack_length),
+            opt(self.crack_front),
+            opt(self.process_zone_length),
+            self.process_zone_points
+                .map(|n| n.to_string())
+                .unwrap_or_default(),
         )
     }
 
     /// A row from a line of `curve.csv` (without its newline), or `None` if
     /// it is not one. Reads files of older runs too: 14 columns (before the
     /// path-following and frictional columns), 16, 17 or 18 (before the
-    /// temperature factor); a missing column takes its neutral value
-    /// (`load_sign` 0, `control` `load`, 0.0, temperature factor 1).
+    /// temperature factor), 19 (before the energy and crack columns); a
+    /// missing column takes its neutral value (`load_sign` 0, `control`
+    /// `load`, 0.0, temperature factor 1, empty crack columns).
     pub fn parse(line: &str) -> Option<CurveRow> {
         let f: Vec<&str> = line.split(',').collect();
         // 14 columns: a run written before the path-following and
         // frictional columns
-        if ![14, 16, 17, 18, 19].contains(&f.len()) {
+        if ![14, 16, 17, 18, 19, 25].contains(&f.len()) {
             return None;
         }
         Some(CurveRow {
@@ -132,6 +159,12 @@ impl CurveRow {
             conjugate: f.get(16).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
             frictional: f.get(17).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
             temperature_factor: f.get(18).and_then(|v| v.trim().parse().ok()).unwrap_or(1.0),
+            viscous: f.get(19).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
+            external_work: f.get(20).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
+            crack_length: f.get(21).and_then(|v| v.trim().parse().ok()),
+            crack_front: f.get(22).and_then(|v| v.trim().parse().ok()),
+            process_zone_length: f.get(23).and_then(|v| v.trim().parse().ok()),
+            process_zone_points: f.get(24).and_then(|v| v.trim().parse().ok()),
         })
     }
 }
@@ -332,6 +365,15 @@ impl Curve {
             ("conjugate_displacement", Box::new(|r| r.conjugate)),
             ("frictional_dissipation", Box::new(|r| r.frictional)),
             ("temperature_factor", Box::new(|r| r.temperature_factor)),
+            ("viscous_energy", Box::new(|r| r.viscous)),
+            ("external_work", Box::new(|r| r.external_work)),
+            ("crack_length", Box::new(move |r| f(r.crack_length))),
+            ("crack_front", Box::new(move |r| f(r.crack_front))),
+            ("process_zone_length", Box::new(move |r| f(r.process_zone_length))),
+            (
+                "process_zone_points",
+                Box::new(|r| r.process_zone_points.map_or(f64::NAN, |n| n as f64)),
+            ),
         ];
         Curve {
             columns: cols
@@ -377,8 +419,8 @@ mod tests {
 
     #[test]
     fn columns_follow_the_csv_header_and_read_back_the_rows() {
-        let line = "3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0,7.5e-1";
-        let row = CurveRow::parse(line).expect("19 columns");
+        let line = "3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0,7.5e-1,1e-4,4e-3,2.5e0,2.25e0,1.5e0,6";
+        let row = CurveRow::parse(line).expect("25 columns");
         assert_eq!(row.csv().trim_end(), line);
         let c = Curve::from_rows(&[row]);
         let header: Vec<&str> = CURVE_HEADER
@@ -391,5 +433,10 @@ mod tests {
         assert_eq!(c.get("reaction"), Some(&[150.0][..]));
         assert!(c.get("negative_pivots").unwrap()[0].is_nan());
         assert_eq!(c.control, vec!["arc".to_string()]);
+        assert_eq!(c.get("process_zone_points"), Some(&[6.0][..]));
+        // a row of an older run (19 columns): no crack, no external work
+        let old = CurveRow::parse("3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0,7.5e-1")
+            .expect("19 columns");
+        assert_eq!((old.crack_length, old.external_work), (None, 0.0));
     }
 }

@@ -12,6 +12,7 @@
 //! `curve.svg`.
 
 use crate::checkpoint::{FirstFailure, RestartFile};
+use crate::crack::CrackProbe;
 use crate::curve::{limit_points, CurveRow};
 use crate::error::{err, Result};
 use crate::observer::{Flow, Increment, Observer, RunEnd, RunLog, Stop};
@@ -133,6 +134,11 @@ struct Engine<'a> {
     inc_reached: Option<(usize, usize, usize)>,
     /// Why an observer stopped the run.
     stop: Option<Stop>,
+    /// How the crack front is measured (`None` without interfaces).
+    crack: Option<CrackProbe>,
+    /// `u` of the last converged increment (the left end of the external
+    /// work's trapezoid; `self.log.external_force` holds its forces).
+    prev_u: Vec<f64>,
 }
 
 impl Engine<'_> {
@@ -272,6 +278,8 @@ impl Engine<'_> {
                     })
             });
         let energy = total_energy(ifs);
+        let external_work = self.external_work(v, r.lambda);
+        let crack = self.crack.as_mut().and_then(|c| c.measure(ifs));
         Ok(CurveRow {
             increment: r.increment_index,
             step: r.step,
@@ -298,7 +306,59 @@ impl Engine<'_> {
             conjugate,
             frictional: energy.frictional_dissipation,
             temperature_factor: r.temperature_factor,
+            viscous: energy.viscous_energy,
+            external_work,
+            crack_length: crack.map(|c| c.length),
+            crack_front: crack.and_then(|c| c.front),
+            process_zone_length: crack.map(|c| c.process_zone_length),
+            process_zone_points: crack.map(|c| c.process_zone_points),
         })
+    }
+
+    /// The external work after the converged increment `v`: the last
+    /// row's plus the trapezoid `sum_i (F_i + F_i^prev) / 2 (u_i -
+    /// u_i^prev)` over every dof, with `F` the external force: the
+    /// reaction (`residual + lambda f_ext`, the internal force) on a
+    /// prescribed dof, the applied load `lambda f_ext` on a free one.
+    /// Updates the previous state to this one.
+    fn external_work(&mut self, v: &IncrementView<'_>, lambda: f64) -> f64 {
+        let dofs = &self.model.dofs;
+        let f_ext = &self.model.f_ext;
+        let n = v.u.len();
+        let force: Vec<f64> = (0..n)
+            .map(|i| {
+                let load = lambda * f_ext.get(i).copied().unwrap_or(0.0);
+                let prescribed = dofs.eq[i] == junta_core::dof::CONSTRAINED
+                    && !dofs.orphan.get(i).copied().unwrap_or(false)
+                    && !dofs.dependents.contains(i);
+                if prescribed {
+                    v.residual[i] + load
+                } else {
+                    load
+                }
+            })
+            .collect();
+        if self.prev_u.len() != n {
+            self.prev_u = vec![0.0; n];
+        }
+        // a restart from a checkpoint of an older run has no forces: the
+        // first increment's trapezoid then takes this increment's forces
+        // at both ends
+        if self.log.external_force.len() != n {
+            self.log.external_force = if self.log.rows.is_empty() {
+                vec![0.0; n]
+            } else {
+                force.clone()
+            };
+        }
+        let prev_f = &self.log.external_force;
+        let work: f64 = (0..n)
+            .map(|i| 0.5 * (force[i] + prev_f[i]) * (v.u[i] - self.prev_u[i]))
+            .sum();
+        let past = self.log.rows.last().map_or(0.0, |r| r.external_work);
+        self.prev_u.copy_from_slice(v.u);
+        self.log.external_force = force;
+        past + work
     }
 
     /// A deck's `*STEP, INC=n`: at most n increments in that step.
@@ -362,6 +422,7 @@ pub(crate) fn run_incremental(
     let t0 = Instant::now();
     let file = input.display().to_string();
     let curve = CurveProbe::of(p, &file)?;
+    let crack = CrackProbe::of(p, &file)?;
     let analysis = p.analysis.clone();
     let (checkpoint, log) = match restart {
         Some((r, rows)) => {
@@ -373,12 +434,14 @@ pub(crate) fn run_incremental(
                 path_switches: r.path_switches,
                 start_increment: start,
                 last_increment: start,
+                external_force: r.external_force,
                 ..RunLog::default()
             };
             (Some(r.checkpoint), log)
         }
         None => (None, RunLog::default()),
     };
+    let prev_u = checkpoint.as_ref().map(|c| c.u.clone()).unwrap_or_default();
     for o in observers.iter_mut() {
         o.on_start(p, &log)?;
     }
@@ -394,6 +457,8 @@ pub(crate) fn run_incremental(
         error: None,
         inc_reached: None,
         stop: None,
+        crack,
+        prev_u,
     };
     let result = drive(
         model,
@@ -517,6 +582,7 @@ fn finish(
         mut log,
         last_u,
         mut last_state,
+        crack,
         ..
     } = engine;
     if let Some(s) = &mut last_state {
@@ -556,6 +622,10 @@ fn finish(
         }
     }
     advice_and_solver(&mut summary, p, &log)?;
+    if let Some(w) = crack_and_energy(&mut summary, crack.as_ref(), &log) {
+        tracing::warn!("{w}");
+        ending.warnings.push(w);
+    }
     if let Some(u) = u {
         let (rotation, warning) =
             crate::rotation::summary_entry(model, u, crate::rotation::is_deck(input));
@@ -583,6 +653,46 @@ fn finish(
         o.on_end(&end, &mut log)?;
     }
     Ok((ending, summary, log))
+}
+
+/// `summary.json` `energy` (the last row's external work and the
+/// interfaces' dissipated, viscous and frictional energy) and `crack` (the
+/// crack probe and the last row's crack); the process-zone warning, also
+/// added to `warnings`.
+fn crack_and_energy(
+    summary: &mut serde_json::Value,
+    crack: Option<&CrackProbe>,
+    log: &RunLog,
+) -> Option<String> {
+    let last = log.rows.last()?;
+    summary["energy"] = json!({
+        "external_work": last.external_work,
+        "dissipated_energy": last.dissipated,
+        "viscous_energy": last.viscous,
+        "frictional_dissipation": last.frictional,
+    });
+    let crack = crack?;
+    last.crack_length?;
+    // the width: the scene's, else the default fixed at the first row
+    let mut entry = crack.describe();
+    entry["crack_length"] = json!(last.crack_length);
+    entry["crack_front"] = json!(last.crack_front);
+    entry["process_zone_length"] = json!(last.process_zone_length);
+    entry["process_zone_points"] = json!(last.process_zone_points);
+    // the fewest process-zone points in a row in which the crack grew
+    let growing = log.rows.windows(2).filter(|w| {
+        matches!((w[0].crack_length, w[1].crack_length), (Some(a), Some(b)) if b > a)
+    });
+    entry["process_zone_points_min_while_growing"] =
+        json!(growing.filter_map(|w| w[1].process_zone_points).min());
+    entry["min_process_zone_points"] = json!(crate::crack::MIN_PROCESS_ZONE_POINTS);
+    summary["crack"] = entry;
+    let warning = crate::crack::process_zone_warning(&log.rows)?;
+    match summary["warnings"].as_array_mut() {
+        Some(list) => list.push(json!(warning)),
+        None => summary["warnings"] = json!([warning]),
+    }
+    Some(warning)
 }
 
 /// The summary fields every incremental run has.

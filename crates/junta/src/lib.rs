@@ -47,6 +47,7 @@ pub mod bending;
 pub mod catalog;
 pub mod check;
 pub mod checkpoint;
+pub mod crack;
 pub mod curve;
 pub mod deck;
 pub mod deck_print;

@@ -77,6 +77,11 @@ pub struct RunLog {
     pub start_increment: usize,
     /// The last converged increment.
     pub last_increment: usize,
+    /// External forces of the last converged increment (the reactions on
+    /// the prescribed dofs plus the applied loads, per dof): the left end
+    /// of the next increment's trapezoid for `external_work`, kept in
+    /// `checkpoint.json` for a restart.
+    pub external_force: Vec<f64>,
 }
 
 /// A converged increment, as the observers see it.

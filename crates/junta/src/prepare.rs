@@ -40,6 +40,9 @@ pub struct Prepared {
     /// The load-displacement curve to record (`[output.curve]`, or a
     /// deck's), if any.
     pub curve: Option<scene::CurveSpec>,
+    /// How the crack front is measured (`[output] crack`); `None`: the
+    /// default of [`crate::crack`].
+    pub crack: Option<scene::CrackFrontSpec>,
     /// Incremental runs: a VTU frame every this many increments (>= 1).
     pub every: usize,
     /// Physical thickness of the adhesive layer by interface block name
@@ -262,6 +265,7 @@ pub fn prepare_model(model: Model, analysis: scene::AnalysisSpec, key: &str) -> 
         reference: None,
         analysis,
         curve: None,
+        crack: None,
         every: 1,
         thickness: Default::default(),
         notes,
@@ -450,6 +454,7 @@ fn prepare_unchecked(input: &Path, options: &crate::Options) -> Result<Prepared>
                 fractions: Vec::new(),
                 analysis,
                 curve: d.curve,
+                crack: None,
                 every: d.every.unwrap_or(1),
                 reference: None,
                 thickness: Default::default(),
@@ -514,6 +519,7 @@ fn prepare_scene(
         fractions: sf.scene.output.fractions.clone(),
         analysis,
         curve: sf.scene.output.curve.clone(),
+        crack: sf.scene.output.crack.clone(),
         every: sf.scene.output.every,
         reference: match &sf.scene.reference {
             Some(r) => Some((r.clone(), r.component_index(&sf.path)?)),

@@ -485,6 +485,35 @@ pub struct OutputSpec {
     /// Incremental runs: write a VTU frame every this many increments (default 1).
     #[serde(default = "every_one")]
     pub every: usize,
+    /// Incremental runs: how the crack length, the crack front and the
+    /// process zone are measured (`crate::crack`); without it the
+    /// direction is the axis along which the interfaces are longest.
+    #[serde(default)]
+    pub crack: Option<CrackFrontSpec>,
+}
+
+/// `[output] crack = { direction = [1, 0, 0], origin = [..], width = ..,
+/// interface = ".." }`: the direction a crack grows in, for the crack
+/// length, the front position and the process zone of `curve.csv`
+/// (`crate::crack`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CrackFrontSpec {
+    /// Direction of growth (normalised; need not be a unit vector).
+    pub direction: [f64; 3],
+    /// Point the front position is measured from (its coordinate along
+    /// the direction is the zero); default: where the interface starts
+    /// along the direction (its smallest node coordinate).
+    #[serde(default)]
+    pub origin: Option<[f64; 3]>,
+    /// Width of the crack front: the crack length is the damaged area over
+    /// it; default: the interface's area over its extent along the
+    /// direction (a rectangular bond's width).
+    #[serde(default)]
+    pub width: Option<f64>,
+    /// The interface (block name) whose crack is measured; default: all.
+    #[serde(default)]
+    pub interface: Option<String>,
 }
 
 fn every_one() -> usize {
@@ -500,6 +529,7 @@ impl Default for OutputSpec {
             fractions: Vec::new(),
             curve: None,
             every: 1,
+            crack: None,
         }
     }
 }

@@ -199,6 +199,7 @@ impl Observer for Checkpoints {
             inputs: self.inputs.clone(),
             scene_text: self.scene_text.clone(),
             finished: None,
+            external_force: log.external_force.clone(),
         };
         write_atomic(
             &self.dir.join("checkpoint.json"),

@@ -1,0 +1,307 @@
+//! Crack-front outputs of an incremental run, from the interface points'
+//! `damage` (fracture-energy laws): the crack length, the position of the
+//! crack front along a direction, and the length of the process zone ahead
+//! of it with the number of integration points it spans (a mesh-resolution
+//! check, as Code_Aster's `POST_CZM_FISS` makes).
+//!
+//! Along the unit direction `d` of `[output] crack` (default: the global
+//! axis along which the measured interfaces' nodes spread the most) every
+//! integration point has the coordinate `s = (x - origin) . d` of its
+//! reference position `x`. Then, with `DAMAGED_THRESHOLD` = 0.99
+//! ([`junta_core::law::output::DAMAGED_THRESHOLD`]):
+//!
+//! - crack length `a = A_d / w`: the damaged area `A_d` (points with
+//!   damage >= 0.99, integrated over their reference area) over the width
+//!   `w` (`width`, default the interface's area over its extent along `d`);
+//! - crack front: the largest `s` of a damaged point (none before the
+//!   first point is damaged);
+//! - process zone: the points with 0 < damage < 0.99 and `s` larger than
+//!   the front (all of them before there is a front); its length is the
+//!   largest `s` among them less the front (less their smallest `s`
+//!   before there is a front), and its point count the number of distinct
+//!   coordinates `s` among them (on a mesh structured along `d`, the points
+//!   of one row along the direction).
+
+use crate::error::{bail, Result};
+use crate::output::InterfaceResults;
+use crate::prepare::Prepared;
+use junta_core::law::output;
+
+/// Fewer process-zone points along the direction than this while the crack
+/// grows draws a warning: the cohesive zone is not resolved.
+pub const MIN_PROCESS_ZONE_POINTS: usize = 3;
+
+/// How the crack of a run is measured: direction, origin, width and the
+/// interface blocks.
+#[derive(Debug, Clone)]
+pub(crate) struct CrackProbe {
+    /// Unit direction of growth.
+    pub direction: [f64; 3],
+    /// Point the front is measured from.
+    pub origin: [f64; 3],
+    /// Width given in the scene (else computed from the first results).
+    width: Option<f64>,
+    /// Interface blocks measured.
+    blocks: Vec<usize>,
+    /// Extent of the interfaces' nodes along the direction.
+    extent: f64,
+}
+
+/// The crack of one converged state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CrackFront {
+    /// Damaged area over the width.
+    pub length: f64,
+    /// Largest coordinate of a damaged point along the direction, from
+    /// the origin (`None` before any point is damaged).
+    pub front: Option<f64>,
+    /// Extent of the process zone ahead of the front along the direction.
+    pub process_zone_length: f64,
+    /// Distinct coordinates of process-zone points along the direction.
+    pub process_zone_points: usize,
+    /// Width used.
+    pub width: f64,
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+impl CrackProbe {
+    /// The probe of `p` (its `[output] crack`, else the default), or
+    /// `None` without interfaces.
+    pub(crate) fn of(p: &Prepared, file: &str) -> Result<Option<CrackProbe>> {
+        let model = &p.model;
+        let interfaces: Vec<usize> = (0..model.mesh.blocks.len())
+            .filter(|&b| model.mesh.blocks[b].shape.is_interface())
+            .collect();
+        let spec = p.crack.as_ref();
+        let blocks = match spec.and_then(|c| c.interface.as_ref()) {
+            Some(name) => match interfaces
+                .iter()
+                .find(|&&b| &model.mesh.blocks[b].name == name)
+            {
+                Some(&b) => vec![b],
+                None => {
+                    let names: Vec<&str> = interfaces
+                        .iter()
+                        .map(|&b| model.mesh.blocks[b].name.as_str())
+                        .collect();
+                    bail!(
+                        "{file}: key `output.crack.interface`: no interface `{name}`; the interfaces are: {}",
+                        if names.is_empty() { "none".to_string() } else { names.join(", ") }
+                    );
+                }
+            },
+            None => interfaces,
+        };
+        if blocks.is_empty() {
+            return Ok(None);
+        }
+        let nodes: Vec<[f64; 3]> = blocks
+            .iter()
+            .flat_map(|&b| {
+                let block = &model.mesh.blocks[b];
+                (0..block.len()).flat_map(move |e| block.element(e).to_vec())
+            })
+            .map(|n| model.mesh.nodes[n])
+            .collect();
+        let direction = match spec {
+            Some(c) => {
+                let d = c.direction;
+                let n = dot(d, d).sqrt();
+                if !(n.is_finite() && n > 0.0) {
+                    bail!("{file}: key `output.crack.direction`: {d:?} is not a direction; give a non-zero vector, e.g. [1.0, 0.0, 0.0]");
+                }
+                [d[0] / n, d[1] / n, d[2] / n]
+            }
+            None => default_direction(&nodes),
+        };
+        let (lo, hi) = nodes.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+            let s = dot(*x, direction);
+            (l.min(s), h.max(s))
+        });
+        let origin = match spec.and_then(|c| c.origin) {
+            Some(o) => o,
+            None => [direction[0] * lo, direction[1] * lo, direction[2] * lo],
+        };
+        let width = spec.and_then(|c| c.width);
+        if let Some(w) = width {
+            if !(w.is_finite() && w > 0.0) {
+                bail!("{file}: key `output.crack.width`: {w} is not a width; give a positive length");
+            }
+        }
+        Ok(Some(CrackProbe {
+            direction,
+            origin,
+            width,
+            blocks,
+            extent: (hi - lo).max(0.0),
+        }))
+    }
+
+    /// The crack of the interface results `ifs`, or `None` when the
+    /// measured interfaces report no damage.
+    pub(crate) fn measure(&mut self, ifs: &[InterfaceResults]) -> Option<CrackFront> {
+        let s0 = dot(self.origin, self.direction);
+        let mut has_damage = false;
+        let mut total_area = 0.0;
+        let mut damaged_area = 0.0;
+        let mut front: Option<f64> = None;
+        let mut zone: Vec<f64> = Vec::new();
+        for r in ifs.iter().filter(|r| self.blocks.contains(&r.block)) {
+            for p in &r.points {
+                let area = p
+                    .get("reference_area")
+                    .or_else(|| p.get("area"))
+                    .map_or(0.0, |a| a[0]);
+                total_area += area;
+                let Some(d) = p.get(output::DAMAGE) else { continue };
+                has_damage = true;
+                let s = dot(p.position, self.direction) - s0;
+                if d[0] >= output::DAMAGED_THRESHOLD {
+                    damaged_area += area;
+                    front = Some(front.map_or(s, |f| f.max(s)));
+                } else if d[0] > 0.0 {
+                    zone.push(s);
+                }
+            }
+        }
+        if !has_damage {
+            return None;
+        }
+        // the default width: a rectangular bond's width (fixed once, from
+        // the reference areas, so that a restart finds the same)
+        let width = *self.width.get_or_insert_with(|| {
+            if self.extent > 0.0 {
+                total_area / self.extent
+            } else {
+                1.0
+            }
+        });
+        if let Some(f) = front {
+            zone.retain(|&s| s > f);
+        }
+        zone.sort_by(f64::total_cmp);
+        let tol = 1e-6 * self.extent.max(f64::MIN_POSITIVE);
+        let mut count = 0;
+        let mut last = f64::NEG_INFINITY;
+        for &s in &zone {
+            if s - last > tol {
+                count += 1;
+                last = s;
+            }
+        }
+        let process_zone_length = match (zone.first(), zone.last()) {
+            (Some(&first), Some(&end)) => end - front.unwrap_or(first),
+            _ => 0.0,
+        };
+        Some(CrackFront {
+            length: damaged_area / width,
+            front,
+            process_zone_length,
+            process_zone_points: count,
+            width,
+        })
+    }
+
+    /// `summary.json` `crack` entry without the end state's numbers.
+    pub(crate) fn describe(&self) -> serde_json::Value {
+        serde_json::json!({
+            "direction": self.direction,
+            "origin": self.origin,
+            "width": self.width,
+        })
+    }
+}
+
+/// The global axis along which the points spread the most.
+fn default_direction(nodes: &[[f64; 3]]) -> [f64; 3] {
+    let mut best = (0, f64::NEG_INFINITY);
+    for c in 0..3 {
+        let (lo, hi) = nodes.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+            (l.min(x[c]), h.max(x[c]))
+        });
+        if hi - lo > best.1 {
+            best = (c, hi - lo);
+        }
+    }
+    let mut d = [0.0; 3];
+    d[best.0] = 1.0;
+    d
+}
+
+/// The process-zone warning: the rows where the crack grew (its length
+/// larger than the row before) while fewer than
+/// [`MIN_PROCESS_ZONE_POINTS`] points lay in the process zone along the
+/// direction.
+pub(crate) fn process_zone_warning(rows: &[crate::curve::CurveRow]) -> Option<String> {
+    let mut under = 0usize;
+    let mut growing = 0usize;
+    let mut worst: Option<(usize, usize, f64)> = None;
+    for w in rows.windows(2) {
+        let (Some(a0), Some(a1)) = (w[0].crack_length, w[1].crack_length) else {
+            continue;
+        };
+        if a1 <= a0 {
+            continue;
+        }
+        growing += 1;
+        let n = w[1].process_zone_points.unwrap_or(0);
+        if n < MIN_PROCESS_ZONE_POINTS {
+            under += 1;
+            if worst.is_none_or(|(k, _, _)| n < k) {
+                worst = Some((n, w[1].increment, w[1].process_zone_length.unwrap_or(0.0)));
+            }
+        }
+    }
+    let (n, inc, len) = worst?;
+    Some(format!(
+        "the process zone (0 < damage < {}) spans fewer than {MIN_PROCESS_ZONE_POINTS} integration points along the crack direction in {under} of the {growing} increments in which the crack grew (fewest: {n} at increment {inc}, process zone {len:.4e} long): the cohesive zone is not resolved, so the load and the crack growth depend on the mesh; refine the interface along the crack direction (summary.json `mesh_advice` gives the cohesive-zone length), see docs/outputs.md",
+        output::DAMAGED_THRESHOLD
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use junta_core::PointOutput;
+
+    fn point(x: f64, damage: f64) -> PointOutput {
+        PointOutput {
+            position: [x, 0.5, 0.0],
+            values: vec![("area", vec![0.5]), (output::DAMAGE, vec![damage])],
+        }
+    }
+
+    #[test]
+    fn front_length_and_process_zone_of_a_row_of_points() {
+        // a row of points 0.5 apart, each of area 0.5: the bond 4.5 long, 1
+        // wide; damaged up to x = 1.25, softening up to x = 3.25
+        let damages = [1.0, 1.0, 0.995, 0.5, 0.3, 0.1, 0.01, 0.0, 0.0];
+        let points: Vec<PointOutput> = damages
+            .iter()
+            .enumerate()
+            .map(|(k, &d)| point(0.25 + 0.5 * k as f64, d))
+            .collect();
+        let ifs = [InterfaceResults {
+            block: 0,
+            points,
+            points_per_element: 1,
+        }];
+        let mut probe = CrackProbe {
+            direction: [1.0, 0.0, 0.0],
+            origin: [0.0; 3],
+            width: None,
+            blocks: vec![0],
+            extent: 4.5,
+        };
+        let c = probe.measure(&ifs).unwrap();
+        assert!((c.width - 1.0).abs() < 1e-12);
+        assert!((c.length - 1.5).abs() < 1e-12);
+        assert_eq!(c.front, Some(1.25));
+        assert_eq!(c.process_zone_points, 4);
+        assert!((c.process_zone_length - (3.25 - 1.25)).abs() < 1e-12);
+    }
+}
+
