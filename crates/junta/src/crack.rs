@@ -27,8 +27,9 @@ use crate::output::InterfaceResults;
 use crate::prepare::Prepared;
 use junta_core::law::output;
 
-/// Fewer process-zone points along the direction than this while the crack
-/// grows draws a warning: the cohesive zone is not resolved.
+/// Fewer process-zone points along the direction than this in most of the
+/// increments in which the crack grows draws a warning: the cohesive zone
+/// is not resolved.
 pub const MIN_PROCESS_ZONE_POINTS: usize = 3;
 
 /// How the crack of a run is measured: direction, origin, width and the
@@ -231,10 +232,13 @@ fn default_direction(nodes: &[[f64; 3]]) -> [f64; 3] {
     d
 }
 
-/// The process-zone warning: the rows where the crack grew (its length
-/// larger than the row before) while fewer than
+/// The process-zone warning: in most of the rows where the crack grew
+/// (its length larger than the row before), fewer than
 /// [`MIN_PROCESS_ZONE_POINTS`] points lay in the process zone along the
-/// direction.
+/// direction. A few such rows on a resolved mesh are the saw-tooth of its
+/// elements (the zone shrinks for an increment as a row of points passes
+/// the damage threshold); a zone short in most of the growth is a mesh
+/// too coarse for it.
 pub(crate) fn process_zone_warning(rows: &[crate::curve::CurveRow]) -> Option<String> {
     let mut under = 0usize;
     let mut growing = 0usize;
@@ -256,6 +260,9 @@ pub(crate) fn process_zone_warning(rows: &[crate::curve::CurveRow]) -> Option<St
         }
     }
     let (n, inc, len) = worst?;
+    if 2 * under <= growing {
+        return None;
+    }
     Some(format!(
         "the process zone (0 < damage < {}) spans fewer than {MIN_PROCESS_ZONE_POINTS} integration points along the crack direction in {under} of the {growing} increments in which the crack grew (fewest: {n} at increment {inc}, process zone {len:.4e} long): the cohesive zone is not resolved, so the load and the crack growth depend on the mesh; refine the interface along the crack direction (summary.json `mesh_advice` gives the cohesive-zone length), see docs/outputs.md",
         output::DAMAGED_THRESHOLD
@@ -266,6 +273,31 @@ pub(crate) fn process_zone_warning(rows: &[crate::curve::CurveRow]) -> Option<St
 mod tests {
     use super::*;
     use junta_core::PointOutput;
+
+    /// A curve row of increment `inc` with the crack length `a` and `n`
+    /// process-zone points (the other columns zero).
+    fn row(inc: usize, a: f64, n: usize) -> crate::curve::CurveRow {
+        let line = format!("{inc},0,0,0,0,0,0,0,0,0,0,0,0,0,0,load,0,0,1,0,0,{a},{a},0.1,{n}");
+        crate::curve::CurveRow::parse(&line).unwrap()
+    }
+
+    /// Two of five growing increments under 3 points: the saw-tooth of a
+    /// resolved mesh, no warning; three of five: a warning naming the
+    /// fewest.
+    #[test]
+    fn process_zone_warning_needs_most_of_the_growth_under_three_points() {
+        let counts = [4, 2, 5, 2, 4];
+        let rows: Vec<_> = std::iter::once(row(1, 0.0, 0))
+            .chain(counts.iter().enumerate().map(|(i, &n)| row(i + 2, (i + 1) as f64, n)))
+            .collect();
+        assert_eq!(process_zone_warning(&rows), None);
+        let counts = [1, 2, 5, 2, 4];
+        let rows: Vec<_> = std::iter::once(row(1, 0.0, 0))
+            .chain(counts.iter().enumerate().map(|(i, &n)| row(i + 2, (i + 1) as f64, n)))
+            .collect();
+        let w = process_zone_warning(&rows).unwrap();
+        assert!(w.contains("in 3 of the 5 increments") && w.contains("fewest: 1 at increment 2"), "{w}");
+    }
 
     fn point(x: f64, damage: f64) -> PointOutput {
         PointOutput {
