@@ -6,6 +6,8 @@
 //! section 3 (one cohesive point: onset at tau_0/K, dissipated energy G_c).
 //! Material data: AS4/PEEK (BENCHMARKS.md section 4).
 
+mod common;
+
 use junta_core::element::StepInfo;
 use junta_core::law::{InterfaceLaw, LawContext, LawResponse};
 use junta_core::registry::{find, LawEntry};
@@ -87,33 +89,10 @@ impl Point {
     fn energy(&self) -> f64 {
         self.state[slot::ENERGY]
     }
-    /// Central-difference tangent against the law's, relative to the
-    /// largest entry of the law's tangent (the trial state is discarded).
+    /// Central-difference tangent against the law's (trial state
+    /// discarded).
     fn check_tangent(&self, jump: [f64; 3], what: &str) {
-        let (r, _) = self.trial(jump, 1.0);
-        let scale = r
-            .tangent
-            .iter()
-            .flatten()
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-            .max(1.0);
-        let h = 1e-7 * jump.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-9);
-        for j in 0..3 {
-            let (mut a, mut b) = (jump, jump);
-            a[j] += h;
-            b[j] -= h;
-            let ta = self.trial(a, 1.0).0.traction;
-            let tb = self.trial(b, 1.0).0.traction;
-            for i in 0..3 {
-                let fd = (ta[i] - tb[i]) / (2.0 * h);
-                let err = (fd - r.tangent[i][j]).abs() / scale;
-                assert!(
-                    err < 1e-5,
-                    "{what}: dt{i}/ddelta{j}: law {:.6e}, finite difference {fd:.6e} (jump {jump:?})",
-                    r.tangent[i][j]
-                );
-            }
-        }
+        common::check_fd_tangent(|j| self.trial(j, 1.0).0, jump, 1e-7, what);
     }
 }
 

@@ -16,6 +16,8 @@
 //! The Paris constants below are test values chosen so that a point fails
 //! in a few thousand cycles, not material data.
 
+mod common;
+
 use junta_core::element::StepInfo;
 use junta_core::law::{output, InterfaceLaw, LawContext, LawResponse};
 use junta_core::registry::{find, LawEntry};
@@ -124,41 +126,16 @@ impl Point {
         r
     }
     fn out(&self, name: &str) -> f64 {
-        let names = self.law.output_names();
-        let mut out = vec![0.0; names.len()];
-        self.law.outputs(&self.state, &mut out);
-        out[names.iter().position(|n| *n == name).unwrap()]
+        common::output_of(self.law.as_ref(), &self.state, name)
     }
     fn damage(&self) -> f64 {
         self.out(output::DAMAGE)
     }
-    /// Central-difference tangent against the law's, relative to the
-    /// largest entry of the law's tangent (trial states discarded).
+    /// Central-difference tangent against the law's at the cycle step
+    /// `dn` (trial states discarded).
     fn check_tangent(&self, jump: [f64; 3], dn: f64, what: &str) {
-        let (r, _) = self.trial(jump, dn);
-        let scale = r
-            .tangent
-            .iter()
-            .flatten()
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-            .max(1.0);
-        let h = 1e-7 * jump.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-9);
-        for j in 0..3 {
-            let (mut a, mut b) = (jump, jump);
-            a[j] += h;
-            b[j] -= h;
-            let ta = self.trial(a, dn).0.traction;
-            let tb = self.trial(b, dn).0.traction;
-            for i in 0..3 {
-                let fd = (ta[i] - tb[i]) / (2.0 * h);
-                let err = (fd - r.tangent[i][j]).abs() / scale;
-                assert!(
-                    err < 1e-5,
-                    "{what}: dt{i}/ddelta{j}: law {:.6e}, finite difference {fd:.6e} (jump {jump:?}, dN {dn})",
-                    r.tangent[i][j]
-                );
-            }
-        }
+        let what = format!("{what} (dN {dn})");
+        common::check_fd_tangent(|j| self.trial(j, dn).0, jump, 1e-7, &what);
     }
 }
 

@@ -9,6 +9,8 @@
 //! (flow rule `d n_p = tan(psi) d kappa`); Alfano & Sacco 2006: a fully
 //! debonded point under pressure carries `mu p` in shear.
 
+mod common;
+
 use junta_core::element::StepInfo;
 use junta_core::law::{output, InterfaceLaw, LawContext, LawResponse};
 use junta_core::registry::{find, LawEntry};
@@ -100,44 +102,15 @@ impl Point {
         r
     }
     fn out(&self, name: &str) -> f64 {
-        let names = self.law.output_names();
-        let mut v = vec![0.0; names.len()];
-        self.law.outputs(&self.state, &mut v);
-        v[names.iter().position(|n| *n == name).unwrap()]
+        common::output_of(self.law.as_ref(), &self.state, name)
     }
     /// Central-difference tangent against the law's (every entry, so the
-    /// nonsymmetric part too), relative to the largest entry; returns the
-    /// law's tangent.
+    /// nonsymmetric part too); returns the law's tangent.
     fn check_tangent(&self, jump: [f64; 3], what: &str) -> [[f64; 3]; 3] {
-        let (r, _) = self.trial(jump);
-        let scale = r
-            .tangent
-            .iter()
-            .flatten()
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-            .max(1.0);
-        let h = 1e-8 * jump.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-9);
-        for j in 0..3 {
-            let (mut a, mut b) = (jump, jump);
-            a[j] += h;
-            b[j] -= h;
-            let ta = self.trial(a).0.traction;
-            let tb = self.trial(b).0.traction;
-            for i in 0..3 {
-                let fd = (ta[i] - tb[i]) / (2.0 * h);
-                let err = (fd - r.tangent[i][j]).abs() / scale;
-                assert!(
-                    err < 1e-5,
-                    "{what}: dt{i}/ddelta{j}: law {:.6e}, finite difference {fd:.6e} (jump {jump:?})",
-                    r.tangent[i][j]
-                );
-            }
-        }
-        r.tangent
+        common::check_fd_tangent(|j| self.trial(j).0, jump, 1e-8, what)
     }
 }
 
-#[allow(clippy::needless_range_loop)]
 fn asymmetry(t: &[[f64; 3]; 3]) -> f64 {
     let mut m = 0.0f64;
     for i in 0..3 {

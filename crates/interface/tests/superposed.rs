@@ -4,6 +4,8 @@
 //! the sum of two triangles (below), and dissipate the sum of their
 //! toughnesses.
 
+mod common;
+
 use junta_core::element::StepInfo;
 use junta_core::law::{output, InterfaceLaw, LawContext, LawResponse};
 use junta_core::registry::{find, LawEntry};
@@ -96,39 +98,12 @@ impl Point {
         self.inc += 1;
         r
     }
-    fn outputs(&self) -> Vec<(&'static str, f64)> {
-        let names = self.law.output_names();
-        let mut v = vec![0.0; names.len()];
-        self.law.outputs(&self.state, &mut v);
-        names.iter().copied().zip(v).collect()
-    }
     fn output(&self, name: &str) -> f64 {
-        self.outputs()
-            .iter()
-            .find(|(n, _)| *n == name)
-            .unwrap_or_else(|| panic!("no output {name}"))
-            .1
+        common::output_of(self.law.as_ref(), &self.state, name)
     }
-    /// Central differences against the law's tangent, relative to its
-    /// largest entry.
+    /// Central differences against the law's tangent.
     fn check_tangent(&self, jump: [f64; 3], what: &str) {
-        let (r, _) = self.trial(jump);
-        let scale = r.tangent.iter().flatten().fold(1.0f64, |m, v| m.max(v.abs()));
-        let h = 1e-7 * jump.iter().fold(1e-9f64, |m, v| m.max(v.abs()));
-        for j in 0..3 {
-            let (mut a, mut b) = (jump, jump);
-            a[j] += h;
-            b[j] -= h;
-            let (ta, tb) = (self.trial(a).0.traction, self.trial(b).0.traction);
-            for i in 0..3 {
-                let fd = (ta[i] - tb[i]) / (2.0 * h);
-                assert!(
-                    (fd - r.tangent[i][j]).abs() / scale < 1e-5,
-                    "{what}: dt{i}/ddelta{j}: law {:.6e}, finite difference {fd:.6e}",
-                    r.tangent[i][j]
-                );
-            }
-        }
+        common::check_fd_tangent(|j| self.trial(j).0, jump, 1e-7, what);
     }
 }
 
