@@ -73,6 +73,7 @@ examples! {
     bimetal => "thermal/bimetal.toml";
     cool_down => "thermal/cool_down.toml";
     cure_dcb => "thermal/cure_dcb.toml";
+    held_opening => "fatigue/held_opening.toml";
     /// [126 s: viscous regularisation, small increments]
     #[ignore]
     dcb_viscous => "delamination/dcb.toml";

@@ -39,7 +39,7 @@ pub use element::{Element, ElementContext, ElementError, Kinematics, PointOutput
 pub use error::CoreError;
 pub use law::{FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse, PenaltyRole};
 pub use material::{Material, Voigt6};
-pub use model::Model;
+pub use model::{FatigueProgram, Model};
 pub use solver::{
     EquationLayout, LinearSolver, MatrixKind, PrecomputedDissection, SolveReport, SolverError,
 };

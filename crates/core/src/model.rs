@@ -40,6 +40,31 @@ pub struct Model {
     /// the first increment). A cool-down before a mechanical load is the
     /// program `[0, lambda_1, ...]` with `temperature_steps = [1]`.
     pub temperature_steps: Vec<f64>,
+    /// The cycle program of a high-cycle fatigue run, or `None` (no
+    /// cycles: every increment has `delta_cycles = 0`).
+    pub fatigue: Option<FatigueProgram>,
+}
+
+/// High-cycle fatigue as a program quantity, like the temperature: the
+/// cycle count `N` goes linearly over each step from the previous step's
+/// end value (0 before the first step) to `cycle_steps[s]`, so a step with
+/// the load factor held and `N` moving is a fatigue step (the envelope
+/// maximum of a constant-amplitude load held while the cycles run, Turon
+/// et al. 2007's cycle jump). `N` is a function of the cursor (step,
+/// fraction), so checkpoints need nothing more. The drivers pass `N`, the
+/// increment's `delta_cycles` and the load ratio to the laws
+/// ([`crate::element::StepInfo`]) and size a fatigue step's increments so
+/// that no point's damage grows by more than `max_damage_increment` (from
+/// the laws' committed `damage_rate`, [`Model::max_point_output`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FatigueProgram {
+    /// Cycles at the end of each step of the program.
+    pub cycle_steps: Vec<f64>,
+    /// Load ratio `R = min / max` of the cycle, in `[0, 1)`.
+    pub load_ratio: f64,
+    /// Largest damage growth of any point in one increment of a fatigue
+    /// step (the laws' `damage_rate` times `delta_cycles`).
+    pub max_damage_increment: f64,
 }
 
 impl Model {
@@ -88,6 +113,7 @@ impl Model {
             equations: Vec::new(),
             temperature: None,
             temperature_steps: Vec::new(),
+            fatigue: None,
         })
     }
 
@@ -209,6 +235,33 @@ impl Model {
         }
     }
 
+    /// The cycle count at the fraction `t` (0..=1) of step `step`
+    /// ([`FatigueProgram`]; 0 without one).
+    pub fn cycles(&self, step: usize, t: f64) -> f64 {
+        let Some(f) = &self.fatigue else {
+            return 0.0;
+        };
+        let p = &f.cycle_steps;
+        let Some(&last) = p.last() else {
+            return 0.0;
+        };
+        let end = p.get(step).copied().unwrap_or(last);
+        let start = match step {
+            0 => 0.0,
+            s => p.get(s - 1).copied().unwrap_or(last),
+        };
+        if t >= 1.0 {
+            end
+        } else {
+            start + t * (end - start)
+        }
+    }
+
+    /// The load ratio of the fatigue program (0 without one).
+    pub fn load_ratio(&self) -> f64 {
+        self.fatigue.as_ref().map_or(0.0, |f| f.load_ratio)
+    }
+
     /// Sparsity pattern and colouring for this model, with its temperature
     /// field ([`Model::temperature`]).
     pub fn assembler(&self) -> Assembler {
@@ -258,6 +311,48 @@ impl Model {
     pub fn dissipated_energy(&self, u: &[f64], state: &StateStore) -> Result<f64, CoreError> {
         use crate::law::output::{DISSIPATED_ENERGY, VISCOUS_ENERGY};
         let mut total = 0.0;
+        self.for_each_interface_point(u, state, |p| {
+            // under nlgeom the reference area (see `interface_energy` in
+            // the run API): a failed point keeps its energy
+            let area = p
+                .get("reference_area")
+                .or_else(|| p.get("area"))
+                .map_or(0.0, |a| a[0]);
+            for name in [DISSIPATED_ENERGY, VISCOUS_ENERGY] {
+                if let Some(d) = p.get(name) {
+                    total += d[0] * area;
+                }
+            }
+        })?;
+        Ok(total)
+    }
+
+    /// The largest value of the scalar point output `name` over every
+    /// interface integration point, from the committed `state` (0 where no
+    /// law reports it), e.g. the fatigue laws' `damage_rate`.
+    pub fn max_point_output(
+        &self,
+        u: &[f64],
+        state: &StateStore,
+        name: &str,
+    ) -> Result<f64, CoreError> {
+        let mut max = 0.0f64;
+        self.for_each_interface_point(u, state, |p| {
+            if let Some(v) = p.get(name) {
+                max = max.max(v[0]);
+            }
+        })?;
+        Ok(max)
+    }
+
+    /// Calls `f` with the outputs of every interface integration point at
+    /// the displacement `u` and the committed `state`.
+    fn for_each_interface_point(
+        &self,
+        u: &[f64],
+        state: &StateStore,
+        mut f: impl FnMut(&crate::element::PointOutput),
+    ) -> Result<(), CoreError> {
         let mut coords = Vec::new();
         let mut disp = Vec::new();
         for (b, block) in self.mesh.blocks.iter().enumerate() {
@@ -288,21 +383,9 @@ impl Model {
                         element: e,
                         source,
                     })?;
-                for p in &pts {
-                    // under nlgeom the reference area (see `interface_energy`
-                    // in the run API): a failed point keeps its energy
-                    let area = p
-                        .get("reference_area")
-                        .or_else(|| p.get("area"))
-                        .map_or(0.0, |a| a[0]);
-                    for name in [DISSIPATED_ENERGY, VISCOUS_ENERGY] {
-                        if let Some(d) = p.get(name) {
-                            total += d[0] * area;
-                        }
-                    }
-                }
+                pts.iter().for_each(&mut f);
             }
         }
-        Ok(total)
+        Ok(())
     }
 }

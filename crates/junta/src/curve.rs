@@ -77,12 +77,15 @@ pub struct CurveRow {
     pub process_zone_length: Option<f64>,
     /// Process-zone points along the direction (`process_zone_points`).
     pub process_zone_points: Option<usize>,
+    /// Load cycles reached (`cycles`): 0 outside a fatigue program
+    /// ([`junta_core::FatigueProgram`]).
+    pub cycles: f64,
 }
 
 /// Header line of `curve.csv` (with its newline): the column names of
 /// [`CurveRow::csv`], in order.
 pub const CURVE_HEADER: &str =
-    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation,temperature_factor,viscous_energy,external_work,crack_length,crack_front,process_zone_length,process_zone_points\n";
+    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation,temperature_factor,viscous_energy,external_work,crack_length,crack_front,process_zone_length,process_zone_points,cycles\n";
 
 fn opt(v: Option<f64>) -> String {
     v.map(|x| format!("{x:e}")).unwrap_or_default()
@@ -93,7 +96,7 @@ impl CurveRow {
     /// [`CURVE_HEADER`], floats in `{:e}` form, `None` as an empty field).
     pub fn csv(&self) -> String {
         format!(
-            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e},{:e},{:e},{:e},{},{},{},{}\n",
+            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{:e}\n",
             self.increment,
             self.step,
             self.lambda,
@@ -123,20 +126,22 @@ impl CurveRow {
             self.process_zone_points
                 .map(|n| n.to_string())
                 .unwrap_or_default(),
+            self.cycles,
         )
     }
 
     /// A row from a line of `curve.csv` (without its newline), or `None` if
     /// it is not one. Reads files of older runs too: 14 columns (before the
     /// path-following and frictional columns), 16, 17 or 18 (before the
-    /// temperature factor), 19 (before the energy and crack columns); a
+    /// temperature factor), 19 (before the energy and crack columns), 25
+    /// (before `cycles`); a
     /// missing column takes its neutral value (`load_sign` 0, `control`
     /// `load`, 0.0, temperature factor 1, empty crack columns).
     pub fn parse(line: &str) -> Option<CurveRow> {
         let f: Vec<&str> = line.split(',').collect();
         // 14 columns: a run written before the path-following and
         // frictional columns
-        if ![14, 16, 17, 18, 19, 25].contains(&f.len()) {
+        if ![14, 16, 17, 18, 19, 25, 26].contains(&f.len()) {
             return None;
         }
         Some(CurveRow {
@@ -165,6 +170,7 @@ impl CurveRow {
             crack_front: f.get(22).and_then(|v| v.trim().parse().ok()),
             process_zone_length: f.get(23).and_then(|v| v.trim().parse().ok()),
             process_zone_points: f.get(24).and_then(|v| v.trim().parse().ok()),
+            cycles: f.get(25).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
         })
     }
 }
@@ -365,6 +371,7 @@ impl Curve {
             ("conjugate_displacement", Box::new(|r| r.conjugate)),
             ("frictional_dissipation", Box::new(|r| r.frictional)),
             ("temperature_factor", Box::new(|r| r.temperature_factor)),
+            ("cycles", Box::new(|r| r.cycles)),
             ("viscous_energy", Box::new(|r| r.viscous)),
             ("external_work", Box::new(|r| r.external_work)),
             ("crack_length", Box::new(move |r| f(r.crack_length))),

@@ -203,9 +203,9 @@ impl Engine<'_> {
             secant: false,
             exact_tangent: false,
             temperature_factor: r.temperature_factor,
-            cycles: 0.0,
+            cycles: r.cycles,
             delta_cycles: 0.0,
-            load_ratio: 0.0,
+            load_ratio: model.load_ratio(),
         };
         let ifs = output::interface_results_at(model, v.u, v.state, step)?;
         let row = self.row_of(v, &ifs)?;
@@ -312,6 +312,7 @@ impl Engine<'_> {
             crack_front: crack.and_then(|c| c.front),
             process_zone_length: crack.map(|c| c.process_zone_length),
             process_zone_points: crack.map(|c| c.process_zone_points),
+            cycles: r.cycles,
         })
     }
 
@@ -543,7 +544,10 @@ fn ending_of(
                 )
             } else if let Some(Stop::Requested(why)) = &engine.stop {
                 format!("stopped: {why}")
-            } else if run.summary.stopped_by_observer && engine.log.separated {
+            } else if run.summary.stopped_by_observer
+                && engine.log.separated
+                && analysis.stop_when_separated
+            {
                 "stopped: every interface point has failed".to_string()
             } else if run.summary.stopped_by_observer {
                 "stopped after the requested number of increments".to_string()
@@ -731,6 +735,16 @@ fn base_summary(input: &Path, p: &Prepared, log: &RunLog, status: &str) -> serde
             let thermal = |r: &CurveRow| r.lambda == 0.0 && r.step == 0;
             t["thermal_step_increments"] = json!(rows.iter().filter(|r| thermal(r)).count());
             t
+        }),
+        "fatigue": p.model.fatigue.as_ref().map(|f| {
+            let fatigue_step = f.cycle_steps.len().saturating_sub(1);
+            json!({
+                "cycles_end": f.cycle_steps.last(),
+                "cycles": rows.last().map(|r| r.cycles),
+                "load_ratio": f.load_ratio,
+                "max_damage_increment": f.max_damage_increment,
+                "increments": rows.iter().filter(|r| r.step == fatigue_step).count(),
+            })
         }),
     })
 }

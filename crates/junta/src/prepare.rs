@@ -496,6 +496,7 @@ fn prepare_scene(
     }
     let mut model = scene::build_model_with_notes(sf, &mut notes)?;
     let temperature = thermal_program(input, sf, &mut analysis, &mut model, &mut notes)?;
+    fatigue_program(input, sf, &mut analysis, &mut model, &mut notes)?;
     let (mut key, mut table) = scene::solver_table(sf);
     apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
     let t_choice = std::time::Instant::now();
@@ -583,6 +584,56 @@ fn thermal_program(
         }
     };
     Ok(temperature_summary(model, Some(t.stress_free), applied))
+}
+
+/// A scene's `[fatigue]`: a fatigue step after the load program of a
+/// `static` run (the program's last load factor held, the cycles going 0
+/// -> `cycles`; [`junta_core::FatigueProgram`]).
+fn fatigue_program(
+    input: &Path,
+    sf: &scene::SceneFile,
+    analysis: &mut scene::AnalysisSpec,
+    model: &mut Model,
+    notes: &mut Vec<String>,
+) -> Result<()> {
+    let Some(f) = &sf.scene.fatigue else {
+        return Ok(());
+    };
+    let at = input.display();
+    if analysis.kind != "static" {
+        bail!("{at}: key `fatigue`: a fatigue step follows an incremental load program: set `[analysis] type = \"static\"` and its `steps`");
+    }
+    if analysis.control == scene::Control::ArcLength {
+        bail!("{at}: key `fatigue`: the fatigue step holds the load while the cycles run, which path following throughout (`analysis.control = \"arc_length\"`) cannot drive; use control = \"auto\" (the default) or \"load\"");
+    }
+    if !(f.cycles > 0.0 && f.cycles.is_finite()) {
+        bail!("{at}: key `fatigue.cycles` = {}: give the cycles at the end of the fatigue step, positive and finite", f.cycles);
+    }
+    if !(0.0..1.0).contains(&f.load_ratio) {
+        bail!("{at}: key `fatigue.load_ratio` = {}: R = min / max of the load cycle must be in [0, 1)", f.load_ratio);
+    }
+    if !(f.max_damage_increment > 0.0 && f.max_damage_increment <= 1.0) {
+        bail!("{at}: key `fatigue.max_damage_increment` = {}: the damage growth allowed per increment must be in (0, 1]", f.max_damage_increment);
+    }
+    let Some(&held) = analysis.steps.last() else {
+        bail!("{at}: key `fatigue`: the load program (`analysis.steps`) is empty: it must load the model to the cycle's maximum first");
+    };
+    analysis.steps.push(held);
+    let mut cycle_steps = vec![0.0; analysis.steps.len() - 1];
+    cycle_steps.push(f.cycles);
+    model.fatigue = Some(junta_core::FatigueProgram {
+        cycle_steps,
+        load_ratio: f.load_ratio,
+        max_damage_increment: f.max_damage_increment,
+    });
+    notes.push(format!(
+        "{at}: [fatigue]: a fatigue step (step {} of curve.csv) holds the load factor at {held} while the cycles go from 0 to {} (R = {}; at most {} damage growth per increment)",
+        analysis.steps.len() - 1,
+        f.cycles,
+        f.load_ratio,
+        f.max_damage_increment
+    ));
+    Ok(())
 }
 
 /// `--solver control=load|displacement|auto|arc_length`: the control of an

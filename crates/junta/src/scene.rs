@@ -64,6 +64,32 @@ pub struct Scene {
     /// A temperature change of the solids from their stress-free
     /// temperature (thermal strains; cure residual stresses).
     pub temperature: Option<TemperatureSpec>,
+    /// High-cycle fatigue: a fatigue step after the load program.
+    pub fatigue: Option<FatigueSpec>,
+}
+
+/// `[fatigue]`: a fatigue step after the load program of a `static` run.
+/// The load factor is held at the program's last value, the envelope
+/// maximum of a constant-amplitude cycle of ratio `load_ratio`, while the
+/// cycle count goes from 0 to `cycles` (Turon et al. 2007's cycle jump;
+/// [`junta_core::FatigueProgram`]); fatigue laws (`fatigue_bilinear`) grow
+/// their damage with the increment's cycles.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FatigueSpec {
+    /// Cycles at the end of the fatigue step.
+    pub cycles: f64,
+    /// `R = min / max` of the load cycle, in `[0, 1)`. Default 0.
+    #[serde(default)]
+    pub load_ratio: f64,
+    /// Largest damage growth of any point in one increment (sizes the cycle
+    /// jumps from the laws' `damage_rate`). Default 0.05.
+    #[serde(default = "default_max_damage_increment")]
+    pub max_damage_increment: f64,
+}
+
+fn default_max_damage_increment() -> f64 {
+    0.05
 }
 
 /// `[temperature]`: the stress-free temperature, the temperature of every

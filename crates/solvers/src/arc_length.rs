@@ -767,6 +767,15 @@ where
         ))
         .into());
     }
+    if model.cycles(cur.step, 0.0) != model.cycles(cur.step, 1.0) {
+        return Err(CoreError::Invalid(format!(
+            "step {} of the program is a fatigue step (the load held while the cycles run): \
+             path following cannot drive it; it runs under load control (control = \"auto\" or \
+             \"load\")",
+            cur.step + 1
+        ))
+        .into());
+    }
     let (mut w, timings) = Work::for_run(model, solver, u_start, settings);
     w.analyzed = analyzed;
     if cur.exact {
@@ -1182,9 +1191,9 @@ impl<'a> PathRun<'a> {
             secant: false,
             exact_tangent: false,
             temperature_factor: self.w.model.temperature_factor(self.cur.step, 1.0),
-            cycles: 0.0,
+            cycles: self.w.model.cycles(self.cur.step, 1.0),
             delta_cycles: 0.0,
-            load_ratio: 0.0,
+            load_ratio: self.w.model.load_ratio(),
         };
         let program_step = self.cur.step;
         if !self
@@ -1441,6 +1450,7 @@ impl<'a> PathRun<'a> {
             delta_lambda: c.delta_lambda,
             step_fraction: cur.t,
             temperature_factor: self.w.model.temperature_factor(cur.step, 1.0),
+            cycles: self.w.model.cycles(cur.step, 1.0),
             iterations: conv.iterations,
             residual: conv.rel,
             energy: 0.0,
@@ -1694,9 +1704,9 @@ impl PathAttempt<'_, '_> {
             secant: self.secant,
             exact_tangent: false,
             temperature_factor: self.w.model.temperature_factor(self.cur.step, 1.0),
-            cycles: 0.0,
+            cycles: self.w.model.cycles(self.cur.step, 1.0),
             delta_cycles: 0.0,
-            load_ratio: 0.0,
+            load_ratio: self.w.model.load_ratio(),
         }
     }
 

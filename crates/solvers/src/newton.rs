@@ -364,6 +364,8 @@ pub struct IncrementReport {
     pub energy: f64,
     /// Cut-backs before this increment converged.
     pub cutbacks: usize,
+    /// Cycles reached ([`Model::cycles`]; 0 without a fatigue program).
+    pub cycles: f64,
     /// Temperature factor reached ([`Model::temperature_factor`]; 1 for a
     /// model without temperature steps).
     pub temperature_factor: f64,
@@ -896,9 +898,9 @@ impl<'m> Work<'m> {
             secant: false,
             exact_tangent: false,
             temperature_factor: self.model.temperature_factor(cur.step, cur.t),
-            cycles: 0.0,
+            cycles: self.model.cycles(cur.step, cur.t),
             delta_cycles: 0.0,
-            load_ratio: 0.0,
+            load_ratio: self.model.load_ratio(),
         };
         let ev = self.evaluate(state, step, cur.lambda, cur.force_peak)?;
         state.restore();
@@ -1804,6 +1806,28 @@ struct LoadIncrement {
 }
 
 impl LoadRun<'_> {
+    /// The largest increment (fraction of a fatigue step of `cycles_span`
+    /// cycles) over which no point's damage grows by more than the
+    /// program's `max_damage_increment`: `dN = dD_max / max(damage_rate)`
+    /// from the committed state ([`junta_core::FatigueProgram`]); 1 when
+    /// no point is damaging.
+    fn fatigue_size(&self, cycles_span: f64) -> Result<f64, NonlinearError> {
+        let model = self.w.model;
+        let Some(f) = &model.fatigue else {
+            return Ok(1.0);
+        };
+        let rate = model.max_point_output(
+            &self.w.u_conv,
+            &self.state,
+            junta_core::law::output::DAMAGE_RATE,
+        )?;
+        Ok(if rate > 0.0 {
+            (f.max_damage_increment / (rate * cycles_span)).min(1.0)
+        } else {
+            1.0
+        })
+    }
+
     /// Move on to the next step when the current one is done (its first
     /// increment `initial_increment`, or `small_increment` under the
     /// small-increment rule); false at the end of the program.
@@ -1847,14 +1871,20 @@ impl LoadRun<'_> {
         };
         let end = self.program[cur.step];
         let span = end - start;
-        // a step where neither the load factor nor the temperature moves
+        // a step where neither the load factor nor the temperature nor the
+        // cycle count moves
         let model = self.w.model;
+        let cycles_span = model.cycles(cur.step, 1.0) - model.cycles(cur.step, 0.0);
         let span = if span == 0.0 && model.temperature.is_some() {
             model.temperature_factor(cur.step, 1.0) - model.temperature_factor(cur.step, 0.0)
         } else {
             span
         };
+        let span = if span == 0.0 { cycles_span } else { span };
         let mut size = cur.size;
+        if cycles_span > 0.0 {
+            size = size.min(self.fatigue_size(cycles_span).map_err(|e| (e, None))?);
+        }
         let mut cutbacks = 0;
         loop {
             let t_new = if span == 0.0 || cur.t + size >= 1.0 - 1e-9 {
@@ -1874,9 +1904,9 @@ impl LoadRun<'_> {
                 secant: false,
                 exact_tangent: false,
                 temperature_factor: model.temperature_factor(cur.step, t_new),
-                cycles: 0.0,
-                delta_cycles: 0.0,
-                load_ratio: 0.0,
+                cycles: model.cycles(cur.step, t_new),
+                delta_cycles: model.cycles(cur.step, t_new) - model.cycles(cur.step, cur.t),
+                load_ratio: model.load_ratio(),
             };
             let attempt = self
                 .w
@@ -2016,6 +2046,7 @@ impl LoadRun<'_> {
             delta_lambda,
             step_fraction: cur.t,
             temperature_factor: self.w.model.temperature_factor(cur.step, cur.t),
+            cycles: self.w.model.cycles(cur.step, cur.t),
             iterations: inc.iterations,
             residual: inc.eval.rel,
             energy: inc.energy,
