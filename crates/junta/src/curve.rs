@@ -371,7 +371,6 @@ impl Curve {
             ("conjugate_displacement", Box::new(|r| r.conjugate)),
             ("frictional_dissipation", Box::new(|r| r.frictional)),
             ("temperature_factor", Box::new(|r| r.temperature_factor)),
-            ("cycles", Box::new(|r| r.cycles)),
             ("viscous_energy", Box::new(|r| r.viscous)),
             ("external_work", Box::new(|r| r.external_work)),
             ("crack_length", Box::new(move |r| f(r.crack_length))),
@@ -381,6 +380,7 @@ impl Curve {
                 "process_zone_points",
                 Box::new(|r| r.process_zone_points.map_or(f64::NAN, |n| n as f64)),
             ),
+            ("cycles", Box::new(|r| r.cycles)),
         ];
         Curve {
             columns: cols
@@ -426,8 +426,8 @@ mod tests {
 
     #[test]
     fn columns_follow_the_csv_header_and_read_back_the_rows() {
-        let line = "3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0,7.5e-1,1e-4,4e-3,2.5e0,2.25e0,1.5e0,6";
-        let row = CurveRow::parse(line).expect("25 columns");
+        let line = "3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0,7.5e-1,1e-4,4e-3,2.5e0,2.25e0,1.5e0,6,1.25e5";
+        let row = CurveRow::parse(line).expect("26 columns");
         assert_eq!(row.csv().trim_end(), line);
         let c = Curve::from_rows(&[row]);
         let header: Vec<&str> = CURVE_HEADER
@@ -441,6 +441,10 @@ mod tests {
         assert!(c.get("negative_pivots").unwrap()[0].is_nan());
         assert_eq!(c.control, vec!["arc".to_string()]);
         assert_eq!(c.get("process_zone_points"), Some(&[6.0][..]));
+        assert_eq!(c.get("cycles"), Some(&[1.25e5][..]));
+        // a row of a run before the cycles (25 columns): 0 cycles
+        let before = CurveRow::parse(line.rsplit_once(',').unwrap().0).expect("25 columns");
+        assert_eq!(before.cycles, 0.0);
         // a row of an older run (19 columns): no crack, no external work
         let old = CurveRow::parse("3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0,7.5e-1")
             .expect("19 columns");
