@@ -3,24 +3,10 @@
 //! overrides as edits of the scene, results as typed values.
 
 mod common;
-use common::{junta, repo, run_ok};
+use common::{curve_without_seconds, junta, repo, run_ok};
 use junta::{
     Flow, FnObserver, FrameCollector, Increment, Options, RunSettings, Simulation, Status,
 };
-use std::path::Path;
-
-/// curve.csv without the wall-clock column (`seconds`, column 9).
-fn curve_without_seconds(dir: &Path) -> Vec<String> {
-    std::fs::read_to_string(dir.join("curve.csv"))
-        .unwrap()
-        .lines()
-        .map(|l| {
-            let mut f: Vec<&str> = l.split(',').collect();
-            f.remove(9);
-            f.join(",")
-        })
-        .collect()
-}
 
 /// The DCB of the examples, through the API into a directory, writes the
 /// CLI's curve.csv to the last bit (wall time aside) over its first 60

@@ -120,19 +120,7 @@ fn restart_inside_the_fatigue_step_repeats_the_run() {
     let stopped = rows(&parts);
     assert!(stopped.last().unwrap().0 == 1 && stopped.last().unwrap().1 > 0.0, "{stopped:?}");
     restart_ok(&parts);
-    let strip = |dir: &Path| -> Vec<String> {
-        let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
-        let head: Vec<&str> = text.lines().next().unwrap().split(',').collect();
-        let seconds = head.iter().position(|h| *h == "seconds").unwrap();
-        text.lines()
-            .map(|l| {
-                let mut f: Vec<&str> = l.split(',').collect();
-                f.remove(seconds);
-                f.join(",")
-            })
-            .collect()
-    };
-    assert_eq!(strip(&whole), strip(&parts));
+    assert_eq!(curve_without_seconds(&whole), curve_without_seconds(&parts));
 }
 
 /// `[fatigue]` mistakes name the file and key and what is valid.

@@ -327,23 +327,6 @@ fn load_control_takes_over_again_on_a_stable_branch() {
     assert!(bar.abs() < 1e-9, "{bar}");
 }
 
-/// The rows of curve.csv without the wall-time column.
-fn rows_without_time(dir: &Path) -> Vec<String> {
-    let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
-    let head: Vec<&str> = text.lines().next().unwrap().split(',').collect();
-    let t = head.iter().position(|h| *h == "seconds").unwrap();
-    text.lines()
-        .map(|l| {
-            l.split(',')
-                .enumerate()
-                .filter(|(i, _)| *i != t)
-                .map(|(_, v)| v)
-                .collect::<Vec<_>>()
-                .join(",")
-        })
-        .collect()
-}
-
 /// A `control = "auto"` run stopped and restarted before the switch to
 /// path following, during it, and after the return to load control gives
 /// the uninterrupted run's increments, bit for bit (the load phase keeps
@@ -354,12 +337,12 @@ fn restarted_auto_run_equals_the_uninterrupted_one() {
     let scene = bar_and_spring(dir.path());
     let full = dir.path().join("full");
     run_ok(&scene, &full);
-    let reference = rows_without_time(&full);
+    let reference = curve_without_seconds(&full);
     for stop in [3, 12, 24] {
         let part = dir.path().join(format!("part{stop}"));
         run_ok_with(&scene, &part, &["--max-increments", &stop.to_string()]);
         restart_ok(&part);
-        assert_eq!(rows_without_time(&part), reference, "stopped at {stop}");
+        assert_eq!(curve_without_seconds(&part), reference, "stopped at {stop}");
         let s: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(part.join("summary.json")).unwrap())
                 .unwrap();

@@ -3,25 +3,12 @@
 //! checkpoint is a clear error.
 
 mod common;
-use common::{junta, repo, run_ok, run_ok_with};
+use common::{curve_without_seconds, junta, repo, run_ok, run_ok_with};
 use serde_json::Value;
 use std::path::Path;
 
 fn summary(dir: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
-}
-
-/// curve.csv without the wall-clock column.
-fn curve(dir: &Path) -> Vec<String> {
-    std::fs::read_to_string(dir.join("curve.csv"))
-        .unwrap()
-        .lines()
-        .map(|l| {
-            let mut f: Vec<&str> = l.split(',').collect();
-            f.remove(9); // seconds
-            f.join(",")
-        })
-        .collect()
 }
 
 fn restart(dir: &Path, extra: &[&str]) -> std::process::Output {
@@ -71,7 +58,7 @@ fn restarted_run_is_bit_identical_to_the_uninterrupted_one() {
     ] {
         assert_eq!(a[key], b[key], "{key}");
     }
-    assert_eq!(curve(whole.path()), curve(parts.path()));
+    assert_eq!(curve_without_seconds(whole.path()), curve_without_seconds(parts.path()));
     assert_eq!(last_frame(whole.path()), last_frame(parts.path()));
 }
 

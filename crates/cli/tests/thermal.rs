@@ -256,19 +256,6 @@ fn thermal_ring_decks_match_calculix() {
     assert!(worst_against_dat(&dat, &dir.path().join("o")) > 1e-2);
 }
 
-/// curve.csv without its `seconds` column.
-fn curve(dir: &Path) -> Vec<String> {
-    std::fs::read_to_string(dir.join("curve.csv"))
-        .unwrap()
-        .lines()
-        .map(|l| {
-            let mut f: Vec<&str> = l.split(',').collect();
-            f.remove(9);
-            f.join(",")
-        })
-        .collect()
-}
-
 /// `examples/thermal/cool_down.toml`: a thermal step (load factor 0,
 /// temperature factor 0 -> 1 in four increments) before the opening, which
 /// switches to path following at its peak (control = "auto"). A run
@@ -283,7 +270,7 @@ fn cool_down_before_the_load_restarts_bit_for_bit() {
     assert_eq!(a["status"], "completed");
     assert_eq!(a["temperature"]["thermal_step_increments"], 4);
     assert_eq!(a["temperature"]["factor"], 1.0);
-    let rows = curve(whole.path());
+    let rows = curve_without_seconds(whole.path());
     let tf = rows[0]
         .split(',')
         .position(|h| h == "temperature_factor")
@@ -315,7 +302,7 @@ fn cool_down_before_the_load_restarts_bit_for_bit() {
         ] {
             assert_eq!(a[key], b[key], "restart after {n}: {key}");
         }
-        assert_eq!(rows, curve(parts.path()), "restart after {n}");
+        assert_eq!(rows, curve_without_seconds(parts.path()), "restart after {n}");
     }
 }
 

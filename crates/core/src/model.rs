@@ -67,6 +67,20 @@ pub struct FatigueProgram {
     pub max_damage_increment: f64,
 }
 
+/// A quantity given at the end of each step of a program (`ends[s]`),
+/// going linearly over step `s` from the previous step's end (0 before the
+/// first step), at the fraction `t` (0..=1) of step `step`; steps past the
+/// end keep the last value. `None` for an empty program.
+fn program_ramp(ends: &[f64], step: usize, t: f64) -> Option<f64> {
+    let &last = ends.last()?;
+    let end = ends.get(step).copied().unwrap_or(last);
+    let start = match step {
+        0 => 0.0,
+        s => ends.get(s - 1).copied().unwrap_or(last),
+    };
+    Some(if t >= 1.0 { end } else { start + t * (end - start) })
+}
+
 impl Model {
     /// Assemble a model: validates the mesh, checks that every block has an
     /// element of the right shape, checks every element's geometry, and
@@ -219,42 +233,16 @@ impl Model {
     /// The temperature factor at the fraction `t` (0..=1) of step `step`
     /// of an incremental program ([`Model::temperature_steps`]).
     pub fn temperature_factor(&self, step: usize, t: f64) -> f64 {
-        let p = &self.temperature_steps;
-        let Some(&last) = p.last() else {
-            return 1.0;
-        };
-        let end = p.get(step).copied().unwrap_or(last);
-        let start = match step {
-            0 => 0.0,
-            s => p.get(s - 1).copied().unwrap_or(last),
-        };
-        if t >= 1.0 {
-            end
-        } else {
-            start + t * (end - start)
-        }
+        program_ramp(&self.temperature_steps, step, t).unwrap_or(1.0)
     }
 
     /// The cycle count at the fraction `t` (0..=1) of step `step`
     /// ([`FatigueProgram`]; 0 without one).
     pub fn cycles(&self, step: usize, t: f64) -> f64 {
-        let Some(f) = &self.fatigue else {
-            return 0.0;
-        };
-        let p = &f.cycle_steps;
-        let Some(&last) = p.last() else {
-            return 0.0;
-        };
-        let end = p.get(step).copied().unwrap_or(last);
-        let start = match step {
-            0 => 0.0,
-            s => p.get(s - 1).copied().unwrap_or(last),
-        };
-        if t >= 1.0 {
-            end
-        } else {
-            start + t * (end - start)
-        }
+        self.fatigue
+            .as_ref()
+            .and_then(|f| program_ramp(&f.cycle_steps, step, t))
+            .unwrap_or(0.0)
     }
 
     /// The load ratio of the fatigue program (0 without one).

@@ -88,3 +88,22 @@ pub fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     std::fs::write(&p, text).unwrap();
     p
 }
+
+/// The lines of `DIR/curve.csv` (header included) without the wall-clock
+/// column `seconds`, found by its name: what a repeated or restarted run
+/// must reproduce bit for bit.
+pub fn curve_without_seconds(dir: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
+    let head: Vec<&str> = text.lines().next().unwrap_or("").split(',').collect();
+    let seconds = head
+        .iter()
+        .position(|h| *h == "seconds")
+        .expect("curve.csv has a seconds column");
+    text.lines()
+        .map(|l| {
+            let mut f: Vec<&str> = l.split(',').collect();
+            f.remove(seconds);
+            f.join(",")
+        })
+        .collect()
+}
