@@ -40,12 +40,7 @@ fn scene(dir: &Path, n: usize) -> std::path::PathBuf {
 fn columns(dir: &Path) -> impl Fn(&str) -> Vec<f64> {
     let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
     let mut lines = text.lines();
-    let head: Vec<String> = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(String::from)
-        .collect();
+    let head: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
     let rows: Vec<Vec<String>> = lines
         .map(|l| l.split(',').map(String::from).collect())
         .collect();
@@ -92,15 +87,25 @@ fn dcb_crack_front_follows_beam_theory_and_the_energy_balances() {
     );
     let peak = (0..n).max_by(|&i, &j| p[i].total_cmp(&p[j])).unwrap();
     let le = 40.0 / 160.0; // element length along the bond
-    // the crack grew past the peak, and only grew
+                           // the crack grew past the peak, and only grew
     assert!(a[last] > 5.0, "crack growth {} mm", a[last]);
     for k in 1..n {
-        assert!(a[k] >= a[k - 1], "crack length fell at row {k}: {} -> {}", a[k - 1], a[k]);
+        assert!(
+            a[k] >= a[k - 1],
+            "crack length fell at row {k}: {} -> {}",
+            a[k - 1],
+            a[k]
+        );
         if front[k - 1].is_finite() {
             assert!(front[k] >= front[k - 1], "front moved back at row {k}");
         }
     }
-    assert!(a[last] > a[peak] + 5.0, "growth past the peak {} -> {}", a[peak], a[last]);
+    assert!(
+        a[last] > a[peak] + 5.0,
+        "growth past the peak {} -> {}",
+        a[peak],
+        a[last]
+    );
     let mut worst_front = 0.0f64;
     let mut worst_cbt = (0.0f64, 0.0, 0.0);
     let mut worst_balance = (0.0f64, 0.0);
@@ -110,7 +115,12 @@ fn dcb_crack_front_follows_beam_theory_and_the_energy_balances() {
         if front[k].is_finite() {
             let d = (front[k] - A0 - a[k]).abs();
             worst_front = worst_front.max(d);
-            assert!(d < le, "row {k}: front {} - a0 against crack length {}", front[k], a[k]);
+            assert!(
+                d < le,
+                "row {k}: front {} - a0 against crack length {}",
+                front[k],
+                a[k]
+            );
         }
         // past the peak, while the crack grows: the crack length against
         // corrected beam theory's a(P, delta)
@@ -200,13 +210,23 @@ fn coarse_dcb_warns_of_an_unresolved_process_zone() {
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{err}");
     assert!(
-        err.contains("warning: the process zone") && err.contains("fewer than 3 integration points"),
+        err.contains("warning: the process zone")
+            && err.contains("fewer than 3 integration points"),
         "{err}"
     );
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    assert!(s["warnings"].to_string().contains("process zone"), "{}", s["warnings"]);
-    assert!(s["crack"]["process_zone_points_min_while_growing"].as_u64().unwrap() < 3);
+    assert!(
+        s["warnings"].to_string().contains("process zone"),
+        "{}",
+        s["warnings"]
+    );
+    assert!(
+        s["crack"]["process_zone_points_min_while_growing"]
+            .as_u64()
+            .unwrap()
+            < 3
+    );
 }
 
 /// A wrong `[output] crack` names its key and what would be valid.

@@ -168,7 +168,10 @@ fn cure_shifts_the_dcb_load_as_nairns_residual_term() {
             // the residual term is 15 % of the load: Nairn's within 2 % of
             // itself along the growth, 6 % at the peak
             assert!(expect.abs() > 0.15, "{expect}");
-            assert!((got / expect - 1.0).abs() < 0.02, "{inner}/{outer}: {got} against {expect}");
+            assert!(
+                (got / expect - 1.0).abs() < 0.02,
+                "{inner}/{outer}: {got} against {expect}"
+            );
             assert!(
                 (peak_shift / expect - 1.0).abs() < 0.06,
                 "{inner}/{outer}: peak {peak_shift} against {expect}"
@@ -187,5 +190,8 @@ fn arm_curvature_is_timoshenkos() {
     let timoshenko = 6.0 * (a_out - a_in) * (-DT) * (1.0 + m).powi(2)
         / (h * (3.0 * (1.0 + m).powi(2) + (1.0 + m * n) * (m * m + 1.0 / (m * n))));
     let (_, kappa) = arm([CARBON, GLASS]);
-    assert!(rel(kappa, timoshenko) < 1e-12, "{kappa} against {timoshenko}");
+    assert!(
+        rel(kappa, timoshenko) < 1e-12,
+        "{kappa} against {timoshenko}"
+    );
 }

@@ -124,7 +124,10 @@ fn restart_equals_an_uninterrupted_run() {
     // same increments; values equal to round-off (the parallel factorisation
     // may sum in another order)
     assert!(rel(f(&a["displacement_max"]), f(&b["displacement_max"])) < 1e-12);
-    let (ca, cb) = (curve_without_seconds(whole.path()), curve_without_seconds(parts.path()));
+    let (ca, cb) = (
+        curve_without_seconds(whole.path()),
+        curve_without_seconds(parts.path()),
+    );
     assert_eq!(ca.len(), cb.len());
     for (ra, rb) in ca.iter().zip(&cb).skip(1) {
         for (x, y) in ra.split(',').zip(rb.split(',')) {

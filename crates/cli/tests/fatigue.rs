@@ -28,7 +28,8 @@ const AREA: f64 = 1.0;
 fn closed_form() -> (f64, f64) {
     let (l0, lf) = (N / K, 2.0 * G_C / N);
     let d0 = (DELTA - l0) / (lf - l0);
-    let g_max = 0.5 * N * l0 + N * (lf * (DELTA - l0) - 0.5 * (DELTA * DELTA - l0 * l0)) / (lf - l0);
+    let g_max =
+        0.5 * N * l0 + N * (lf * (DELTA - l0) - 0.5 * (DELTA * DELTA - l0 * l0)) / (lf - l0);
     let dg = (1.0 - R * R) * g_max;
     (d0, C_I * (dg / G_C).powf(M_I) / L_CZ)
 }
@@ -43,7 +44,11 @@ fn rows(dir: &Path) -> Vec<(usize, f64, f64)> {
     lines
         .map(|l| {
             let f: Vec<&str> = l.split(',').collect();
-            (f[s].parse().unwrap(), f[c].parse().unwrap(), f[d].parse().unwrap())
+            (
+                f[s].parse().unwrap(),
+                f[c].parse().unwrap(),
+                f[d].parse().unwrap(),
+            )
         })
         .collect()
 }
@@ -66,12 +71,20 @@ fn held_opening_grows_damage_at_the_closed_form_rate() {
     let mut curves = Vec::new();
     for (name, increment) in [("coarse", 0.05), ("fine", 0.025)] {
         let input = scene_with(dir.path(), &format!("{name}.toml"), |t| {
-            t.replace("max_damage_increment = 0.05", &format!("max_damage_increment = {increment}"))
+            t.replace(
+                "max_damage_increment = 0.05",
+                &format!("max_damage_increment = {increment}"),
+            )
         });
         let out = dir.path().join(name);
         let s = run_ok(&input, &out);
         assert_eq!(s["status"], "completed", "{s}");
-        assert_eq!(s["fatigue"]["cycles"].as_f64(), Some(2.0e7), "{}", s["fatigue"]);
+        assert_eq!(
+            s["fatigue"]["cycles"].as_f64(),
+            Some(2.0e7),
+            "{}",
+            s["fatigue"]
+        );
         assert_eq!(s["fatigue"]["load_ratio"].as_f64(), Some(R));
         let rows = rows(&out);
         let fatigue: Vec<_> = rows.iter().filter(|r| r.0 == 1).collect();
@@ -96,10 +109,16 @@ fn held_opening_grows_damage_at_the_closed_form_rate() {
     println!("N_f = {:.6e} cycles (closed form)", (1.0 - d0) / r);
     // the fine run passes through the coarse run's cycles: same energy
     for (cycles, d) in &curves[0] {
-        if let Some((_, e)) = curves[1].iter().find(|(c, _)| (c - cycles).abs() < 1e-6 * cycles) {
+        if let Some((_, e)) = curves[1]
+            .iter()
+            .find(|(c, _)| (c - cycles).abs() < 1e-6 * cycles)
+        {
             // the blocks' compliance lets the jump drift by 1e-6 with the
             // damage, so the rate is constant to that only
-            assert!((d - e).abs() <= 1e-5 * d.abs(), "N = {cycles}: {d} against {e}");
+            assert!(
+                (d - e).abs() <= 1e-5 * d.abs(),
+                "N = {cycles}: {d} against {e}"
+            );
         }
     }
     assert!(curves[1].len() > curves[0].len() + 10);
@@ -118,7 +137,10 @@ fn restart_inside_the_fatigue_step_repeats_the_run() {
     let first = run_ok_with(&input, &parts, &["--max-increments", "12"]);
     assert_ne!(first["status"], "completed");
     let stopped = rows(&parts);
-    assert!(stopped.last().unwrap().0 == 1 && stopped.last().unwrap().1 > 0.0, "{stopped:?}");
+    assert!(
+        stopped.last().unwrap().0 == 1 && stopped.last().unwrap().1 > 0.0,
+        "{stopped:?}"
+    );
     restart_ok(&parts);
     assert_eq!(curve_without_seconds(&whole), curve_without_seconds(&parts));
 }
@@ -129,17 +151,32 @@ fn fatigue_input_errors_name_the_key() {
     let dir = tempfile::tempdir().unwrap();
     for (edit, expect) in [
         (("cycles = 2.0e7", "cycles = -1.0"), "fatigue.cycles"),
-        (("load_ratio = 0.1", "load_ratio = 1.0"), "fatigue.load_ratio"),
+        (
+            ("load_ratio = 0.1", "load_ratio = 1.0"),
+            "fatigue.load_ratio",
+        ),
         (("type = \"static\"", "type = \"linear\""), "key `fatigue`"),
-        (("steps = [1.0]", "steps = [1.0]\ncontrol = \"arc_length\""), "arc_length"),
-        (("max_damage_increment = 0.05", "max_damage_increment = 0.0"), "fatigue.max_damage_increment"),
-        (("max_damage_increment = 0.05", "max_damage = 0.05"), "max_damage"),
+        (
+            ("steps = [1.0]", "steps = [1.0]\ncontrol = \"arc_length\""),
+            "arc_length",
+        ),
+        (
+            ("max_damage_increment = 0.05", "max_damage_increment = 0.0"),
+            "fatigue.max_damage_increment",
+        ),
+        (
+            ("max_damage_increment = 0.05", "max_damage = 0.05"),
+            "max_damage",
+        ),
     ] {
         let input = scene_with(dir.path(), "bad.toml", |t| {
             assert!(t.contains(edit.0), "{}", edit.0);
             t.replace(edit.0, edit.1)
         });
         let err = run_err(&input);
-        assert!(err.contains("bad.toml") && err.contains(expect), "{expect}: {err}");
+        assert!(
+            err.contains("bad.toml") && err.contains(expect),
+            "{expect}: {err}"
+        );
     }
 }

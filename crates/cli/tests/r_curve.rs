@@ -62,7 +62,10 @@ fn superposed_laws_give_the_r_curve_of_the_j_integral() {
         &repo().join("examples/delamination/dcb_r_curve.toml"),
         dir.path(),
     );
-    assert!(s["status"].as_str().unwrap().contains("max_increments"), "{s}");
+    assert!(
+        s["status"].as_str().unwrap().contains("max_increments"),
+        "{s}"
+    );
     let ei = E1 * B * H.powi(3) / 12.0;
     let j = |m: f64| m * m / (B * ei);
     let rows = rows(dir.path());
@@ -70,7 +73,11 @@ fn superposed_laws_give_the_r_curve_of_the_j_integral() {
     // growth is compared from half a millimetre on
     let growing: Vec<_> = rows.iter().filter(|r| r.2 >= 0.5).collect();
     let init = j(growing[0].0) / G1 - 1.0;
-    assert!(init.abs() < 0.1, "initiation: J {} against G1 {G1}", j(growing[0].0));
+    assert!(
+        init.abs() < 0.1,
+        "initiation: J {} against G1 {G1}",
+        j(growing[0].0)
+    );
     assert!(growing.last().unwrap().2 > 25.0, "{:?}", growing.last());
     let mut plateau = Vec::new();
     let (mut lo, mut hi) = (f64::MAX, f64::MIN);
@@ -91,7 +98,10 @@ fn superposed_laws_give_the_r_curve_of_the_j_integral() {
         "J / J_R - 1 within {lo:.4} .. {hi:.4}, mean {rising_mean:.5} while it rises; initiation {init:.4}"
     );
     assert!(lo > -0.08 && hi < 0.08, "{lo} .. {hi}");
-    assert!(rising > 50 && rising_mean.abs() < 0.01, "{rising}: {rising_mean}");
+    assert!(
+        rising > 50 && rising_mean.abs() < 0.01,
+        "{rising}: {rising_mean}"
+    );
     // the rise: a third of the way at 3 mm of growth
     let early = growing.iter().find(|r| r.2 > 3.0).unwrap();
     assert!(j(early.0) < G1 + 0.5 * G2, "{early:?}");
@@ -100,7 +110,10 @@ fn superposed_laws_give_the_r_curve_of_the_j_integral() {
     let spread = plateau
         .iter()
         .fold(0.0f64, |m, v| m.max((v / (G1 + G2) - 1.0).abs()));
-    println!("plateau mean {mean:.4} (G1 + G2 = {}), spread {spread:.4}", G1 + G2);
+    println!(
+        "plateau mean {mean:.4} (G1 + G2 = {}), spread {spread:.4}",
+        G1 + G2
+    );
     assert!((mean / (G1 + G2) - 1.0).abs() < 0.01, "{mean}");
     assert!(spread < 0.04, "{spread}");
 }

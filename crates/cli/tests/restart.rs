@@ -58,7 +58,10 @@ fn restarted_run_is_bit_identical_to_the_uninterrupted_one() {
     ] {
         assert_eq!(a[key], b[key], "{key}");
     }
-    assert_eq!(curve_without_seconds(whole.path()), curve_without_seconds(parts.path()));
+    assert_eq!(
+        curve_without_seconds(whole.path()),
+        curve_without_seconds(parts.path())
+    );
     assert_eq!(last_frame(whole.path()), last_frame(parts.path()));
 }
 

@@ -302,7 +302,11 @@ fn cool_down_before_the_load_restarts_bit_for_bit() {
         ] {
             assert_eq!(a[key], b[key], "restart after {n}: {key}");
         }
-        assert_eq!(rows, curve_without_seconds(parts.path()), "restart after {n}");
+        assert_eq!(
+            rows,
+            curve_without_seconds(parts.path()),
+            "restart after {n}"
+        );
     }
 }
 

@@ -78,7 +78,11 @@ fn program_ramp(ends: &[f64], step: usize, t: f64) -> Option<f64> {
         0 => 0.0,
         s => ends.get(s - 1).copied().unwrap_or(last),
     };
-    Some(if t >= 1.0 { end } else { start + t * (end - start) })
+    Some(if t >= 1.0 {
+        end
+    } else {
+        start + t * (end - start)
+    })
 }
 
 impl Model {

@@ -154,7 +154,11 @@ fn bridging_zone_carries_load_behind_the_crack_front() {
     // the bridging law's secant damage, 1 - t / (K2 delta)
     let t2 = trilinear(delta);
     let d2 = 1.0 - t2 / (K2 * delta);
-    assert!((p.output("law2.damage") - d2).abs() < 1e-12, "{}", p.output("law2.damage"));
+    assert!(
+        (p.output("law2.damage") - d2).abs() < 1e-12,
+        "{}",
+        p.output("law2.damage")
+    );
     assert!(d2 < output::DAMAGED_THRESHOLD);
     assert!(!p.law.is_failed(&p.state));
     let t = p.trial([0.0, 0.0, delta]).0.traction[2];
@@ -185,7 +189,10 @@ fn tangent_matches_finite_differences_in_every_regime() {
     p.check_tangent([0.0, 0.0, 2e-3], "both softening, mode I");
     p.check_tangent([1.5e-3, 0.0, 1.5e-3], "both softening, mixed");
     p.check_tangent([0.0, 0.0, 0.05], "initiation failed, bridging softening");
-    p.check_tangent([0.03, 0.0, 0.04], "initiation failed, bridging softening, mixed");
+    p.check_tangent(
+        [0.03, 0.0, 0.04],
+        "initiation failed, bridging softening, mixed",
+    );
     let mut q = Point::new(law.clone());
     for k in 1..=20 {
         q.step([0.0, 0.0, 0.03 * k as f64 / 20.0]);

@@ -118,10 +118,12 @@ impl CrackProbe {
             }
             None => default_direction(&nodes),
         };
-        let (lo, hi) = nodes.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
-            let s = dot(*x, direction);
-            (l.min(s), h.max(s))
-        });
+        let (lo, hi) = nodes
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+                let s = dot(*x, direction);
+                (l.min(s), h.max(s))
+            });
         let origin = match spec.and_then(|c| c.origin) {
             Some(o) => o,
             None => [direction[0] * lo, direction[1] * lo, direction[2] * lo],
@@ -129,7 +131,9 @@ impl CrackProbe {
         let width = spec.and_then(|c| c.width);
         if let Some(w) = width {
             if !(w.is_finite() && w > 0.0) {
-                bail!("{file}: key `output.crack.width`: {w} is not a width; give a positive length");
+                bail!(
+                    "{file}: key `output.crack.width`: {w} is not a width; give a positive length"
+                );
             }
         }
         Ok(Some(CrackProbe {
@@ -157,7 +161,9 @@ impl CrackProbe {
                     .or_else(|| p.get("area"))
                     .map_or(0.0, |a| a[0]);
                 total_area += area;
-                let Some(d) = p.get(output::DAMAGE) else { continue };
+                let Some(d) = p.get(output::DAMAGE) else {
+                    continue;
+                };
                 has_damage = true;
                 let s = dot(p.position, self.direction) - s0;
                 if d[0] >= output::DAMAGED_THRESHOLD {
@@ -220,9 +226,11 @@ impl CrackProbe {
 fn default_direction(nodes: &[[f64; 3]]) -> [f64; 3] {
     let mut best = (0, f64::NEG_INFINITY);
     for c in 0..3 {
-        let (lo, hi) = nodes.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
-            (l.min(x[c]), h.max(x[c]))
-        });
+        let (lo, hi) = nodes
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), x| {
+                (l.min(x[c]), h.max(x[c]))
+            });
         if hi - lo > best.1 {
             best = (c, hi - lo);
         }
@@ -288,15 +296,28 @@ mod tests {
     fn process_zone_warning_needs_most_of_the_growth_under_three_points() {
         let counts = [4, 2, 5, 2, 4];
         let rows: Vec<_> = std::iter::once(row(1, 0.0, 0))
-            .chain(counts.iter().enumerate().map(|(i, &n)| row(i + 2, (i + 1) as f64, n)))
+            .chain(
+                counts
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &n)| row(i + 2, (i + 1) as f64, n)),
+            )
             .collect();
         assert_eq!(process_zone_warning(&rows), None);
         let counts = [1, 2, 5, 2, 4];
         let rows: Vec<_> = std::iter::once(row(1, 0.0, 0))
-            .chain(counts.iter().enumerate().map(|(i, &n)| row(i + 2, (i + 1) as f64, n)))
+            .chain(
+                counts
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &n)| row(i + 2, (i + 1) as f64, n)),
+            )
             .collect();
         let w = process_zone_warning(&rows).unwrap();
-        assert!(w.contains("in 3 of the 5 increments") && w.contains("fewest: 1 at increment 2"), "{w}");
+        assert!(
+            w.contains("in 3 of the 5 increments") && w.contains("fewest: 1 at increment 2"),
+            "{w}"
+        );
     }
 
     fn point(x: f64, damage: f64) -> PointOutput {
@@ -336,4 +357,3 @@ mod tests {
         assert!((c.process_zone_length - (3.25 - 1.25)).abs() < 1e-12);
     }
 }
-

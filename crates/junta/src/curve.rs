@@ -375,7 +375,10 @@ impl Curve {
             ("external_work", Box::new(|r| r.external_work)),
             ("crack_length", Box::new(move |r| f(r.crack_length))),
             ("crack_front", Box::new(move |r| f(r.crack_front))),
-            ("process_zone_length", Box::new(move |r| f(r.process_zone_length))),
+            (
+                "process_zone_length",
+                Box::new(move |r| f(r.process_zone_length)),
+            ),
             (
                 "process_zone_points",
                 Box::new(|r| r.process_zone_points.map_or(f64::NAN, |n| n as f64)),
@@ -446,8 +449,10 @@ mod tests {
         let before = CurveRow::parse(line.rsplit_once(',').unwrap().0).expect("25 columns");
         assert_eq!(before.cycles, 0.0);
         // a row of an older run (19 columns): no crack, no external work
-        let old = CurveRow::parse("3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0,7.5e-1")
-            .expect("19 columns");
+        let old = CurveRow::parse(
+            "3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0,7.5e-1",
+        )
+        .expect("19 columns");
         assert_eq!((old.crack_length, old.external_work), (None, 0.0));
     }
 }

@@ -684,9 +684,10 @@ fn crack_and_energy(
     entry["process_zone_length"] = json!(last.process_zone_length);
     entry["process_zone_points"] = json!(last.process_zone_points);
     // the fewest process-zone points in a row in which the crack grew
-    let growing = log.rows.windows(2).filter(|w| {
-        matches!((w[0].crack_length, w[1].crack_length), (Some(a), Some(b)) if b > a)
-    });
+    let growing = log
+        .rows
+        .windows(2)
+        .filter(|w| matches!((w[0].crack_length, w[1].crack_length), (Some(a), Some(b)) if b > a));
     entry["process_zone_points_min_while_growing"] =
         json!(growing.filter_map(|w| w[1].process_zone_points).min());
     entry["min_process_zone_points"] = json!(crate::crack::MIN_PROCESS_ZONE_POINTS);

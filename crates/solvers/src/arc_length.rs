@@ -588,12 +588,7 @@ fn thermal_measure(coupling: &Coupling, u: &[f64]) -> f64 {
 /// (with linear equations: `a` over the free and dependent dofs, `p` over
 /// the prescribed dofs and the dependents that follow them), and `t = f_th
 /// . u` ([`thermal_measure`]).
-fn work_measures(
-    model: &Model,
-    coupling: &Coupling,
-    u: &[f64],
-    f_int: &[f64],
-) -> (f64, f64, f64) {
+fn work_measures(model: &Model, coupling: &Coupling, u: &[f64], f_int: &[f64]) -> (f64, f64, f64) {
     let (mut a, mut p) = (0.0, 0.0);
     for (d, &eq) in model.dofs.eq.iter().enumerate() {
         if eq != CONSTRAINED || model.dofs.dependents.contains(d) {

@@ -677,7 +677,11 @@ fn thermal_force_norm(model: &Model, asm: &Assembler) -> f64 {
 /// solids' temperature change (interfaces carry no thermal strain and no
 /// force at zero jump in their initial state). `None` without a
 /// temperature field or if the assembly fails.
-pub(crate) fn internal_force_at_zero(model: &Model, asm: &Assembler, theta: f64) -> Option<Vec<f64>> {
+pub(crate) fn internal_force_at_zero(
+    model: &Model,
+    asm: &Assembler,
+    theta: f64,
+) -> Option<Vec<f64>> {
     model.temperature.as_ref()?;
     let ndof = model.dofs.num_dofs();
     let mut f = vec![0.0; ndof];

@@ -146,10 +146,14 @@ impl Superposed {
             };
             let mut table = table.clone();
             let Some(toml::Value::String(key)) = table.remove("type") else {
-                return Err(invalid(format!("`laws[{i}].type` is missing or not a string")));
+                return Err(invalid(format!(
+                    "`laws[{i}].type` is missing or not a string"
+                )));
             };
             if key == "superposed" {
-                return Err(invalid(format!("`laws[{i}]`: a superposed law cannot nest another")));
+                return Err(invalid(format!(
+                    "`laws[{i}]`: a superposed law cannot nest another"
+                )));
             }
             let law = build_law(&key, &table)
                 .map_err(|e| invalid(format!("`laws[{i}]` (`{key}`): {e}")))?;

@@ -17,7 +17,11 @@ pub fn check_fd_tangent(
     what: &str,
 ) -> [[f64; 3]; 3] {
     let r = trial(jump);
-    let scale = r.tangent.iter().flatten().fold(1.0f64, |m, v| m.max(v.abs()));
+    let scale = r
+        .tangent
+        .iter()
+        .flatten()
+        .fold(1.0f64, |m, v| m.max(v.abs()));
     let h = h_rel * jump.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-9);
     for j in 0..3 {
         let (mut a, mut b) = (jump, jump);
