@@ -749,6 +749,7 @@ pub fn evaluate_law<'py>(
         cycles: 0.0,
         delta_cycles: 0.0,
         load_ratio: 0.0,
+        crack_drive: None,
     };
     if let Err(f) = l.call_evaluate(py, &jump, &state, step, &mut trial, &mut out) {
         return Err(match f {
@@ -821,6 +822,7 @@ pub fn evaluate_registered<'py>(
         cycles: 0.0,
         delta_cycles: 0.0,
         load_ratio: 0.0,
+        crack_drive: None,
     };
     let mut trial = vec![0.0; n * k];
     let mut t = Vec::with_capacity(3 * n);

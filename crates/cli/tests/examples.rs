@@ -74,6 +74,12 @@ examples! {
     cool_down => "thermal/cool_down.toml";
     cure_dcb => "thermal/cure_dcb.toml";
     held_opening => "fatigue/held_opening.toml";
+    /// [12 s; run in the suite by fatigue_paris.rs]
+    #[ignore]
+    dcb_paris => "fatigue/dcb_paris.toml";
+    /// [2 s; run in the suite by fatigue_paris.rs]
+    #[ignore]
+    split_beam_mixed_mode => "fatigue/split_beam_mixed_mode.toml";
     /// [126 s: viscous regularisation, small increments]
     #[ignore]
     dcb_viscous => "delamination/dcb.toml";

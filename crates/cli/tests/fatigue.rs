@@ -168,6 +168,11 @@ fn fatigue_input_errors_name_the_key() {
             ("max_damage_increment = 0.05", "max_damage = 0.05"),
             "max_damage",
         ),
+        (("\"local\"", "\"global\""), "fatigue.energy_release_rate"),
+        (
+            ("\"local\"", "\"crack_front\"\ndirection = [0.0, 0.0, 0.0]"),
+            "fatigue.direction",
+        ),
     ] {
         let input = scene_with(dir.path(), "bad.toml", |t| {
             assert!(t.contains(edit.0), "{}", edit.0);

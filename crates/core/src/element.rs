@@ -95,6 +95,12 @@ pub struct StepInfo {
     /// fatigue step (0 by default). Laws use it through the cyclic energy
     /// release rate (`(1 - R^2) G_max`).
     pub load_ratio: f64,
+    /// The crack's energy release rate and process-zone length measured
+    /// on the interface at the start of a fatigue increment
+    /// ([`crate::Model::crack_drive`]), when the fatigue program asks for
+    /// it ([`crate::FatigueProgram::front_direction`]); `None` otherwise.
+    /// Fatigue laws use it instead of their point-local estimates.
+    pub crack_drive: Option<crate::crack_drive::CrackDrive>,
 }
 
 impl Default for StepInfo {
@@ -112,6 +118,7 @@ impl Default for StepInfo {
             cycles: 0.0,
             delta_cycles: 0.0,
             load_ratio: 0.0,
+            crack_drive: None,
         }
     }
 }
@@ -244,6 +251,17 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     }
     /// Fracture properties of the element's law (softening interfaces).
     fn fracture_properties(&self) -> Option<crate::law::FractureProperties> {
+        None
+    }
+    /// The fatigue growth law of the element's law, `(G_c, da/dN)` at the
+    /// cycle's maximum energy release rate `g_max`, mode ratio and load
+    /// ratio ([`crate::InterfaceLaw::fatigue_growth_rate`]).
+    fn fatigue_growth_rate(
+        &self,
+        _g_max: f64,
+        _mode_ratio: f64,
+        _load_ratio: f64,
+    ) -> Option<(f64, f64)> {
         None
     }
     /// The role of the element's law's penalty (interfaces; see

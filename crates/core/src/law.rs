@@ -69,6 +69,9 @@ pub mod output {
     /// Fatigue laws: the part of the energy damage `D` (fraction of the
     /// toughness dissipated) grown by fatigue cycles.
     pub const FATIGUE_DAMAGE: &str = "fatigue_damage";
+    /// Fatigue laws: the energy damage `D` of the point, the fraction of
+    /// its toughness a monotone path to its damage dissipates (0 to 1).
+    pub const ENERGY_DAMAGE: &str = "energy_damage";
     /// Fatigue laws: the energy release rate `G_max` the law's Paris rate
     /// used at the last evaluation (energy/area).
     pub const ENERGY_RELEASE_RATE: &str = "energy_release_rate";
@@ -179,6 +182,21 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     fn outputs(&self, _state: &[f64], _out: &mut [f64]) {}
     /// Fracture properties, for softening laws.
     fn fracture_properties(&self) -> Option<FractureProperties> {
+        None
+    }
+    /// For a fatigue law: the crack growth rate per cycle it is built to
+    /// reproduce when the cycle's maximum energy release rate is `g_max`
+    /// at mode ratio `mode_ratio` (`G_II / G`) and load ratio `load_ratio`,
+    /// as `(G_c, da/dN)` with `G_c` the toughness at that mode (e.g. a
+    /// Paris law `da/dN = C ((1 - R^2) G_max / G_c)^m`). Drawn as the law's
+    /// line on the chart of a fatigue run. `None` (the default): the law
+    /// has no fatigue growth law.
+    fn fatigue_growth_rate(
+        &self,
+        _g_max: f64,
+        _mode_ratio: f64,
+        _load_ratio: f64,
+    ) -> Option<(f64, f64)> {
         None
     }
     /// What the law's penalty is: a constraint penalty, judged by the

@@ -18,6 +18,7 @@
 pub use inventory;
 
 pub mod assembly;
+pub mod crack_drive;
 pub mod criterion;
 pub mod dof;
 pub mod dual;
@@ -33,6 +34,7 @@ pub mod sparse;
 pub mod state;
 pub mod topology;
 
+pub use crack_drive::CrackDrive;
 pub use criterion::{FailureCriterion, FailureMode, FailureResult, OnsetInput};
 pub use dual::Dual3;
 pub use element::{Element, ElementContext, ElementError, Kinematics, PointOutput};

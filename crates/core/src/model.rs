@@ -65,6 +65,12 @@ pub struct FatigueProgram {
     /// Largest damage growth of any point in one increment of a fatigue
     /// step (the laws' `damage_rate` times `delta_cycles`).
     pub max_damage_increment: f64,
+    /// Direction of crack growth along which the driver measures the
+    /// crack's energy release rate and process-zone length at the start of
+    /// each fatigue increment ([`Model::crack_drive`], passed to the laws
+    /// as [`crate::element::StepInfo::crack_drive`]); `None`: the laws
+    /// estimate both themselves, point by point.
+    pub front_direction: Option<[f64; 3]>,
 }
 
 /// A quantity given at the end of each step of a program (`ends[s]`),
@@ -339,7 +345,7 @@ impl Model {
 
     /// Calls `f` with the outputs of every interface integration point at
     /// the displacement `u` and the committed `state`.
-    fn for_each_interface_point(
+    pub(crate) fn for_each_interface_point(
         &self,
         u: &[f64],
         state: &StateStore,

@@ -829,6 +829,10 @@ impl Element for InterfaceElement {
         self.law.fracture_properties()
     }
 
+    fn fatigue_growth_rate(&self, g_max: f64, b: f64, r: f64) -> Option<(f64, f64)> {
+        self.law.fatigue_growth_rate(g_max, b, r)
+    }
+
     fn penalty_role(&self) -> Option<junta_core::PenaltyRole> {
         Some(self.law.penalty_role())
     }

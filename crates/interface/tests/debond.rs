@@ -49,6 +49,7 @@ fn ctx(jump: [f64; 3], committed: &[f64], increment: usize) -> LawContext<'_> {
             cycles: 0.0,
             delta_cycles: 0.0,
             load_ratio: 0.0,
+            crack_drive: None,
         },
     }
 }
@@ -572,6 +573,7 @@ fn inter8_top_face_pulled_uniformly() {
                     cycles: 0.0,
                     delta_cycles: 0.0,
                     load_ratio: 0.0,
+                    crack_drive: None,
                 },
                 law_responses: None,
                 temperature: None,

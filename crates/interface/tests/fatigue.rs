@@ -21,6 +21,7 @@ mod common;
 use junta_core::element::StepInfo;
 use junta_core::law::{output, InterfaceLaw, LawContext, LawResponse};
 use junta_core::registry::{find, LawEntry};
+use junta_core::CrackDrive;
 use junta_interface as _;
 use junta_interface::law::fatigue_paris::slot;
 use std::sync::Arc;
@@ -78,8 +79,19 @@ fn step(inc: usize, n: f64, dn: f64, r: f64) -> StepInfo {
         cycles: n,
         delta_cycles: dn,
         load_ratio: r,
+        crack_drive: None,
         ..StepInfo::default()
     }
+}
+
+/// A crack measured by the driver: J, its mode ratio and the zone length.
+fn measured(j: f64, b: f64, zone: f64) -> Option<CrackDrive> {
+    Some(CrackDrive {
+        energy_release_rate: j,
+        mode_ratio: b,
+        process_zone_length: zone,
+        front_uniformity: 1.0,
+    })
 }
 
 /// A point driven through a jump history, committing after each step.
@@ -89,6 +101,8 @@ struct Point {
     inc: usize,
     cycles: f64,
     r: f64,
+    /// The crack the driver measured (`None`: the law's local estimate).
+    drive: Option<CrackDrive>,
 }
 
 impl Point {
@@ -101,6 +115,7 @@ impl Point {
             inc: 0,
             cycles: 0.0,
             r: 0.0,
+            drive: None,
         }
     }
     fn trial(&self, jump: [f64; 3], dn: f64) -> (LawResponse, Vec<f64>) {
@@ -111,7 +126,10 @@ impl Point {
                 &LawContext {
                     jump,
                     state_committed: &self.state,
-                    step: step(self.inc + 1, self.cycles + dn, dn, self.r),
+                    step: StepInfo {
+                        crack_drive: self.drive,
+                        ..step(self.inc + 1, self.cycles + dn, dn, self.r)
+                    },
                 },
                 &mut trial,
             )
@@ -662,6 +680,134 @@ fn fatigue_tangent_is_softer_than_the_static_one() {
     );
 }
 
+/// With the crack measured (J, its mode ratio, the zone length L), every
+/// point of the zone grows its energy damage at `C(B_J) (J / G_c(B_J))^m
+/// / L`, whatever its own jump; a point below onset at the start of the
+/// increment gets none (the zone is frozen over the increment).
+#[test]
+fn measured_crack_drives_every_zone_point_at_the_paris_rate_over_the_zone() {
+    let law = build("");
+    let m1 = mode(0.0, 1.0);
+    let half = mode(1.0, 1.0);
+    for (j, b, zone) in [(0.4 * GIC, 0.0, 0.5), (0.3 * half.g_c, 0.5, 0.8)] {
+        let target = Mode { b, ..half };
+        let g_c = if b == 0.0 { m1.g_c } else { half.g_c };
+        let (c, m) = target.paris();
+        let rate = c * (j / g_c).powf(m) / zone;
+        for lam_frac in [0.1, 0.4] {
+            let mut p = Point::new(law.clone());
+            let lam = m1.lam0 + lam_frac * (m1.lam_f - m1.lam0);
+            p.step([0.0, 0.0, lam], 0.0);
+            p.drive = measured(j, b, zone);
+            let dn = 0.2 / rate;
+            let before = p.out(output::FATIGUE_DAMAGE);
+            p.step([0.0, 0.0, lam], dn);
+            let grown = p.out(output::FATIGUE_DAMAGE) - before;
+            assert!(
+                (grown / (rate * dn) - 1.0).abs() < 1e-12,
+                "B {b}, lam {lam_frac}: {grown} against {}",
+                rate * dn
+            );
+            assert!((p.out(output::DAMAGE_RATE) / rate - 1.0).abs() < 1e-12);
+            assert_eq!(p.out(output::ENERGY_RELEASE_RATE), j);
+        }
+    }
+    // below onset at the start: no fatigue, even past onset at the end
+    let mut p = Point::new(law.clone());
+    p.step([0.0, 0.0, 0.5 * m1.lam0], 0.0);
+    p.drive = measured(0.4 * GIC, 0.0, 0.5);
+    p.step([0.0, 0.0, 1.2 * m1.lam0], 1e3);
+    assert_eq!(p.out(output::FATIGUE_DAMAGE), 0.0);
+    // a zone of no length moves nothing
+    let mut p = Point::new(law);
+    p.step([0.0, 0.0, 2.0 * m1.lam0], 0.0);
+    p.drive = measured(0.4 * GIC, 0.0, 0.0);
+    p.step([0.0, 0.0, 2.0 * m1.lam0], 1e3);
+    assert_eq!(p.out(output::FATIGUE_DAMAGE), 0.0);
+}
+
+/// The tangent with a measured crack (its rate constant in the jump),
+/// against central differences: held, softening + fatigue, turned, contact.
+#[test]
+fn tangent_with_a_measured_crack_matches_finite_differences() {
+    for law in [build(""), build("tangent = \"exact\"")] {
+        for (slip, opening, name) in [
+            (0.0, 1.0, "mode I"),
+            (1.0, 1.0, "B = 0.5"),
+            (1.0, 0.0, "mode II"),
+        ] {
+            let m = mode(slip, opening);
+            let norm = (slip * slip + opening * opening).sqrt();
+            let closed = if opening == 0.0 { -0.01 } else { 0.0 };
+            let dir = |lam: f64, turn: f64| {
+                [
+                    lam * slip / norm,
+                    turn * lam,
+                    lam * (opening / norm + closed),
+                ]
+            };
+            let lam_s = m.lam0 + 0.05 * (m.lam_f - m.lam0);
+            let drive = measured(0.35 * m.g_c, m.b, 0.7);
+            let (c, mm) = m.paris();
+            let n_f = 0.7 / (c * 0.35f64.powf(mm));
+            let mut p = Point::new(law.clone());
+            p.step(dir(lam_s, 0.0), 0.0);
+            p.drive = drive;
+            // off the static curve's kink (committed damage above d_B)
+            p.step(dir(lam_s, 0.0), 0.3 * n_f);
+            p.check_tangent(
+                dir(lam_s, 0.0),
+                0.2 * n_f,
+                &format!("{name}: measured, held"),
+            );
+            p.check_tangent(
+                dir(1.3 * lam_s, 0.0),
+                0.2 * n_f,
+                &format!("{name}: measured, softening + fatigue"),
+            );
+            p.check_tangent(
+                dir(0.9 * lam_s, 0.0),
+                0.2 * n_f,
+                &format!("{name}: measured, unloaded"),
+            );
+            p.check_tangent(
+                dir(lam_s, 0.2),
+                0.2 * n_f,
+                &format!("{name}: measured, turned"),
+            );
+            p.check_tangent(
+                [0.5 * lam_s, 0.0, -0.2 * lam_s],
+                0.2 * n_f,
+                &format!("{name}: measured, contact + slip"),
+            );
+        }
+    }
+}
+
+/// Without `l_cz` or `E` the local estimate has no zone length: a fatigue
+/// increment without a measured crack fails with a message that says what
+/// to give; a static one (the rate unused) does not.
+#[test]
+fn local_estimate_without_a_zone_length_says_what_to_give() {
+    let law = build_text(&format!("{}{}", base_text(), paris_text()));
+    let m1 = mode(0.0, 1.0);
+    let mut p = Point::new(law.clone());
+    p.step([0.0, 0.0, 2.0 * m1.lam0], 0.0);
+    let mut trial = vec![0.0; law.state_len()];
+    let e = law
+        .evaluate(
+            &LawContext {
+                jump: [0.0, 0.0, 2.0 * m1.lam0],
+                state_committed: &p.state,
+                step: step(2, 10.0, 10.0, 0.0),
+            },
+            &mut trial,
+        )
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("`l_cz`") && e.contains("crack_front"), "{e}");
+}
+
 #[test]
 fn parameter_errors_name_the_key() {
     let base = base_text();
@@ -685,8 +831,9 @@ fn parameter_errors_name_the_key() {
     assert!(e.contains("`G_th`"), "{e}");
     let e = build_err(&format!("{full}E = 1e4\n"));
     assert!(e.contains("`l_cz`") && e.contains("`E`"), "{e}");
-    let e = build_err(&format!("{base}{}", paris_text()));
-    assert!(e.contains("`l_cz`") && e.contains("`E`"), "{e}");
+    // neither l_cz nor E: the zone is measured; M alone has no E to scale
+    let e = build_err(&format!("{base}{}M = 0.9\n", paris_text()));
+    assert!(e.contains("`M`") && e.contains("`E`"), "{e}");
     let e = build_err(&format!("{base}{}E = 1e4\nM = 0\n", paris_text()));
     assert!(e.contains("`M`"), "{e}");
     let e = build_err(&full.replace("m_m = 1.5", "m_m = -30"));

@@ -89,6 +89,7 @@ impl Point {
                         cycles: 0.0,
                         delta_cycles: 0.0,
                         load_ratio: 0.0,
+                        crack_drive: None,
                     },
                 },
                 &mut trial,

@@ -223,7 +223,7 @@ impl CrackProbe {
 }
 
 /// The global axis along which the points spread the most.
-fn default_direction(nodes: &[[f64; 3]]) -> [f64; 3] {
+pub(crate) fn default_direction(nodes: &[[f64; 3]]) -> [f64; 3] {
     let mut best = (0, f64::NEG_INFINITY);
     for c in 0..3 {
         let (lo, hi) = nodes
@@ -238,6 +238,39 @@ fn default_direction(nodes: &[[f64; 3]]) -> [f64; 3] {
     let mut d = [0.0; 3];
     d[best.0] = 1.0;
     d
+}
+
+/// The crack growth per cycle of a fatigue row with crack length `a` at
+/// `cycles`, after the converged `rows` before it: when the crack grew
+/// (longer than in the last row), its growth since the last row where it
+/// grew, or since the last row before the fatigue step (0 cycles), over
+/// the cycles in between. The crack grows by whole rows of failing points,
+/// so the rate of a single row between two growths would be zero or one
+/// row's length over one increment; over a growth interval it is the
+/// secant `da/dN` a test reduction takes between two crack readings.
+pub(crate) fn growth_rate(
+    rows: &[crate::curve::CurveRow],
+    a: Option<f64>,
+    cycles: f64,
+) -> Option<f64> {
+    let a = a?;
+    let last = rows.last()?;
+    if cycles <= 0.0 || a <= last.crack_length.unwrap_or(0.0) {
+        return None;
+    }
+    let grew = |i: usize| {
+        i > 0
+            && rows[i].cycles > 0.0
+            && rows[i].crack_length.unwrap_or(0.0) > rows[i - 1].crack_length.unwrap_or(0.0)
+    };
+    let reference = (0..rows.len())
+        .rev()
+        .find(|&i| grew(i) || rows[i].cycles <= 0.0)?;
+    let (a0, n0) = (
+        rows[reference].crack_length.unwrap_or(0.0),
+        rows[reference].cycles,
+    );
+    (cycles > n0).then(|| (a - a0) / (cycles - n0))
 }
 
 /// The process-zone warning: in most of the rows where the crack grew
@@ -287,6 +320,28 @@ mod tests {
     fn row(inc: usize, a: f64, n: usize) -> crate::curve::CurveRow {
         let line = format!("{inc},0,0,0,0,0,0,0,0,0,0,0,0,0,0,load,0,0,1,0,0,{a},{a},0.1,{n}");
         crate::curve::CurveRow::parse(&line).unwrap()
+    }
+
+    /// da/dN over the cycles since the last growth: none while the crack
+    /// stands or before the fatigue step.
+    #[test]
+    fn growth_rate_is_the_secant_between_growths() {
+        let mut rows: Vec<_> = [(1, 0.0), (2, 0.5)].map(|(i, a)| row(i, a, 4)).to_vec();
+        // static rows: no rate
+        assert_eq!(growth_rate(&rows, Some(1.0), 0.0), None);
+        let fatigue = |inc, a, n| {
+            let mut r = row(inc, a, 4);
+            r.cycles = n;
+            r
+        };
+        // the first growth in the fatigue step: from its start (0 cycles)
+        assert_eq!(growth_rate(&rows, Some(0.75), 100.0), Some(0.25 / 100.0));
+        rows.push(fatigue(3, 0.75, 100.0));
+        rows.push(fatigue(4, 0.75, 300.0));
+        // no growth this row
+        assert_eq!(growth_rate(&rows, Some(0.75), 400.0), None);
+        // growth: since the row where it last grew (100 cycles)
+        assert_eq!(growth_rate(&rows, Some(1.0), 500.0), Some(0.25 / 400.0));
     }
 
     /// Two of five growing increments under 3 points: the saw-tooth of a

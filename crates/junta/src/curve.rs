@@ -80,12 +80,24 @@ pub struct CurveRow {
     /// Load cycles reached (`cycles`): 0 outside a fatigue program
     /// ([`junta_core::FatigueProgram`]).
     pub cycles: f64,
+    /// Energy release rate of the crack measured on the interface, the J
+    /// integral of the cohesive tractions (`energy_release_rate`,
+    /// [`junta_core::crack_drive`]); `None` outside a fatigue program that
+    /// measures it.
+    pub energy_release_rate: Option<f64>,
+    /// Mode ratio `G_II / G` of that J integral (`crack_mode_ratio`).
+    pub crack_mode_ratio: Option<f64>,
+    /// Crack growth per cycle `da/dN` (`crack_growth_rate`): on a row of a
+    /// fatigue step where the crack grew, its growth since the last row
+    /// where it grew (or since the fatigue step began) over the cycles in
+    /// between ([`crate::crack::growth_rate`]); `None` elsewhere.
+    pub crack_growth_rate: Option<f64>,
 }
 
 /// Header line of `curve.csv` (with its newline): the column names of
 /// [`CurveRow::csv`], in order.
 pub const CURVE_HEADER: &str =
-    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation,temperature_factor,viscous_energy,external_work,crack_length,crack_front,process_zone_length,process_zone_points,cycles\n";
+    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation,temperature_factor,viscous_energy,external_work,crack_length,crack_front,process_zone_length,process_zone_points,cycles,energy_release_rate,crack_mode_ratio,crack_growth_rate\n";
 
 fn opt(v: Option<f64>) -> String {
     v.map(|x| format!("{x:e}")).unwrap_or_default()
@@ -96,7 +108,7 @@ impl CurveRow {
     /// [`CURVE_HEADER`], floats in `{:e}` form, `None` as an empty field).
     pub fn csv(&self) -> String {
         format!(
-            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{:e}\n",
+            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{:e},{},{},{}\n",
             self.increment,
             self.step,
             self.lambda,
@@ -127,6 +139,9 @@ impl CurveRow {
                 .map(|n| n.to_string())
                 .unwrap_or_default(),
             self.cycles,
+            opt(self.energy_release_rate),
+            opt(self.crack_mode_ratio),
+            opt(self.crack_growth_rate),
         )
     }
 
@@ -134,14 +149,15 @@ impl CurveRow {
     /// it is not one. Reads files of older runs too: 14 columns (before the
     /// path-following and frictional columns), 16, 17 or 18 (before the
     /// temperature factor), 19 (before the energy and crack columns), 25
-    /// (before `cycles`); a
+    /// (before `cycles`), 26 (before `energy_release_rate`,
+    /// `crack_mode_ratio` and `crack_growth_rate`); a
     /// missing column takes its neutral value (`load_sign` 0, `control`
     /// `load`, 0.0, temperature factor 1, empty crack columns).
     pub fn parse(line: &str) -> Option<CurveRow> {
         let f: Vec<&str> = line.split(',').collect();
         // 14 columns: a run written before the path-following and
         // frictional columns
-        if ![14, 16, 17, 18, 19, 25, 26].contains(&f.len()) {
+        if ![14, 16, 17, 18, 19, 25, 26, 29].contains(&f.len()) {
             return None;
         }
         Some(CurveRow {
@@ -171,6 +187,9 @@ impl CurveRow {
             process_zone_length: f.get(23).and_then(|v| v.trim().parse().ok()),
             process_zone_points: f.get(24).and_then(|v| v.trim().parse().ok()),
             cycles: f.get(25).and_then(|v| v.trim().parse().ok()).unwrap_or(0.0),
+            energy_release_rate: f.get(26).and_then(|v| v.trim().parse().ok()),
+            crack_mode_ratio: f.get(27).and_then(|v| v.trim().parse().ok()),
+            crack_growth_rate: f.get(28).and_then(|v| v.trim().parse().ok()),
         })
     }
 }
@@ -384,6 +403,15 @@ impl Curve {
                 Box::new(|r| r.process_zone_points.map_or(f64::NAN, |n| n as f64)),
             ),
             ("cycles", Box::new(|r| r.cycles)),
+            (
+                "energy_release_rate",
+                Box::new(move |r| f(r.energy_release_rate)),
+            ),
+            ("crack_mode_ratio", Box::new(move |r| f(r.crack_mode_ratio))),
+            (
+                "crack_growth_rate",
+                Box::new(move |r| f(r.crack_growth_rate)),
+            ),
         ];
         Curve {
             columns: cols
@@ -429,8 +457,8 @@ mod tests {
 
     #[test]
     fn columns_follow_the_csv_header_and_read_back_the_rows() {
-        let line = "3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0,7.5e-1,1e-4,4e-3,2.5e0,2.25e0,1.5e0,6,1.25e5";
-        let row = CurveRow::parse(line).expect("26 columns");
+        let line = "3,0,5e-1,1.5e2,2e-1,4,10,2,0,1.2e0,0,3e-3,1e-1,,1,arc,2.5e-1,0e0,7.5e-1,1e-4,4e-3,2.5e0,2.25e0,1.5e0,6,1.25e5,4.5e-1,5e-1,2e-5";
+        let row = CurveRow::parse(line).expect("29 columns");
         assert_eq!(row.csv().trim_end(), line);
         let c = Curve::from_rows(&[row]);
         let header: Vec<&str> = CURVE_HEADER
@@ -445,6 +473,14 @@ mod tests {
         assert_eq!(c.control, vec!["arc".to_string()]);
         assert_eq!(c.get("process_zone_points"), Some(&[6.0][..]));
         assert_eq!(c.get("cycles"), Some(&[1.25e5][..]));
+        assert_eq!(c.get("energy_release_rate"), Some(&[0.45][..]));
+        assert_eq!(c.get("crack_growth_rate"), Some(&[2e-5][..]));
+        // a row of a run before the J integral and da/dN (26 columns)
+        assert_eq!(c.get("crack_mode_ratio"), Some(&[0.5][..]));
+        let line = line.rsplitn(4, ',').nth(3).unwrap();
+        let before = CurveRow::parse(line).expect("26 columns");
+        assert_eq!(before.cycles, 1.25e5);
+        assert_eq!(before.crack_growth_rate, None);
         // a row of a run before the cycles (25 columns): 0 cycles
         let before = CurveRow::parse(line.rsplit_once(',').unwrap().0).expect("25 columns");
         assert_eq!(before.cycles, 0.0);

@@ -206,6 +206,7 @@ impl Engine<'_> {
             cycles: r.cycles,
             delta_cycles: 0.0,
             load_ratio: model.load_ratio(),
+            crack_drive: None,
         };
         let ifs = output::interface_results_at(model, v.u, v.state, step)?;
         let row = self.row_of(v, &ifs)?;
@@ -280,6 +281,16 @@ impl Engine<'_> {
         let energy = total_energy(ifs);
         let external_work = self.external_work(v, r.lambda);
         let crack = self.crack.as_mut().and_then(|c| c.measure(ifs));
+        let drive = self
+            .model
+            .fatigue
+            .as_ref()
+            .and_then(|f| f.front_direction)
+            .and_then(|d| {
+                junta_core::crack_drive::crack_drive_of(ifs.iter().flat_map(|i| &i.points), d)
+            });
+        let crack_growth_rate =
+            crate::crack::growth_rate(&self.log.rows, crack.map(|c| c.length), r.cycles);
         Ok(CurveRow {
             increment: r.increment_index,
             step: r.step,
@@ -313,6 +324,9 @@ impl Engine<'_> {
             process_zone_length: crack.map(|c| c.process_zone_length),
             process_zone_points: crack.map(|c| c.process_zone_points),
             cycles: r.cycles,
+            energy_release_rate: drive.map(|c| c.energy_release_rate),
+            crack_mode_ratio: drive.map(|c| c.mode_ratio),
+            crack_growth_rate,
         })
     }
 
@@ -604,6 +618,7 @@ fn finish(
         cycles: 0.0,
         delta_cycles: 0.0,
         load_ratio: 0.0,
+        crack_drive: None,
     };
     // the state the run ends on: the driver's, else the last converged one
     let converged_here = log.last_increment > log.start_increment;

@@ -621,10 +621,16 @@ fn fatigue_program(
     analysis.steps.push(held);
     let mut cycle_steps = vec![0.0; analysis.steps.len() - 1];
     cycle_steps.push(f.cycles);
+    let front_direction = match f.energy_release_rate.as_str() {
+        "local" => None,
+        "crack_front" => Some(fatigue_direction(&at.to_string(), f, sf, model)?),
+        other => bail!("{at}: key `fatigue.energy_release_rate` = \"{other}\": valid values are \"crack_front\" (the J integral of the cohesive tractions, measured on the interface) and \"local\" (each point's own estimate)"),
+    };
     model.fatigue = Some(junta_core::FatigueProgram {
         cycle_steps,
         load_ratio: f.load_ratio,
         max_damage_increment: f.max_damage_increment,
+        front_direction,
     });
     notes.push(format!(
         "{at}: [fatigue]: a fatigue step (step {} of curve.csv) holds the load factor at {held} while the cycles go from 0 to {} (R = {}; at most {} damage growth per increment)",
@@ -634,6 +640,40 @@ fn fatigue_program(
         f.max_damage_increment
     ));
     Ok(())
+}
+
+/// The unit direction of crack growth of a `crack_front` fatigue step:
+/// `[fatigue] direction`, else `[output] crack`'s, else the axis along
+/// which the interfaces' nodes spread the most.
+fn fatigue_direction(
+    at: &str,
+    f: &scene::FatigueSpec,
+    sf: &scene::SceneFile,
+    model: &Model,
+) -> Result<[f64; 3]> {
+    let (d, key) = match (f.direction, &sf.scene.output.crack) {
+        (Some(d), _) => (d, "fatigue.direction"),
+        (None, Some(c)) => (c.direction, "output.crack.direction"),
+        (None, None) => {
+            let nodes: Vec<[f64; 3]> = model
+                .mesh
+                .blocks
+                .iter()
+                .filter(|b| b.shape.is_interface())
+                .flat_map(|b| (0..b.len()).flat_map(move |e| b.element(e).to_vec()))
+                .map(|n| model.mesh.nodes[n])
+                .collect();
+            if nodes.is_empty() {
+                bail!("{at}: key `fatigue`: the model has no interface, so there is no crack to grow; add an [[interface]] with a fatigue law");
+            }
+            return Ok(crate::crack::default_direction(&nodes));
+        }
+    };
+    let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    if !(n.is_finite() && n > 0.0) {
+        bail!("{at}: key `{key}`: {d:?} is not a direction; give a non-zero vector, e.g. [1.0, 0.0, 0.0]");
+    }
+    Ok(d.map(|c| c / n))
 }
 
 /// `--solver control=load|displacement|auto|arc_length`: the control of an

@@ -86,6 +86,21 @@ pub struct FatigueSpec {
     /// jumps from the laws' `damage_rate`). Default 0.05.
     #[serde(default = "default_max_damage_increment")]
     pub max_damage_increment: f64,
+    /// Where the fatigue laws take the energy release rate and the
+    /// process-zone length from: `"crack_front"` (default: measured on the
+    /// interface at the start of each increment, the J integral of the
+    /// cohesive tractions, `junta_core::crack_drive`) or `"local"` (each
+    /// point's own estimate, the law's `l_cz`).
+    #[serde(default = "default_energy_release_rate")]
+    pub energy_release_rate: String,
+    /// Direction of crack growth for `"crack_front"` (default: `[output]
+    /// crack`'s direction, else the axis along which the interfaces are
+    /// longest).
+    pub direction: Option<[f64; 3]>,
+}
+
+fn default_energy_release_rate() -> String {
+    "crack_front".into()
 }
 
 fn default_max_damage_increment() -> f64 {

@@ -313,12 +313,16 @@ impl Observer for PrintTables {
     }
 }
 
-/// `summary.json` and `curve.svg` at the end of the run.
+/// `summary.json`, `curve.svg` and (fatigue runs) `fatigue.svg` at the
+/// end of the run.
 pub struct SummaryJson {
     dir: PathBuf,
     input: PathBuf,
     title: String,
     curve: Option<CurveSpec>,
+    /// An interface element whose law has a fatigue growth law, and the
+    /// program's load ratio (for the law's line on `fatigue.svg`).
+    fatigue_law: Option<(std::sync::Arc<dyn junta_core::Element>, f64)>,
 }
 
 impl SummaryJson {
@@ -329,6 +333,13 @@ impl SummaryJson {
             input: input.to_path_buf(),
             title: p.title.clone(),
             curve: p.curve.clone(),
+            fatigue_law: p.model.fatigue.as_ref().and_then(|f| {
+                p.model
+                    .elements
+                    .iter()
+                    .find(|e| e.fatigue_growth_rate(1.0, 0.0, 0.0).is_some())
+                    .map(|e| (e.clone(), f.load_ratio))
+            }),
         }
     }
 }
@@ -339,6 +350,15 @@ impl Observer for SummaryJson {
     }
     fn on_end(&mut self, end: &RunEnd<'_>, log: &mut RunLog) -> Result<()> {
         output::write_json(&self.dir.join("summary.json"), end.summary)?;
+        if let Some((law, r)) = &self.fatigue_law {
+            write_fatigue_svg(
+                &self.dir.join("fatigue.svg"),
+                &self.title,
+                law.as_ref(),
+                *r,
+                &log.rows,
+            )?;
+        }
         match &self.curve {
             Some(c) if log.rows.len() >= 2 => write_curve_svg(
                 &self.dir.join("curve.svg"),
@@ -350,6 +370,70 @@ impl Observer for SummaryJson {
             _ => Ok(()),
         }
     }
+}
+
+/// The fatigue chart: the crack growth rate of every row where the crack
+/// grew against the energy release rate measured on the interface (over
+/// the law's toughness at the measured mode ratio), on log axes, with the
+/// law's own growth law (the Paris line) at the mean mode ratio. Nothing
+/// when no row has both.
+fn write_fatigue_svg(
+    path: &Path,
+    title: &str,
+    law: &dyn junta_core::Element,
+    load_ratio: f64,
+    rows: &[CurveRow],
+) -> Result<()> {
+    use crate::plot;
+    let measured: Vec<(f64, f64, f64)> = rows
+        .iter()
+        .filter_map(|r| {
+            let (g, b, rate) = (
+                r.energy_release_rate?,
+                r.crack_mode_ratio?,
+                r.crack_growth_rate?,
+            );
+            let (g_c, _) = law.fatigue_growth_rate(g, b, load_ratio)?;
+            Some((g / g_c, rate, b))
+        })
+        .collect();
+    if measured.is_empty() {
+        return Ok(());
+    }
+    let b = measured.iter().map(|m| m.2).sum::<f64>() / measured.len() as f64;
+    let lo = measured.iter().map(|m| m.0).fold(f64::INFINITY, f64::min) / 1.5;
+    let line: Vec<(f64, f64)> = (0..=40)
+        .filter_map(|i| {
+            let x = lo * (1.0 / lo).powf(i as f64 / 40.0);
+            let (g_c, _) = law.fatigue_growth_rate(1.0, b, load_ratio)?;
+            Some((x, law.fatigue_growth_rate(x * g_c, b, load_ratio)?.1))
+        })
+        .collect();
+    plot::write_svg(
+        path,
+        &[plot::Panel {
+            title: format!("{title}: crack growth rate (R = {load_ratio})"),
+            x_label: "G_max / G_c (J integral of the cohesive tractions)".into(),
+            y_label: "da/dN (length per cycle)".into(),
+            log_x: true,
+            log_y: true,
+            series: vec![
+                plot::Series {
+                    name: "Junta: growth between crack readings".into(),
+                    points: measured.iter().map(|m| (m.0, m.1)).collect(),
+                    color: 0,
+                    markers_only: true,
+                },
+                plot::Series {
+                    name: format!("the law's growth law at mode ratio {b:.2}"),
+                    points: line,
+                    color: 1,
+                    markers_only: false,
+                },
+            ],
+            vlines: vec![],
+        }],
+    )
 }
 
 /// The load-displacement chart, with the scene's reference curve.

@@ -1189,6 +1189,7 @@ impl<'a> PathRun<'a> {
             cycles: self.w.model.cycles(self.cur.step, 1.0),
             delta_cycles: 0.0,
             load_ratio: self.w.model.load_ratio(),
+            crack_drive: None,
         };
         let program_step = self.cur.step;
         if !self
@@ -1702,6 +1703,7 @@ impl PathAttempt<'_, '_> {
             cycles: self.w.model.cycles(self.cur.step, 1.0),
             delta_cycles: 0.0,
             load_ratio: self.w.model.load_ratio(),
+            crack_drive: None,
         }
     }
 

@@ -153,6 +153,7 @@ pub fn solve_linear_static_cases(
         cycles: 0.0,
         delta_cycles: 0.0,
         load_ratio: 0.0,
+        crack_drive: None,
     };
     let initial = |case: &LoadCase<'_>| -> Vec<f64> {
         let mut u: Vec<f64> = (0..ndof)

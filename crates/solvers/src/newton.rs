@@ -905,6 +905,7 @@ impl<'m> Work<'m> {
             cycles: self.model.cycles(cur.step, cur.t),
             delta_cycles: 0.0,
             load_ratio: self.model.load_ratio(),
+            crack_drive: None,
         };
         let ev = self.evaluate(state, step, cur.lambda, cur.force_peak)?;
         state.restore();
@@ -1832,6 +1833,16 @@ impl LoadRun<'_> {
         })
     }
 
+    /// The crack's driving force at the committed state, when the fatigue
+    /// program measures it ([`junta_core::FatigueProgram::front_direction`]).
+    fn crack_drive(&self) -> Result<Option<junta_core::CrackDrive>, NonlinearError> {
+        let model = self.w.model;
+        match model.fatigue.as_ref().and_then(|f| f.front_direction) {
+            Some(d) => Ok(model.crack_drive(&self.w.u_conv, &self.state, d)?),
+            None => Ok(None),
+        }
+    }
+
     /// Move on to the next step when the current one is done (its first
     /// increment `initial_increment`, or `small_increment` under the
     /// small-increment rule); false at the end of the program.
@@ -1889,6 +1900,9 @@ impl LoadRun<'_> {
         if cycles_span > 0.0 {
             size = size.min(self.fatigue_size(cycles_span).map_err(|e| (e, None))?);
         }
+        // measured in the static steps too: their laws' committed
+        // `damage_rate` sizes the first fatigue increment
+        let crack_drive = self.crack_drive().map_err(|e| (e, None))?;
         let mut cutbacks = 0;
         loop {
             let t_new = if span == 0.0 || cur.t + size >= 1.0 - 1e-9 {
@@ -1911,6 +1925,7 @@ impl LoadRun<'_> {
                 cycles: model.cycles(cur.step, t_new),
                 delta_cycles: model.cycles(cur.step, t_new) - model.cycles(cur.step, cur.t),
                 load_ratio: model.load_ratio(),
+                crack_drive,
             };
             let attempt = self
                 .w
