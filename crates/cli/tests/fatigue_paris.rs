@@ -210,3 +210,21 @@ fn split_beam_at_half_mode_ii_grows_at_the_mixed_mode_paris_rate() {
         assert!((ratio - 1.0).abs() < 0.15, "G/G_c {x}: {ratio}");
     }
 }
+
+/// A run stopped inside the fatigue step of a growing crack and restarted
+/// gives the uninterrupted a(N) bit for bit: the measured crack (J, mode
+/// ratio, zone) comes from the converged state the checkpoint holds.
+#[test]
+fn restart_inside_the_crack_growth_repeats_a_of_n() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = repo().join("examples/fatigue/split_beam_mixed_mode.toml");
+    let whole = dir.path().join("whole");
+    run_ok(&input, &whole);
+    let parts = dir.path().join("parts");
+    let first = run_ok_with(&input, &parts, &["--max-increments", "60"]);
+    assert_ne!(first["status"], "completed");
+    let stopped = fatigue_rows(&parts, &["cycles", "crack_length"]);
+    assert!(stopped.last().unwrap()[1] > 1.0, "{stopped:?}");
+    restart_ok(&parts);
+    assert_eq!(curve_without_seconds(&whole), curve_without_seconds(&parts));
+}
