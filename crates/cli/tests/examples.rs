@@ -80,6 +80,9 @@ examples! {
     /// [2 s; run in the suite by fatigue_paris.rs]
     #[ignore]
     split_beam_mixed_mode => "fatigue/split_beam_mixed_mode.toml";
+    /// [12 s; run in the suite by fatigue_paris.rs]
+    #[ignore]
+    dcb_cf20 => "fatigue/dcb_cf20.toml";
     /// [126 s: viscous regularisation, small increments]
     #[ignore]
     dcb_viscous => "delamination/dcb.toml";

@@ -286,6 +286,96 @@ const FATIGUE_KEYS: &[&str] = &[
     "C_I", "C_II", "m_I", "m_II", "C_m", "m_m", "G_th", "l_cz", "E", "M",
 ];
 
+/// The static `bilinear` part of a fatigue law `key` from its table `t`,
+/// and the numbers of its fatigue keys `keys` (absent: `None`). Refuses
+/// `viscosity` (a cycle jump is not a time) and a fatigue key that is not
+/// a number; an unknown key's message lists the fatigue keys too.
+pub(crate) fn fatigue_base(
+    key: &'static str,
+    t: &toml::Table,
+    keys: &[&str],
+) -> Result<(CohesiveLaw, std::collections::BTreeMap<String, Option<f64>>), CoreError> {
+    let invalid = |message: String| CoreError::InvalidParameters {
+        kind: "law",
+        key: key.into(),
+        message,
+    };
+    let mut rest = t.clone();
+    if rest.contains_key("viscosity") {
+        return Err(invalid(format!(
+            "`viscosity` is not supported by {key} (a cycle jump is not a time); remove it"
+        )));
+    }
+    let mut numbers = std::collections::BTreeMap::new();
+    for &name in keys {
+        let v = match rest.remove(name) {
+            None => None,
+            Some(toml::Value::Float(v)) => Some(v),
+            Some(toml::Value::Integer(v)) => Some(v as f64),
+            Some(other) => return Err(invalid(format!("`{name}` must be a number, not {other}"))),
+        };
+        numbers.insert(name.to_string(), v);
+    }
+    let base =
+        CohesiveLaw::from_table(key, Arc::new(LinearSoftening), &rest).map_err(
+            |err| match err {
+                CoreError::InvalidParameters { kind, key, message }
+                    if message.contains("unknown field") =>
+                {
+                    CoreError::InvalidParameters {
+                        kind,
+                        key,
+                        message: format!("{message}; or a fatigue key: {}", keys.join(", ")),
+                    }
+                }
+                other => other,
+            },
+        )?;
+    Ok((base, numbers))
+}
+
+/// The static update of a fatigue law's point: the `bilinear` law's
+/// `max(d_committed, d_B(lam))` past onset, in dual numbers (`d_hist`
+/// itself, constant, where the static law does not damage).
+pub(crate) fn static_damage(eq: &Equivalent, d_hist: f64) -> Dual3 {
+    if eq.index.v > 1.0 && d_hist < 1.0 {
+        let mut d_b = LinearSoftening.damage(eq.lam, eq.lam0, eq.g_c, eq.k_b);
+        if d_b.v >= FULL {
+            d_b = Dual3::cst(1.0);
+        }
+        if d_b.v > d_hist || (d_b.v == d_hist && d_hist > 0.0) {
+            return d_b;
+        }
+    }
+    Dual3::cst(d_hist)
+}
+
+/// Traction of the damaged penalty law with contact: `(1 - d) K jump`,
+/// the full normal penalty in compression.
+pub(crate) fn damaged_traction(d: Dual3, dj: [Dual3; 3], ks: f64, kn: f64) -> [Dual3; 3] {
+    let one_m_d = 1.0 - d;
+    [
+        one_m_d * dj[0] * ks,
+        one_m_d * dj[1] * ks,
+        if dj[2].v > 0.0 {
+            one_m_d * dj[2] * kn
+        } else {
+            dj[2] * kn
+        },
+    ]
+}
+
+/// The energy damage `D = d lam_0 / (lam_f (1 - d) + d lam_0)` of the
+/// stiffness damage `d` on the bilinear curve, and back.
+pub(crate) fn energy_of_stiffness(d: Dual3, lam0: Dual3, lam_f: Dual3) -> Dual3 {
+    d * lam0 / (lam_f * (1.0 - d) + d * lam0)
+}
+
+/// The stiffness damage of the energy damage `big_d` ([`energy_of_stiffness`] inverted).
+pub(crate) fn stiffness_of_energy(big_d: Dual3, lam0: Dual3, lam_f: Dual3) -> Dual3 {
+    lam_f * big_d / (lam0 + big_d * (lam_f - lam0))
+}
+
 /// Parameter documentation.
 pub const PARAMS: &[ParamDoc] = &[
     ParamDoc { name: "K", doc: "normal penalty stiffness K_n > 0 [force/length^3] (Turon: K = 50 E_33 / t_ply or more)" },
@@ -319,47 +409,18 @@ impl FatigueBilinear {
             key: KEY.into(),
             message,
         };
-        let mut rest = t.clone();
-        if rest.contains_key("viscosity") {
-            return Err(invalid(
-                "`viscosity` is not supported by fatigue_bilinear (a cycle jump is not a time); remove it".into(),
-            ));
-        }
-        let mut num = |name: &str| -> Result<Option<f64>, CoreError> {
-            match rest.remove(name) {
-                None => Ok(None),
-                Some(toml::Value::Float(v)) => Ok(Some(v)),
-                Some(toml::Value::Integer(v)) => Ok(Some(v as f64)),
-                Some(other) => Err(invalid(format!("`{name}` must be a number, not {other}"))),
-            }
-        };
-        let c_i = num("C_I")?;
-        let c_ii = num("C_II")?;
-        let m_i = num("m_I")?;
-        let m_ii = num("m_II")?;
-        let c_m = num("C_m")?;
-        let m_m = num("m_m")?;
-        let g_th = num("G_th")?;
-        let l_cz = num("l_cz")?;
-        let e = num("E")?;
-        let m_factor = num("M")?;
-        let base = CohesiveLaw::from_table(KEY, Arc::new(LinearSoftening), &rest).map_err(
-            |err| match err {
-                CoreError::InvalidParameters { kind, key, message }
-                    if message.contains("unknown field") =>
-                {
-                    CoreError::InvalidParameters {
-                        kind,
-                        key,
-                        message: format!(
-                            "{message}; or a fatigue key: {}",
-                            FATIGUE_KEYS.join(", ")
-                        ),
-                    }
-                }
-                other => other,
-            },
-        )?;
+        let (base, mut numbers) = fatigue_base(KEY, t, FATIGUE_KEYS)?;
+        let mut num = |name: &str| numbers.remove(name).flatten();
+        let c_i = num("C_I");
+        let c_ii = num("C_II");
+        let m_i = num("m_I");
+        let m_ii = num("m_II");
+        let c_m = num("C_m");
+        let m_m = num("m_m");
+        let g_th = num("G_th");
+        let l_cz = num("l_cz");
+        let e = num("E");
+        let m_factor = num("M");
         let positive = |v: Option<f64>, name: &str, what: &str| -> Result<f64, CoreError> {
             let v = v.ok_or_else(|| invalid(format!("missing `{name}` ({what})")))?;
             if v > 0.0 && v.is_finite() {
@@ -580,25 +641,10 @@ impl FatigueBilinear {
         if let Some(eq) = self.base.equivalent(dj)? {
             trial[MODE_RATIO] = eq.b.v;
             trial[INDEX] = eq.index.v;
-            let Equivalent {
-                lam,
-                lam0,
-                k_b,
-                g_c,
-                ..
-            } = eq;
-            let shape = LinearSoftening;
-            let f = |x: f64| shape.dissipated(x, lam0.v, g_c.v, k_b.v);
+            let Equivalent { lam0, k_b, g_c, .. } = eq;
+            let f = |x: f64| LinearSoftening.dissipated(x, lam0.v, g_c.v, k_b.v);
             // static part: the bilinear law's update
-            if eq.index.v > 1.0 && d_hist < 1.0 {
-                let mut d_b = shape.damage(lam, lam0, g_c, k_b);
-                if d_b.v >= FULL {
-                    d_b = Dual3::cst(1.0);
-                }
-                if d_b.v > d_hist || (d_b.v == d_hist && d_hist > 0.0) {
-                    d = d_b;
-                }
-            }
+            d = static_damage(&eq, d_hist);
             // fatigue part, in the process zone
             if (c[INDEX] >= 1.0 || d_hist > 0.0) && d.v < 1.0 {
                 let (rate, g_max) = match self.damage_rate(&eq, r_ratio, ctx.step.crack_drive) {
@@ -611,14 +657,14 @@ impl FatigueBilinear {
                 trial[DAMAGE_RATE] = rate.v;
                 if dn > 0.0 && rate.v > 0.0 {
                     let lam_f = g_c * 2.0 / (k_b * lam0);
-                    let big_d1 = d * lam0 / (lam_f * (1.0 - d) + d * lam0);
+                    let big_d1 = energy_of_stiffness(d, lam0, lam_f);
                     let big_d2 = big_d1 + rate * dn;
                     if big_d2.v >= FULL {
                         trial[FATIGUE_DAMAGE] = c[FATIGUE_DAMAGE] + (1.0 - big_d1.v);
                         d = Dual3::cst(1.0);
                     } else {
                         trial[FATIGUE_DAMAGE] = c[FATIGUE_DAMAGE] + rate.v * dn;
-                        d = lam_f * big_d2 / (lam0 + big_d2 * (lam_f - lam0));
+                        d = stiffness_of_energy(big_d2, lam0, lam_f);
                     }
                 }
             }
@@ -628,16 +674,7 @@ impl FatigueBilinear {
             trial[DAMAGE_HISTORY] = d.v.max(d_hist);
             trial[DAMAGE] = trial[DAMAGE_HISTORY];
         }
-        let one_m_d = 1.0 - d;
-        let t = [
-            one_m_d * dj[0] * ks,
-            one_m_d * dj[1] * ks,
-            if dj[2].v > 0.0 {
-                one_m_d * dj[2] * kn
-            } else {
-                dj[2] * kn
-            },
-        ];
+        let t = damaged_traction(d, dj, ks, kn);
         Ok((t, d))
     }
 }

@@ -24,6 +24,7 @@ pub mod cohesive;
 pub mod contact;
 pub mod coulomb_friction;
 pub mod exponential;
+pub mod fatigue_cf20;
 pub mod fatigue_paris;
 pub mod linear_penalty;
 pub mod mohr_coulomb;
