@@ -273,6 +273,43 @@ pub(crate) fn growth_rate(
     (cycles > n0).then(|| (a - a0) / (cycles - n0))
 }
 
+/// Share of the static law above which a measured-crack fatigue run warns
+/// ([`fatigue_static_share`]).
+pub const STATIC_SHARE_WARNING: f64 = 0.2;
+
+/// The part of the damage of the points that failed during a fatigue step
+/// that the static law, not the cycles, brought: `1 - fatigue_damage` of
+/// every failed point with some fatigue damage (its energy damage is 1),
+/// averaged; with the number of such points. `None` without one.
+///
+/// The measured-crack Paris rate moves the process zone at the Paris rate
+/// by fatigue damage alone; static damage on top (the zone's tractions
+/// redistributing as G nears G_c, more in mixed mode) makes the crack run
+/// fast: measured on split beams at G_II / G = 0.5, a share of 0.14 at
+/// 0.3 G_c with da/dN +7.6 % over Paris, 0.25 at 0.4 G_c with +24 %; a
+/// DCB in mode I, 0.04 and within -3 .. +6 % (docs/laws.md).
+pub(crate) fn fatigue_static_share(ifs: &[InterfaceResults]) -> Option<(f64, usize)> {
+    let (mut sum, mut n) = (0.0, 0usize);
+    for p in ifs.iter().flat_map(|i| &i.points) {
+        let (Some(d), Some(f)) = (p.get(output::DAMAGE), p.get(output::FATIGUE_DAMAGE)) else {
+            continue;
+        };
+        if d[0] >= 1.0 && f[0] > 0.0 {
+            sum += 1.0 - f[0].min(1.0);
+            n += 1;
+        }
+    }
+    (n > 0).then(|| (sum / n as f64, n))
+}
+
+/// The warning for a static share above [`STATIC_SHARE_WARNING`].
+pub(crate) fn static_share_warning(share: f64, points: usize) -> Option<String> {
+    (share > STATIC_SHARE_WARNING).then(|| format!(
+        "fatigue: the {points} points that failed in the fatigue step took {:.0} % of their damage from the static law, not from the cycles; the crack then grows faster than the Paris law the fatigue rate is built for (measured on a split beam at G_II / G = 0.5: a share of 25 % and da/dN +24 %); lower the load (G_max / G_c) or read da/dN as an upper bound, see docs/laws.md",
+        100.0 * share
+    ))
+}
+
 /// The process-zone warning: in most of the rows where the crack grew
 /// (its length larger than the row before), fewer than
 /// [`MIN_PROCESS_ZONE_POINTS`] points lay in the process zone along the

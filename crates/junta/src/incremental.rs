@@ -645,6 +645,10 @@ fn finish(
         tracing::warn!("{w}");
         ending.warnings.push(w);
     }
+    if let Some(w) = fatigue_share(&mut summary, p, &interfaces) {
+        tracing::warn!("{w}");
+        ending.warnings.push(w);
+    }
     if let Some(u) = u {
         let (rotation, warning) =
             crate::rotation::summary_entry(model, u, crate::rotation::is_deck(input));
@@ -708,6 +712,26 @@ fn crack_and_energy(
     entry["min_process_zone_points"] = json!(crate::crack::MIN_PROCESS_ZONE_POINTS);
     summary["crack"] = entry;
     let warning = crate::crack::process_zone_warning(&log.rows)?;
+    match summary["warnings"].as_array_mut() {
+        Some(list) => list.push(json!(warning)),
+        None => summary["warnings"] = json!([warning]),
+    }
+    Some(warning)
+}
+
+/// `summary.json` `fatigue.static_share` and `fatigue.failed_points` of a
+/// fatigue run ([`crate::crack::fatigue_static_share`]); the warning when
+/// a measured-crack run's share is large, also added to `warnings`.
+fn fatigue_share(
+    summary: &mut serde_json::Value,
+    p: &Prepared,
+    interfaces: &[output::InterfaceResults],
+) -> Option<String> {
+    let measured = p.model.fatigue.as_ref()?.front_direction.is_some();
+    let (share, points) = crate::crack::fatigue_static_share(interfaces)?;
+    summary["fatigue"]["static_share"] = json!(share);
+    summary["fatigue"]["failed_points"] = json!(points);
+    let warning = crate::crack::static_share_warning(share, points).filter(|_| measured)?;
     match summary["warnings"].as_array_mut() {
         Some(list) => list.push(json!(warning)),
         None => summary["warnings"] = json!([warning]),
