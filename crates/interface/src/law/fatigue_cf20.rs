@@ -90,13 +90,12 @@
 use super::bilinear::LinearSoftening;
 use super::cohesive::{CohesiveLaw, Equivalent, Softening};
 use super::fatigue_paris::{
-    damaged_traction, energy_of_stiffness, fatigue_base, static_damage, stiffness_of_energy,
+    damaged_traction, energy_of_stiffness, fatigue_base, fatigue_law_common, static_damage,
+    stiffness_of_energy,
 };
-use junta_core::law::{
-    output, FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse,
-};
+use junta_core::law::{output, InterfaceLaw, LawContext, LawError};
 use junta_core::registry::{LawEntry, ParamDoc};
-use junta_core::{CoreError, Dual3, MatrixKind};
+use junta_core::{CoreError, Dual3};
 use std::sync::Arc;
 
 /// Registry key.
@@ -360,56 +359,7 @@ impl FatigueCf20 {
 }
 
 impl InterfaceLaw for FatigueCf20 {
-    fn key(&self) -> &'static str {
-        KEY
-    }
-
-    fn state_len(&self) -> usize {
-        slot::STATE_LEN
-    }
-
-    fn init_state(&self, state: &mut [f64]) {
-        state.iter_mut().for_each(|v| *v = 0.0);
-    }
-
-    fn evaluate(&self, ctx: &LawContext<'_>, trial: &mut [f64]) -> Result<LawResponse, LawError> {
-        let (t, d) = self.evaluate_dual(ctx, trial)?;
-        let (ks, kn) = (self.base.k_s, self.base.k_n);
-        let mut tangent = t.map(|x| x.d);
-        if ctx.step.secant {
-            let s = 1.0 - d.v;
-            tangent = [[s * ks, 0.0, 0.0], [0.0, s * ks, 0.0], [0.0, 0.0, 0.0]];
-            tangent[2][2] = if ctx.jump[2] > 0.0 { s * kn } else { kn };
-        }
-        Ok(LawResponse {
-            traction: t.map(|x| x.v),
-            tangent,
-        })
-    }
-
-    fn initial_stiffness(&self) -> [f64; 3] {
-        self.base.initial_stiffness()
-    }
-
-    fn penalty_role(&self) -> junta_core::PenaltyRole {
-        junta_core::PenaltyRole::Cohesive
-    }
-
-    fn is_failed(&self, state: &[f64]) -> bool {
-        state.get(slot::DAMAGE).copied().unwrap_or(0.0) >= output::DAMAGED_THRESHOLD
-    }
-
-    fn failure_index(&self, state: &[f64]) -> Option<f64> {
-        state.get(slot::INDEX).copied()
-    }
-
-    fn tangent_kind(&self) -> MatrixKind {
-        self.base.tangent_kind()
-    }
-
-    fn tangent_is_symmetrised(&self) -> bool {
-        self.base.tangent_is_symmetrised()
-    }
+    fatigue_law_common!(KEY, slot);
 
     fn output_names(&self) -> &'static [&'static str] {
         &[
@@ -439,14 +389,6 @@ impl InterfaceLaw for FatigueCf20 {
             )
             .v;
         }
-    }
-
-    fn fracture_properties(&self) -> Option<FractureProperties> {
-        self.base.fracture_properties()
-    }
-
-    fn warnings(&self) -> Vec<String> {
-        self.base.warnings()
     }
 }
 

@@ -178,11 +178,9 @@
 
 use super::bilinear::LinearSoftening;
 use super::cohesive::{CohesiveLaw, Equivalent, Softening};
-use junta_core::law::{
-    output, FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse,
-};
+use junta_core::law::{output, InterfaceLaw, LawContext, LawError};
 use junta_core::registry::{LawEntry, ParamDoc};
-use junta_core::{CoreError, CrackDrive, Dual3, MatrixKind};
+use junta_core::{CoreError, CrackDrive, Dual3};
 use std::sync::Arc;
 
 /// Registry key.
@@ -679,57 +677,83 @@ impl FatigueBilinear {
     }
 }
 
-impl InterfaceLaw for FatigueBilinear {
-    fn key(&self) -> &'static str {
-        KEY
-    }
-
-    fn state_len(&self) -> usize {
-        slot::STATE_LEN
-    }
-
-    fn init_state(&self, state: &mut [f64]) {
-        state.iter_mut().for_each(|v| *v = 0.0);
-    }
-
-    fn evaluate(&self, ctx: &LawContext<'_>, trial: &mut [f64]) -> Result<LawResponse, LawError> {
-        let (t, d) = self.evaluate_dual(ctx, trial)?;
-        let (ks, kn) = (self.base.k_s, self.base.k_n);
-        let mut tangent = t.map(|x| x.d);
-        if ctx.step.secant {
-            let s = 1.0 - d.v;
-            tangent = [[s * ks, 0.0, 0.0], [0.0, s * ks, 0.0], [0.0, 0.0, 0.0]];
-            tangent[2][2] = if ctx.jump[2] > 0.0 { s * kn } else { kn };
+/// The parts of [`InterfaceLaw`] every fatigue law built on a static
+/// `bilinear` part (`self.base`) and the `bilinear` slots (`$slot::DAMAGE`,
+/// `$slot::INDEX`, `$slot::STATE_LEN`) shares: the key, the state, the
+/// response of `self.evaluate_dual` (with the secant tangent the drivers
+/// may ask for), the penalty, failure and tangent-kind queries, fracture
+/// properties and warnings.
+macro_rules! fatigue_law_common {
+    ($key:expr, $slot:ident) => {
+        fn key(&self) -> &'static str {
+            $key
         }
-        Ok(LawResponse {
-            traction: t.map(|x| x.v),
-            tangent,
-        })
-    }
 
-    fn initial_stiffness(&self) -> [f64; 3] {
-        self.base.initial_stiffness()
-    }
+        fn state_len(&self) -> usize {
+            $slot::STATE_LEN
+        }
 
-    fn penalty_role(&self) -> junta_core::PenaltyRole {
-        junta_core::PenaltyRole::Cohesive
-    }
+        fn init_state(&self, state: &mut [f64]) {
+            state.iter_mut().for_each(|v| *v = 0.0);
+        }
 
-    fn is_failed(&self, state: &[f64]) -> bool {
-        state.get(slot::DAMAGE).copied().unwrap_or(0.0) >= output::DAMAGED_THRESHOLD
-    }
+        fn evaluate(
+            &self,
+            ctx: &junta_core::law::LawContext<'_>,
+            trial: &mut [f64],
+        ) -> Result<junta_core::law::LawResponse, junta_core::law::LawError> {
+            let (t, d) = self.evaluate_dual(ctx, trial)?;
+            let (ks, kn) = (self.base.k_s, self.base.k_n);
+            let mut tangent = t.map(|x| x.d);
+            if ctx.step.secant {
+                let s = 1.0 - d.v;
+                tangent = [[s * ks, 0.0, 0.0], [0.0, s * ks, 0.0], [0.0, 0.0, 0.0]];
+                tangent[2][2] = if ctx.jump[2] > 0.0 { s * kn } else { kn };
+            }
+            Ok(junta_core::law::LawResponse {
+                traction: t.map(|x| x.v),
+                tangent,
+            })
+        }
 
-    fn failure_index(&self, state: &[f64]) -> Option<f64> {
-        state.get(slot::INDEX).copied()
-    }
+        fn initial_stiffness(&self) -> [f64; 3] {
+            self.base.initial_stiffness()
+        }
 
-    fn tangent_kind(&self) -> MatrixKind {
-        self.base.tangent_kind()
-    }
+        fn penalty_role(&self) -> junta_core::PenaltyRole {
+            junta_core::PenaltyRole::Cohesive
+        }
 
-    fn tangent_is_symmetrised(&self) -> bool {
-        self.base.tangent_is_symmetrised()
-    }
+        fn is_failed(&self, state: &[f64]) -> bool {
+            state.get($slot::DAMAGE).copied().unwrap_or(0.0)
+                >= junta_core::law::output::DAMAGED_THRESHOLD
+        }
+
+        fn failure_index(&self, state: &[f64]) -> Option<f64> {
+            state.get($slot::INDEX).copied()
+        }
+
+        fn tangent_kind(&self) -> junta_core::MatrixKind {
+            self.base.tangent_kind()
+        }
+
+        fn tangent_is_symmetrised(&self) -> bool {
+            self.base.tangent_is_symmetrised()
+        }
+
+        fn fracture_properties(&self) -> Option<junta_core::FractureProperties> {
+            self.base.fracture_properties()
+        }
+
+        fn warnings(&self) -> Vec<String> {
+            self.base.warnings()
+        }
+    };
+}
+pub(crate) use fatigue_law_common;
+
+impl InterfaceLaw for FatigueBilinear {
+    fatigue_law_common!(KEY, slot);
 
     fn output_names(&self) -> &'static [&'static str] {
         &[
@@ -756,10 +780,6 @@ impl InterfaceLaw for FatigueBilinear {
         }
     }
 
-    fn fracture_properties(&self) -> Option<FractureProperties> {
-        self.base.fracture_properties()
-    }
-
     fn fatigue_growth_rate(&self, g_max: f64, b: f64, r_ratio: f64) -> Option<(f64, f64)> {
         let (_, g_c, _) = self.base.mode_properties(b);
         let dg = (1.0 - r_ratio * r_ratio) * g_max;
@@ -769,10 +789,6 @@ impl InterfaceLaw for FatigueBilinear {
             0.0
         };
         Some((g_c, rate))
-    }
-
-    fn warnings(&self) -> Vec<String> {
-        self.base.warnings()
     }
 }
 
