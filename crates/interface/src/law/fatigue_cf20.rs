@@ -90,8 +90,8 @@
 use super::bilinear::LinearSoftening;
 use super::cohesive::{CohesiveLaw, Equivalent, Softening};
 use super::fatigue_paris::{
-    damaged_traction, energy_of_stiffness, fatigue_base, fatigue_law_common, static_damage,
-    stiffness_of_energy,
+    damaged_traction, energy_damage_at, energy_of_stiffness, fatigue_base, fatigue_law_common,
+    static_damage, stiffness_of_energy,
 };
 use junta_core::law::{output, InterfaceLaw, LawContext, LawError};
 use junta_core::registry::{LawEntry, ParamDoc};
@@ -380,14 +380,7 @@ impl InterfaceLaw for FatigueCf20 {
             out[2] = state[MODE_RATIO];
             out[3] = state[FATIGUE_DAMAGE];
             out[4] = state[DAMAGE_RATE];
-            let (lam0, g_c, k_b) = self.base.mode_properties(state[MODE_RATIO]);
-            let lam_f = 2.0 * g_c / (k_b * lam0);
-            out[5] = energy_of_stiffness(
-                Dual3::cst(state[DAMAGE]),
-                Dual3::cst(lam0),
-                Dual3::cst(lam_f),
-            )
-            .v;
+            out[5] = energy_damage_at(&self.base, state[DAMAGE], state[MODE_RATIO]);
         }
     }
 }

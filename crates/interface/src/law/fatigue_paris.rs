@@ -369,6 +369,17 @@ pub(crate) fn energy_of_stiffness(d: Dual3, lam0: Dual3, lam_f: Dual3) -> Dual3 
     d * lam0 / (lam_f * (1.0 - d) + d * lam0)
 }
 
+/// The energy damage of a point of the static law `base` with stiffness
+/// damage `d` at mode ratio `b` (1 when failed).
+pub(crate) fn energy_damage_at(base: &CohesiveLaw, d: f64, b: f64) -> f64 {
+    if d >= 1.0 {
+        return 1.0;
+    }
+    let (lam0, g_c, k_b) = base.mode_properties(b);
+    let lam_f = 2.0 * g_c / (k_b * lam0);
+    d * lam0 / (lam_f * (1.0 - d) + d * lam0)
+}
+
 /// The stiffness damage of the energy damage `big_d` ([`energy_of_stiffness`] inverted).
 pub(crate) fn stiffness_of_energy(big_d: Dual3, lam0: Dual3, lam_f: Dual3) -> Dual3 {
     lam_f * big_d / (lam0 + big_d * (lam_f - lam0))
@@ -515,12 +526,7 @@ impl FatigueBilinear {
     /// Energy damage `D(d)` of a point with stiffness damage `d` at mode
     /// ratio `b` (the bilinear map of the module docs).
     pub fn energy_damage(&self, d: f64, b: f64) -> f64 {
-        if d >= 1.0 {
-            return 1.0;
-        }
-        let (lam0, g_c, k_b) = self.base.mode_properties(b);
-        let lam_f = 2.0 * g_c / (k_b * lam0);
-        d * lam0 / (lam_f * (1.0 - d) + d * lam0)
+        energy_damage_at(&self.base, d, b)
     }
 
     /// Local `G_max`: the area under the static bilinear curve up to `lam`.
