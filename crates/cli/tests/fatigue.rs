@@ -26,11 +26,16 @@ const AREA: f64 = 1.0;
 /// al. 2007: `r = C (DG / G_c)^m / l_cz`, `DG = (1 - R^2) G_max`, `G_max`
 /// the area under the static curve up to the jump.
 fn closed_form() -> (f64, f64) {
+    closed_form_at(DELTA, R)
+}
+
+/// [`closed_form`] at the opening `delta` and load ratio `r`.
+fn closed_form_at(delta: f64, r: f64) -> (f64, f64) {
     let (l0, lf) = (N / K, 2.0 * G_C / N);
-    let d0 = (DELTA - l0) / (lf - l0);
+    let d0 = (delta - l0) / (lf - l0);
     let g_max =
-        0.5 * N * l0 + N * (lf * (DELTA - l0) - 0.5 * (DELTA * DELTA - l0 * l0)) / (lf - l0);
-    let dg = (1.0 - R * R) * g_max;
+        0.5 * N * l0 + N * (lf * (delta - l0) - 0.5 * (delta * delta - l0 * l0)) / (lf - l0);
+    let dg = (1.0 - r * r) * g_max;
     (d0, C_I * (dg / G_C).powf(M_I) / L_CZ)
 }
 
@@ -143,6 +148,72 @@ fn restart_inside_the_fatigue_step_repeats_the_run() {
     );
     restart_ok(&parts);
     assert_eq!(curve_without_seconds(&whole), curve_without_seconds(&parts));
+}
+
+/// Block loading: 5e6 cycles at the example's opening (R = 0.1), then the
+/// opening raised by a fifth (a static step, the cycles held) and 1e7
+/// cycles at R = 0.2. The energy damage grows at the first block's rate,
+/// keeps its value through the ramp (above the static damage of the new
+/// opening), then grows at the second block's rate until the point fails:
+/// every row against that piecewise closed form.
+#[test]
+fn blocks_of_different_amplitude_grow_damage_block_by_block() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = scene_with(dir.path(), "blocks.toml", |t| {
+        t.replace(
+            "cycles = 2.0e7",
+            "blocks = [{ load = 1.0, cycles = 5.0e6 }, { load = 1.2, cycles = 1.0e7, load_ratio = 0.2 }]",
+        )
+    });
+    let out = dir.path().join("blocks");
+    let s = run_ok(&input, &out);
+    assert_eq!(s["status"], "completed", "{s}");
+    let blocks = s["fatigue"]["blocks"].as_array().unwrap();
+    assert_eq!(blocks.len(), 2, "{s}");
+    // steps: 0 loading, 1 first block, 2 the ramp to 1.2, 3 second block
+    assert_eq!(blocks[1]["step"], 3);
+    let (d1, r1) = closed_form_at(DELTA, R);
+    let (d2_static, r2) = closed_form_at(1.2 * DELTA, 0.2);
+    let d_switch = d1 + r1 * 5.0e6;
+    assert!(d_switch > d2_static);
+    let rows = rows(&out);
+    let mut checked = [0usize; 3];
+    for &(step, cycles, dissipated) in &rows {
+        let expect = match step {
+            1 => d1 + r1 * cycles,
+            2 => d_switch,
+            3 => (d_switch + r2 * (cycles - 5.0e6)).min(1.0),
+            _ => continue,
+        };
+        checked[step - 1] += 1;
+        let expect = G_C * AREA * expect;
+        assert!(
+            (dissipated - expect).abs() <= 1e-4 * expect,
+            "step {step}, N = {cycles}: {dissipated} against {expect}"
+        );
+    }
+    assert!(checked.iter().all(|&n| n > 0), "{checked:?}");
+    assert_eq!(rows.last().unwrap().1, 1.5e7);
+    // a bad block, or both cycles and blocks: the key is named
+    for (fatigue, expect) in [
+        (
+            "blocks = [{ load = 1.0, cycles = -5.0 }]",
+            "fatigue.blocks[0].cycles",
+        ),
+        (
+            "cycles = 2.0e7\nblocks = [{ load = 1.0, cycles = 5.0 }]",
+            "not both",
+        ),
+    ] {
+        let bad = scene_with(dir.path(), "bad.toml", |t| {
+            t.replace("cycles = 2.0e7", fatigue)
+        });
+        let err = run_err(&bad);
+        assert!(
+            err.contains("bad.toml") && err.contains(expect),
+            "{expect}: {err}"
+        );
+    }
 }
 
 /// `[fatigue]` mistakes name the file and key and what is valid.

@@ -60,8 +60,9 @@ pub struct Model {
 pub struct FatigueProgram {
     /// Cycles at the end of each step of the program.
     pub cycle_steps: Vec<f64>,
-    /// Load ratio `R = min / max` of the cycle, in `[0, 1)`.
-    pub load_ratio: f64,
+    /// Load ratio `R = min / max` of the cycle in each step of the
+    /// program (steps past the end keep the last value).
+    pub load_ratios: Vec<f64>,
     /// Largest damage growth of any point in one increment of a fatigue
     /// step (the laws' `damage_rate` times `delta_cycles`).
     pub max_damage_increment: f64,
@@ -255,9 +256,13 @@ impl Model {
             .unwrap_or(0.0)
     }
 
-    /// The load ratio of the fatigue program (0 without one).
-    pub fn load_ratio(&self) -> f64 {
-        self.fatigue.as_ref().map_or(0.0, |f| f.load_ratio)
+    /// The load ratio of step `step` of the fatigue program (0 without
+    /// one).
+    pub fn load_ratio(&self, step: usize) -> f64 {
+        self.fatigue.as_ref().map_or(0.0, |f| {
+            let r = &f.load_ratios;
+            r.get(step).or(r.last()).copied().unwrap_or(0.0)
+        })
     }
 
     /// Sparsity pattern and colouring for this model, with its temperature

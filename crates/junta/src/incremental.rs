@@ -205,7 +205,7 @@ impl Engine<'_> {
             temperature_factor: r.temperature_factor,
             cycles: r.cycles,
             delta_cycles: 0.0,
-            load_ratio: model.load_ratio(),
+            load_ratio: model.load_ratio(r.step),
             crack_drive: None,
         };
         let ifs = output::interface_results_at(model, v.u, v.state, step)?;
@@ -777,13 +777,21 @@ fn base_summary(input: &Path, p: &Prepared, log: &RunLog, status: &str) -> serde
             t
         }),
         "fatigue": p.model.fatigue.as_ref().map(|f| {
-            let fatigue_step = f.cycle_steps.len().saturating_sub(1);
+            // the fatigue steps: those whose cycle count moves
+            let moves = |s: usize| f.cycle_steps[s] > if s == 0 { 0.0 } else { f.cycle_steps[s - 1] };
+            let fatigue_steps: Vec<usize> = (0..f.cycle_steps.len()).filter(|&s| moves(s)).collect();
             json!({
                 "cycles_end": f.cycle_steps.last(),
                 "cycles": rows.last().map(|r| r.cycles),
-                "load_ratio": f.load_ratio,
+                "load_ratio": fatigue_steps.first().map(|&s| f.load_ratios[s]),
+                "blocks": fatigue_steps.iter().map(|&s| json!({
+                    "step": s,
+                    "load_factor": p.analysis.steps.get(s),
+                    "cycles_end": f.cycle_steps[s],
+                    "load_ratio": f.load_ratios[s],
+                })).collect::<Vec<_>>(),
                 "max_damage_increment": f.max_damage_increment,
-                "increments": rows.iter().filter(|r| r.step == fatigue_step).count(),
+                "increments": rows.iter().filter(|r| fatigue_steps.contains(&r.step)).count(),
             })
         }),
     })

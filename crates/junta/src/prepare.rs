@@ -606,40 +606,89 @@ fn fatigue_program(
     if analysis.control == scene::Control::ArcLength {
         bail!("{at}: key `fatigue`: the fatigue step holds the load while the cycles run, which path following throughout (`analysis.control = \"arc_length\"`) cannot drive; use control = \"auto\" (the default) or \"load\"");
     }
-    if !(f.cycles > 0.0 && f.cycles.is_finite()) {
-        bail!("{at}: key `fatigue.cycles` = {}: give the cycles at the end of the fatigue step, positive and finite", f.cycles);
-    }
-    if !(0.0..1.0).contains(&f.load_ratio) {
-        bail!("{at}: key `fatigue.load_ratio` = {}: R = min / max of the load cycle must be in [0, 1)", f.load_ratio);
-    }
     if !(f.max_damage_increment > 0.0 && f.max_damage_increment <= 1.0) {
         bail!("{at}: key `fatigue.max_damage_increment` = {}: the damage growth allowed per increment must be in (0, 1]", f.max_damage_increment);
     }
     let Some(&held) = analysis.steps.last() else {
         bail!("{at}: key `fatigue`: the load program (`analysis.steps`) is empty: it must load the model to the cycle's maximum first");
     };
-    analysis.steps.push(held);
-    let mut cycle_steps = vec![0.0; analysis.steps.len() - 1];
-    cycle_steps.push(f.cycles);
+    let blocks = fatigue_blocks(&at.to_string(), f, held)?;
+    // the static steps: no cycles, the first block's load ratio
+    let mut cycle_steps = vec![0.0; analysis.steps.len()];
+    let mut load_ratios = vec![blocks[0].2; analysis.steps.len()];
+    let (mut n, mut current) = (0.0, held);
+    for &(load, cycles, r) in &blocks {
+        if load != current {
+            // to the block's maximum, the cycles held
+            analysis.steps.push(load);
+            cycle_steps.push(n);
+            load_ratios.push(r);
+            current = load;
+        }
+        n += cycles;
+        analysis.steps.push(load);
+        cycle_steps.push(n);
+        load_ratios.push(r);
+    }
     let front_direction = match f.energy_release_rate.as_str() {
         "local" => None,
         "crack_front" => Some(fatigue_direction(&at.to_string(), f, sf, model)?),
         other => bail!("{at}: key `fatigue.energy_release_rate` = \"{other}\": valid values are \"crack_front\" (the J integral of the cohesive tractions, measured on the interface) and \"local\" (each point's own estimate)"),
     };
+    let first_step = analysis.steps.len() - cycle_steps.iter().filter(|&&c| c > 0.0).count();
     model.fatigue = Some(junta_core::FatigueProgram {
         cycle_steps,
-        load_ratio: f.load_ratio,
+        load_ratios,
         max_damage_increment: f.max_damage_increment,
         front_direction,
     });
     notes.push(format!(
-        "{at}: [fatigue]: a fatigue step (step {} of curve.csv) holds the load factor at {held} while the cycles go from 0 to {} (R = {}; at most {} damage growth per increment)",
-        analysis.steps.len() - 1,
-        f.cycles,
-        f.load_ratio,
+        "{at}: [fatigue]: {} block(s) of cycles from step {first_step} of curve.csv, {n} cycles in all (at most {} damage growth per increment)",
+        blocks.len(),
         f.max_damage_increment
     ));
     Ok(())
+}
+
+/// The blocks of a `[fatigue]` as `(load factor, cycles, load ratio)`:
+/// `blocks`, or one block of `cycles` at the program's last load factor
+/// `held`. Checks each value and says which key is wrong.
+fn fatigue_blocks(at: &str, f: &scene::FatigueSpec, held: f64) -> Result<Vec<(f64, f64, f64)>> {
+    let ratio = |r: f64, key: &str| -> Result<f64> {
+        if (0.0..1.0).contains(&r) {
+            Ok(r)
+        } else {
+            bail!("{at}: key `{key}` = {r}: R = min / max of the load cycle must be in [0, 1)")
+        }
+    };
+    let count = |c: f64, key: &str| -> Result<f64> {
+        if c > 0.0 && c.is_finite() {
+            Ok(c)
+        } else {
+            bail!("{at}: key `{key}` = {c}: give the cycles, positive and finite")
+        }
+    };
+    let r0 = ratio(f.load_ratio, "fatigue.load_ratio")?;
+    match (f.cycles, f.blocks.is_empty()) {
+        (Some(c), true) => Ok(vec![(held, count(c, "fatigue.cycles")?, r0)]),
+        (None, false) => f
+            .blocks
+            .iter()
+            .enumerate()
+            .map(|(k, b)| {
+                if !b.load.is_finite() {
+                    bail!("{at}: key `fatigue.blocks[{k}].load` = {}: give the load factor at the cycle's maximum", b.load);
+                }
+                let r = match b.load_ratio {
+                    Some(r) => ratio(r, &format!("fatigue.blocks[{k}].load_ratio"))?,
+                    None => r0,
+                };
+                Ok((b.load, count(b.cycles, &format!("fatigue.blocks[{k}].cycles"))?, r))
+            })
+            .collect(),
+        (Some(_), false) => bail!("{at}: key `fatigue`: give either `cycles` (one block at the program's last load factor) or `blocks`, not both"),
+        (None, true) => bail!("{at}: key `fatigue.cycles`: missing; give the cycles of the fatigue step, e.g. cycles = 1.0e6 (or `blocks = [{{ load = .., cycles = .. }}, ..]`)"),
+    }
 }
 
 /// The unit direction of crack growth of a `crack_front` fatigue step:

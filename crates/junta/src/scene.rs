@@ -72,13 +72,19 @@ pub struct Scene {
 /// The load factor is held at the program's last value, the envelope
 /// maximum of a constant-amplitude cycle of ratio `load_ratio`, while the
 /// cycle count goes from 0 to `cycles` (Turon et al. 2007's cycle jump;
-/// [`junta_core::FatigueProgram`]); fatigue laws (`fatigue_bilinear`) grow
-/// their damage with the increment's cycles.
+/// [`junta_core::FatigueProgram`]); fatigue laws (`fatigue_bilinear`,
+/// `fatigue_cf20`) grow their damage with the increment's cycles. With
+/// `blocks` instead of `cycles`: a sequence of constant-amplitude blocks,
+/// each its own envelope maximum, cycles and load ratio (block loading).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FatigueSpec {
-    /// Cycles at the end of the fatigue step.
-    pub cycles: f64,
+    /// Cycles at the end of the fatigue step (one block at the program's
+    /// last load factor); not with `blocks`.
+    pub cycles: Option<f64>,
+    /// Blocks of constant amplitude, in order; not with `cycles`.
+    #[serde(default)]
+    pub blocks: Vec<FatigueBlock>,
     /// `R = min / max` of the load cycle, in `[0, 1)`. Default 0.
     #[serde(default)]
     pub load_ratio: f64,
@@ -97,6 +103,20 @@ pub struct FatigueSpec {
     /// crack`'s direction, else the axis along which the interfaces are
     /// longest).
     pub direction: Option<[f64; 3]>,
+}
+
+/// One block of `[fatigue] blocks`: the envelope maximum `load` (a load
+/// factor), the `cycles` run at it, and its load ratio (default
+/// `[fatigue] load_ratio`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FatigueBlock {
+    /// Load factor at the cycle's maximum.
+    pub load: f64,
+    /// Cycles in this block.
+    pub cycles: f64,
+    /// `R = min / max` of the block's cycle.
+    pub load_ratio: Option<f64>,
 }
 
 fn default_energy_release_rate() -> String {

@@ -338,7 +338,7 @@ impl SummaryJson {
                     .elements
                     .iter()
                     .find(|e| e.fatigue_growth_rate(1.0, 0.0, 0.0).is_some())
-                    .map(|e| (e.clone(), f.load_ratio))
+                    .map(|e| (e.clone(), f.load_ratios.last().copied().unwrap_or(0.0)))
             }),
         }
     }

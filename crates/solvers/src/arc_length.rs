@@ -1188,7 +1188,7 @@ impl<'a> PathRun<'a> {
             temperature_factor: self.w.model.temperature_factor(self.cur.step, 1.0),
             cycles: self.w.model.cycles(self.cur.step, 1.0),
             delta_cycles: 0.0,
-            load_ratio: self.w.model.load_ratio(),
+            load_ratio: self.w.model.load_ratio(self.cur.step),
             crack_drive: None,
         };
         let program_step = self.cur.step;
@@ -1702,7 +1702,7 @@ impl PathAttempt<'_, '_> {
             temperature_factor: self.w.model.temperature_factor(self.cur.step, 1.0),
             cycles: self.w.model.cycles(self.cur.step, 1.0),
             delta_cycles: 0.0,
-            load_ratio: self.w.model.load_ratio(),
+            load_ratio: self.w.model.load_ratio(self.cur.step),
             crack_drive: None,
         }
     }

@@ -904,7 +904,7 @@ impl<'m> Work<'m> {
             temperature_factor: self.model.temperature_factor(cur.step, cur.t),
             cycles: self.model.cycles(cur.step, cur.t),
             delta_cycles: 0.0,
-            load_ratio: self.model.load_ratio(),
+            load_ratio: self.model.load_ratio(cur.step),
             crack_drive: None,
         };
         let ev = self.evaluate(state, step, cur.lambda, cur.force_peak)?;
@@ -1924,7 +1924,7 @@ impl LoadRun<'_> {
                 temperature_factor: model.temperature_factor(cur.step, t_new),
                 cycles: model.cycles(cur.step, t_new),
                 delta_cycles: model.cycles(cur.step, t_new) - model.cycles(cur.step, cur.t),
-                load_ratio: model.load_ratio(),
+                load_ratio: model.load_ratio(cur.step),
                 crack_drive,
             };
             let attempt = self
