@@ -23,8 +23,9 @@
 //! energy release rate of the crack whatever shape the tractions have: the
 //! static softening curve or one lowered by fatigue damage, unlike the
 //! area under one point's static curve, which is what a law alone can use.
-//! Turon et al. 2018 (Compos. A 109, 163-181) drive their fatigue damage
-//! rate by the energy release rate at the crack front for the same reason.
+//! Bak, Turon, Lindgaard & Lund 2016 (Int. J. Numer. Meth. Eng. 106,
+//! 163-191) drive their fatigue damage rate by a crack-front energy
+//! release rate and a measured process zone for the same reason.
 //!
 //! # Discretisation
 //!
@@ -38,13 +39,15 @@
 //! J_line = | sum_i (t_i + t_{i+1}) / 2 . (delta_i - delta_{i+1}) |
 //! ```
 //!
-//! exact for the linear springs ahead of the zone. The process zone of a
-//! line is its points past onset (`failure_index >= 1`) or damaged, not
-//! failed; its length is the sum of their tributary lengths along `d`
+//! exact for the linear springs ahead of the zone; its shear components'
+//! part over the whole is the mode ratio `G_II / G`. The process zone of a
+//! line is its points past onset (`failure_index >= 1`) or damaged, with
+//! damage below 1 (the points a fatigue law damages in the next
+//! increment); its length is the sum of their tributary lengths along `d`
 //! (half the distance to each neighbour on the line). The measure of the
-//! run is that of the line with the largest J (on a straight front of
-//! uniform width, as a DCB or an ENF, every line gives the same J; the
-//! spread is reported so that a curved front is seen).
+//! run is that of the line with the largest J: on a straight front of
+//! uniform width (a DCB, an ENF) every line gives the same J; on a curved
+//! front that line speaks for the whole front.
 
 use crate::element::PointOutput;
 use crate::state::StateStore;
@@ -63,9 +66,6 @@ pub struct CrackDrive {
     /// Length of that line's process zone along the direction (0: no
     /// point of it is past onset).
     pub process_zone_length: f64,
-    /// Smallest J of a line with a process zone, over the largest (1 on a
-    /// uniform front; 0 when no line has a process zone).
-    pub front_uniformity: f64,
 }
 
 /// One interface point, as the J integral reads it.
@@ -123,7 +123,6 @@ fn line_measure(line: &[LinePoint]) -> CrackDrive {
             0.0
         },
         process_zone_length: zone,
-        front_uniformity: 1.0,
     }
 }
 
@@ -174,21 +173,12 @@ pub fn crack_drive_of<'a>(
         .collect();
     points.sort_by(|a, b| a.line.cmp(&b.line).then(a.s.total_cmp(&b.s)));
     let mut best = CrackDrive::default();
-    let mut smallest = f64::INFINITY;
     for line in points.chunk_by(|a, b| a.line == b.line) {
         let m = line_measure(line);
-        if m.process_zone_length > 0.0 {
-            smallest = smallest.min(m.energy_release_rate);
-        }
         if m.energy_release_rate > best.energy_release_rate {
             best = m;
         }
     }
-    best.front_uniformity = if smallest.is_finite() && best.energy_release_rate > 0.0 {
-        smallest / best.energy_release_rate
-    } else {
-        0.0
-    };
     Some(best)
 }
 
@@ -205,5 +195,66 @@ impl Model {
         let mut outputs = Vec::new();
         self.for_each_interface_point(u, state, |p| outputs.push(p.clone()))?;
         Ok(crack_drive_of(&outputs, direction))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A point at `x` along the line `y`, with normal and shear jumps and
+    /// a linear spring `K` scaled by `(1 - d)`.
+    fn point(x: f64, y: f64, opening: f64, slip: f64, d: f64, index: f64) -> PointOutput {
+        let k = 1.0e4 * (1.0 - d);
+        PointOutput {
+            position: [x, y, 0.0],
+            values: vec![
+                ("jump", vec![slip, 0.0, opening]),
+                ("traction", vec![k * slip, 0.0, k * opening]),
+                ("damage", vec![d]),
+                ("failure_index", vec![index]),
+            ],
+        }
+    }
+
+    /// Two lines of linear springs whose jumps fall linearly from the
+    /// crack mouth to 0: the trapezoid sum telescopes, so J is exactly the
+    /// energy of the first spring, `K (delta_n^2 + delta_s^2) / 2`, and
+    /// the mode ratio its shear part; the line with the larger J is the
+    /// one reported, whatever the direction's sign; the zone is the
+    /// tributary length of its points past onset (x = 0 and 1: 1 + 1).
+    #[test]
+    fn j_of_linear_springs_is_the_mouth_springs_energy() {
+        let mut pts = Vec::new();
+        for (y, scale) in [(0.0, 1.0), (1.0, 0.5)] {
+            for i in 0..=10 {
+                let x = i as f64;
+                let jump = 1e-3 * scale * (10.0 - x) / 10.0;
+                pts.push(point(
+                    x,
+                    y,
+                    jump,
+                    0.5 * jump,
+                    0.0,
+                    if i <= 1 { 1.2 } else { 0.3 },
+                ));
+            }
+        }
+        let expect = 0.5 * 1.0e4 * (1e-3f64.powi(2) + 0.5e-3f64.powi(2));
+        for dir in [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]] {
+            let c = crack_drive_of(&pts, dir).unwrap();
+            assert!(
+                (c.energy_release_rate / expect - 1.0).abs() < 1e-12,
+                "{} against {expect}",
+                c.energy_release_rate
+            );
+            assert!((c.mode_ratio - 0.2).abs() < 1e-12, "{}", c.mode_ratio);
+            assert!(
+                (c.process_zone_length - 2.0).abs() < 1e-12,
+                "{}",
+                c.process_zone_length
+            );
+        }
+        assert!(crack_drive_of(&[], [1.0, 0.0, 0.0]).is_none());
     }
 }

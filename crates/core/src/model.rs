@@ -51,8 +51,10 @@ pub struct Model {
 /// the load factor held and `N` moving is a fatigue step (the envelope
 /// maximum of a constant-amplitude load held while the cycles run, Turon
 /// et al. 2007's cycle jump). `N` is a function of the cursor (step,
-/// fraction), so checkpoints need nothing more. The drivers pass `N`, the
-/// increment's `delta_cycles` and the load ratio to the laws
+/// fraction), so checkpoints need nothing more; a program of several
+/// blocks is several such steps, each with its load ratio, with static
+/// steps between blocks of different maxima. The drivers pass `N`, the
+/// increment's `delta_cycles` and the step's load ratio to the laws
 /// ([`crate::element::StepInfo`]) and size a fatigue step's increments so
 /// that no point's damage grows by more than `max_damage_increment` (from
 /// the laws' committed `damage_rate`, [`Model::max_point_output`]).

@@ -90,7 +90,6 @@ fn measured(j: f64, b: f64, zone: f64) -> Option<CrackDrive> {
         energy_release_rate: j,
         mode_ratio: b,
         process_zone_length: zone,
-        front_uniformity: 1.0,
     })
 }
 
