@@ -132,25 +132,35 @@ pub fn crack_drive_of<'a>(
     outputs: impl IntoIterator<Item = &'a PointOutput>,
     direction: [f64; 3],
 ) -> Option<CrackDrive> {
-    let d = direction;
-    let dot = |a: [f64; 3]| a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
-    let mut raw: Vec<([f64; 3], LinePoint)> = Vec::new();
-    for p in outputs {
-        let s = dot(p.position);
-        let transverse = [0, 1, 2].map(|c| p.position[c] - s * d[c]);
-        let damage = p.get(crate::law::output::DAMAGE).map_or(0.0, |v| v[0]);
-        let in_zone = damage < 1.0 && (damage > 0.0 || scalar(p, "failure_index") >= 1.0);
-        raw.push((
-            transverse,
-            LinePoint {
-                line: [0; 3],
-                s,
-                jump: three(p.get("jump")),
-                traction: three(p.get("traction")),
-                in_zone,
-            },
-        ));
-    }
+    let raw = outputs
+        .into_iter()
+        .map(|p| line_point(p, direction))
+        .collect();
+    measure(raw)
+}
+
+/// A point's transverse position (which line it is on) and what the J
+/// integral reads of it.
+fn line_point(p: &PointOutput, d: [f64; 3]) -> ([f64; 3], LinePoint) {
+    let s = p.position[0] * d[0] + p.position[1] * d[1] + p.position[2] * d[2];
+    let transverse = [0, 1, 2].map(|c| p.position[c] - s * d[c]);
+    let damage = p.get(crate::law::output::DAMAGE).map_or(0.0, |v| v[0]);
+    let in_zone = damage < 1.0 && (damage > 0.0 || scalar(p, "failure_index") >= 1.0);
+    (
+        transverse,
+        LinePoint {
+            line: [0; 3],
+            s,
+            jump: three(p.get("jump")),
+            traction: three(p.get("traction")),
+            in_zone,
+        },
+    )
+}
+
+/// The points grouped into lines, and the measure of the line with the
+/// largest J.
+fn measure(raw: Vec<([f64; 3], LinePoint)>) -> Option<CrackDrive> {
     if raw.is_empty() {
         return None;
     }
@@ -192,9 +202,9 @@ impl Model {
         state: &StateStore,
         direction: [f64; 3],
     ) -> Result<Option<CrackDrive>, CoreError> {
-        let mut outputs = Vec::new();
-        self.for_each_interface_point(u, state, |p| outputs.push(p.clone()))?;
-        Ok(crack_drive_of(&outputs, direction))
+        let mut raw = Vec::new();
+        self.for_each_interface_point(u, state, |p| raw.push(line_point(p, direction)))?;
+        Ok(measure(raw))
     }
 }
 

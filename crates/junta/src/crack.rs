@@ -386,26 +386,19 @@ mod tests {
     /// fewest.
     #[test]
     fn process_zone_warning_needs_most_of_the_growth_under_three_points() {
-        let counts = [4, 2, 5, 2, 4];
-        let rows: Vec<_> = std::iter::once(row(1, 0.0, 0))
-            .chain(
-                counts
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &n)| row(i + 2, (i + 1) as f64, n)),
-            )
-            .collect();
-        assert_eq!(process_zone_warning(&rows), None);
-        let counts = [1, 2, 5, 2, 4];
-        let rows: Vec<_> = std::iter::once(row(1, 0.0, 0))
-            .chain(
-                counts
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &n)| row(i + 2, (i + 1) as f64, n)),
-            )
-            .collect();
-        let w = process_zone_warning(&rows).unwrap();
+        // an undamaged row, then five growing ones with these zone counts
+        let growth = |counts: [usize; 5]| -> Vec<_> {
+            std::iter::once(row(1, 0.0, 0))
+                .chain(
+                    counts
+                        .iter()
+                        .enumerate()
+                        .map(|(i, &n)| row(i + 2, (i + 1) as f64, n)),
+                )
+                .collect()
+        };
+        assert_eq!(process_zone_warning(&growth([4, 2, 5, 2, 4])), None);
+        let w = process_zone_warning(&growth([1, 2, 5, 2, 4])).unwrap();
         assert!(
             w.contains("in 3 of the 5 increments") && w.contains("fewest: 1 at increment 2"),
             "{w}"
