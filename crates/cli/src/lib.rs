@@ -143,9 +143,22 @@ enum SweepKind {
 /// Parse the command line, run it, and map the outcome to an exit code.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
-    let level = match cli.verbose {
-        0 => "warn",
-        1 => "info",
+    #[cfg(feature = "mpi")]
+    let session = match junta_mpi::Session::start_if_launched() {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    #[cfg(feature = "mpi")]
+    let writer = session.as_ref().is_none_or(junta_mpi::Session::is_root);
+    #[cfg(not(feature = "mpi"))]
+    let writer = true;
+    let level = match (cli.verbose, writer) {
+        (_, false) => "error",
+        (0, _) => "warn",
+        (1, _) => "info",
         _ => "debug",
     };
     tracing_subscriber::fmt()
@@ -156,6 +169,13 @@ pub fn main() -> ExitCode {
         )
         .with_writer(std::io::stderr)
         .init();
+    #[cfg(feature = "mpi")]
+    if session.is_some() && !matches!(cli.command, Command::Run { .. }) {
+        junta_mpi::abort_all(
+            "under mpirun only `junta run` is distributed; run the other commands in one process",
+        );
+    }
+    let progress = !cli.quiet && writer;
     let result = match cli.command {
         Command::Run {
             input,
@@ -166,11 +186,11 @@ pub fn main() -> ExitCode {
             allow_edited,
             export_matrix,
         } => match (input, restart) {
-            (_, Some(dir)) => restart_run(&dir, !cli.quiet, max_increments, allow_edited),
+            (_, Some(dir)) => restart_run(&dir, progress, writer, max_increments, allow_edited),
             (Some(input), None) => run(
                 &input,
                 output.as_deref(),
-                !cli.quiet,
+                (progress, writer),
                 max_increments,
                 solver,
                 export_matrix.as_deref(),
@@ -257,6 +277,8 @@ pub fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        #[cfg(feature = "mpi")]
+        Err(e) if session.is_some() => end_all_ranks(writer, &format!("{e:#}")),
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE
@@ -264,11 +286,28 @@ pub fn main() -> ExitCode {
     }
 }
 
+/// An error on this rank of a run over MPI ends every rank
+/// (`MPI_Abort`), so that none is left waiting in a collective. Rank 0
+/// reports at once; another rank waits two seconds first, so that an error
+/// every rank met (bad input) is reported once, by rank 0, whose abort
+/// ends the others.
+#[cfg(feature = "mpi")]
+fn end_all_ranks(root: bool, message: &str) -> ExitCode {
+    if !root {
+        std::thread::sleep(std::time::Duration::from_secs(2));
+    }
+    junta_mpi::abort_all(message)
+}
+
 /// `junta run INPUT`.
+///
+/// `(progress, writer)`: show progress; write the files and the result
+/// lines (false on the ranks of a run over MPI other than rank 0, which
+/// compute alike and write nothing).
 fn run(
     input: &Path,
     output: Option<&Path>,
-    progress: bool,
+    (progress, writer): (bool, bool),
     max_increments: Option<usize>,
     solver: Vec<String>,
     export_matrix: Option<&Path>,
@@ -279,11 +318,11 @@ fn run(
         overrides: Vec::new(),
     };
     let sim = Simulation::from_file_with(input, options)?;
-    if let Some(dir) = export_matrix {
+    if let (Some(dir), true) = (export_matrix, writer) {
         export::export_matrix(sim.model(), dir)?;
     }
     // a linear run's notes come before its solve
-    let shown = if sim.is_incremental() {
+    let shown = if sim.is_incremental() || !writer {
         0
     } else {
         for n in sim.notes() {
@@ -293,26 +332,29 @@ fn run(
     };
     let dir = output.map_or_else(|| sim.default_output(), Path::to_path_buf);
     let settings = RunSettings {
-        output: Some(dir),
+        output: writer.then_some(dir),
         max_increments,
     };
     let results = sim.run(&settings, &mut [&mut bar])?;
     bar.finish();
-    finish(input, &results, shown)
+    finish(input, &results, shown, writer)
 }
 
 /// `junta run --restart DIR`.
 fn restart_run(
     dir: &Path,
     progress: bool,
+    writer: bool,
     max_increments: Option<usize>,
     allow_edited: bool,
 ) -> Result<()> {
     let Some(restart) = junta::simulation::read_checkpoint(dir, allow_edited)? else {
-        println!("{}", junta::simulation::finished_message(dir)?);
+        if writer {
+            println!("{}", junta::simulation::finished_message(dir)?);
+        }
         return Ok(());
     };
-    for change in &restart.edits {
+    for change in restart.edits.iter().filter(|_| writer) {
         eprintln!("note: continuing with an edited input (--allow-edited): {change}");
     }
     let shown = restart.edits.len();
@@ -326,17 +368,23 @@ fn restart_run(
         ),
     );
     let settings = RunSettings {
-        output: Some(dir.to_path_buf()),
+        output: writer.then(|| dir.to_path_buf()),
         max_increments,
     };
     let results = junta::simulation::restart(dir, restart, &settings, &mut [&mut bar])?;
     bar.finish();
-    finish(&input, &results, shown)
+    finish(&input, &results, shown, writer)
 }
 
-/// Print a run's notes (past the first `shown`), warnings and result line;
-/// the run's failure is the command's error.
-fn finish(input: &Path, r: &RunResults, shown: usize) -> Result<()> {
+/// Print a run's notes (past the first `shown`), warnings and result line
+/// (when `writer`); the run's failure is the command's error.
+fn finish(input: &Path, r: &RunResults, shown: usize, writer: bool) -> Result<()> {
+    if !writer {
+        return match &r.failure {
+            Some(e) => Err(anyhow::anyhow!("{}", e.chain())),
+            None => Ok(()),
+        };
+    }
     for n in r.notes.iter().skip(shown) {
         eprintln!("note: {n}");
     }

@@ -59,7 +59,12 @@ impl Observer for Progress {
             inc.row.failed,
             inc.row.points
         ));
-        if INTERRUPTED.load(Ordering::SeqCst) {
+        let mut stop = INTERRUPTED.load(Ordering::SeqCst);
+        if let Some(c) = junta_core::distributed::collective() {
+            // over MPI ranks: all stop at the same increment
+            stop = c.any(stop);
+        }
+        if stop {
             return Ok(Flow::Interrupt);
         }
         Ok(Flow::Continue)

@@ -53,6 +53,20 @@ pub struct Assembler {
     /// ([`Assembler::set_temperature`]); the elements get it times
     /// [`StepInfo::temperature_factor`].
     temperature: Option<Vec<f64>>,
+    /// In a run over several ranks ([`crate::distributed`]): the rank of
+    /// every element and this process's rank. The pattern and the colours
+    /// then hold this rank's elements only, and every assembly ends with
+    /// the ranks' exchange ([`Assembler::share_across_ranks`]).
+    ranks: Option<Arc<RankPartition>>,
+}
+
+/// The partition of an assembler over several ranks.
+#[derive(Debug, Clone)]
+struct RankPartition {
+    /// Rank of each element, `parts[block][element]`.
+    parts: Vec<Vec<u32>>,
+    /// This process's rank.
+    rank: u32,
 }
 
 /// The constant part of an incremental analysis: the elements whose
@@ -132,11 +146,36 @@ impl Scratch {
 impl Assembler {
     /// Build the pattern and the colouring.
     pub fn new(mesh: &Mesh, dofs: &DofMap) -> Self {
+        Self::of_elements(mesh, dofs, None)
+    }
+
+    /// The assembler of rank `rank`'s elements in a run over several ranks
+    /// (`parts[block][element]` is each element's rank,
+    /// [`crate::distributed::partition_elements`]): its pattern holds the
+    /// entries of those elements only (the full number of equations, most
+    /// columns empty), and every assembly computes those elements, then
+    /// sums the internal forces over the ranks and shares their trial
+    /// states, through the installed [`crate::distributed::collective`].
+    /// The tangent it fills is this rank's part of the sum.
+    pub fn for_rank(mesh: &Mesh, dofs: &DofMap, parts: Vec<Vec<u32>>, rank: usize) -> Self {
+        Self::of_elements(
+            mesh,
+            dofs,
+            Some(Arc::new(RankPartition {
+                parts,
+                rank: rank as u32,
+            })),
+        )
+    }
+
+    /// The pattern and colouring of every element, or of one rank's.
+    fn of_elements(mesh: &Mesh, dofs: &DofMap, ranks: Option<Arc<RankPartition>>) -> Self {
         let nn = mesh.nodes.len();
+        let mine = |b: usize, e: usize| ranks.as_ref().is_none_or(|r| r.parts[b][e] == r.rank);
         // node adjacency
         let mut adj: Vec<Vec<u32>> = vec![Vec::new(); nn];
-        for b in &mesh.blocks {
-            for e in 0..b.len() {
+        for (bi, b) in mesh.blocks.iter().enumerate() {
+            for e in (0..b.len()).filter(|&e| mine(bi, e)) {
                 let c = b.element(e);
                 for &i in c {
                     adj[i].extend(c.iter().map(|&j| j as u32));
@@ -204,6 +243,12 @@ impl Assembler {
         };
         drop(adj);
         let mut colors = color_elements(mesh);
+        if ranks.is_some() {
+            for color in &mut colors {
+                color.retain(|er| mine(er.block, er.element));
+            }
+            colors.retain(|c| !c.is_empty());
+        }
         if dofs.has_equations() {
             // An element with a dependent dof writes to the equations of
             // its dependents' free dofs, which other elements of its colour
@@ -232,7 +277,58 @@ impl Assembler {
             colors,
             linear: None,
             temperature: None,
+            ranks,
         }
+    }
+
+    /// Whether this assembler computes one rank's elements of a run over
+    /// several ranks ([`Assembler::for_rank`]).
+    pub fn is_distributed(&self) -> bool {
+        self.ranks.is_some()
+    }
+
+    /// End an assembly over several ranks: agree on an element failure met
+    /// by any rank (every rank returns the same `CoreError::Element`, the
+    /// lowest failing rank's, so that every rank cuts back alike), sum the
+    /// internal forces, and give every rank the trial state of every
+    /// element (each element's owner sends it; the others' slices are
+    /// zeroed first, so the sum copies it exactly). A no-op in a
+    /// single-process run.
+    fn share_across_ranks(
+        &self,
+        outcome: Result<(), CoreError>,
+        state: &mut StateStore,
+        f_int: &mut [f64],
+    ) -> Result<(), CoreError> {
+        let (Some(ranks), Some(c)) = (&self.ranks, crate::distributed::collective()) else {
+            return outcome;
+        };
+        let local = outcome.as_ref().err().map(|e| match e {
+            CoreError::Element {
+                block,
+                element,
+                source,
+            } => {
+                format!("{block}\u{1f}{element}\u{1f}{source}")
+            }
+            other => format!("\u{1f}\u{1f}{other}"),
+        });
+        if let Some((rank, message)) = crate::distributed::first_message(c, local) {
+            return Err(outcome
+                .err()
+                .unwrap_or_else(|| remote_error(rank, &message)));
+        }
+        c.sum_in_place(f_int);
+        for (b, parts) in ranks.parts.iter().enumerate() {
+            for (e, &r) in parts.iter().enumerate() {
+                if r != ranks.rank {
+                    let range = state.range(b, e);
+                    state.trial[range].iter_mut().for_each(|v| *v = 0.0);
+                }
+            }
+        }
+        c.sum_in_place(&mut state.trial);
+        Ok(())
     }
 
     /// Set the temperature change of every node at temperature factor 1
@@ -269,10 +365,33 @@ impl Assembler {
         k: Option<&mut SymmetricCsc>,
         f_int: &mut [f64],
     ) -> Result<(), CoreError> {
+        let mut outcome = Ok(());
         if self.linear.is_none() {
-            self.linear = Some(self.build_linear_cache(mesh, elements, dofs)?);
+            match self.build_linear_cache(mesh, elements, dofs) {
+                Ok(cache) => self.linear = Some(cache),
+                Err(e) => outcome = Err(e),
+            }
         }
-        let cache = self.linear.as_ref().expect("built above");
+        if outcome.is_ok() {
+            outcome = self.assemble_kept_and_others(mesh, elements, dofs, u, state, step, k, f_int);
+        }
+        self.share_across_ranks(outcome, state, f_int)
+    }
+
+    /// [`Assembler::assemble_cached`] on this process's elements.
+    #[allow(clippy::too_many_arguments)]
+    fn assemble_kept_and_others(
+        &self,
+        mesh: &Mesh,
+        elements: &[Arc<dyn Element>],
+        dofs: &DofMap,
+        u: &[f64],
+        state: &mut StateStore,
+        step: StepInfo,
+        k: Option<&mut SymmetricCsc>,
+        f_int: &mut [f64],
+    ) -> Result<(), CoreError> {
+        let cache = self.linear.as_ref().expect("built by assemble_cached");
         self.assemble_colors(
             &cache.nonlinear_colors,
             cache.nonlinear_map.as_ref(),
@@ -495,7 +614,7 @@ impl Assembler {
         k: Option<&mut SymmetricCsc>,
         f_int: &mut [f64],
     ) -> Result<(), CoreError> {
-        self.assemble_colors(
+        let outcome = self.assemble_colors(
             &self.colors,
             None,
             None,
@@ -507,7 +626,8 @@ impl Assembler {
             step,
             k,
             f_int,
-        )
+        );
+        self.share_across_ranks(outcome, state, f_int)
     }
 
     /// Zero `f_int`, set `k` to `base` (both triangles: `base` is
@@ -663,6 +783,24 @@ impl Assembler {
             )?;
         }
         Ok(())
+    }
+}
+
+/// The element failure another rank met, as `CoreError::Element` (its
+/// message from [`Assembler::share_across_ranks`]: block, element and
+/// kernel message separated by U+001F).
+fn remote_error(rank: usize, message: &str) -> CoreError {
+    let mut fields = message.splitn(3, '\u{1f}');
+    let block = fields.next().unwrap_or_default().to_string();
+    let element = fields.next().and_then(|e| e.parse().ok()).unwrap_or(0);
+    let text = fields.next().unwrap_or_default();
+    CoreError::Element {
+        block,
+        element,
+        source: crate::element::ElementError::Law {
+            point: 0,
+            message: format!("met on rank {rank}: {text}"),
+        },
     }
 }
 

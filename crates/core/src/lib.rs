@@ -20,6 +20,7 @@ pub use inventory;
 pub mod assembly;
 pub mod crack_drive;
 pub mod criterion;
+pub mod distributed;
 pub mod dof;
 pub mod dual;
 pub mod element;

@@ -268,8 +268,29 @@ impl Model {
     }
 
     /// Sparsity pattern and colouring for this model, with its temperature
-    /// field ([`Model::temperature`]).
+    /// field ([`Model::temperature`]). In a run over several ranks (a
+    /// [`crate::distributed::Collective`] installed) the assembler of this
+    /// rank's elements ([`Assembler::for_rank`], the partition of
+    /// [`crate::distributed::partition_elements`]): every rank must then
+    /// call each of its assemblies.
     pub fn assembler(&self) -> Assembler {
+        let mut asm = match crate::distributed::collective() {
+            Some(c) => Assembler::for_rank(
+                &self.mesh,
+                &self.dofs,
+                crate::distributed::partition_elements(&self.mesh, c.size()),
+                c.rank(),
+            ),
+            None => Assembler::new(&self.mesh, &self.dofs),
+        };
+        asm.set_temperature(self.temperature.clone());
+        asm
+    }
+
+    /// The assembler of every element in this process, even in a run over
+    /// several ranks: for work one rank does alone (a print table of the
+    /// converged state, an exported matrix).
+    pub fn whole_assembler(&self) -> Assembler {
         let mut asm = Assembler::new(&self.mesh, &self.dofs);
         asm.set_temperature(self.temperature.clone());
         asm

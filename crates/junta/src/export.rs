@@ -35,7 +35,7 @@ fn write_array(path: &Path, rows: usize, cols: usize, col_major: &[f64]) -> Resu
 pub fn export_matrix(model: &Model, dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir)
         .with_context(|| format!("cannot create directory {}", dir.display()))?;
-    let asm = model.assembler();
+    let asm = model.whole_assembler();
     let mut k = asm.pattern.clone();
     let mut f_int = vec![0.0; model.dofs.num_dofs()];
     let mut state = model.initial_state();

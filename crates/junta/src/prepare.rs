@@ -102,6 +102,9 @@ pub fn resolve_solver(
     notes: &mut Vec<String>,
 ) -> Result<Box<dyn LinearSolver>> {
     let kind = model.matrix_kind();
+    if let Some(c) = junta_core::distributed::collective() {
+        return distributed_solver(key, table, c.size(), where_, notes);
+    }
     let mut dissection = None;
     if key == "auto" && kind != MatrixKind::General {
         let decision = crate::auto::decide(model, kind == MatrixKind::SymmetricPositiveDefinite);
@@ -161,6 +164,36 @@ pub fn resolve_solver(
         ));
     }
     Ok(solver)
+}
+
+/// The solver of a run over MPI ranks: PETSc's (`petsc`, registered by
+/// the MPI build). A scene's own `petsc` table is kept; any other back end
+/// is replaced, the iterative ones (`cg`, `gmres`, `minres`) by GAMG and
+/// the direct ones (and `auto`) by MUMPS, with a note.
+fn distributed_solver(
+    key: &mut String,
+    table: &toml::Table,
+    ranks: usize,
+    where_: &str,
+    notes: &mut Vec<String>,
+) -> Result<Box<dyn LinearSolver>> {
+    if key == "petsc" {
+        return build_solver(key, table, where_);
+    }
+    let method = if matches!(key.as_str(), "cg" | "gmres" | "minres") {
+        "gamg"
+    } else {
+        "mumps"
+    };
+    if key != "auto" {
+        notes.push(format!(
+            "solver `{key}` runs in one process; over {ranks} MPI ranks the solver is `petsc` with method = \"{method}\" (set [solver] type = \"petsc\" to choose)"
+        ));
+    }
+    *key = "petsc".to_string();
+    let mut t = toml::Table::new();
+    t.insert("method".into(), method.into());
+    build_solver(key, &t, where_)
 }
 
 /// Apply `--solver KEY=VALUE` overrides to the solver key and table. A

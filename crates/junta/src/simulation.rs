@@ -276,11 +276,14 @@ pub fn restart(
         p.analysis.steps.len(),
         p.model.dofs.num_dofs(),
     )?;
+    // the converged rows are read from `dir`; the files are written where
+    // `settings` says (a run over MPI ranks writes from rank 0 only)
+    let past = Curve::read_rows(dir, r.checkpoint.increment_index);
     let mut results = run_static(
         &input,
         &mut p,
-        Some(dir.to_path_buf()),
-        Some(r),
+        settings.output.clone(),
+        Some((r, past)),
         settings,
         observers,
     )?;
@@ -300,17 +303,13 @@ fn run_static(
     input: &Path,
     p: &mut Prepared,
     dir: Option<PathBuf>,
-    restart: Option<RestartFile>,
+    restart: Option<(RestartFile, Vec<crate::curve::CurveRow>)>,
     settings: &RunSettings,
     observers: &mut [&mut dyn Observer],
 ) -> Result<RunResults> {
-    let past = match (&restart, &dir) {
-        (Some(r), Some(d)) => Curve::read_rows(d, r.checkpoint.increment_index),
-        _ => Vec::new(),
-    };
     let mut standard = dir
         .as_deref()
-        .map(|d| writers::standard(d, input, p, restart.as_ref().map(|r| &r.checkpoint)));
+        .map(|d| writers::standard(d, input, p, restart.as_ref().map(|r| &r.0.checkpoint)));
     let mut all: Vec<&mut dyn Observer> = Vec::new();
     if let Some(s) = &mut standard {
         all.extend(s.observers());
@@ -321,8 +320,7 @@ fn run_static(
         stop_when_separated: p.analysis.stop_when_separated,
         increment_limits: p.increment_limits.clone(),
     };
-    let (mut ending, summary, log) =
-        run_incremental(input, p, restart.map(|r| (r, past)), limits, &mut all)?;
+    let (mut ending, summary, log) = run_incremental(input, p, restart, limits, &mut all)?;
     let notes = standard.map(|s| s.prints.notes).unwrap_or_default();
     let warnings = std::mem::take(&mut ending.warnings);
     let status = if ending.interrupted {

@@ -540,7 +540,7 @@ fn internal_force_at(
     step: StepInfo,
 ) -> Result<Vec<f64>> {
     use crate::error::Context;
-    let asm = model.assembler();
+    let asm = model.whole_assembler();
     let mut f_int = vec![0.0; model.dofs.num_dofs()];
     let mut state = state.clone();
     asm.assemble(

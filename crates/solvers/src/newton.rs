@@ -1472,8 +1472,18 @@ impl SolveClock {
 /// The largest skew entry of a nonsymmetric matrix scaled by its
 /// diagonal, `max |K_ij - K_ji| / sqrt(|K_ii K_jj|)`: a local measure, so
 /// that the skew of a few process-zone points is not lost in the solids'
-/// stiffness.
+/// stiffness. Over several ranks each rank holds a part of the tangent:
+/// the largest of the parts' measures, the same on every rank.
 fn largest_scaled_skew(k: &SymmetricCsc) -> f64 {
+    let mut local = [local_scaled_skew(k)];
+    if let Some(c) = junta_core::distributed::collective() {
+        c.max_in_place(&mut local);
+    }
+    local[0]
+}
+
+/// [`largest_scaled_skew`] of the matrix `k` this process holds.
+fn local_scaled_skew(k: &SymmetricCsc) -> f64 {
     let mut diag = vec![0.0; k.n];
     for j in 0..k.n {
         for p in k.col_ptr[j]..k.col_ptr[j + 1] {
