@@ -755,6 +755,7 @@ fn base_summary(input: &Path, p: &Prepared, log: &RunLog, status: &str) -> serde
         "dofs": model.dofs.num_dofs(),
         "equations": model.dofs.num_free,
         "elements": output::element_counts(model),
+        "distributed": output::distributed_summary(model),
         "increments": log.last_increment,
         "newton_iterations": {
             "total": total_iterations,

@@ -107,6 +107,7 @@ pub(crate) fn run_linear(
         "dofs": p.model.dofs.num_dofs(),
         "equations": p.model.dofs.num_free,
         "elements": output::element_counts(&p.model),
+        "distributed": output::distributed_summary(&p.model),
         "reactions": reactions,
         "displacement_max": output::displacement_max(&res.u),
         "largest_rotation": largest_rotation,

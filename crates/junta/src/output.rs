@@ -1246,3 +1246,31 @@ mod tests {
         assert_eq!(block("t"), &[12u8, 25, 13]);
     }
 }
+
+/// `summary.json` `distributed` of a run over MPI ranks (`null` in one
+/// process): the ranks, and per rank its elements, the nodes they touch
+/// and of those the nodes shared with other ranks (the partition's cut,
+/// [`junta_core::distributed::partition_cut`]), with the bytes per Newton
+/// iteration each rank exchanges.
+pub fn distributed_summary(model: &junta_core::Model) -> serde_json::Value {
+    use junta_core::distributed::{collective, partition_cut, partition_elements};
+    let Some(c) = collective() else {
+        return serde_json::Value::Null;
+    };
+    let ranks = c.size();
+    let cut = partition_cut(&model.mesh, &partition_elements(&model.mesh, ranks), ranks);
+    let n = model.dofs.num_free as f64;
+    let states = model.initial_state().trial.len() as f64;
+    serde_json::json!({
+        "ranks": ranks,
+        "partition": "recursive coordinate bisection of the element centroids, weighted by element matrix size",
+        "elements": cut.elements,
+        "nodes": cut.nodes,
+        "shared_nodes": cut.shared_nodes,
+        // PETSc's matrix and vector halo: 3 dofs of each shared node, both ways
+        "halo_bytes_per_iteration": cut.shared_nodes.iter().map(|s| 2 * 3 * 8 * s).collect::<Vec<_>>(),
+        // replicated vectors: the force sum, the state copy and the solution
+        // gathered on every rank, each the whole length
+        "replicated_bytes_per_iteration": 8.0 * (2.0 * 3.0 * model.mesh.nodes.len() as f64 + states + n),
+    })
+}

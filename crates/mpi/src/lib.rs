@@ -114,7 +114,7 @@ impl Drop for Session {
 }
 
 /// Set a PETSc option unless the user's options already name it.
-fn set_default_option(name: &str, value: &str) {
+pub(crate) fn set_default_option(name: &str, value: &str) {
     let (Ok(n), Ok(v)) = (CString::new(name), CString::new(value)) else {
         return;
     };

@@ -68,9 +68,10 @@ struct Numbering {
     owned: Vec<usize>,
     /// First PETSc row of this rank.
     first: usize,
-    /// Where each COO triplet's value is read: the upper-triangle position
-    /// and whether it is the transposed (lower) entry.
-    sources: Vec<(usize, bool)>,
+    /// Number of COO triplets: every stored entry of this rank's part, and
+    /// its transpose off the diagonal, in column order
+    /// ([`PetscSolver::fill_values`] writes them in that order).
+    triplets: usize,
 }
 
 /// The `petsc` back end ([module docs](self)).
@@ -172,20 +173,18 @@ impl PetscSolver {
                 }
             }
         }
-        let mut sources = Vec::with_capacity(2 * m.nnz());
-        for j in 0..m.n {
-            for p in m.col_ptr[j]..m.col_ptr[j + 1] {
-                sources.push((p, false));
-                if m.row_idx[p] != j {
-                    sources.push((p, true));
-                }
-            }
-        }
+        let off_diagonal = (0..m.n)
+            .map(|j| {
+                (m.col_ptr[j]..m.col_ptr[j + 1])
+                    .filter(|&p| m.row_idx[p] != j)
+                    .count()
+            })
+            .sum::<usize>();
         self.numbering = Numbering {
             row,
             owned,
             first,
-            sources,
+            triplets: m.nnz() + off_diagonal,
         };
         Ok(())
     }
@@ -305,6 +304,27 @@ impl PetscSolver {
     }
 }
 
+impl PetscSolver {
+    /// The COO values of `m`, in the order of the triplets
+    /// ([`PetscSolver::create_system`]): each stored entry `(i, j)`, then
+    /// its transpose `(j, i)` off the diagonal (from `lower` for a
+    /// nonsymmetric matrix).
+    fn fill_values(&mut self, m: &SymmetricCsc) {
+        let lower = if m.is_general() { &m.lower } else { &m.values };
+        let mut k = 0;
+        for j in 0..m.n {
+            for p in m.col_ptr[j]..m.col_ptr[j + 1] {
+                self.values[k] = m.values[p];
+                k += 1;
+                if m.row_idx[p] != j {
+                    self.values[k] = lower[p];
+                    k += 1;
+                }
+            }
+        }
+    }
+}
+
 /// Modified Gram-Schmidt; vectors that are (nearly) dependent are dropped.
 fn orthonormal(vectors: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
     let mut out: Vec<Vec<f64>> = Vec::new();
@@ -357,7 +377,7 @@ impl LinearSolver for PetscSolver {
         self.coords = coords.map(<[_]>::to_vec).unwrap_or_default();
         self.number(matrix)?;
         self.create_system(matrix)?;
-        self.values = vec![0.0; self.numbering.sources.len()];
+        self.values = vec![0.0; self.numbering.triplets];
         self.b_local = vec![0.0; self.numbering.owned.len()];
         self.report.analyze_seconds += t.elapsed().as_secs_f64();
         Ok(())
@@ -369,18 +389,7 @@ impl LinearSolver for PetscSolver {
         }
         let t = Instant::now();
         let general = self.general;
-        let lower_part = if matrix.is_general() {
-            &matrix.lower
-        } else {
-            &matrix.values
-        };
-        for (v, &(p, lower)) in self.values.iter_mut().zip(&self.numbering.sources) {
-            *v = if lower {
-                lower_part[p]
-            } else {
-                matrix.values[p]
-            };
-        }
+        self.fill_values(matrix);
         let mut failed = 0;
         // SAFETY: values holds one value per triplet.
         petsc(
@@ -540,6 +549,21 @@ fn build(table: &toml::Table) -> Result<Box<dyn LinearSolver>, CoreError> {
                 "`options` = {text:?}: PETSc rejects them: {}",
                 ffi::error_text(code)
             )));
+        }
+    }
+    if method == Method::Hypre {
+        // BoomerAMG's settings for 3D problems (its defaults, classical
+        // coarsening without truncation, ran a 680k-dof cube out of 24 GB):
+        // HMIS coarsening, extended+i interpolation truncated to 4 entries,
+        // one level of aggressive coarsening, strength threshold 0.5
+        for (name, value) in [
+            ("-pc_hypre_boomeramg_coarsen_type", "HMIS"),
+            ("-pc_hypre_boomeramg_interp_type", "ext+i"),
+            ("-pc_hypre_boomeramg_P_max", "4"),
+            ("-pc_hypre_boomeramg_agg_nl", "1"),
+            ("-pc_hypre_boomeramg_strong_threshold", "0.5"),
+        ] {
+            crate::set_default_option(name, value);
         }
     }
     if junta_core::distributed::collective().is_none() {

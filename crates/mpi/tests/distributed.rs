@@ -516,14 +516,14 @@ fn a_rank_with_bad_input_or_a_failing_solve_ends_every_rank() {
 
 #[test]
 fn restart_on_another_rank_count_continues_the_curve() {
-    // dcb_coarse under arc length: 2 ranks for 40 increments, then 4 ranks
-    // and 1 rank to the end, against the run in one process
+    // dcb_coarse under arc length: 2 ranks for 40 increments, then 2, 4
+    // and 1 ranks to the end, against the run in one process
     let tmp = tempfile::tempdir().unwrap();
     let path = repo("examples/delamination/dcb_coarse.toml");
     let s = path.to_str().unwrap();
     let seq = tmp.path().join("seq");
     sequential(&["run", s, "-o", seq.to_str().unwrap()]);
-    for ranks in [4, 1] {
+    for ranks in [2, 4, 1] {
         let out = tmp.path().join(format!("restart{ranks}"));
         let o = out.to_str().unwrap();
         mpirun(2, &["run", s, "-o", o, "--max-increments", "40"]);
