@@ -157,20 +157,23 @@ impl PetscSolver {
                 "petsc: equation {j} belongs to no element of any rank"
             )));
         }
-        let mut row = vec![0; m.n];
-        let mut next = 0;
-        let mut first = 0;
-        let mut owned = Vec::new();
+        // rank r's rows start after those of the ranks before it
+        let mut start = vec![0; size + 1];
+        for &o in &owner {
+            start[o + 1] += 1;
+        }
         for r in 0..size {
-            if r == rank {
-                first = next;
-            }
-            for j in (0..m.n).filter(|&j| owner[j] == r) {
-                row[j] = next;
-                next += 1;
-                if r == rank {
-                    owned.push(j);
-                }
+            start[r + 1] += start[r];
+        }
+        let first = start[rank];
+        let mut next = start.clone();
+        let mut row = vec![0; m.n];
+        let mut owned = Vec::with_capacity(start[rank + 1] - first);
+        for (j, &o) in owner.iter().enumerate() {
+            row[j] = next[o];
+            next[o] += 1;
+            if o == rank {
+                owned.push(j);
             }
         }
         let off_diagonal = (0..m.n)
@@ -504,6 +507,13 @@ fn build(table: &toml::Table) -> Result<Box<dyn LinearSolver>, CoreError> {
         key: "petsc".into(),
         message,
     };
+    // PETSc (its options database) exists only in a run under mpirun
+    if junta_core::distributed::collective().is_none() {
+        return Err(bad(
+            "the `petsc` solver runs under MPI only: start junta with `mpirun -np N junta run ...`"
+                .into(),
+        ));
+    }
     for key in table.keys() {
         if !PARAMS.iter().any(|p| p.name == key) {
             return Err(bad(format!(
@@ -565,12 +575,6 @@ fn build(table: &toml::Table) -> Result<Box<dyn LinearSolver>, CoreError> {
         ] {
             crate::set_default_option(name, value);
         }
-    }
-    if junta_core::distributed::collective().is_none() {
-        return Err(bad(
-            "the `petsc` solver runs under MPI only: start junta with `mpirun -np N junta run ...`"
-                .into(),
-        ));
     }
     Ok(Box::new(PetscSolver::new(
         method,
