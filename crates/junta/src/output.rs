@@ -1260,7 +1260,13 @@ pub fn distributed_summary(model: &junta_core::Model) -> serde_json::Value {
     let ranks = c.size();
     let cut = partition_cut(&model.mesh, &partition_elements(&model.mesh, ranks), ranks);
     let n = model.dofs.num_free as f64;
-    let states = model.initial_state().trial.len() as f64;
+    let states: usize = model
+        .mesh
+        .blocks
+        .iter()
+        .zip(&model.elements)
+        .map(|(b, e)| b.len() * e.state_len())
+        .sum();
     serde_json::json!({
         "ranks": ranks,
         "partition": "recursive coordinate bisection of the element centroids, weighted by element matrix size",
@@ -1271,6 +1277,6 @@ pub fn distributed_summary(model: &junta_core::Model) -> serde_json::Value {
         "halo_bytes_per_iteration": cut.shared_nodes.iter().map(|s| 2 * 3 * 8 * s).collect::<Vec<_>>(),
         // replicated vectors: the force sum, the state copy and the solution
         // gathered on every rank, each the whole length
-        "replicated_bytes_per_iteration": 8.0 * (2.0 * 3.0 * model.mesh.nodes.len() as f64 + states + n),
+        "replicated_bytes_per_iteration": 8.0 * (2.0 * 3.0 * model.mesh.nodes.len() as f64 + states as f64 + n),
     })
 }

@@ -62,19 +62,27 @@ fn sequential(args: &[&str]) -> Output {
 /// `timeout SECONDS mpirun -np RANKS junta ARGS` (root allowed,
 /// oversubscription allowed, one OpenMP/BLAS thread per rank).
 fn mpirun_with(ranks: usize, seconds: u64, args: &[&str]) -> Output {
-    Command::new("timeout")
-        .arg(seconds.to_string())
-        .args(["mpirun", "-np", &ranks.to_string()])
+    timed_mpirun(seconds)
+        .args(["-np", &ranks.to_string()])
         .arg(junta())
         .args(args)
         .arg("-q")
+        .output()
+        .expect("run mpirun")
+}
+
+/// `timeout SECONDS mpirun` with the environment of these tests, for the
+/// caller to add the ranks and programs.
+fn timed_mpirun(seconds: u64) -> Command {
+    let mut c = Command::new("timeout");
+    c.arg(seconds.to_string())
+        .arg("mpirun")
         .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
         .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
         .env("OMPI_MCA_rmaps_base_oversubscribe", "1")
         .env("OMP_NUM_THREADS", "1")
-        .env("OPENBLAS_NUM_THREADS", "1")
-        .output()
-        .expect("run mpirun")
+        .env("OPENBLAS_NUM_THREADS", "1");
+    c
 }
 
 fn mpirun(ranks: usize, args: &[&str]) -> Output {
@@ -451,24 +459,13 @@ fn a_rank_with_bad_input_or_a_failing_solve_ends_every_rank() {
         .replace("G_Ic = ", "G_Ic = -");
     std::fs::write(&bad, text).unwrap();
     // every rank reads the bad scene
-    let t = Instant::now();
-    let out = mpirun_with(
-        2,
-        120,
-        &[
-            "run",
-            bad.to_str().unwrap(),
-            "-o",
-            tmp.path().join("a").to_str().unwrap(),
-        ],
-    );
-    let err = assert_every_rank_ended(&out, t);
+    let err = failed_run_on_two_ranks(&bad, &tmp.path().join("a"));
     assert!(err.contains("G_Ic"), "the message names the key: {err}");
     // rank 1 alone meets bad input while rank 0 runs the good scene and
     // waits for it in the first collective
     let t = Instant::now();
-    let out = Command::new("timeout")
-        .args(["120", "mpirun", "-np", "1"])
+    let out = timed_mpirun(120)
+        .args(["-np", "1"])
         .arg(junta())
         .args(["run", good.to_str().unwrap(), "-q", "-o"])
         .arg(tmp.path().join("b"))
@@ -476,8 +473,6 @@ fn a_rank_with_bad_input_or_a_failing_solve_ends_every_rank() {
         .arg(junta())
         .args(["run", bad.to_str().unwrap(), "-q", "-o"])
         .arg(tmp.path().join("c"))
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
         .output()
         .unwrap();
     let err = assert_every_rank_ended(&out, t);
@@ -490,19 +485,16 @@ fn a_rank_with_bad_input_or_a_failing_solve_ends_every_rank() {
         free.replace("*BOUNDARY\nTOP, 3, 3, -0.01\n", "*CLOAD\nTOP, 3, -1.\n"),
     )
     .unwrap();
-    let t = Instant::now();
-    let out = mpirun_with(
-        2,
-        120,
-        &[
-            "run",
-            deck.to_str().unwrap(),
-            "-o",
-            tmp.path().join("d").to_str().unwrap(),
-        ],
-    );
-    let err = assert_every_rank_ended(&out, t);
+    let err = failed_run_on_two_ranks(&deck, &tmp.path().join("d"));
     assert!(err.contains("pivot") || err.contains("singular"), "{err}");
+}
+
+/// `junta run INPUT -o OUT` on 2 ranks, which must end every rank with an
+/// error ([`assert_every_rank_ended`]); its stderr.
+fn failed_run_on_two_ranks(input: &Path, out: &Path) -> String {
+    let t = Instant::now();
+    let args = ["run", input.to_str().unwrap(), "-o", out.to_str().unwrap()];
+    assert_every_rank_ended(&mpirun_with(2, 120, &args), t)
 }
 
 /// The run failed, not by the `timeout` around `mpirun` (exit 124), and
