@@ -93,7 +93,7 @@ fn cube_built_in_code() -> Result<(), Box<dyn std::error::Error>> {
         f_ext,
         vec!["z0".into(), "z1".into()],
     )?;
-    let sim = Simulation::from_model(model, junta::scene::AnalysisSpec::default(), "auto")?;
+    let sim = Simulation::from_model(model, junta::input::scene::AnalysisSpec::default(), "auto")?;
     let results = sim.run(&RunSettings::in_memory(), &mut [])?;
     let fz = results.summary["reactions"]["z1"][2]
         .as_f64()

@@ -606,7 +606,7 @@ pub fn from_object(py: Python<'_>, key: &str, obj: &Bound<'_, PyAny>) -> Result<
         ));
     }
     // the names every interface point reports whatever its law
-    let reserved = junta::output::FIXED_POINT_VALUES;
+    let reserved = junta::post::fields::FIXED_POINT_VALUES;
     if let Some(n) = names.iter().find(|n| reserved.contains(&n.as_str())) {
         return Err(format!(
             "output name `{n}` is reserved (the interface element reports it); reserved: {}",

@@ -462,7 +462,7 @@ fn meshio_name(s: CellShape) -> &'static str {
 }
 
 /// The reference nodes and the solid blocks' cells in VTK node order (as
-/// `junta::output::write_vtu` writes them).
+/// `junta::output::vtu::write_vtu` writes them).
 fn mesh_dict<'py>(py: Python<'py>, model: &junta_core::Model) -> PyResult<Bound<'py, PyDict>> {
     let mesh = &model.mesh;
     let d = PyDict::new(py);

@@ -22,7 +22,9 @@ mod progress;
 mod report;
 
 use anyhow::Result;
-use junta::{export, sweep, sweep_control, Options, RunResults, RunSettings, Simulation};
+use junta::output::export;
+use junta::study::{sweep, sweep_control};
+use junta::{Options, RunResults, RunSettings, Simulation};
 use std::path::Path;
 
 use clap::{Parser, Subcommand};
@@ -348,9 +350,9 @@ fn restart_run(
     max_increments: Option<usize>,
     allow_edited: bool,
 ) -> Result<()> {
-    let Some(restart) = junta::simulation::read_checkpoint(dir, allow_edited)? else {
+    let Some(restart) = junta::run::simulation::read_checkpoint(dir, allow_edited)? else {
         if writer {
-            println!("{}", junta::simulation::finished_message(dir)?);
+            println!("{}", junta::run::simulation::finished_message(dir)?);
         }
         return Ok(());
     };
@@ -371,7 +373,7 @@ fn restart_run(
         output: writer.then(|| dir.to_path_buf()),
         max_increments,
     };
-    let results = junta::simulation::restart(dir, restart, &settings, &mut [&mut bar])?;
+    let results = junta::run::simulation::restart(dir, restart, &settings, &mut [&mut bar])?;
     bar.finish();
     finish(&input, &results, shown, writer)
 }

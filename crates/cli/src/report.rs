@@ -1,7 +1,7 @@
 //! Tables the sweeps print.
 
-use junta::sweep::SweepRow;
-use junta::sweep_control::ControlRun;
+use junta::study::sweep::SweepRow;
+use junta::study::sweep_control::ControlRun;
 
 /// Print the sweep's table and its findings.
 pub fn sweep(rows: &[SweepRow]) {
@@ -38,7 +38,7 @@ pub fn sweep(rows: &[SweepRow]) {
             note.chars().take(100).collect::<String>()
         );
     }
-    for (solver, _, _) in junta::sweep::SWEEP_SOLVERS {
+    for (solver, _, _) in junta::study::sweep::SWEEP_SOLVERS {
         let mine: Vec<&SweepRow> = rows.iter().filter(|r| r.solver == solver).collect();
         if let Some(first) = mine.iter().find(|r| !r.notes.is_empty()) {
             // the mixed-precision back end notes its fallbacks; the others

@@ -112,7 +112,7 @@ fn h8_warnings(s: &str) -> Vec<&str> {
 
 /// dcb_h8.toml: H8 arms 1.56 mm thick with two elements through each;
 /// along the first 35 mm of the bond 0.5 mm long (l/t = 0.32): the
-/// measured table of junta::bending gives 17.2 + (9.6 - 17.2) x
+/// measured table of junta::prepare::bending gives 17.2 + (9.6 - 17.2) x
 /// log2(0.5 / 0.3205) = 12 %. The same mesh with h8i or h20 and a thick
 /// block of h8 (the 1 m cube of examples/cube.toml) get no warning.
 #[test]

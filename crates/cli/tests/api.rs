@@ -226,7 +226,8 @@ fn model_built_in_code_matches_calculix() {
         vec!["z0".into(), "z1".into()],
     )
     .unwrap();
-    let sim = Simulation::from_model(model, junta::scene::AnalysisSpec::default(), "auto").unwrap();
+    let sim = Simulation::from_model(model, junta::input::scene::AnalysisSpec::default(), "auto")
+        .unwrap();
     let results = sim.run(&RunSettings::in_memory(), &mut []).unwrap();
     let fz = results.summary["reactions"]["z1"][2].as_f64().unwrap();
     assert!((fz - (-2183.070)).abs() < 1e-3, "Fz = {fz}");

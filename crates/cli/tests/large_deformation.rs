@@ -429,7 +429,7 @@ fn restarted_nlgeom_run_equals_the_uninterrupted_one() {
     assert_eq!(a, b);
 }
 
-/// `junta::rotation::SMALL_STRAIN_ROTATION_LIMIT` is where it says: at
+/// `junta::post::rotation::SMALL_STRAIN_ROTATION_LIMIT` is where it says: at
 /// `P L^2 / EI = 0.3` the small-strain cantilever's largest rotation is
 /// the limit (within 2 %) and its tip deflection is 1 % (0.9 to 1.15 %)
 /// above the `nlgeom` run's; at 0.2 and 0.4 the drift is on either side.

@@ -31,10 +31,10 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("deck_h8_n40");
     g.sample_size(20);
     g.bench_function("read_inp", |b| {
-        b.iter(|| junta::readers::inp::read_inp(&path).unwrap())
+        b.iter(|| junta::input::inp::read_inp(&path).unwrap())
     });
     g.bench_function("build_model", |b| {
-        b.iter(|| junta::deck::build_model(&path).unwrap())
+        b.iter(|| junta::input::deck::build_model(&path).unwrap())
     });
     g.finish();
 }

@@ -37,10 +37,10 @@ pub enum Error {
     Element(Box<junta_core::element::ElementError>),
     /// A deck could not be read.
     #[error(transparent)]
-    Deck(Box<crate::readers::inp::InpError>),
+    Deck(Box<crate::input::inp::InpError>),
     /// A Gmsh mesh could not be read.
     #[error(transparent)]
-    Gmsh(Box<crate::readers::gmsh::GmshError>),
+    Gmsh(Box<crate::input::gmsh::GmshError>),
     /// A file could not be read or written.
     #[error(transparent)]
     Io(Box<std::io::Error>),
@@ -80,8 +80,8 @@ boxed_from!(Analysis, junta_solvers::linear_static::AnalysisError);
 boxed_from!(Core, junta_core::CoreError);
 boxed_from!(Solver, junta_core::solver::SolverError);
 boxed_from!(Element, junta_core::element::ElementError);
-boxed_from!(Deck, crate::readers::inp::InpError);
-boxed_from!(Gmsh, crate::readers::gmsh::GmshError);
+boxed_from!(Deck, crate::input::inp::InpError);
+boxed_from!(Gmsh, crate::input::gmsh::GmshError);
 boxed_from!(Toml, toml::de::Error);
 boxed_from!(Json, serde_json::Error);
 boxed_from!(Io, std::io::Error);

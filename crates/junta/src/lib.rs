@@ -12,21 +12,19 @@
 //! # Ok::<(), junta::Error>(())
 //! ```
 //!
-//! The stages of a run, each a module:
+//! The stages of a run, each a folder:
 //!
-//! | stage | module |
-//! |---|---|
-//! | read a scene / a deck / its print requests | [`scene`], [`validate`], [`deck`], [`deck_print`] |
-//! | build the model, choose the solver | [`prepare`], [`auto`], [`limits`] |
-//! | check it | [`check`] |
-//! | diagnose a converged state (largest element rotation) | [`rotation`] |
-//! | run it: linear, incremental | `linear`, [`incremental`] |
-//! | report increments | [`observer`] ([`Observer`], [`Flow`], [`FrameCollector`]) |
-//! | write files | [`writers`] (curve, frames, checkpoint, prints, summary), [`output`], [`plot`] |
-//! | restart | [`checkpoint`], [`simulation::restart`] |
-//! | results | [`curve`] ([`Curve`]), [`frame`] ([`Frame`]), [`RunResults`] |
-//! | studies | [`sweep`], [`sweep_control`] |
-//! | the registry as data | [`catalog`] |
+//! | stage | folder | what it holds |
+//! |---|---|---|
+//! | input | [`input`] | the TOML scene ([`input::scene`], its validation), the Abaqus/CalculiX deck ([`input::inp`]) and the model built from it ([`input::deck`]), Gmsh meshes ([`input::gmsh`]) |
+//! | prepare | [`prepare`] | the model and its run settings ([`prepare::Prepared`]), the solver choice ([`prepare::auto`]), memory limits, the check ([`CheckReport`]), the bending advisor ([`prepare::bending`]) |
+//! | run | [`run`] | the linear and incremental drivers, observers ([`Observer`], [`Flow`], [`FrameCollector`]), checkpoints and restart ([`run::simulation::restart`]), the [`Simulation`] and its [`RunResults`] |
+//! | post | [`post`] | quantities of a converged state: the fields ([`post::fields`]), the curve row ([`Curve`]), the frame ([`Frame`]), the crack front ([`post::crack`]), the largest rotation ([`post::rotation`]) |
+//! | output | [`output`] | file formats: VTU/PVD ([`output::vtu`]), `summary.json`'s sections, curve/frame/checkpoint writers, a deck's print tables, plots, the matrix export ([`output::export`]) |
+//! | study | [`study`] | sweeps over solvers ([`study::sweep`]) and over controls ([`study::sweep_control`]) |
+//!
+//! Beside them: the registry as data ([`catalog`]) and the error type
+//! ([`Error`]). `docs/contributing.md` maps where new code goes.
 //!
 //! Nothing here prints: messages are values ([`RunResults::notes`],
 //! [`CheckReport`]) and progress goes to observers and `tracing`.
@@ -39,42 +37,23 @@ use junta_elements as _;
 use junta_interface as _;
 use junta_solvers as _;
 
-pub mod error;
+mod error;
 pub use error::{Context, Error, Result};
 
-pub mod auto;
-pub mod bending;
 pub mod catalog;
-pub mod check;
-pub mod checkpoint;
-pub mod crack;
-pub mod curve;
-pub mod deck;
-pub mod deck_print;
-pub mod export;
-pub mod frame;
-pub mod incremental;
-pub mod limits;
-mod linear;
-pub mod observer;
+pub mod input;
 pub mod output;
-pub mod plot;
+pub mod post;
 pub mod prepare;
-pub mod readers;
-pub mod results;
-pub mod rotation;
-pub mod scene;
-pub mod simulation;
-pub mod sweep;
-pub mod sweep_control;
-pub mod validate;
-pub mod writers;
+pub mod run;
+pub mod study;
 
-pub use check::CheckReport;
-pub use curve::{Curve, CurveRow};
-pub use frame::Frame;
-pub use observer::{Flow, FnObserver, FrameCollector, Increment, Observer, RunEnd, RunLog};
-pub use simulation::{Options, RunResults, RunSettings, Simulation, Status};
+pub use post::curve::{Curve, CurveRow};
+pub use post::frame::Frame;
+pub use prepare::check::{BlockReport, CheckReport, StepReport};
+pub use run::checkpoint::FirstFailure;
+pub use run::observer::{Flow, FnObserver, FrameCollector, Increment, Observer, RunEnd, RunLog};
+pub use run::simulation::{Options, RunResults, RunSettings, Simulation, Status};
 
 /// The crates underneath, for code that builds models by hand.
 pub use junta_core as core;

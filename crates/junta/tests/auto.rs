@@ -1,4 +1,4 @@
-//! `[solver] type = "auto"` above `junta::auto::DIRECT_ALWAYS` equations:
+//! `[solver] type = "auto"` above `junta::prepare::auto::DIRECT_ALWAYS` equations:
 //! the choice between the direct factor and AMG on the unit cubes of
 //! `bench/cube_vs_calculix.sh` (shared/BENCHMARKS.md section 1), and the
 //! nested dissection computed for the choice handed to the direct solver
@@ -24,7 +24,7 @@ fn cube(element: &str, n: usize) -> String {
     edited
 }
 
-/// The cost model of `junta::auto::predicted_seconds` on the two cubes,
+/// The cost model of `junta::prepare::auto::predicted_seconds` on the two cubes,
 /// whose direct and AMG times were measured on this machine kind
 /// (docs/performance.md, 2026-11-26: H20 n=20 direct 3.9 s against AMG-CG
 /// 4.2 s; H8 n=40 direct 7.5 s against AMG-CG 3.1 s): `auto` keeps the
@@ -62,7 +62,7 @@ fn auto_keeps_the_direct_solver_on_a_plate_and_orders_it_once() {
         .replace("divisions = [1, 1, 1]", "divisions = [200, 40, 5]");
     assert!(text.contains("[200, 40, 5]") && text.contains("[200.0, 40.0, 5.0]"));
     let sim = Simulation::from_scene_text(&text, "plate.toml").unwrap();
-    assert!(sim.model().dofs.num_free > junta::auto::DIRECT_ALWAYS);
+    assert!(sim.model().dofs.num_free > junta::prepare::auto::DIRECT_ALWAYS);
     assert_eq!(sim.prepared().solver_key, "cholesky");
     let r = sim.run(&RunSettings::in_memory(), &mut []).unwrap();
     let solver = &r.summary["solver"];

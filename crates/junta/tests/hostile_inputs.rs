@@ -2,7 +2,7 @@
 //! any allocation), input-driven loops are bounded, and mutated files never
 //! panic (a bounded, deterministic fuzz of the Gmsh and deck readers).
 
-use junta::readers::{gmsh::parse_msh, inp::parse_inp};
+use junta::input::{gmsh::parse_msh, inp::parse_inp};
 
 const MSH: &str = include_str!("data/box_hex20.msh");
 /// Gmsh 4.15.2 meshes of prisms, and of hexahedra and prisms side by side,

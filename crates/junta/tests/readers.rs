@@ -1,7 +1,7 @@
-//! Integration tests of the mesh / deck readers (`junta::readers::inp`, `junta::readers::gmsh`).
+//! Integration tests of the mesh / deck readers (`junta::input::inp`, `junta::input::gmsh`).
 
-use junta::readers::gmsh::{parse_msh, read_msh, GmshError};
-use junta::readers::inp::{
+use junta::input::gmsh::{parse_msh, read_msh, GmshError};
+use junta::input::inp::{
     parse_inp, read_inp, InpDeck, InpError, InpMaterialKind, InpMixedMode, InpOnset, InpSoftening,
 };
 use junta_core::mesh::Mesh;

@@ -21,14 +21,14 @@
 //! [`standard`] gives them in the order they depend on each other (frames
 //! before the checkpoint, which lists them).
 
-use crate::checkpoint::{read_restart, write_atomic, InputHash, RestartFile};
-use crate::curve::{read_reference_curve, CurveRow, CURVE_HEADER};
-use crate::deck_print;
 use crate::error::{Context, Result};
-use crate::observer::{Flow, Increment, Observer, RunEnd, RunLog};
-use crate::output::{self, InterfaceResults};
+use crate::input::scene::CurveSpec;
+use crate::output::deck_print;
+use crate::post::curve::{read_reference_curve, CurveRow, CURVE_HEADER};
+use crate::post::fields::InterfaceResults;
 use crate::prepare::Prepared;
-use crate::scene::CurveSpec;
+use crate::run::checkpoint::{read_restart, write_atomic, InputHash, RestartFile};
+use crate::run::observer::{Flow, Increment, Observer, RunEnd, RunLog};
 use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
 use junta_core::Model;
@@ -109,12 +109,18 @@ impl VtuFrames {
         ifs: &[InterfaceResults],
     ) -> Result<()> {
         let name = frame_name(step.increment);
-        let cells = output::cell_results_at(model, u, state, step)?;
-        output::write_vtu(&self.dir.join(&name), model, u, &cells)?;
+        let cells = crate::post::fields::cell_results_at(model, u, state, step)?;
+        crate::output::vtu::write_vtu(&self.dir.join(&name), model, u, &cells)?;
         let tag = format!("_{:04}", step.increment);
-        output::write_interface_vtu_named(&self.dir.join("frames"), &tag, model, u, ifs)?;
+        crate::output::vtu::write_interface_vtu_named(
+            &self.dir.join("frames"),
+            &tag,
+            model,
+            u,
+            ifs,
+        )?;
         frames.push((step.load_factor, name));
-        output::write_pvd(&self.dir.join("results.pvd"), frames)
+        crate::output::vtu::write_pvd(&self.dir.join("results.pvd"), frames)
     }
 }
 
@@ -181,7 +187,7 @@ impl Checkpoints {
             dir: dir.to_path_buf(),
             input: std::fs::canonicalize(input).unwrap_or_else(|_| input.to_path_buf()),
             solver_overrides: solver_overrides.to_vec(),
-            inputs: crate::checkpoint::hash_inputs(input),
+            inputs: crate::run::checkpoint::hash_inputs(input),
             scene_text,
         }
     }
@@ -349,7 +355,7 @@ impl Observer for SummaryJson {
         Ok(Flow::Continue)
     }
     fn on_end(&mut self, end: &RunEnd<'_>, log: &mut RunLog) -> Result<()> {
-        output::write_json(&self.dir.join("summary.json"), end.summary)?;
+        crate::output::summary::write_json(&self.dir.join("summary.json"), end.summary)?;
         if let Some((law, r)) = &self.fatigue_law {
             write_fatigue_svg(
                 &self.dir.join("fatigue.svg"),
@@ -384,7 +390,7 @@ fn write_fatigue_svg(
     load_ratio: f64,
     rows: &[CurveRow],
 ) -> Result<()> {
-    use crate::plot;
+    use crate::output::plot;
     let measured: Vec<(f64, f64, f64)> = rows
         .iter()
         .filter_map(|r| {
@@ -444,7 +450,7 @@ fn write_curve_svg(
     c: &CurveSpec,
     rows: &[CurveRow],
 ) -> Result<()> {
-    use crate::plot;
+    use crate::output::plot;
     let pts: Vec<(f64, f64)> = rows
         .iter()
         .filter_map(|r| Some((r.displacement?, r.reaction?)))

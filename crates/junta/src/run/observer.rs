@@ -9,7 +9,7 @@
 //! the files the writers left are a valid restart point.
 //!
 //! The writers of `curve.csv`, the VTU frames, `checkpoint.json` and
-//! `summary.json` (`crate::writers`) are observers like any other; so are the
+//! `summary.json` (`crate::output::writers`) are observers like any other; so are the
 //! command line's progress bar, the Python callback and
 //! [`FrameCollector`], which keeps typed fields in memory.
 //!
@@ -18,12 +18,12 @@
 //! (the checkpoint lists the frames) reads it there, so the order of the
 //! observers matters: frames before the checkpoint.
 
-use crate::checkpoint::FirstFailure;
-use crate::curve::CurveRow;
 use crate::error::Result;
-use crate::frame::Frame;
-use crate::output::InterfaceResults;
+use crate::post::curve::CurveRow;
+use crate::post::fields::InterfaceResults;
+use crate::post::frame::Frame;
 use crate::prepare::Prepared;
+use crate::run::checkpoint::FirstFailure;
 use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
 use junta_core::Model;

@@ -8,7 +8,8 @@
 //! (local `[s1, s2, n]`).
 
 use crate::error::Result;
-use crate::output::{element_points, InterfaceResults};
+use crate::post::fields::element_points;
+use crate::post::fields::InterfaceResults;
 use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
 use junta_core::Model;

@@ -1,8 +1,8 @@
 //! What a run returns: how it ended and its results as typed values.
 
-use crate::curve::{Curve, CurveRow};
 use crate::error::Error;
-use crate::frame::Frame;
+use crate::post::curve::{Curve, CurveRow};
+use crate::post::frame::Frame;
 use std::path::PathBuf;
 
 /// How a run ended.

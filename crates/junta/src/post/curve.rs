@@ -67,7 +67,7 @@ pub struct CurveRow {
     /// converged increments.
     pub external_work: f64,
     /// Damaged area over the crack width (`crack_length`); `None` without
-    /// damage ([`crate::crack`]).
+    /// damage ([`crate::post::crack`]).
     pub crack_length: Option<f64>,
     /// Largest coordinate of a damaged point along the crack direction,
     /// from the origin (`crack_front`); `None` before the first.
@@ -90,7 +90,7 @@ pub struct CurveRow {
     /// Crack growth per cycle `da/dN` (`crack_growth_rate`): on a row of a
     /// fatigue step where the crack grew, its growth since the last row
     /// where it grew (or since the fatigue step began) over the cycles in
-    /// between ([`crate::crack::growth_rate`]); `None` elsewhere.
+    /// between ([`crate::post::crack::growth_rate`]); `None` elsewhere.
     pub crack_growth_rate: Option<f64>,
 }
 

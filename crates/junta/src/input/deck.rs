@@ -1,5 +1,5 @@
 //! Abaqus/CalculiX decks (`.inp`) to a [`Model`]: the reader lives in
-//! `crate::readers::inp`; here its materials become registry materials
+//! `crate::input::inp`; here its materials become registry materials
 //! (`*ELASTIC` isotropic -> `isotropic`, ENGINEERING CONSTANTS ->
 //! `orthotropic`), its cohesive materials interface laws (below), its
 //! `*BOUNDARY` lines constraints and its `*CLOAD` lines nodal forces.
@@ -88,7 +88,7 @@
 //! # Amplitudes
 //!
 //! A load or prescribed displacement with `AMPLITUDE=` is multiplied by the
-//! amplitude ([`crate::readers::inp::InpAmplitude`]) at the end of the
+//! amplitude ([`crate::input::inp::InpAmplitude`]) at the end of the
 //! step it is given in (step time, or total time: the sum of the periods
 //! up to that step's end); carried into a later step that does not give it
 //! again, it keeps that value (CalculiX 2.20 does the same). In an
@@ -104,11 +104,11 @@
 //! increments of all segments of the step.
 
 use crate::error::{bail, err, Result};
-use crate::readers::inp::{
+use crate::input::inp::{
     read_inp, InpDeck, InpExpansion, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset,
     InpSoftening, InpStep,
 };
-use crate::scene::{AnalysisSpec, CurveSpec};
+use crate::input::scene::{AnalysisSpec, CurveSpec};
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
 use junta_core::{Element, Kinematics, Model};
 use junta_elements::Orientation;
@@ -144,7 +144,7 @@ pub struct DeckModel {
     /// registry key), if any.
     pub solver: Option<String>,
     /// `*NODE PRINT` / `*EL PRINT` requests and the tables they fill.
-    pub prints: crate::deck_print::PrintTables,
+    pub prints: crate::output::deck_print::PrintTables,
 }
 
 /// Map a `*STATIC, SOLVER=` name to a Junta back end, with a note.
@@ -446,7 +446,7 @@ fn deck_kinematics(deck: &InpDeck) -> Kinematics {
 /// the reference face (a dead load), CalculiX and Abaqus make it follow the
 /// deformed face.
 fn note_nlgeom_pressures(deck: &InpDeck, file: &str, notes: &mut Vec<String>) {
-    use crate::readers::inp::InpDloadKind;
+    use crate::input::inp::InpDloadKind;
     if deck_kinematics(deck) != Kinematics::Finite {
         return;
     }
@@ -718,7 +718,7 @@ fn curve_spec(
 
 /// The deck's `*NODE PRINT` / `*EL PRINT` requests (taken from it), with
 /// the material axes of each block with an orientation (for `*EL PRINT`).
-fn print_tables(deck: &mut InpDeck) -> crate::deck_print::PrintTables {
+fn print_tables(deck: &mut InpDeck) -> crate::output::deck_print::PrintTables {
     let block_axes = deck
         .block_orientations
         .iter()
@@ -734,7 +734,7 @@ fn print_tables(deck: &mut InpDeck) -> crate::deck_print::PrintTables {
             })
         })
         .collect();
-    crate::deck_print::PrintTables::new(
+    crate::output::deck_print::PrintTables::new(
         std::mem::take(&mut deck.node_prints),
         std::mem::take(&mut deck.el_prints),
     )
@@ -752,9 +752,9 @@ fn model_of_deck(
     file: &str,
     notes: &mut Vec<String>,
 ) -> Result<Model> {
-    crate::limits::check_memory(
+    crate::prepare::limits::check_memory(
         &format!("{file}: the model ({} nodes)", deck.mesh.nodes.len()),
-        crate::limits::model_bytes(&deck.mesh),
+        crate::prepare::limits::model_bytes(&deck.mesh),
     )?;
     // element errors name the deck's own element label, not the index
     let labels: std::collections::HashMap<(usize, usize), usize> = deck
@@ -1249,8 +1249,8 @@ fn riks_path(
     program: &mut Vec<f64>,
     newton: &mut NewtonSettings,
     notes: &mut Vec<String>,
-) -> Result<(crate::scene::Control, ArcLengthSettings)> {
-    let mut control = crate::scene::Control::Auto;
+) -> Result<(crate::input::scene::Control, ArcLengthSettings)> {
+    let mut control = crate::input::scene::Control::Auto;
     let mut arc_length = ArcLengthSettings::default();
     let riks = deck.steps.iter().find_map(|st| {
         let p = st.static_procedure.as_ref()?;
@@ -1278,7 +1278,7 @@ fn riks_path(
         newton.initial_increment = (first / end).min(1.0);
         newton.max_increment = 1.0;
         newton.min_increment = newton.min_increment.min(1e-3 * newton.initial_increment);
-        control = crate::scene::Control::ArcLength;
+        control = crate::input::scene::Control::ArcLength;
         // Abaqus ends a Riks step after INC increments (default 100)
         arc_length.max_increments = st.max_increments.unwrap_or(100);
         notes.push(format!(
@@ -1398,7 +1398,7 @@ fn add_distributed_loads(
     scale: &dyn Fn(Option<usize>, Option<usize>) -> f64,
     f_ext: &mut [f64],
 ) -> Result<()> {
-    use crate::readers::inp::InpDloadKind;
+    use crate::input::inp::InpDloadKind;
     use junta_core::mesh::{ElementRef, FaceRef};
     use junta_elements::body_load::{add_body_load, BodyLoad};
     use junta_elements::face_load::{add_face_load, FaceLoad};
@@ -1617,7 +1617,7 @@ fn deck_steps_scaled(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::readers::inp::parse_inp;
+    use crate::input::inp::parse_inp;
 
     /// Two bricks glued by one COH3D8 with cohesive material `material`
     /// (the lines after `*MATERIAL, NAME=CZ`) and section data `section`.

@@ -2,11 +2,11 @@
 //! factorisation, and the files and summary they leave.
 
 use crate::error::{err, Context, Result};
-use crate::observer::Observer;
-use crate::observer::{RunEnd, RunLog};
+use crate::input::deck;
 use crate::prepare::{build_solver, Prepared};
-use crate::results::{RunResults, Status};
-use crate::{deck, output};
+use crate::run::observer::Observer;
+use crate::run::observer::{RunEnd, RunLog};
+use crate::run::results::{RunResults, Status};
 use junta_core::Model;
 use junta_solvers::linear_static::solve_linear_static;
 use serde_json::json;
@@ -68,18 +68,21 @@ pub(crate) fn run_linear(
         o.on_phase("writing results");
     }
     let t_out = Instant::now();
-    let interfaces = output::interface_results(&p.model, &res.u, &res.state)?;
-    let cells = output::cell_results(&p.model, &res.u, &res.state)?;
+    let interfaces = crate::post::fields::interface_results(&p.model, &res.u, &res.state)?;
+    let cells = crate::post::fields::cell_results(&p.model, &res.u, &res.state)?;
     if let Some(dir) = dir {
         write_result_files(dir, p, &res, &cells, &interfaces)?;
         notes.extend(prints.write(dir)?);
     }
     let (advice, _, advice_warnings) =
-        output::penalty_advice(&p.model, &|b| p.thickness.get(b).copied())?;
+        crate::output::summary::penalty_advice(&p.model, &|b| p.thickness.get(b).copied())?;
     warnings.extend(advice_warnings);
-    warnings.extend(crate::bending::bending_warnings(&p.model));
-    let (largest_rotation, rotation_warning) =
-        crate::rotation::summary_entry(&p.model, &res.u, crate::rotation::is_deck(input));
+    warnings.extend(crate::prepare::bending::bending_warnings(&p.model));
+    let (largest_rotation, rotation_warning) = crate::post::rotation::summary_entry(
+        &p.model,
+        &res.u,
+        crate::post::rotation::is_deck(input),
+    );
     warnings.extend(rotation_warning);
     let reference = match &p.reference {
         Some((r, c)) => {
@@ -95,8 +98,9 @@ pub(crate) fn run_linear(
         None => serde_json::Value::Null,
     };
     let output_seconds = t_out.elapsed().as_secs_f64();
-    let reactions = output::reactions(&p.model, &res.residual)?;
-    let probes = output::probes(&p.model, &p.probes, &res.u).context("[output] probes")?;
+    let reactions = crate::output::summary::reactions(&p.model, &res.residual)?;
+    let probes =
+        crate::output::summary::probes(&p.model, &p.probes, &res.u).context("[output] probes")?;
     let summary = json!({
         "input": input.display().to_string(),
         "title": p.title,
@@ -106,14 +110,14 @@ pub(crate) fn run_linear(
         "nodes": p.model.mesh.nodes.len(),
         "dofs": p.model.dofs.num_dofs(),
         "equations": p.model.dofs.num_free,
-        "elements": output::element_counts(&p.model),
-        "distributed": output::distributed_summary(&p.model),
+        "elements": crate::output::summary::element_counts(&p.model),
+        "distributed": crate::output::summary::distributed_summary(&p.model),
         "reactions": reactions,
-        "displacement_max": output::displacement_max(&res.u),
+        "displacement_max": crate::output::summary::displacement_max(&res.u),
         "largest_rotation": largest_rotation,
         "probes": probes,
-        "solids": output::solid_summary(&cells),
-        "interfaces": output::interface_summary(&p.model, &interfaces),
+        "solids": crate::output::summary::solid_summary(&cells),
+        "interfaces": crate::output::summary::interface_summary(&p.model, &interfaces),
         "penalty_advice": advice,
         "reference": reference,
         "equilibrium_residual": res.free_residual,
@@ -134,7 +138,7 @@ pub(crate) fn run_linear(
             "residual": res.report.residual,
             "factor_nonzeros": res.report.factor_nonzeros,
             "ordering": res.report.ordering,
-            "predicted_factor_nonzeros": output::ordering_candidates(&res.report),
+            "predicted_factor_nonzeros": crate::output::summary::ordering_candidates(&res.report),
             "precision": res.report.precision,
             "refinement_steps": res.report.refinement_steps,
             "warnings": res.report.warnings,
@@ -150,7 +154,7 @@ pub(crate) fn run_linear(
         summary["steps"] = json!(steps);
     }
     if let Some(dir) = dir {
-        output::write_json(&dir.join("summary.json"), &summary)?;
+        crate::output::summary::write_json(&dir.join("summary.json"), &summary)?;
     }
     let frame = end_linear(&p.model, &res, &summary, observers)?;
     Ok(RunResults {
@@ -172,14 +176,14 @@ fn write_result_files(
     dir: &Path,
     p: &Prepared,
     res: &junta_solvers::linear_static::LinearStaticResult,
-    cells: &output::CellResults,
-    interfaces: &[output::InterfaceResults],
+    cells: &crate::post::fields::CellResults,
+    interfaces: &[crate::post::fields::InterfaceResults],
 ) -> Result<()> {
     if p.vtu {
-        output::write_vtu(&dir.join("results.vtu"), &p.model, &res.u, cells)?;
-        output::write_interface_vtu(dir, &p.model, &res.u, interfaces)?;
+        crate::output::vtu::write_vtu(&dir.join("results.vtu"), &p.model, &res.u, cells)?;
+        crate::output::vtu::write_interface_vtu(dir, &p.model, &res.u, interfaces)?;
         if !p.fractions.is_empty() {
-            output::write_fractions(dir, &p.model, &res.u, &res.state, &p.fractions)?;
+            crate::output::vtu::write_fractions(dir, &p.model, &res.u, &res.state, &p.fractions)?;
         }
     }
     Ok(())
@@ -197,7 +201,7 @@ fn solve_deck_steps(
     dir: Option<&Path>,
     observers: &mut [&mut dyn Observer],
     input: &Path,
-    prints: &mut crate::deck_print::PrintTables,
+    prints: &mut crate::output::deck_print::PrintTables,
 ) -> Result<(
     junta_solvers::linear_static::LinearStaticResult,
     Vec<serde_json::Value>,
@@ -291,15 +295,15 @@ fn solve_deck_steps(
             }
             if let (true, Some(dir)) = (p.vtu, dir) {
                 let name = format!("results_step{}.vtu", k + i + 1);
-                let cells = output::cell_results(&p.model, &res.u, &res.state)?;
-                output::write_vtu(&dir.join(&name), &p.model, &res.u, &cells)?;
+                let cells = crate::post::fields::cell_results(&p.model, &res.u, &res.state)?;
+                crate::output::vtu::write_vtu(&dir.join(&name), &p.model, &res.u, &cells)?;
                 frames.push(((k + i + 1) as f64, name));
             }
             summaries.push(json!({
                 "name": s.name,
                 "line": s.line,
-                "reactions": output::reactions(&p.model, &res.residual)?,
-                "displacement_max": output::displacement_max(&res.u),
+                "reactions": crate::output::summary::reactions(&p.model, &res.residual)?,
+                "displacement_max": crate::output::summary::displacement_max(&res.u),
                 "equilibrium_residual": res.free_residual,
                 "shares_factorisation_with_previous": i > 0,
                 "timings": {
@@ -318,7 +322,7 @@ fn solve_deck_steps(
         k = end;
     }
     if let (true, Some(dir)) = (p.vtu, dir) {
-        output::write_pvd(&dir.join("results.pvd"), &frames)?;
+        crate::output::vtu::write_pvd(&dir.join("results.pvd"), &frames)?;
     }
     Ok((last.expect("at least one step"), summaries))
 }
@@ -329,12 +333,12 @@ fn end_linear(
     res: &junta_solvers::linear_static::LinearStaticResult,
     summary: &serde_json::Value,
     observers: &mut [&mut dyn Observer],
-) -> Result<Option<crate::frame::Frame>> {
+) -> Result<Option<crate::post::frame::Frame>> {
     let step = junta_core::element::StepInfo {
         load_factor: 1.0,
         ..Default::default()
     };
-    let interfaces = crate::output::interface_results(model, &res.u, &res.state)?;
+    let interfaces = crate::post::fields::interface_results(model, &res.u, &res.state)?;
     let end = RunEnd {
         model,
         u: Some(&res.u),
@@ -350,7 +354,7 @@ fn end_linear(
     for o in observers.iter_mut() {
         o.on_end(&end, &mut log)?;
     }
-    Ok(Some(crate::frame::Frame::at(
+    Ok(Some(crate::post::frame::Frame::at(
         model,
         &res.u,
         &res.state,

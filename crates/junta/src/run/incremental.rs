@@ -7,17 +7,17 @@
 //! of the curve, energies), keeps the [`RunLog`], applies the stops that
 //! belong to the input (a deck's `*STEP, INC=n`, `stop_when_separated`,
 //! `max_increments`), and at the end builds the summary. Files are written
-//! by observers (`crate::writers`): `curve.csv`, the VTU frames and
+//! by observers (`crate::output::writers`): `curve.csv`, the VTU frames and
 //! `results.pvd`, `checkpoint.json`, the print tables, `summary.json` and
 //! `curve.svg`.
 
-use crate::checkpoint::{FirstFailure, RestartFile};
-use crate::crack::CrackProbe;
-use crate::curve::{limit_points, CurveRow};
 use crate::error::{err, Result};
-use crate::observer::{Flow, Increment, Observer, RunEnd, RunLog, Stop};
+use crate::input::scene;
+use crate::post::crack::CrackProbe;
+use crate::post::curve::{limit_points, CurveRow};
 use crate::prepare::Prepared;
-use crate::{output, scene};
+use crate::run::checkpoint::{FirstFailure, RestartFile};
+use crate::run::observer::{Flow, Increment, Observer, RunEnd, RunLog, Stop};
 use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
 use junta_core::Model;
@@ -208,7 +208,7 @@ impl Engine<'_> {
             load_ratio: model.load_ratio(r.step),
             crack_drive: None,
         };
-        let ifs = output::interface_results_at(model, v.u, v.state, step)?;
+        let ifs = crate::post::fields::interface_results_at(model, v.u, v.state, step)?;
         let row = self.row_of(v, &ifs)?;
         self.log.rows.push(row.clone());
         self.last_u.clear();
@@ -243,7 +243,7 @@ impl Engine<'_> {
     fn row_of(
         &mut self,
         v: &IncrementView<'_>,
-        ifs: &[output::InterfaceResults],
+        ifs: &[crate::post::fields::InterfaceResults],
     ) -> Result<CurveRow> {
         let (r, model) = (v.report, self.model);
         let points: usize = ifs.iter().map(|i| i.points.len()).sum();
@@ -290,7 +290,7 @@ impl Engine<'_> {
                 junta_core::crack_drive::crack_drive_of(ifs.iter().flat_map(|i| &i.points), d)
             });
         let crack_growth_rate =
-            crate::crack::growth_rate(&self.log.rows, crack.map(|c| c.length), r.cycles);
+            crate::post::crack::growth_rate(&self.log.rows, crack.map(|c| c.length), r.cycles);
         Ok(CurveRow {
             increment: r.increment_index,
             step: r.step,
@@ -396,20 +396,21 @@ impl Engine<'_> {
 }
 
 /// Interface energies summed over the blocks.
-fn total_energy(ifs: &[output::InterfaceResults]) -> output::InterfaceEnergy {
-    ifs.iter()
-        .map(output::interface_energy)
-        .fold(output::InterfaceEnergy::default(), |a, e| {
-            output::InterfaceEnergy {
-                dissipated_energy: a.dissipated_energy + e.dissipated_energy,
-                viscous_energy: a.viscous_energy + e.viscous_energy,
-                damaged_area: a.damaged_area + e.damaged_area,
-                process_zone_area: a.process_zone_area + e.process_zone_area,
-                has_damage: a.has_damage || e.has_damage,
-                frictional_dissipation: a.frictional_dissipation + e.frictional_dissipation,
-                has_friction: a.has_friction || e.has_friction,
-            }
-        })
+fn total_energy(
+    ifs: &[crate::post::fields::InterfaceResults],
+) -> crate::post::fields::InterfaceEnergy {
+    ifs.iter().map(crate::post::fields::interface_energy).fold(
+        crate::post::fields::InterfaceEnergy::default(),
+        |a, e| crate::post::fields::InterfaceEnergy {
+            dissipated_energy: a.dissipated_energy + e.dissipated_energy,
+            viscous_energy: a.viscous_energy + e.viscous_energy,
+            damaged_area: a.damaged_area + e.damaged_area,
+            process_zone_area: a.process_zone_area + e.process_zone_area,
+            has_damage: a.has_damage || e.has_damage,
+            frictional_dissipation: a.frictional_dissipation + e.frictional_dissipation,
+            has_friction: a.has_friction || e.has_friction,
+        },
+    )
 }
 
 /// How an incremental run ended.
@@ -421,7 +422,7 @@ pub(crate) struct Ending {
     /// Whether an observer interrupted the run (Ctrl-C).
     pub interrupted: bool,
     /// Warnings for the user about the end state (a small-strain run past
-    /// the rotation limit: [`crate::rotation`]).
+    /// the rotation limit: [`crate::post::rotation`]).
     pub warnings: Vec<String>,
 }
 
@@ -629,8 +630,8 @@ fn finish(
     };
     let mut interfaces = Vec::new();
     if let (Some(u), Some(state)) = (u, state) {
-        interfaces = output::interface_results_at(model, u, state, step)?;
-        summary["interfaces"] = output::interface_summary(model, &interfaces);
+        interfaces = crate::post::fields::interface_results_at(model, u, state, step)?;
+        summary["interfaces"] = crate::output::summary::interface_summary(model, &interfaces);
     }
     match &run {
         Some(run) => run_totals(&mut summary, p, run, t0)?,
@@ -651,7 +652,7 @@ fn finish(
     }
     if let Some(u) = u {
         let (rotation, warning) =
-            crate::rotation::summary_entry(model, u, crate::rotation::is_deck(input));
+            crate::post::rotation::summary_entry(model, u, crate::post::rotation::is_deck(input));
         summary["largest_rotation"] = rotation;
         if let Some(w) = warning {
             match summary["warnings"].as_array_mut() {
@@ -709,9 +710,9 @@ fn crack_and_energy(
         .filter(|w| matches!((w[0].crack_length, w[1].crack_length), (Some(a), Some(b)) if b > a));
     entry["process_zone_points_min_while_growing"] =
         json!(growing.filter_map(|w| w[1].process_zone_points).min());
-    entry["min_process_zone_points"] = json!(crate::crack::MIN_PROCESS_ZONE_POINTS);
+    entry["min_process_zone_points"] = json!(crate::post::crack::MIN_PROCESS_ZONE_POINTS);
     summary["crack"] = entry;
-    let warning = crate::crack::process_zone_warning(&log.rows)?;
+    let warning = crate::post::crack::process_zone_warning(&log.rows)?;
     match summary["warnings"].as_array_mut() {
         Some(list) => list.push(json!(warning)),
         None => summary["warnings"] = json!([warning]),
@@ -720,18 +721,18 @@ fn crack_and_energy(
 }
 
 /// `summary.json` `fatigue.static_share` and `fatigue.failed_points` of a
-/// fatigue run ([`crate::crack::fatigue_static_share`]); the warning when
+/// fatigue run ([`crate::post::crack::fatigue_static_share`]); the warning when
 /// a measured-crack run's share is large, also added to `warnings`.
 fn fatigue_share(
     summary: &mut serde_json::Value,
     p: &Prepared,
-    interfaces: &[output::InterfaceResults],
+    interfaces: &[crate::post::fields::InterfaceResults],
 ) -> Option<String> {
     let measured = p.model.fatigue.as_ref()?.front_direction.is_some();
-    let (share, points) = crate::crack::fatigue_static_share(interfaces)?;
+    let (share, points) = crate::post::crack::fatigue_static_share(interfaces)?;
     summary["fatigue"]["static_share"] = json!(share);
     summary["fatigue"]["failed_points"] = json!(points);
-    let warning = crate::crack::static_share_warning(share, points).filter(|_| measured)?;
+    let warning = crate::post::crack::static_share_warning(share, points).filter(|_| measured)?;
     match summary["warnings"].as_array_mut() {
         Some(list) => list.push(json!(warning)),
         None => summary["warnings"] = json!([warning]),
@@ -754,8 +755,8 @@ fn base_summary(input: &Path, p: &Prepared, log: &RunLog, status: &str) -> serde
         "nodes": model.mesh.nodes.len(),
         "dofs": model.dofs.num_dofs(),
         "equations": model.dofs.num_free,
-        "elements": output::element_counts(model),
-        "distributed": output::distributed_summary(model),
+        "elements": crate::output::summary::element_counts(model),
+        "distributed": crate::output::summary::distributed_summary(model),
         "increments": log.last_increment,
         "newton_iterations": {
             "total": total_iterations,
@@ -806,8 +807,8 @@ fn run_totals(
     t0: Instant,
 ) -> Result<()> {
     let model = &p.model;
-    summary["reactions"] = output::reactions(model, &run.residual)?;
-    summary["displacement_max"] = json!(output::displacement_max(&run.u));
+    summary["reactions"] = crate::output::summary::reactions(model, &run.residual)?;
+    summary["displacement_max"] = json!(crate::output::summary::displacement_max(&run.u));
     let t = run.summary.timings;
     summary["timings"] = json!({
         "read": p.read_seconds, "choose_solver": p.choose_solver_seconds,
@@ -830,11 +831,11 @@ fn run_totals(
 fn advice_and_solver(summary: &mut serde_json::Value, p: &Prepared, log: &RunLog) -> Result<()> {
     use junta_core::MatrixKind;
     let model = &p.model;
-    let (zone, zone_lines, mut warnings) = output::cohesive_zone_advice(model)?;
+    let (zone, zone_lines, mut warnings) = crate::output::summary::cohesive_zone_advice(model)?;
     if !zone_lines.is_empty() {
         summary["mesh_advice"] = zone;
     }
-    warnings.extend(crate::bending::bending_warnings(model));
+    warnings.extend(crate::prepare::bending::bending_warnings(model));
     if !warnings.is_empty() {
         summary["warnings"] = json!(warnings);
     }
@@ -848,7 +849,7 @@ fn advice_and_solver(summary: &mut serde_json::Value, p: &Prepared, log: &RunLog
     summary["solver"] = json!({
         "name": report.solver,
         "ordering": report.ordering,
-        "predicted_factor_nonzeros": output::ordering_candidates(&report),
+        "predicted_factor_nonzeros": crate::output::summary::ordering_candidates(&report),
         "precision": report.precision,
         "factor_nonzeros": report.factor_nonzeros,
         "factorizations": report.factorizations,

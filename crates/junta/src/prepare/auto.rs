@@ -13,7 +13,7 @@
 //! keeps each node's equations together). AMG is chosen, with the numbers
 //! in the run's notes (`summary.json` `notes`), when
 //! - the factor's memory (8 bytes per non-zero, double precision) exceeds
-//!   half of the memory available ([`crate::limits::machine_memory`]): such
+//!   half of the memory available ([`crate::prepare::limits::machine_memory`]): such
 //!   a factor is never attempted; or
 //! - for positive-definite models only, AMG-CG is predicted faster than
 //!   the direct solver by the cost model of [`predicted_seconds`]: the
@@ -126,7 +126,7 @@ fn amg_reason(
 ) -> Option<String> {
     let nnz_l = factor.nonzeros;
     let bytes = 8.0 * nnz_l as f64;
-    let avail = crate::limits::machine_memory().unwrap_or(f64::INFINITY);
+    let avail = crate::prepare::limits::machine_memory().unwrap_or(f64::INFINITY);
     let gb = |b: f64| b / 1e9;
     let (direct, amg) = predicted_seconds(factor, entries);
     if bytes > 0.5 * avail {

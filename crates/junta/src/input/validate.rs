@@ -4,7 +4,7 @@
 //! same inputs before solving, with the key in the message.
 
 use crate::error::{bail, Result};
-use crate::scene::{self, SceneFile};
+use crate::input::scene::{self, SceneFile};
 use std::path::Path;
 
 /// Read a scene file and check its numbers (see [`scene()`]).

@@ -2,8 +2,13 @@
 //! the deck (`.inp`), build the model, apply the solver overrides, choose the
 //! linear back end, and check what can only be checked on the built model.
 
+pub mod auto;
+pub mod bending;
+pub(crate) mod check;
+pub(crate) mod limits;
+
 use crate::error::{bail, err, Context, Result};
-use crate::{deck, scene};
+use crate::{input::deck, input::scene};
 use junta_core::registry::{self, SolverEntry};
 use junta_core::{LinearSolver, MatrixKind, Model};
 use std::path::{Path, PathBuf};
@@ -41,7 +46,7 @@ pub struct Prepared {
     /// deck's), if any.
     pub curve: Option<scene::CurveSpec>,
     /// How the crack front is measured (`[output] crack`); `None`: the
-    /// default of [`crate::crack`].
+    /// default of [`crate::post::crack`].
     pub crack: Option<scene::CrackFrontSpec>,
     /// Incremental runs: a VTU frame every this many increments (>= 1).
     pub every: usize,
@@ -73,11 +78,11 @@ pub struct Prepared {
     /// for scenes).
     pub program_deck_steps: Vec<usize>,
     /// A deck's print requests (empty for a scene).
-    pub prints: crate::deck_print::PrintTables,
+    pub prints: crate::output::deck_print::PrintTables,
     /// Seconds spent reading the input and building the model.
     pub read_seconds: f64,
     /// Seconds spent choosing the linear solver (`auto`'s analysis,
-    /// [`crate::auto::decide`]); not part of `read_seconds`.
+    /// [`crate::prepare::auto::decide`]); not part of `read_seconds`.
     pub choose_solver_seconds: f64,
 }
 
@@ -107,7 +112,8 @@ pub fn resolve_solver(
     }
     let mut dissection = None;
     if key == "auto" && kind != MatrixKind::General {
-        let decision = crate::auto::decide(model, kind == MatrixKind::SymmetricPositiveDefinite);
+        let decision =
+            crate::prepare::auto::decide(model, kind == MatrixKind::SymmetricPositiveDefinite);
         dissection = decision.dissection;
         if let Some(reason) = decision.amg_reason {
             let method = if kind == MatrixKind::SymmetricPositiveDefinite {
@@ -268,7 +274,7 @@ pub fn prepare_scene_text(
     solver_overrides: &[String],
 ) -> Result<Prepared> {
     let sf = scene::SceneFile::parse(input, text)?;
-    crate::validate::scene(&sf)?;
+    crate::input::validate::scene(&sf)?;
     let mut p = prepare_scene(input, &sf, solver_overrides)?;
     control_override(input, &mut p)?;
     check_prepared(&input.display().to_string(), &p)?;
@@ -278,7 +284,7 @@ pub fn prepare_scene_text(
 /// A model built in code, run as `analysis` with the solver `key`.
 pub fn prepare_model(model: Model, analysis: scene::AnalysisSpec, key: &str) -> Result<Prepared> {
     let where_ = "(model built in code)";
-    crate::validate::analysis(where_, &analysis)?;
+    crate::input::validate::analysis(where_, &analysis)?;
     let mut key = key.to_string();
     let table = toml::Table::new();
     let mut notes = Vec::new();
@@ -431,7 +437,7 @@ fn prepare_unchecked(input: &Path, options: &crate::Options) -> Result<Prepared>
                 .with_context(|| format!("cannot read scene file {}", input.display()))?;
             let text = overridden_scene(input, text, &options.overrides)?;
             let sf = scene::SceneFile::parse(input, text)?;
-            crate::validate::scene(&sf)?;
+            crate::input::validate::scene(&sf)?;
             prepare_scene(input, &sf, solver_overrides)
         }
         Some("inp") => {
@@ -748,7 +754,7 @@ fn fatigue_direction(
             if nodes.is_empty() {
                 bail!("{at}: key `fatigue`: the model has no interface, so there is no crack to grow; add an [[interface]] with a fatigue law");
             }
-            return Ok(crate::crack::default_direction(&nodes));
+            return Ok(crate::post::crack::default_direction(&nodes));
         }
     };
     let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
@@ -810,7 +816,7 @@ fn check_path_following(input: &Path, a: &scene::AnalysisSpec) -> Result<()> {
 
 /// What needs the model: probe, reference and curve sets, curve components.
 pub fn check_prepared(file: &str, p: &Prepared) -> Result<()> {
-    crate::validate::analysis(file, &p.analysis)?;
+    crate::input::validate::analysis(file, &p.analysis)?;
     let mesh = &p.model.mesh;
     for s in &p.probes {
         mesh.node_set(s)

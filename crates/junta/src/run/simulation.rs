@@ -23,15 +23,15 @@
 //! returns `Ok` with its [`Status`]; [`RunResults::failure`] holds the
 //! error the command line exits with.
 
-use crate::check::CheckReport;
-use crate::checkpoint::{check_fields, check_inputs, read_restart, RestartFile};
-use crate::curve::{past_peak_hint, Curve};
 use crate::error::{bail, err, Context, Error, Result};
-use crate::incremental::{run_incremental, Limits};
-use crate::observer::{Observer, RunLog};
+use crate::output::writers;
+use crate::post::curve::{past_peak_hint, Curve};
+use crate::prepare::check::CheckReport;
 use crate::prepare::{prepare_with, Prepared};
-pub use crate::results::{RunResults, Status};
-use crate::writers;
+use crate::run::checkpoint::{check_fields, check_inputs, read_restart, RestartFile};
+use crate::run::incremental::{run_incremental, Limits};
+use crate::run::observer::{Observer, RunLog};
+pub use crate::run::results::{RunResults, Status};
 use std::path::{Path, PathBuf};
 
 /// Options of reading an input.
@@ -121,7 +121,7 @@ impl Simulation {
     /// (`"auto"` chooses from the model).
     pub fn from_model(
         model: junta_core::Model,
-        analysis: crate::scene::AnalysisSpec,
+        analysis: crate::input::scene::AnalysisSpec,
         solver: &str,
     ) -> Result<Simulation> {
         let prepared = crate::prepare::prepare_model(model, analysis, solver)?;
@@ -181,7 +181,7 @@ impl Simulation {
     ) -> Result<RunResults> {
         let dir = create_output(settings.output.as_deref())?;
         match self.prepared.analysis.kind.as_str() {
-            "linear" => crate::linear::run_linear(
+            "linear" => crate::run::linear::run_linear(
                 &self.input,
                 &mut self.prepared,
                 dir.as_deref(),
@@ -303,7 +303,7 @@ fn run_static(
     input: &Path,
     p: &mut Prepared,
     dir: Option<PathBuf>,
-    restart: Option<(RestartFile, Vec<crate::curve::CurveRow>)>,
+    restart: Option<(RestartFile, Vec<crate::post::curve::CurveRow>)>,
     settings: &RunSettings,
     observers: &mut [&mut dyn Observer],
 ) -> Result<RunResults> {

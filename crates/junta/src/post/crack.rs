@@ -23,7 +23,7 @@
 //!   of one row along the direction).
 
 use crate::error::{bail, Result};
-use crate::output::InterfaceResults;
+use crate::post::fields::InterfaceResults;
 use crate::prepare::Prepared;
 use junta_core::law::output;
 
@@ -249,7 +249,7 @@ pub(crate) fn default_direction(nodes: &[[f64; 3]]) -> [f64; 3] {
 /// row's length over one increment; over a growth interval it is the
 /// secant `da/dN` a test reduction takes between two crack readings.
 pub(crate) fn growth_rate(
-    rows: &[crate::curve::CurveRow],
+    rows: &[crate::post::curve::CurveRow],
     a: Option<f64>,
     cycles: f64,
 ) -> Option<f64> {
@@ -317,7 +317,7 @@ pub(crate) fn static_share_warning(share: f64, points: usize) -> Option<String> 
 /// elements (the zone shrinks for an increment as a row of points passes
 /// the damage threshold); a zone short in most of the growth is a mesh
 /// too coarse for it.
-pub(crate) fn process_zone_warning(rows: &[crate::curve::CurveRow]) -> Option<String> {
+pub(crate) fn process_zone_warning(rows: &[crate::post::curve::CurveRow]) -> Option<String> {
     let mut under = 0usize;
     let mut growing = 0usize;
     let mut worst: Option<(usize, usize, f64)> = None;
@@ -354,9 +354,9 @@ mod tests {
 
     /// A curve row of increment `inc` with the crack length `a` and `n`
     /// process-zone points (the other columns zero).
-    fn row(inc: usize, a: f64, n: usize) -> crate::curve::CurveRow {
+    fn row(inc: usize, a: f64, n: usize) -> crate::post::curve::CurveRow {
         let line = format!("{inc},0,0,0,0,0,0,0,0,0,0,0,0,0,0,load,0,0,1,0,0,{a},{a},0.1,{n}");
-        crate::curve::CurveRow::parse(&line).unwrap()
+        crate::post::curve::CurveRow::parse(&line).unwrap()
     }
 
     /// da/dN over the cycles since the last growth: none while the crack

@@ -38,7 +38,7 @@ pub struct RestartFile {
     #[serde(default)]
     pub finished: Option<String>,
     /// External forces of the checkpoint's increment
-    /// ([`crate::observer::RunLog::external_force`]); empty in files of
+    /// ([`crate::run::observer::RunLog::external_force`]); empty in files of
     /// older runs.
     #[serde(default)]
     pub external_force: Vec<f64>,

@@ -3,7 +3,6 @@
 //! prints.
 
 use crate::error::Result;
-use crate::output;
 use crate::prepare::Prepared;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -79,14 +78,14 @@ pub struct CheckReport {
     /// Cohesive-zone (mesh) advice, one line per block.
     pub mesh_advice: Vec<String>,
     /// Warnings about the laws' parameters and the mesh (thin blocks of
-    /// fully integrated H8 that lock in bending: [`crate::bending`]).
+    /// fully integrated H8 that lock in bending: [`crate::prepare::bending`]).
     pub warnings: Vec<String>,
     /// Notes from reading the input.
     pub notes: Vec<String>,
     /// The kinematics of the run (`small`, or `finite` under `nlgeom`).
     pub kinematics: junta_core::Kinematics,
     /// What the run reports about rotations and when it warns
-    /// ([`crate::rotation::check_note`]; a rotation is known only after
+    /// ([`crate::post::rotation::check_note`]; a rotation is known only after
     /// the solve). `None` without solid elements.
     pub rotation: Option<String>,
 }
@@ -104,9 +103,9 @@ impl CheckReport {
             total_force[i % 3] += f;
         }
         let (penalty_advice, penalty_lines, _) =
-            output::penalty_advice(m, &|b| p.thickness.get(b).copied())?;
-        let (_, mesh_advice, mut warnings) = output::cohesive_zone_advice(m)?;
-        warnings.extend(crate::bending::bending_warnings(m));
+            crate::output::summary::penalty_advice(m, &|b| p.thickness.get(b).copied())?;
+        let (_, mesh_advice, mut warnings) = crate::output::summary::cohesive_zone_advice(m)?;
+        warnings.extend(crate::prepare::bending::bending_warnings(m));
         let analysis = (p.analysis.kind == "static").then(|| {
             let n = &p.analysis.newton;
             format!(
@@ -121,7 +120,7 @@ impl CheckReport {
             nodes: m.mesh.nodes.len(),
             dofs: m.dofs.num_dofs(),
             equations: m.dofs.num_free,
-            elements: output::element_counts(m),
+            elements: crate::output::summary::element_counts(m),
             analysis,
             steps: p
                 .deck_steps
@@ -156,8 +155,8 @@ impl CheckReport {
             mesh_advice,
             warnings,
             notes: p.notes.clone(),
-            kinematics: crate::rotation::model_kinematics(m),
-            rotation: crate::rotation::check_note(m, crate::rotation::is_deck(input)),
+            kinematics: crate::post::rotation::model_kinematics(m),
+            rotation: crate::post::rotation::check_note(m, crate::post::rotation::is_deck(input)),
         })
     }
 }

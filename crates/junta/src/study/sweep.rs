@@ -15,7 +15,7 @@
 //! estimate (eq. 53) and the advisor's optimum d_op (eq. 55).
 
 use crate::error::{bail, err, Context, Result};
-use crate::{output, plot, scene};
+use crate::{input::scene, output::plot};
 use junta_core::registry::{self, SolverEntry};
 use junta_solvers::linear_static::solve_linear_static;
 use std::fmt::Write as _;
@@ -101,7 +101,7 @@ pub fn sweep_penalty(
     out: &Path,
 ) -> Result<Vec<SweepRow>> {
     check_range(from, to, per_decade)?;
-    let mut sf = crate::validate::read_scene(input)?;
+    let mut sf = crate::input::validate::read_scene(input)?;
     if set_penalty(&mut sf, from) == 0 {
         bail!(
             "{}: the sweep changes the `d` of `linear_penalty` laws, and the scene has none in [laws]",
@@ -205,7 +205,7 @@ fn sweep_row(
                 let v = model.set_total(&rs.set, &r.residual)?[*c];
                 row.rel_error = Some((v - rs.value).abs() / rs.value.abs());
             }
-            let ifs = output::interface_results(model, &r.u, &r.state)?;
+            let ifs = crate::post::fields::interface_results(model, &r.u, &r.state)?;
             row.max_normal_jump = ifs
                 .iter()
                 .flat_map(|i| i.points.iter())
@@ -449,7 +449,7 @@ pub fn sweep_integration(
     axis: usize,
     out: &Path,
 ) -> Result<Vec<Profile>> {
-    let mut sf = crate::validate::read_scene(input)?;
+    let mut sf = crate::input::validate::read_scene(input)?;
     if sf.scene.interface.is_empty() {
         bail!("{}: the scene has no [[interface]]", input.display());
     }
@@ -484,7 +484,7 @@ pub fn sweep_integration(
             )?;
             let res = solve_linear_static(&model, solver.as_mut())
                 .with_context(|| format!("solving with {rule} integration"))?;
-            let ifs = output::interface_results(&model, &res.u, &res.state)?;
+            let ifs = crate::post::fields::interface_results(&model, &res.u, &res.state)?;
             let mut pts: Vec<(f64, f64)> = Vec::new();
             for p in ifs.iter().flat_map(|i| i.points.iter()) {
                 let t = p.get("traction").unwrap_or(&[0.0; 3]);

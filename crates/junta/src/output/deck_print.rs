@@ -41,7 +41,7 @@
 //! written. The same step rules as `*NODE PRINT` apply.
 
 use crate::error::{err, Context, Result};
-use crate::readers::inp::{InpElPrint, InpNodePrint};
+use crate::input::inp::{InpElPrint, InpNodePrint};
 use junta_core::state::StateStore;
 use junta_core::Model;
 use junta_elements::material::Axes;
@@ -260,7 +260,7 @@ fn el_rows(
                     continue;
                 }
                 let label = model.mesh.element_label(r.block, r.element);
-                let pts = crate::output::element_points(
+                let pts = crate::post::fields::element_points(
                     model,
                     u,
                     state,

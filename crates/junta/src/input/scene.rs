@@ -547,7 +547,7 @@ pub struct OutputSpec {
     #[serde(default = "every_one")]
     pub every: usize,
     /// Incremental runs: how the crack length, the crack front and the
-    /// process zone are measured (`crate::crack`); without it the
+    /// process zone are measured (`crate::post::crack`); without it the
     /// direction is the axis along which the interfaces are longest.
     #[serde(default)]
     pub crack: Option<CrackFrontSpec>,
@@ -556,7 +556,7 @@ pub struct OutputSpec {
 /// `[output] crack = { direction = [1, 0, 0], origin = [..], width = ..,
 /// interface = ".." }`: the direction a crack grows in, for the crack
 /// length, the front position and the process zone of `curve.csv`
-/// (`crate::crack`).
+/// (`crate::post::crack`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CrackFrontSpec {
@@ -776,12 +776,12 @@ fn generate_box(
         );
     }
     let order = if entry.shape.num_nodes() > 8 { 2 } else { 1 };
-    crate::limits::check_memory(
+    crate::prepare::limits::check_memory(
         &format!(
             "{}: key `{key}.divisions` = {divisions:?}: the box and its model",
             sf.at(element.span())
         ),
-        crate::limits::box_bytes(divisions, order, entry.shape.num_nodes()),
+        crate::prepare::limits::box_bytes(divisions, order, entry.shape.num_nodes()),
     )?;
     let spec = BoxSpec {
         origin,
@@ -872,11 +872,11 @@ fn load_mesh(sf: &SceneFile) -> Result<Mesh> {
         }
         "gmsh" => {
             let p = sf.relative(m.file.as_ref().ok_or_else(|| missing("file"))?);
-            crate::readers::gmsh::read_msh(&p).map_err(|e| err!("{at}: key `mesh.file`: {e}"))?
+            crate::input::gmsh::read_msh(&p).map_err(|e| err!("{at}: key `mesh.file`: {e}"))?
         }
         _ => {
             let p = sf.relative(m.file.as_ref().ok_or_else(|| missing("file"))?);
-            crate::readers::inp::read_inp(&p)
+            crate::input::inp::read_inp(&p)
                 .map_err(|e| err!("{at}: key `mesh.file`: {e}"))?
                 .mesh
         }
@@ -1482,14 +1482,14 @@ pub fn build_model_with_notes(sf: &SceneFile, notes: &mut Vec<String>) -> Result
             ),
         }
     }
-    crate::limits::check_memory(
+    crate::prepare::limits::check_memory(
         &format!(
             "{}: the model ({} nodes, {} elements)",
             sf.path.display(),
             mesh.nodes.len(),
             mesh.num_elements()
         ),
-        crate::limits::model_bytes(&mesh),
+        crate::prepare::limits::model_bytes(&mesh),
     )?;
     let mut model = Model::new(mesh, elements, &constraints, f_ext, reaction_sets)
         .map_err(|e| err!("{}: {e}", sf.path.display()))?;

@@ -22,7 +22,7 @@
 //! and each run's own directory.
 
 use crate::error::{bail, err, Context, Result};
-use crate::{plot, scene};
+use crate::{input::scene, output::plot};
 use std::path::{Path, PathBuf};
 
 /// One method's run.
@@ -109,7 +109,7 @@ fn analysis(t: &mut toml::Table) -> &mut toml::Table {
 /// Run the three methods on `input` into `out`.
 pub fn sweep_control(input: &Path, out: &Path) -> Result<Vec<ControlRun>> {
     // validate as a scene first (clear errors with the file and key)
-    let sf = crate::validate::read_scene(input)?;
+    let sf = crate::input::validate::read_scene(input)?;
     if sf.scene.analysis.kind != "static" {
         bail!(
             "{}: key `analysis.type`: `junta sweep control` needs an incremental scene (\"static\")",
@@ -332,7 +332,7 @@ fn write_outputs(
     }
     if let Some(rf) = &curve.reference {
         let path = sf.path.parent().unwrap_or(Path::new(".")).join(&rf.file);
-        if let Ok(pts) = crate::curve::read_reference_points(&path) {
+        if let Ok(pts) = crate::post::curve::read_reference_points(&path) {
             series.push(plot::Series {
                 name: rf.label.clone(),
                 points: pts,

@@ -1,0 +1,287 @@
+//! The fields of a converged state, as the post-processing and the
+//! writers read them: cell-averaged solid output ([`CellResults`]), the
+//! integration-point output of every interface block
+//! ([`InterfaceResults`]) and the energies it integrates to
+//! ([`InterfaceEnergy`]).
+
+use crate::error::{Context, Result};
+use junta_core::element::{ElementContext, StepInfo};
+use junta_core::state::StateStore;
+use junta_core::Model;
+
+/// Cell-averaged output of every solid element, in block order, and the
+/// range of each stress component over the integration points per block.
+pub struct CellResults {
+    /// Per solid block: (name, stress_min, stress_max) over all points.
+    pub ranges: Vec<(String, [f64; 6], [f64; 6])>,
+    /// Average stress per cell (Voigt `[xx, yy, zz, xy, yz, zx]`).
+    pub stress: Vec<[f64; 6]>,
+    /// Average von Mises stress per cell.
+    pub mises: Vec<f64>,
+    /// Average second Piola-Kirchhoff stress per cell, when an element
+    /// reports it (large deformation: `stress` is then the Cauchy stress).
+    pub pk2_stress: Option<Vec<[f64; 6]>>,
+}
+
+/// Average integration-point outputs over each solid cell (a linear
+/// analysis: the model's whole temperature change, if it has one).
+pub fn cell_results(model: &Model, u: &[f64], state: &StateStore) -> Result<CellResults> {
+    cell_results_at(model, u, state, StepInfo::default())
+}
+
+/// [`cell_results`] for the state of increment `step` (laws whose answer
+/// depends on the increment, such as a release schedule, need it).
+pub fn cell_results_at(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+    step: StepInfo,
+) -> Result<CellResults> {
+    let mut stress = Vec::with_capacity(model.mesh.num_elements());
+    let mut mises = Vec::with_capacity(model.mesh.num_elements());
+    let mut pk2 = Vec::with_capacity(model.mesh.num_elements());
+    let mut any_pk2 = false;
+    let mut ranges = Vec::new();
+    for (bi, b) in model.mesh.blocks.iter().enumerate() {
+        if !b.shape.is_solid() {
+            continue;
+        }
+        let mut lo = [f64::INFINITY; 6];
+        let mut hi = [f64::NEG_INFINITY; 6];
+        for e in 0..b.len() {
+            let pts = element_points(model, u, state, bi, e, step)?;
+            for p in &pts {
+                if let Some(v) = p.get("stress") {
+                    for k in 0..6 {
+                        lo[k] = lo[k].min(v[k]);
+                        hi[k] = hi[k].max(v[k]);
+                    }
+                }
+            }
+            let mut s = [0.0; 6];
+            let mut s2 = [0.0; 6];
+            let mut m = 0.0;
+            let np = pts.len().max(1) as f64;
+            for p in &pts {
+                if let Some(v) = p.get("stress") {
+                    for k in 0..6 {
+                        s[k] += v[k] / np;
+                    }
+                }
+                if let Some(v) = p.get("pk2_stress") {
+                    any_pk2 = true;
+                    for k in 0..6 {
+                        s2[k] += v[k] / np;
+                    }
+                }
+                if let Some(v) = p.get("mises") {
+                    m += v[0] / np;
+                }
+            }
+            stress.push(s);
+            pk2.push(s2);
+            mises.push(m);
+        }
+        ranges.push((b.name.clone(), lo, hi));
+    }
+    Ok(CellResults {
+        ranges,
+        stress,
+        mises,
+        pk2_stress: any_pk2.then_some(pk2),
+    })
+}
+
+/// Integration-point outputs of element `e` of block `bi`.
+pub fn element_points(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+    bi: usize,
+    e: usize,
+    step: StepInfo,
+) -> Result<Vec<junta_core::PointOutput>> {
+    let b = &model.mesh.blocks[bi];
+    let nodes = b.element(e);
+    let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| model.mesh.nodes[n]).collect();
+    let disp: Vec<f64> = nodes
+        .iter()
+        .flat_map(|&n| u[3 * n..3 * n + 3].iter().copied())
+        .collect();
+    // solids see the temperature change of the increment (interfaces none)
+    let temperature: Option<Vec<f64>> = model
+        .temperature
+        .as_ref()
+        .filter(|_| b.shape.is_solid())
+        .map(|t| {
+            nodes
+                .iter()
+                .map(|&n| step.temperature_factor * t[n])
+                .collect()
+        });
+    let ctx = ElementContext {
+        coords: &coords,
+        disp: &disp,
+        state_committed: &state.committed[state.range(bi, e)],
+        step,
+        law_responses: None,
+        temperature: temperature.as_deref(),
+    };
+    model.elements[bi]
+        .point_outputs(&ctx)
+        .with_context(|| format!("output of element {e} of block `{}`", b.name))
+}
+
+/// Integration-point output of one interface block.
+pub struct InterfaceResults {
+    /// Block index.
+    pub block: usize,
+    /// Points of every element, element-major (`points_per_element` each).
+    pub points: Vec<junta_core::PointOutput>,
+    /// Points per element.
+    pub points_per_element: usize,
+}
+
+/// Point outputs of every interface block.
+pub fn interface_results(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+) -> Result<Vec<InterfaceResults>> {
+    interface_results_at(model, u, state, StepInfo::default())
+}
+
+/// [`interface_results`] for the state of increment `step`.
+pub fn interface_results_at(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+    step: StepInfo,
+) -> Result<Vec<InterfaceResults>> {
+    let mut out = Vec::new();
+    for (bi, b) in model.mesh.blocks.iter().enumerate() {
+        if !b.shape.is_interface() {
+            continue;
+        }
+        let mut points = Vec::new();
+        for e in 0..b.len() {
+            points.extend(element_points(model, u, state, bi, e, step)?);
+        }
+        out.push(InterfaceResults {
+            block: bi,
+            points_per_element: model.elements[bi].num_points(),
+            points,
+        });
+    }
+    Ok(out)
+}
+
+pub(crate) fn component_range(
+    points: &[junta_core::PointOutput],
+    name: &str,
+) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        if let Some(v) = p.get(name) {
+            for c in 0..3 {
+                lo[c] = lo[c].min(v[c]);
+                hi[c] = hi[c].max(v[c]);
+            }
+        }
+    }
+    (lo, hi)
+}
+
+/// Values every interface point carries whatever its law; the other
+/// scalar values of a point are its law's outputs
+/// ([`junta_core::InterfaceLaw::output_names`]).
+pub const FIXED_POINT_VALUES: &[&str] = &[
+    "jump",
+    "traction",
+    "frame",
+    "area",
+    "state",
+    "failed",
+    "failure_index",
+];
+
+/// Names of the law outputs present in the interface points, in the order
+/// first met.
+pub fn law_output_names(res: &[InterfaceResults]) -> Vec<&'static str> {
+    let mut names: Vec<&'static str> = Vec::new();
+    for r in res {
+        if let Some(p) = r.points.first() {
+            for (n, v) in &p.values {
+                if v.len() == 1 && !FIXED_POINT_VALUES.contains(n) && !names.contains(n) {
+                    names.push(n);
+                }
+            }
+        }
+    }
+    names
+}
+
+/// Energies and areas of one interface block, from its law outputs:
+/// fracture and viscous energy (integrals of the per-area densities),
+/// damaged area (damage >= 0.99) and process-zone area (0 < damage < 0.99).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct InterfaceEnergy {
+    /// Fracture energy dissipated in the block (integral of the points'
+    /// `dissipated_energy` density over their area).
+    pub dissipated_energy: f64,
+    /// Energy dissipated by viscous regularisation (same integral of
+    /// `viscous_energy`).
+    pub viscous_energy: f64,
+    /// Area of the points with damage >= 0.99.
+    pub damaged_area: f64,
+    /// Area of the points with 0 < damage < 0.99 (the process zone).
+    pub process_zone_area: f64,
+    /// Whether the law reports damage (else the numbers are zero).
+    pub has_damage: bool,
+    /// Energy dissipated by friction or interface plasticity (integral of
+    /// the law output `frictional_dissipation`).
+    pub frictional_dissipation: f64,
+    /// Whether a law reports frictional dissipation.
+    pub has_friction: bool,
+}
+
+/// [`InterfaceEnergy`] of one block's points.
+pub fn interface_energy(r: &InterfaceResults) -> InterfaceEnergy {
+    use junta_core::law::output;
+    let mut e = InterfaceEnergy::default();
+    for p in &r.points {
+        // Under nlgeom a point reports its current `area` and its
+        // `reference_area`: energies and crack areas are integrated over
+        // the reference one (the crack's extent on the undeformed surface;
+        // the current mid-surface of a peeled-off point shrinks as its faces
+        // move apart, e.g. by 1/sqrt(2) once the faces stand at 90 degrees,
+        // while its dissipated energy stays). The law's densities are per
+        // current area while a point softens, so the energy is exact where
+        // the mid-surface keeps its area while the point softens (openings
+        // small against the element).
+        let area = p
+            .get("reference_area")
+            .or_else(|| p.get("area"))
+            .map_or(0.0, |a| a[0]);
+        if let Some(d) = p.get(output::DISSIPATED_ENERGY) {
+            e.dissipated_energy += d[0] * area;
+        }
+        if let Some(d) = p.get(output::VISCOUS_ENERGY) {
+            e.viscous_energy += d[0] * area;
+        }
+        if let Some(d) = p.get(output::FRICTIONAL_DISSIPATION) {
+            e.has_friction = true;
+            e.frictional_dissipation += d[0] * area;
+        }
+        if let Some(d) = p.get(output::DAMAGE) {
+            e.has_damage = true;
+            if d[0] >= output::DAMAGED_THRESHOLD {
+                e.damaged_area += area;
+            } else if d[0] > 0.0 {
+                e.process_zone_area += area;
+            }
+        }
+    }
+    e
+}

@@ -1,0 +1,10 @@
+//! Post-processing: quantities of a converged state. The fields the
+//! writers and observers read ([`fields`]), the curve row (`curve`), the
+//! typed frame (`frame`), the crack front ([`crack`]) and the largest element
+//! rotation ([`rotation`]).
+
+pub mod crack;
+pub(crate) mod curve;
+pub mod fields;
+pub(crate) mod frame;
+pub mod rotation;
