@@ -8,7 +8,7 @@
 //!
 //! ```text
 //! junta run <scene.toml | deck.inp> [-o DIR]   solve and write DIR/summary.json, DIR/results.vtu
-//! junta check <scene.toml | deck.inp>          validate and print a model summary, no solve
+//! junta check <scene.toml | deck.inp> [-v]     validate and print a model summary, no solve
 //! junta list                                   every registered plugin with its parameters
 //! ```
 
@@ -76,7 +76,8 @@ enum Command {
         #[arg(long, value_name = "DIR", conflicts_with = "restart")]
         export_matrix: Option<PathBuf>,
     },
-    /// Validate a scene or deck and print a model summary without solving.
+    /// Validate a scene or deck and print a model summary without solving
+    /// (the named sets summarised; with --verbose all of them).
     Check {
         /// Scene or deck file.
         input: PathBuf,
@@ -201,7 +202,13 @@ pub fn main() -> ExitCode {
         },
         Command::Check { input } => Simulation::from_file(&input)
             .and_then(|sim| sim.check())
-            .map(|report| print!("{report}"))
+            .map(|report| {
+                if cli.verbose > 0 {
+                    print!("{}", report.verbose());
+                } else {
+                    print!("{report}");
+                }
+            })
             .map_err(anyhow::Error::from),
         Command::List { markdown } => {
             if markdown {

@@ -29,9 +29,21 @@
 //! (INTER6 / INTER12) its shortest edge, which for the two triangles of a
 //! cut rectangle is the rectangle's shorter side, as for the quadrilateral
 //! it replaces), and the verdict
-//! uses the coarsest element of the interface. Fewer than 3 elements: too
-//! coarse (peak loads overshoot and the load-displacement curve saw-tooths);
-//! 3 to 5: adequate; 5 or more: fine.
+//! uses the coarsest element *where the crack will run* ([`CrackRegion`]).
+//! Fewer than 3 elements: too coarse (peak loads overshoot and the
+//! load-displacement curve saw-tooths); 3 to 5: adequate; 5 or more: fine.
+//!
+//! # Where the crack will run
+//!
+//! A crack starts at the initial front: the boundary edges of the interface
+//! block beyond which a solid element sharing the edge's nodes goes on
+//! (the precrack of a DCB, ENF or MMB, free or in contact, or the end of
+//! an overlap), not the edges where the solids end too (the specimen's
+//! sides and far end). The mesh is judged on the interface elements with a
+//! corner within [`REGION_ZONES`] cohesive-zone lengths of such an edge:
+//! the bond the crack runs into first, where a coarse far field that no
+//! crack reaches does not matter. An interface with no such edge (bonded
+//! all round) is judged on all its elements, as before.
 //!
 //! # Turon's strength reduction
 //!
@@ -99,6 +111,27 @@ pub struct ZoneLengths {
     pub reduced_strength: f64,
 }
 
+/// The interface elements within this many cohesive-zone lengths of the
+/// initial front are where the mesh is judged.
+pub const REGION_ZONES: f64 = 3.0;
+
+/// Where the crack will run: the interface elements near the initial front
+/// (see the module documentation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CrackRegion {
+    /// Boundary edges of the interface that are on the initial front.
+    pub front_edges: usize,
+    /// Distance from the front within which elements count:
+    /// [`REGION_ZONES`] cohesive-zone lengths.
+    pub radius: f64,
+    /// Interface elements within it.
+    pub elements: usize,
+    /// Shorter in-plane side of the finest of them.
+    pub element_length_min: f64,
+    /// Shorter in-plane side of the coarsest of them.
+    pub element_length_max: f64,
+}
+
 /// The advice for one interface block.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CohesiveZoneAdvice {
@@ -120,7 +153,11 @@ pub struct CohesiveZoneAdvice {
     pub mode_ii: ZoneLengths,
     /// The shorter zone of the two modes.
     pub length: f64,
-    /// Coarsest elements spanning it.
+    /// Where the crack will run, when the interface has an initial front
+    /// (`None`: the whole interface is judged).
+    pub crack_region: Option<CrackRegion>,
+    /// Coarsest elements (of the crack region, else of the interface)
+    /// spanning it.
     pub elements_in_zone: f64,
     /// Verdict.
     pub verdict: MeshVerdict,
@@ -129,8 +166,15 @@ pub struct CohesiveZoneAdvice {
 impl CohesiveZoneAdvice {
     /// One-paragraph text for `junta check`.
     pub fn message(&self) -> String {
+        let region = match &self.crack_region {
+            Some(r) => format!(
+                "; where the crack runs ({} elements within {:.3e} of the initial front): {:.3e} .. {:.3e} long",
+                r.elements, r.radius, r.element_length_min, r.element_length_max
+            ),
+            None => String::new(),
+        };
         let mut s = format!(
-            "interface `{}`: cohesive zone about {:.3e} long (mode I {:.3e}, mode II {:.3e}; Rice bulk {:.3e} / slender arm {:.3e} for mode I, E_n = {:.4e}, E_along = {:.4e}, arm thickness {:.4e}); interface elements {:.3e} .. {:.3e} long: {:.1} of the coarsest span it: {}",
+            "interface `{}`: cohesive zone about {:.3e} long (mode I {:.3e}, mode II {:.3e}; Rice bulk {:.3e} / slender arm {:.3e} for mode I, E_n = {:.4e}, E_along = {:.4e}, arm thickness {:.4e}); interface elements {:.3e} .. {:.3e} long{region}: {:.1} of the coarsest span it: {}",
             self.block,
             self.length,
             self.mode_i.length,
@@ -393,10 +437,17 @@ pub fn cohesive_zone_advice(
     else {
         return Ok(None);
     };
-    let mode_i = zone_lengths(strength_normal, toughness_mode_i, e_n, e_x, h, l_max);
-    let mode_ii = zone_lengths(strength_shear, toughness_mode_ii, e_n, e_x, h, l_max);
-    let length = mode_i.length.min(mode_ii.length);
-    let elements_in_zone = length / l_max;
+    // the zone's length does not depend on the element length
+    let length = zone_lengths(strength_normal, toughness_mode_i, e_n, e_x, h, l_max)
+        .length
+        .min(zone_lengths(strength_shear, toughness_mode_ii, e_n, e_x, h, l_max).length);
+    let crack_region = crack_region(model, block, REGION_ZONES * length);
+    let l_judged = crack_region
+        .as_ref()
+        .map_or(l_max, |r| r.element_length_max);
+    let mode_i = zone_lengths(strength_normal, toughness_mode_i, e_n, e_x, h, l_judged);
+    let mode_ii = zone_lengths(strength_shear, toughness_mode_ii, e_n, e_x, h, l_judged);
+    let elements_in_zone = length / l_judged;
     let verdict = if elements_in_zone < 3.0 {
         MeshVerdict::TooCoarse
     } else if elements_in_zone < 5.0 {
@@ -414,9 +465,159 @@ pub fn cohesive_zone_advice(
         mode_i,
         mode_ii,
         length,
+        crack_region,
         elements_in_zone,
         verdict,
     }))
+}
+
+/// Shorter in-plane side of element `e` of interface block `b` (the
+/// rule of the module documentation), and its bottom-face corners.
+fn short_side(
+    mesh: &junta_core::mesh::Mesh,
+    b: &junta_core::mesh::ElementBlock,
+    e: usize,
+) -> (f64, usize) {
+    let nodes = b.element(e);
+    let x = |a: usize| mesh.nodes[nodes[a]];
+    if b.shape.face_shape().is_some_and(|f| f.num_corners() == 3) {
+        let l = [sub(x(1), x(0)), sub(x(2), x(0)), sub(x(2), x(1))]
+            .iter()
+            .map(|v| norm(*v))
+            .fold(f64::INFINITY, f64::min);
+        return (l, 3);
+    }
+    let l_xi = 0.5 * (norm(sub(x(1), x(0))) + norm(sub(x(2), x(3))));
+    let l_eta = 0.5 * (norm(sub(x(3), x(0))) + norm(sub(x(2), x(1))));
+    (l_xi.min(l_eta), 4)
+}
+
+/// Distance from point `p` to the segment `a`-`b`.
+fn segment_distance(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> f64 {
+    let ab = sub(b, a);
+    let len2 = dot(ab, ab);
+    let t = if len2 > 0.0 {
+        (dot(sub(p, a), ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    norm(sub(
+        p,
+        [a[0] + t * ab[0], a[1] + t * ab[1], a[2] + t * ab[2]],
+    ))
+}
+
+/// The initial front of interface block `block`: its boundary edges
+/// (bottom-face corner pairs of one element only) beyond which a solid
+/// element holding both edge nodes reaches (see the module documentation).
+pub fn initial_front(model: &Model, block: usize) -> Vec<([f64; 3], [f64; 3])> {
+    let mesh = &model.mesh;
+    let Some(b) = mesh.blocks.get(block) else {
+        return Vec::new();
+    };
+    // edges of the bottom faces, with the element they bound
+    let mut edges: std::collections::HashMap<(usize, usize), (usize, usize)> =
+        std::collections::HashMap::new();
+    for e in 0..b.len() {
+        let (_, corners) = short_side(mesh, b, e);
+        let nodes = b.element(e);
+        for a in 0..corners {
+            let (p, q) = (nodes[a], nodes[(a + 1) % corners]);
+            let key = (p.min(q), p.max(q));
+            edges.entry(key).or_insert((e, 0)).1 += 1;
+        }
+    }
+    let mut node_solids: std::collections::HashMap<usize, Vec<(usize, usize)>> =
+        std::collections::HashMap::new();
+    for (&(p, q), _) in edges.iter().filter(|(_, (_, n))| *n == 1) {
+        node_solids.entry(p).or_default();
+        node_solids.entry(q).or_default();
+    }
+    for (bi, sb) in mesh.blocks.iter().enumerate() {
+        if !sb.shape.is_solid() {
+            continue;
+        }
+        for e in 0..sb.len() {
+            for &n in sb.element(e) {
+                if let Some(v) = node_solids.get_mut(&n) {
+                    v.push((bi, e));
+                }
+            }
+        }
+    }
+    let mut front = Vec::new();
+    for (&(p, q), &(e, _)) in edges.iter().filter(|(_, (_, n))| *n == 1) {
+        let (xp, xq) = (mesh.nodes[p], mesh.nodes[q]);
+        let mid = [
+            0.5 * (xp[0] + xq[0]),
+            0.5 * (xp[1] + xq[1]),
+            0.5 * (xp[2] + xq[2]),
+        ];
+        let (side, corners) = short_side(mesh, b, e);
+        let nodes = b.element(e);
+        let mut c = [0.0; 3];
+        for &n in &nodes[..corners] {
+            for d in 0..3 {
+                c[d] += mesh.nodes[n][d] / corners as f64;
+            }
+        }
+        // outward in-plane direction: from the centroid, across the edge
+        let t = unit(sub(xq, xp));
+        let to_mid = sub(mid, c);
+        let along = dot(to_mid, t);
+        let out = sub(to_mid, [along * t[0], along * t[1], along * t[2]]);
+        if norm(out) == 0.0 {
+            continue;
+        }
+        let out = unit(out);
+        let tol = 1e-3 * side;
+        let beyond = node_solids[&p]
+            .iter()
+            .filter(|s| node_solids[&q].contains(s))
+            .any(|&(bi, se)| {
+                mesh.blocks[bi]
+                    .element(se)
+                    .iter()
+                    .any(|&n| dot(sub(mesh.nodes[n], mid), out) > tol)
+            });
+        if beyond {
+            front.push((xp, xq));
+        }
+    }
+    front
+}
+
+/// The interface elements of block `block` with a corner within `radius`
+/// of its initial front ([`initial_front`]), or `None` when the interface
+/// has no initial front.
+pub fn crack_region(model: &Model, block: usize, radius: f64) -> Option<CrackRegion> {
+    let front = initial_front(model, block);
+    if front.is_empty() || !radius.is_finite() {
+        return None;
+    }
+    let mesh = &model.mesh;
+    let b = &mesh.blocks[block];
+    let (mut n, mut l_min, mut l_max) = (0, f64::INFINITY, 0.0f64);
+    for e in 0..b.len() {
+        let (side, corners) = short_side(mesh, b, e);
+        let near = b.element(e)[..corners].iter().any(|&k| {
+            front
+                .iter()
+                .any(|&(a, c)| segment_distance(mesh.nodes[k], a, c) <= radius)
+        });
+        if near {
+            n += 1;
+            l_min = l_min.min(side);
+            l_max = l_max.max(side);
+        }
+    }
+    (n > 0).then_some(CrackRegion {
+        front_edges: front.len(),
+        radius,
+        elements: n,
+        element_length_min: l_min,
+        element_length_max: l_max,
+    })
 }
 
 #[cfg(test)]

@@ -321,6 +321,11 @@ pub fn cohesive_zone_advice(model: &Model) -> Result<(Value, Vec<String>, Vec<St
                 "mode_i": mode(&a.mode_i),
                 "mode_ii": mode(&a.mode_ii),
                 "cohesive_zone_length": a.length,
+                "crack_region": a.crack_region.as_ref().map(|r| json!({
+                    "front_edges": r.front_edges, "radius": r.radius, "elements": r.elements,
+                    "element_length_min": r.element_length_min,
+                    "element_length_max": r.element_length_max,
+                })),
                 "elements_in_zone": a.elements_in_zone,
                 "verdict": a.verdict.name(),
                 "law_warnings": model.elements[bi].warnings(),

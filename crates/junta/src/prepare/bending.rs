@@ -11,16 +11,30 @@
 //!
 //! # Detection
 //!
-//! Per solid block of `h8` elements: its axis-aligned extents; a direction
-//! is *thin* when the largest extent is at least [`SLENDERNESS`] times its
-//! extent. The number of element layers through a thin direction is its
-//! extent over the median extent of the block's elements along it
-//! (rounded). A block with fewer than [`MIN_LAYERS`] layers through a thin
-//! direction gets the warning (the thin direction with the fewest layers;
-//! the element length is the median element extent along the block's
-//! longest direction). The block is not known to bend (a bar in tension
-//! does not lock): the warning says "if it bends". A beam cut into short
-//! blocks, or a thin body not aligned with the axes, is not detected.
+//! A block is judged as part of its *body*: the solid elements connected
+//! to its elements through shared nodes (interface elements do not connect:
+//! the two arms of a DCB are two bodies), so that a beam cut into short
+//! blocks is judged as the beam. Per `h8` block: the axis-aligned extents
+//! of its body; the body's *axis* is its longest direction, and a direction
+//! across it is *thin* when the axis is at least [`SLENDERNESS`] times the
+//! body's extent along it.
+//!
+//! A thin direction is judged only if the body *bends through it*: the
+//! model is loaded along it ([`loaded_directions`]: a nonzero applied force
+//! or a nonzero prescribed displacement with a component along it). A
+//! model with no such load (a thermal load alone) bends through the body's
+//! thinnest direction, whose bending stiffness (`~ w t^3`) is the least.
+//! So a DCB 25 mm wide with one element across, opened along z, is judged
+//! through its 1.56 mm arms (z) only, never across its width (y), and a bar
+//! pulled along its axis gets no warning.
+//!
+//! The number of element layers through the bending direction is the
+//! body's extent along it over the median extent of the block's elements
+//! along it (rounded); fewer than [`MIN_LAYERS`] get the warning, with the
+//! element length the median extent of the block's elements along the
+//! body's axis. The model gets one warning ([`bending_warnings`]): the
+//! numbers of the block that locks worst, and the other blocks it applies
+//! to. A thin body not aligned with the axes is not detected.
 //!
 //! # The measured stiffening
 //!
@@ -158,75 +172,257 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// The global directions (x, y, z) along which `model` is loaded: a
+/// component of the applied forces, or of the nonzero prescribed
+/// displacements, at least 1e-3 of the largest such component; `None` when
+/// neither is (a thermal load alone, or no load).
+pub fn loaded_directions(model: &Model) -> Option<[bool; 3]> {
+    let (mut force, mut disp) = ([0.0f64; 3], [0.0f64; 3]);
+    for (d, f) in model.f_ext.iter().enumerate() {
+        force[d % 3] += f.abs();
+    }
+    for (d, &eq) in model.dofs.eq.iter().enumerate() {
+        if eq == junta_core::dof::CONSTRAINED {
+            disp[d % 3] += model.dofs.prescribed[d].abs();
+        }
+    }
+    let fmax = force.iter().copied().fold(0.0, f64::max);
+    let umax = disp.iter().copied().fold(0.0, f64::max);
+    if !(fmax > 0.0 || umax > 0.0) {
+        return None;
+    }
+    Some(std::array::from_fn(|c| {
+        (fmax > 0.0 && force[c] >= 1e-3 * fmax) || (umax > 0.0 && disp[c] >= 1e-3 * umax)
+    }))
+}
+
+/// The connected solid bodies of `model`: the body of every node (solid
+/// elements sharing a node are one body; interface elements do not join),
+/// `usize::MAX` for a node of no solid element.
+fn solid_bodies(model: &Model) -> Vec<usize> {
+    let mesh = &model.mesh;
+    let mut parent: Vec<usize> = (0..mesh.nodes.len()).collect();
+    fn root(parent: &mut [usize], mut a: usize) -> usize {
+        while parent[a] != a {
+            parent[a] = parent[parent[a]];
+            a = parent[a];
+        }
+        a
+    }
+    let mut solid = vec![false; mesh.nodes.len()];
+    for b in mesh.blocks.iter().filter(|b| b.shape.is_solid()) {
+        for e in 0..b.len() {
+            let nodes = b.element(e);
+            for &n in nodes {
+                solid[n] = true;
+            }
+            let r0 = root(&mut parent, nodes[0]);
+            for &n in &nodes[1..] {
+                let r = root(&mut parent, n);
+                if r != r0 {
+                    parent[r] = r0;
+                }
+            }
+        }
+    }
+    (0..mesh.nodes.len())
+        .map(|n| {
+            if solid[n] {
+                root(&mut parent, n)
+            } else {
+                usize::MAX
+            }
+        })
+        .collect()
+}
+
+/// Axis-aligned bounding box of every body (indexed by its root node).
+fn body_boxes(
+    model: &Model,
+    body: &[usize],
+) -> std::collections::HashMap<usize, ([f64; 3], [f64; 3])> {
+    let mut boxes = std::collections::HashMap::new();
+    for (n, &r) in body.iter().enumerate() {
+        if r == usize::MAX {
+            continue;
+        }
+        let x = model.mesh.nodes[n];
+        let (lo, hi) = boxes
+            .entry(r)
+            .or_insert(([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]));
+        for d in 0..3 {
+            lo[d] = lo[d].min(x[d]);
+            hi[d] = hi[d].max(x[d]);
+        }
+    }
+    boxes
+}
+
 /// The thin `h8` blocks of `model` with fewer than [`MIN_LAYERS`] element
-/// layers through their thickness.
+/// layers through the direction their body bends in (see the module
+/// documentation).
 pub fn thin_h8_blocks(model: &Model) -> Vec<ThinH8Block> {
     let mesh = &model.mesh;
+    let loaded = loaded_directions(model);
+    let body = solid_bodies(model);
+    let boxes = body_boxes(model, &body);
     let mut out = Vec::new();
     for (bi, b) in mesh.blocks.iter().enumerate() {
         if model.elements[bi].key() != "h8" || b.is_empty() {
             continue;
         }
+        // the block's bodies (usually one) and its element extents
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
         let mut elem_extent: [Vec<f64>; 3] = Default::default();
         for e in 0..b.len() {
-            let (mut elo, mut ehi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            for &n in b.element(e) {
+            let nodes = b.element(e);
+            if let Some((blo, bhi)) = boxes.get(&body[nodes[0]]) {
                 for d in 0..3 {
-                    let x = mesh.nodes[n][d];
-                    elo[d] = elo[d].min(x);
-                    ehi[d] = ehi[d].max(x);
+                    lo[d] = lo[d].min(blo[d]);
+                    hi[d] = hi[d].max(bhi[d]);
                 }
             }
-            for d in 0..3 {
-                lo[d] = lo[d].min(elo[d]);
-                hi[d] = hi[d].max(ehi[d]);
-                elem_extent[d].push(ehi[d] - elo[d]);
+            for (d, ext) in elem_extent.iter_mut().enumerate() {
+                let xs = nodes.iter().map(|&n| mesh.nodes[n][d]);
+                let (a, c) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, c), x| {
+                    (a.min(x), c.max(x))
+                });
+                ext.push(c - a);
             }
         }
-        let ext: Vec<f64> = (0..3).map(|d| hi[d] - lo[d]).collect();
-        let long = (0..3)
-            .max_by(|&a, &c| ext[a].total_cmp(&ext[c]))
-            .unwrap_or(0);
-        let mut worst: Option<(usize, usize)> = None;
-        for d in 0..3 {
-            if ext[d].is_nan() || ext[d] <= 0.0 || ext[long] < SLENDERNESS * ext[d] {
-                continue;
-            }
-            let h = median(elem_extent[d].clone());
-            if h.is_nan() || h <= 0.0 {
-                continue;
-            }
-            let layers = ((ext[d] / h).round() as usize).max(1);
-            if layers < MIN_LAYERS && worst.is_none_or(|(_, l)| layers < l) {
-                worst = Some((d, layers));
-            }
+        if let Some(t) = thin_block(b.name.clone(), &lo, &hi, &elem_extent, loaded) {
+            out.push(t);
         }
-        let Some((d, layers)) = worst else {
-            continue;
-        };
-        let element_length = median(elem_extent[long].clone());
-        out.push(ThinH8Block {
-            block: b.name.clone(),
-            direction: d,
-            thickness: ext[d],
-            layers,
-            long_direction: long,
-            element_length,
-            stiffening: expected_stiffening(layers, element_length / ext[d]),
-        });
     }
     out
 }
 
-/// The warnings of [`thin_h8_blocks`].
+/// The verdict on one `h8` block of a body spanning `lo..hi`, its elements'
+/// extents along each direction, and the model's loaded directions.
+fn thin_block(
+    block: String,
+    lo: &[f64; 3],
+    hi: &[f64; 3],
+    elem_extent: &[Vec<f64>; 3],
+    loaded: Option<[bool; 3]>,
+) -> Option<ThinH8Block> {
+    let ext: [f64; 3] = std::array::from_fn(|d| hi[d] - lo[d]);
+    if ext.iter().any(|e| !e.is_finite()) {
+        return None;
+    }
+    let long = (0..3).max_by(|&a, &c| ext[a].total_cmp(&ext[c]))?;
+    let thin = |d: usize| d != long && ext[d] > 0.0 && ext[long] >= SLENDERNESS * ext[d];
+    // the direction it bends through: a loaded thin one, else the thinnest
+    let bends = |d: usize| match loaded {
+        Some(l) => l[d],
+        None => {
+            (0..3)
+                .filter(|&c| c != long)
+                .min_by(|&a, &c| ext[a].total_cmp(&ext[c]))
+                == Some(d)
+        }
+    };
+    let mut worst: Option<(usize, usize)> = None;
+    for d in (0..3).filter(|&d| thin(d) && bends(d)) {
+        let h = median(elem_extent[d].clone());
+        if h.is_nan() || h <= 0.0 {
+            continue;
+        }
+        let layers = ((ext[d] / h).round() as usize).max(1);
+        if layers < MIN_LAYERS && worst.is_none_or(|(_, l)| layers < l) {
+            worst = Some((d, layers));
+        }
+    }
+    let (d, layers) = worst?;
+    let element_length = median(elem_extent[long].clone());
+    Some(ThinH8Block {
+        block,
+        direction: d,
+        thickness: ext[d],
+        layers,
+        long_direction: long,
+        element_length,
+        stiffening: expected_stiffening(layers, element_length / ext[d]),
+    })
+}
+
+/// The model's one locking warning ([`locking_warning`] of
+/// [`thin_h8_blocks`]), or none.
 pub fn bending_warnings(model: &Model) -> Vec<String> {
-    thin_h8_blocks(model).iter().map(|t| t.message()).collect()
+    locking_warning(&thin_h8_blocks(model))
+        .into_iter()
+        .collect()
+}
+
+/// One warning for all `blocks`: the numbers of the block that locks worst
+/// (the largest expected stiffening), then the other blocks with theirs.
+pub fn locking_warning(blocks: &[ThinH8Block]) -> Option<String> {
+    // the first of equals (`max_by` keeps the last)
+    let worst = blocks
+        .iter()
+        .rev()
+        .max_by(|a, b| a.stiffening.total_cmp(&b.stiffening))?;
+    let mut s = worst.message();
+    let others: Vec<String> = blocks
+        .iter()
+        .filter(|b| b.block != worst.block)
+        .map(|b| format!("`{}` ({:.0}%)", b.block, b.stiffening))
+        .collect();
+    if !others.is_empty() {
+        s += &format!(
+            "; also bent through too few layers: block{} {}",
+            if others.len() == 1 { "" } else { "s" },
+            others.join(", ")
+        );
+    }
+    Some(s)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A DCB arm 150 x 25.4 x 1.56 with one element across its width and
+    /// two through its thickness, elements 0.5 long: opened along z it is
+    /// judged through z only (2 layers, l/t = 0.32); with no load known it
+    /// bends through its thinnest direction (z); loaded along y (in its
+    /// plane) it is thin across y (150 / 25.4 >= 5, one layer) and is judged
+    /// there; pulled along its axis it gets nothing.
+    #[test]
+    fn the_bending_direction_is_the_loaded_one() {
+        let (lo, hi) = ([0.0; 3], [150.0, 25.4, 1.56]);
+        let ext = [vec![0.5; 3], vec![25.4; 3], vec![0.78; 3]];
+        let z = thin_block("arm".into(), &lo, &hi, &ext, Some([false, false, true])).unwrap();
+        assert_eq!((z.direction, z.layers, z.long_direction), (2, 2, 0));
+        assert!((z.element_length - 0.5).abs() < 1e-15);
+        let none = thin_block("arm".into(), &lo, &hi, &ext, None).unwrap();
+        assert_eq!(none.direction, 2);
+        let y = thin_block("arm".into(), &lo, &hi, &ext, Some([false, true, false])).unwrap();
+        assert_eq!((y.direction, y.layers), (1, 1));
+        assert!(thin_block("arm".into(), &lo, &hi, &ext, Some([true, false, false])).is_none());
+    }
+
+    /// One warning for several blocks: the worst one's numbers, the others
+    /// named with theirs.
+    #[test]
+    fn one_warning_names_the_worst_block_and_the_others() {
+        let block = |name: &str, stiffening: f64| ThinH8Block {
+            block: name.into(),
+            direction: 2,
+            thickness: 1.0,
+            layers: 2,
+            long_direction: 0,
+            element_length: 1.0,
+            stiffening,
+        };
+        assert_eq!(locking_warning(&[]), None);
+        let w = locking_warning(&[block("a", 12.0), block("b", 47.1), block("c", 47.1)]).unwrap();
+        assert!(
+            w.starts_with("block `b`:") && w.contains("47% too stiff"),
+            "{w}"
+        );
+        assert!(w.ends_with("blocks `a` (12%), `c` (47%)"), "{w}");
+    }
 
     #[test]
     fn stiffening_interpolates_the_table_and_clamps() {

@@ -161,8 +161,70 @@ impl CheckReport {
     }
 }
 
+/// How many set names per kind `junta check` shows without `--verbose`.
+pub const SETS_SHOWN: usize = 4;
+
+/// The report with every set listed (`junta check --verbose`); the plain
+/// `Display` of [`CheckReport`] summarises the sets (count per kind and
+/// the first [`SETS_SHOWN`] names).
+pub struct Verbose<'a>(pub &'a CheckReport);
+
+impl fmt::Display for Verbose<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.write(f, true)
+    }
+}
+
+impl CheckReport {
+    /// The report listing every node, element and face set.
+    pub fn verbose(&self) -> Verbose<'_> {
+        Verbose(self)
+    }
+
+    /// One line per kind of set: all of them (`all`), else the count and
+    /// the first [`SETS_SHOWN`] names.
+    fn write_sets(&self, f: &mut fmt::Formatter<'_>, all: bool) -> fmt::Result {
+        for (kind, v) in [
+            ("node", &self.node_sets),
+            ("element", &self.element_sets),
+            ("face", &self.face_sets),
+        ] {
+            if v.is_empty() {
+                continue;
+            }
+            let shown = if all {
+                v.len()
+            } else {
+                v.len().min(SETS_SHOWN)
+            };
+            let s: Vec<String> = v[..shown]
+                .iter()
+                .map(|(k, n)| format!("{k} ({n})"))
+                .collect();
+            if shown == v.len() {
+                writeln!(f, "  {kind} sets: {}", s.join(", "))?;
+            } else {
+                writeln!(
+                    f,
+                    "  {kind} sets: {} ({}, ... and {} more; --verbose lists them all)",
+                    v.len(),
+                    s.join(", "),
+                    v.len() - shown
+                )?;
+            }
+        }
+        Ok(())
+    }
+}
+
 impl fmt::Display for CheckReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write(f, false)
+    }
+}
+
+impl CheckReport {
+    fn write(&self, f: &mut fmt::Formatter<'_>, all_sets: bool) -> fmt::Result {
         writeln!(f, "{}: valid", self.input)?;
         if !self.title.is_empty() {
             writeln!(f, "  title: {}", self.title)?;
@@ -202,16 +264,7 @@ impl fmt::Display for CheckReport {
                 b.name, b.elements, b.element, b.points_per_element, b.material
             )?;
         }
-        for (kind, v) in [
-            ("node", &self.node_sets),
-            ("element", &self.element_sets),
-            ("face", &self.face_sets),
-        ] {
-            if !v.is_empty() {
-                let s: Vec<String> = v.iter().map(|(k, n)| format!("{k} ({n})")).collect();
-                writeln!(f, "  {kind} sets: {}", s.join(", "))?;
-            }
-        }
+        self.write_sets(f, all_sets)?;
         writeln!(f, "  total applied force: {:?}", self.total_force)?;
         writeln!(f, "  solver: {}", self.solver)?;
         for l in &self.penalty_lines {

@@ -538,6 +538,12 @@ fn prepare_scene(
     fatigue_program(input, sf, &mut analysis, &mut model, &mut notes)?;
     let (mut key, mut table) = scene::solver_table(sf);
     apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
+    if analysis.kind == "static" && !sf.scene.output.fractions.is_empty() {
+        bail!(
+            "{}: key `output.fractions`: only a linear run scales its one solution to fractions of the load; an incremental run writes a frame every `output.every` increments (frames/, results.pvd): remove `fractions`",
+            sf.path.display()
+        );
+    }
     let t_choice = std::time::Instant::now();
     let solver = resolve_solver(
         &mut key,

@@ -633,6 +633,12 @@ fn finish(
         interfaces = crate::post::fields::interface_results_at(model, u, state, step)?;
         summary["interfaces"] = crate::output::summary::interface_summary(model, &interfaces);
     }
+    if let Some(u) = u.filter(|_| !p.probes.is_empty()) {
+        // `[output] probes` at the state the run ends on (a linear run's
+        // are of its one solution)
+        summary["probes"] =
+            output::probes(model, &p.probes, u).map_err(|e| err!("key `output.probes`: {e}"))?;
+    }
     match &run {
         Some(run) => run_totals(&mut summary, p, run, t0)?,
         None => {
@@ -642,12 +648,14 @@ fn finish(
         }
     }
     advice_and_solver(&mut summary, p, &log)?;
+    // a warning of the run's end is returned (the CLI prints it once), not
+    // also logged as a warning
     if let Some(w) = crack_and_energy(&mut summary, crack.as_ref(), &log) {
-        tracing::warn!("{w}");
+        tracing::debug!("{w}");
         ending.warnings.push(w);
     }
     if let Some(w) = fatigue_share(&mut summary, p, &interfaces) {
-        tracing::warn!("{w}");
+        tracing::debug!("{w}");
         ending.warnings.push(w);
     }
     if let Some(u) = u {
