@@ -23,9 +23,10 @@
 //!   of one row along the direction).
 
 use crate::error::{bail, Result};
+use crate::input::scene::CrackFrontSpec;
 use crate::post::fields::InterfaceResults;
-use crate::prepare::Prepared;
 use junta_core::law::output;
+use junta_core::Model;
 
 /// Fewer process-zone points along the direction than this in most of the
 /// increments in which the crack grows draws a warning: the cohesive zone
@@ -69,14 +70,15 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 }
 
 impl CrackProbe {
-    /// The probe of `p` (its `[output] crack`, else the default), or
-    /// `None` without interfaces.
-    pub(crate) fn of(p: &Prepared, file: &str) -> Result<Option<CrackProbe>> {
-        let model = &p.model;
-        let interfaces: Vec<usize> = (0..model.mesh.blocks.len())
-            .filter(|&b| model.mesh.blocks[b].shape.is_interface())
-            .collect();
-        let spec = p.crack.as_ref();
+    /// The probe of `model`'s interfaces as `spec` (a scene's `[output]
+    /// crack`) says, else the default; `None` without interfaces. `file`
+    /// names the input in error messages.
+    pub(crate) fn of(
+        model: &Model,
+        spec: Option<&CrackFrontSpec>,
+        file: &str,
+    ) -> Result<Option<CrackProbe>> {
+        let interfaces = interface_blocks(model);
         let blocks = match spec.and_then(|c| c.interface.as_ref()) {
             Some(name) => match interfaces
                 .iter()
@@ -99,23 +101,9 @@ impl CrackProbe {
         if blocks.is_empty() {
             return Ok(None);
         }
-        let nodes: Vec<[f64; 3]> = blocks
-            .iter()
-            .flat_map(|&b| {
-                let block = &model.mesh.blocks[b];
-                (0..block.len()).flat_map(move |e| block.element(e).to_vec())
-            })
-            .map(|n| model.mesh.nodes[n])
-            .collect();
+        let nodes = block_nodes(model, &blocks);
         let direction = match spec {
-            Some(c) => {
-                let d = c.direction;
-                let n = dot(d, d).sqrt();
-                if !(n.is_finite() && n > 0.0) {
-                    bail!("{file}: key `output.crack.direction`: {d:?} is not a direction; give a non-zero vector, e.g. [1.0, 0.0, 0.0]");
-                }
-                [d[0] / n, d[1] / n, d[2] / n]
-            }
+            Some(c) => unit_direction(c.direction, file, "output.crack.direction")?,
             None => default_direction(&nodes),
         };
         let (lo, hi) = nodes
@@ -220,6 +208,36 @@ impl CrackProbe {
             "width": self.width,
         })
     }
+}
+
+/// The interface blocks of `model`, in block order.
+pub(crate) fn interface_blocks(model: &Model) -> Vec<usize> {
+    (0..model.mesh.blocks.len())
+        .filter(|&b| model.mesh.blocks[b].shape.is_interface())
+        .collect()
+}
+
+/// The coordinates of the nodes of `blocks`' elements, element by element
+/// (a node shared by elements appears once per element).
+pub(crate) fn block_nodes(model: &Model, blocks: &[usize]) -> Vec<[f64; 3]> {
+    blocks
+        .iter()
+        .flat_map(|&b| {
+            let block = &model.mesh.blocks[b];
+            (0..block.len()).flat_map(move |e| block.element(e).to_vec())
+        })
+        .map(|n| model.mesh.nodes[n])
+        .collect()
+}
+
+/// `d / |d|`, or an error naming `file` and `key` when `d` is zero or not
+/// finite.
+pub(crate) fn unit_direction(d: [f64; 3], file: &str, key: &str) -> Result<[f64; 3]> {
+    let n = dot(d, d).sqrt();
+    if !(n.is_finite() && n > 0.0) {
+        bail!("{file}: key `{key}`: {d:?} is not a direction; give a non-zero vector, e.g. [1.0, 0.0, 0.0]");
+    }
+    Ok([d[0] / n, d[1] / n, d[2] / n])
 }
 
 /// The global axis along which the points spread the most.

@@ -8,6 +8,7 @@ pub(crate) mod check;
 pub(crate) mod limits;
 
 use crate::error::{bail, err, Context, Result};
+use crate::post::crack;
 use crate::{input::deck, input::scene};
 use junta_core::registry::{self, SolverEntry};
 use junta_core::{LinearSolver, MatrixKind, Model};
@@ -749,25 +750,14 @@ fn fatigue_direction(
         (Some(d), _) => (d, "fatigue.direction"),
         (None, Some(c)) => (c.direction, "output.crack.direction"),
         (None, None) => {
-            let nodes: Vec<[f64; 3]> = model
-                .mesh
-                .blocks
-                .iter()
-                .filter(|b| b.shape.is_interface())
-                .flat_map(|b| (0..b.len()).flat_map(move |e| b.element(e).to_vec()))
-                .map(|n| model.mesh.nodes[n])
-                .collect();
+            let nodes = crack::block_nodes(model, &crack::interface_blocks(model));
             if nodes.is_empty() {
                 bail!("{at}: key `fatigue`: the model has no interface, so there is no crack to grow; add an [[interface]] with a fatigue law");
             }
-            return Ok(crate::post::crack::default_direction(&nodes));
+            return Ok(crack::default_direction(&nodes));
         }
     };
-    let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-    if !(n.is_finite() && n > 0.0) {
-        bail!("{at}: key `{key}`: {d:?} is not a direction; give a non-zero vector, e.g. [1.0, 0.0, 0.0]");
-    }
-    Ok(d.map(|c| c / n))
+    crack::unit_direction(d, at, key)
 }
 
 /// `--solver control=load|displacement|auto|arc_length`: the control of an

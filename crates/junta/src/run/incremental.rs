@@ -438,7 +438,7 @@ pub(crate) fn run_incremental(
     let t0 = Instant::now();
     let file = input.display().to_string();
     let curve = CurveProbe::of(p, &file)?;
-    let crack = CrackProbe::of(p, &file)?;
+    let crack = CrackProbe::of(&p.model, p.crack.as_ref(), &file)?;
     let analysis = p.analysis.clone();
     let (checkpoint, log) = match restart {
         Some((r, rows)) => {

@@ -84,19 +84,7 @@ pub(crate) fn run_linear(
         crate::post::rotation::is_deck(input),
     );
     warnings.extend(rotation_warning);
-    let reference = match &p.reference {
-        Some((r, c)) => {
-            let computed = p
-                .model
-                .set_total(&r.set, &res.residual)
-                .context("key `reference.set`")?[*c];
-            json!({
-                "set": r.set, "component": r.component, "value": r.value, "source": r.source,
-                "computed": computed, "relative_error": (computed - r.value).abs() / r.value.abs(),
-            })
-        }
-        None => serde_json::Value::Null,
-    };
+    let reference = reference_entry(p, &res.residual)?;
     let output_seconds = t_out.elapsed().as_secs_f64();
     let reactions = crate::output::summary::reactions(&p.model, &res.residual)?;
     let probes =
@@ -168,6 +156,24 @@ pub(crate) fn run_linear(
         warnings,
         failure: None,
         frame,
+    })
+}
+
+/// `summary.json` `reference`: the scene's `[reference]` value against the
+/// computed total of its set (`null` without one).
+fn reference_entry(p: &Prepared, residual: &[f64]) -> Result<serde_json::Value> {
+    Ok(match &p.reference {
+        Some((r, c)) => {
+            let computed = p
+                .model
+                .set_total(&r.set, residual)
+                .context("key `reference.set`")?[*c];
+            json!({
+                "set": r.set, "component": r.component, "value": r.value, "source": r.source,
+                "computed": computed, "relative_error": (computed - r.value).abs() / r.value.abs(),
+            })
+        }
+        None => serde_json::Value::Null,
     })
 }
 
