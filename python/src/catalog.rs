@@ -1,4 +1,4 @@
-//! `junta.list()`: the registry as data (what `junta list` prints), with
+//! `junta.catalog()`: the registry as data (what `junta list` prints), with
 //! the laws registered at run time (from Python) in the interface-law
 //! section.
 
@@ -10,7 +10,7 @@ use pyo3::types::{PyDict, PyList};
 /// Every registered plugin by section: `[{title, plugins: [{key,
 /// description, params: [{name, doc}]}]}]`; laws registered from Python
 /// carry `"runtime": True`.
-#[pyfunction(name = "list")]
+#[pyfunction(name = "catalog")]
 pub fn list_plugins(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     crate::errors::guarded(py, || sections(py))
 }

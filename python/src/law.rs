@@ -146,7 +146,7 @@ fn intern_names(names: &[String]) -> &'static [&'static str] {
     x
 }
 
-/// Parameter docs of the laws registered from Python (for `junta.list()`).
+/// Parameter docs of the laws registered from Python (for `junta.catalog()`).
 pub fn law_params() -> ParamDocs {
     PARAMS
         .lock()
@@ -285,11 +285,7 @@ impl PyLaw {
         let k = self.state_len;
         let jump = array(py, jumps.iter().flatten().copied().collect(), 3)?;
         let state = array(py, committed.to_vec(), 0)?.call_method1("reshape", ((n, k),))?;
-        let info = PyDict::new(py);
-        info.set_item("increment", step.increment)?;
-        info.set_item("load_factor", step.load_factor)?;
-        info.set_item("delta_load_factor", step.delta_load_factor)?;
-        info.set_item("secant", step.secant)?;
+        let info = step_dict(py, &step)?;
         let r = self.evaluate.bind(py).call1((jump, state, info))?;
         let r =
             r.cast_into::<PyTuple>().map_err(|e| {
@@ -496,6 +492,87 @@ impl InterfaceLaw for PyLaw {
         })
     }
 }
+
+/// The step a Python law's `evaluate` sees: every field of [`StepInfo`]
+/// (`crack_drive` a dict `{energy_release_rate, mode_ratio,
+/// process_zone_length}` or `None`).
+pub fn step_dict<'py>(py: Python<'py>, step: &StepInfo) -> PyResult<Bound<'py, PyDict>> {
+    let info = PyDict::new(py);
+    info.set_item("increment", step.increment)?;
+    info.set_item("load_factor", step.load_factor)?;
+    info.set_item("delta_load_factor", step.delta_load_factor)?;
+    info.set_item("secant", step.secant)?;
+    info.set_item("exact_tangent", step.exact_tangent)?;
+    info.set_item("temperature_factor", step.temperature_factor)?;
+    info.set_item("cycles", step.cycles)?;
+    info.set_item("delta_cycles", step.delta_cycles)?;
+    info.set_item("load_ratio", step.load_ratio)?;
+    let drive = match &step.crack_drive {
+        Some(c) => {
+            let d = PyDict::new(py);
+            d.set_item("energy_release_rate", c.energy_release_rate)?;
+            d.set_item("mode_ratio", c.mode_ratio)?;
+            d.set_item("process_zone_length", c.process_zone_length)?;
+            Some(d)
+        }
+        None => None,
+    };
+    info.set_item("crack_drive", drive)?;
+    Ok(info)
+}
+
+/// A [`StepInfo`] from a dict with any of [`step_dict`]'s keys (the
+/// others at [`StepInfo::default`]); an unknown key is an error naming the
+/// valid ones.
+pub fn step_from_dict(step: Option<&Bound<'_, PyDict>>) -> PyResult<StepInfo> {
+    let mut s = StepInfo::default();
+    let Some(d) = step else { return Ok(s) };
+    for (k, v) in d.iter() {
+        let key: String = k.extract()?;
+        match key.as_str() {
+            "increment" => s.increment = v.extract()?,
+            "load_factor" => s.load_factor = v.extract()?,
+            "delta_load_factor" => s.delta_load_factor = v.extract()?,
+            "secant" => s.secant = v.extract()?,
+            "exact_tangent" => s.exact_tangent = v.extract()?,
+            "temperature_factor" => s.temperature_factor = v.extract()?,
+            "cycles" => s.cycles = v.extract()?,
+            "delta_cycles" => s.delta_cycles = v.extract()?,
+            "load_ratio" => s.load_ratio = v.extract()?,
+            "crack_drive" if v.is_none() => s.crack_drive = None,
+            "crack_drive" => {
+                let c: BTreeMap<String, f64> = v.extract()?;
+                let get = |name: &str| c.get(name).copied().unwrap_or(0.0);
+                s.crack_drive = Some(junta_core::crack_drive::CrackDrive {
+                    energy_release_rate: get("energy_release_rate"),
+                    mode_ratio: get("mode_ratio"),
+                    process_zone_length: get("process_zone_length"),
+                });
+            }
+            _ => {
+                return Err(pyo3::exceptions::PyKeyError::new_err(format!(
+                    "step: unknown key `{key}`; valid: {}",
+                    STEP_KEYS.join(", ")
+                )))
+            }
+        }
+    }
+    Ok(s)
+}
+
+/// The keys of a step dict.
+pub const STEP_KEYS: [&str; 10] = [
+    "increment",
+    "load_factor",
+    "delta_load_factor",
+    "secant",
+    "exact_tangent",
+    "temperature_factor",
+    "cycles",
+    "delta_cycles",
+    "load_ratio",
+    "crack_drive",
+];
 
 /// Build the law `key` from its factory and the scene's parameters.
 fn build(
@@ -722,35 +799,20 @@ pub fn unregister_law(name: &str) -> bool {
 /// `junta._junta.evaluate_law(law_object, jump, state, step)`: evaluate a law
 /// object through the same checks as a run (for tests and `check_tangent`).
 #[pyfunction]
-#[pyo3(signature = (law, jump, state, increment = 1, load_factor = 1.0, delta_load_factor = 0.1, secant = false))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (law, jump, state, step = None))]
 pub fn evaluate_law<'py>(
     py: Python<'py>,
     law: &Bound<'py, PyAny>,
     jump: Vec<[f64; 3]>,
     state: Vec<f64>,
-    increment: usize,
-    load_factor: f64,
-    delta_load_factor: f64,
-    secant: bool,
+    step: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let l = from_object(py, "(law object)", law)
         .map_err(|m| crate::errors::new_error(py, "LawError", m))?;
     let n = jump.len();
     let mut trial = vec![0.0; n * l.state_len];
     let mut out = vec![LawResponse::default(); n];
-    let step = StepInfo {
-        increment,
-        load_factor,
-        delta_load_factor,
-        secant,
-        exact_tangent: false,
-        temperature_factor: 1.0,
-        cycles: 0.0,
-        delta_cycles: 0.0,
-        load_ratio: 0.0,
-        crack_drive: None,
-    };
+    let step = step_from_dict(step)?;
     if let Err(f) = l.call_evaluate(py, &jump, &state, step, &mut trial, &mut out) {
         return Err(match f {
             Failure::Python(e) => e,
@@ -774,18 +836,14 @@ pub fn evaluate_law<'py>(
 /// elements do: `(traction [n, 3], tangent [n, 3, 3], new_state [n, k])`.
 /// For comparing a Python law with a compiled one.
 #[pyfunction]
-#[pyo3(signature = (key, params, jump, state = None, increment = 1, load_factor = 1.0, delta_load_factor = 0.1, secant = false))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (key, params, jump, state = None, step = None))]
 pub fn evaluate_registered<'py>(
     py: Python<'py>,
     key: &str,
     params: &Bound<'py, PyDict>,
     jump: Vec<[f64; 3]>,
     state: Option<Vec<f64>>,
-    increment: usize,
-    load_factor: f64,
-    delta_load_factor: f64,
-    secant: bool,
+    step: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let table = match crate::convert::py_to_toml(params.as_any(), "params")? {
         toml::Value::Table(t) => t,
@@ -812,18 +870,7 @@ pub fn evaluate_registered<'py>(
             format!("state: {} values for {n} points of {k}", committed.len()),
         ));
     }
-    let step = StepInfo {
-        increment,
-        load_factor,
-        delta_load_factor,
-        secant,
-        exact_tangent: false,
-        temperature_factor: 1.0,
-        cycles: 0.0,
-        delta_cycles: 0.0,
-        load_ratio: 0.0,
-        crack_drive: None,
-    };
+    let step = step_from_dict(step)?;
     let mut trial = vec![0.0; n * k];
     let mut t = Vec::with_capacity(3 * n);
     let mut d = Vec::with_capacity(9 * n);

@@ -7,7 +7,7 @@
 //! | read, check and run a simulation; results as numpy | [`simulation`] |
 //! | `junta::Error` -> Python exceptions, panics | [`errors`] |
 //! | traction laws written in Python | [`law`] |
-//! | the registry as data (`junta.list()`) | [`catalog`] |
+//! | the registry as data (`junta.catalog()`) | [`catalog`] |
 //! | Python <-> TOML / JSON / numpy | [`convert`] |
 
 use pyo3::prelude::*;

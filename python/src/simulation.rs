@@ -354,6 +354,27 @@ impl Observer for PyObserver {
     }
 }
 
+/// What the (wrapped) callback's answer means: `None` (or anything else
+/// but the two below) goes on; a str stops with that reason (`junta.Stop`
+/// and `junta.Flow.STOP` reach here as their reason from the package's
+/// wrapper); `False` stops (the deprecated protocol, when the native
+/// module is called directly).
+fn callback_flow(v: &Bound<'_, PyAny>) -> Flow {
+    const DEFAULT: &str = "stopped by the Python callback";
+    if v.is_instance_of::<PyBool>() {
+        return if v.is_truthy().unwrap_or(true) {
+            Flow::Continue
+        } else {
+            Flow::Stop(DEFAULT.into())
+        };
+    }
+    match v.extract::<String>() {
+        Ok(s) if s == "stop" || s.is_empty() => Flow::Stop(DEFAULT.into()),
+        Ok(s) => Flow::Stop(s),
+        Err(_) => Flow::Continue,
+    }
+}
+
 impl PyObserver {
     fn increment(&mut self, py: Python<'_>, inc: &Increment<'_>) -> Flow {
         if let Err(e) = py.check_signals() {
@@ -368,15 +389,7 @@ impl PyObserver {
         let answer = increment_dict(py, inc).and_then(|d| cb.bind(py).call1((d,)));
         match answer {
             Err(e) => self.raised(py, e),
-            Ok(v) => {
-                let stop = (v.is_instance_of::<PyBool>() && !v.is_truthy().unwrap_or(true))
-                    || v.extract::<String>().is_ok_and(|s| s == "stop");
-                if stop {
-                    Flow::Stop("stopped by the Python callback".into())
-                } else {
-                    Flow::Continue
-                }
-            }
+            Ok(v) => callback_flow(&v),
         }
     }
 

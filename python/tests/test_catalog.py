@@ -1,4 +1,4 @@
-"""``junta.list()`` mirrors ``junta list`` (the registry as data) and shows
+"""``junta.catalog()`` mirrors ``junta list`` (the registry as data) and shows
 the laws registered from Python."""
 
 import subprocess
@@ -10,7 +10,7 @@ from conftest import PyPenalty, junta_command
 
 
 def plugins(title):
-    for sec in junta.list():
+    for sec in junta.catalog():
         if sec["title"] == title:
             return {p["key"]: p for p in sec["plugins"]}
     raise AssertionError(f"no section {title!r}")
@@ -47,8 +47,15 @@ def test_list_has_every_key_the_cli_lists():
     except (OSError, subprocess.TimeoutExpired) as e:  # no binary and no cargo
         pytest.skip(f"no junta command line: {e}")
     assert out.returncode == 0, out.stderr
-    keys = {p["key"] for sec in junta.list() for p in sec["plugins"] if not p["runtime"]}
+    keys = {p["key"] for sec in junta.catalog() for p in sec["plugins"] if not p["runtime"]}
     # `junta list`: a section title, then `  key  description` lines and
     # `      param  doc` lines
     cli = {line.split()[0] for line in out.stdout.splitlines() if line.startswith("  ") and not line.startswith("      ")}
     assert cli == keys
+
+
+def test_list_is_a_deprecated_alias_of_catalog():
+    with pytest.warns(DeprecationWarning, match=r"junta.catalog\(\)"):
+        old = junta.list()
+    assert old == junta.catalog()
+    assert "list" not in junta.__all__ and "catalog" in junta.__all__

@@ -9,7 +9,7 @@ import pytest
 
 import bilinear_law
 import junta
-from conftest import DCB_COARSE, rel_diff
+from conftest import DCB_COARSE, EXAMPLES, rel_diff
 from junta import _junta
 
 # the DCB's law (examples/delamination/dcb_coarse.toml [laws.cz], AS4/PEEK)
@@ -41,7 +41,7 @@ def test_python_bilinear_gives_the_compiled_values(viscosity, secant):
     jump, state = random_points(3000, seed=7)
     step = dict(STEP, secant=secant)
     t1, d1, s1 = _junta.evaluate_registered(
-        "bilinear", params, [tuple(j) for j in jump], state.ravel().tolist(), 3, 1.0, 0.1, secant
+        "bilinear", params, [tuple(j) for j in jump], state.ravel().tolist(), step
     )
     t2, d2, s2 = law.evaluate(jump, state, step)
     # the same operations in the same order (and the C library's pow):
@@ -160,3 +160,74 @@ def test_evaluate_law_checks_like_a_run():
     t, d, s = junta.evaluate_law(law(), [[0.0, 0.0, 1e-3]], step=STEP)
     assert t.shape == (1, 3) and d.shape == (1, 3, 3) and s.shape == (1, 6)
     assert 0 < s[0, 0] < 1
+
+
+class StepRecorder(junta.Law):
+    """A linear penalty (``t = K jump``) that records the step dict of
+    every call: a Python law sees every step field a compiled law sees."""
+
+    state_len = 0
+    tangent_kind = "spd"
+    seen = []
+
+    def __init__(self, params):
+        self.k = float(params["K"])
+        self.initial_stiffness = (self.k, self.k, self.k)
+
+    def evaluate(self, jump, state, step):
+        StepRecorder.seen.append(dict(step))
+        n = len(jump)
+        return jump * self.k, np.broadcast_to(np.eye(3) * self.k, (n, 3, 3)), state
+
+
+@pytest.fixture()
+def step_recorder():
+    StepRecorder.seen = []
+    junta.register_law("py_step_recorder", StepRecorder)
+    yield "py_step_recorder"
+    junta.unregister_law("py_step_recorder")
+
+
+def test_a_python_law_sees_every_step_field(step_recorder):
+    r = junta.Simulation.from_file(
+        EXAMPLES / "fatigue" / "held_opening.toml", overrides={"laws.paris.type": step_recorder}
+    ).run()
+    assert r.status == junta.Status.COMPLETED, r.status_line
+    seen = StepRecorder.seen
+    assert set(seen[0]) == {
+        "increment", "load_factor", "delta_load_factor", "secant", "exact_tangent",
+        "temperature_factor", "cycles", "delta_cycles", "load_ratio", "crack_drive",
+    }
+    # the scene's [fatigue]: 2e7 cycles at R = 0.1 after the static step
+    fatigue = [s for s in seen if s["delta_cycles"] > 0]
+    assert fatigue, "no call of the fatigue step"
+    assert all(s["load_ratio"] == 0.1 for s in fatigue)
+    assert max(s["cycles"] for s in seen) == 2.0e7
+    # cycles grow through the fatigue step
+    cycles = [s["cycles"] for s in fatigue]
+    assert cycles == sorted(cycles) and cycles[0] < cycles[-1]
+
+
+def test_a_python_law_sees_the_temperature_factor(step_recorder):
+    # examples/thermal/cool_down.toml: a cool-down step (load factor 0,
+    # increments of 0.25: [analysis.newton]) before the opening, which
+    # holds the whole temperature change (factor 1)
+    r = junta.Simulation.from_file(
+        EXAMPLES / "thermal" / "cool_down.toml", overrides={"laws.cz.type": step_recorder}
+    ).run()
+    assert r.status == junta.Status.COMPLETED, r.status_line
+    seen = StepRecorder.seen
+    thermal = sorted({s["temperature_factor"] for s in seen if s["load_factor"] == 0.0})
+    assert thermal == [0.25, 0.5, 0.75, 1.0]
+    assert all(s["temperature_factor"] == 1.0 for s in seen if s["load_factor"] > 0.0)
+    assert all(s["cycles"] == 0.0 for s in seen)
+
+
+def test_evaluate_law_hands_the_step_fields_over():
+    rec = StepRecorder({"K": 1.0})
+    StepRecorder.seen = []
+    junta.evaluate_law(rec, [[0.0, 0.0, 1e-3]], step={"cycles": 1e5, "temperature_factor": 0.5})
+    s = StepRecorder.seen[-1]
+    assert (s["cycles"], s["temperature_factor"], s["increment"]) == (1e5, 0.5, 1)
+    with pytest.raises(KeyError, match="unknown key `cycle`"):
+        _junta.evaluate_law(rec, [(0.0, 0.0, 1e-3)], [], {"cycle": 1.0})

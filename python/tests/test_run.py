@@ -4,7 +4,6 @@ Ctrl-C, a simulation that has run, files written like the CLI's."""
 
 import os
 import signal
-import threading
 
 import numpy as np
 import pytest
@@ -34,15 +33,15 @@ def test_linear_cube_reaction_and_frame():
     assert f.interface_traction.shape == (0, 3)
 
 
-def test_callback_false_stops_at_increment_5():
+def test_callback_stop_at_increment_5():
     seen = []
 
     def cb(inc):
         seen.append(inc)
-        return inc["increment"] < 5
+        return junta.Flow.STOP if inc["increment"] == 5 else None
 
     r = junta.Simulation.from_file(DCB_COARSE).run(callback=cb)
-    assert r.status == "stopped"
+    assert r.status is junta.Status.STOPPED and r.status == "stopped"
     assert r.status_line == "stopped: stopped by the Python callback"
     assert list(r.curve["increment"]) == [1, 2, 3, 4, 5]
     assert [i["increment"] for i in seen] == [1, 2, 3, 4, 5]
@@ -55,9 +54,31 @@ def test_callback_false_stops_at_increment_5():
     assert last["row"]["control"] == r.curve["control"][4]
 
 
-def test_callback_stop_string_and_max_increments():
-    r = junta.Simulation.from_file(DCB_COARSE).run(callback=lambda inc: "stop" if inc["increment"] == 2 else None)
+def test_callback_stop_with_a_reason():
+    r = junta.Simulation.from_file(DCB_COARSE).run(
+        callback=lambda inc: junta.Stop("the reaction is enough") if inc["increment"] == 3 else None
+    )
+    assert r.status is junta.Status.STOPPED and len(r.curve["increment"]) == 3
+    assert r.status_line == "stopped: the reaction is enough"
+
+
+def test_callback_false_and_stop_string_are_deprecated():
+    with pytest.warns(DeprecationWarning, match="junta.Flow.STOP"):
+        r = junta.Simulation.from_file(DCB_COARSE).run(callback=lambda inc: inc["increment"] < 2)
+    assert r.status == "stopped" and r.status_line == "stopped: stopped by the Python callback"
+    assert len(r.curve["increment"]) == 2
+    with pytest.warns(DeprecationWarning):
+        r = junta.Simulation.from_file(DCB_COARSE).run(callback=lambda inc: "stop" if inc["increment"] == 2 else None)
     assert r.status == "stopped" and len(r.curve["increment"]) == 2
+
+
+def test_callback_answer_of_another_type_is_a_type_error():
+    with pytest.raises(TypeError, match=r"returns None \(go on\), junta.Flow.STOP") as e:
+        junta.Simulation.from_file(DCB_COARSE).run(callback=lambda inc: 1)
+    assert e.value.results.status == "stopped" and len(e.value.results.curve["increment"]) == 1
+
+
+def test_max_increments():
     r = junta.Simulation.from_file(DCB_COARSE).run(max_increments=3)
     assert r.status == "stopped" and len(r.curve["increment"]) == 3
 
@@ -130,16 +151,20 @@ def test_to_pyvista():
 
 
 def test_ctrl_c_interrupts_after_the_increment():
-    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
-    timer.start()
-    try:
-        with pytest.raises(KeyboardInterrupt, match="interrupted") as e:
-            junta.Simulation.from_file(DCB_COARSE).run()
-    finally:
-        timer.cancel()
+    # a real SIGINT through the OS and Python's handler, sent by the run's
+    # own callback at increment 3: no timer, so no race with the run
+    def cb(inc):
+        if inc["increment"] == 3:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    with pytest.raises(KeyboardInterrupt, match="interrupted") as e:
+        junta.Simulation.from_file(DCB_COARSE).run(callback=cb)
     r = e.value.results
-    assert r.status == "interrupted"
-    assert 0 < len(r.curve["increment"]) < 100  # the whole run is 100 increments
+    assert r.status is junta.Status.INTERRUPTED
+    # the increment that saw the signal is the last one (the whole run is
+    # about 100 increments)
+    assert list(r.curve["increment"]) == [1, 2, 3]
 
 
 def test_a_simulation_runs_once():

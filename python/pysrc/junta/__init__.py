@@ -7,9 +7,9 @@ laws in Python.
 ...                                  overrides={"laws.cz.G_Ic": 0.8})
 >>> sim.check()["equations"]
 2936
->>> r = sim.run(callback=lambda inc: inc["increment"] < 50)   # False stops
->>> r.status, r.curve["reaction"].max()
-('stopped', ...)
+>>> r = sim.run(callback=lambda inc: junta.Stop("enough") if inc["increment"] == 50 else None)
+>>> r.status, r.status_line
+(<Status.STOPPED: 'stopped'>, 'stopped: enough')
 
 The run releases the GIL for its whole length and takes it back only after
 each converged increment, to call ``callback`` and to notice Ctrl-C. Every
@@ -19,7 +19,9 @@ an exception: ``Results.status == "failed"``.
 """
 
 import builtins as _builtins
+import enum as _enum
 import os as _os
+import warnings as _warnings
 
 import numpy as _np
 
@@ -40,7 +42,11 @@ __all__ = [
     "Results",
     "Frame",
     "Mesh",
-    "list",
+    "Status",
+    "Flow",
+    "Stop",
+    "Law",
+    "catalog",
     "register_law",
     "unregister_law",
     "check_tangent",
@@ -52,6 +58,147 @@ __all__ = [
     "LawError",
     "TangentError",
 ]
+
+
+class Status(str, _enum.Enum):
+    """How a run ended (``Results.status``). A ``str`` enum: its values
+    are the status words of the command line's status line, so
+    ``r.status == "completed"`` holds too."""
+
+    #: The load program ran to its end.
+    COMPLETED = "completed"
+    #: A stop rule, ``max_increments``, or the callback ended the run
+    #: (a valid restart point).
+    STOPPED = "stopped"
+    #: An increment could not converge down to the smallest size
+    #: (``Results.failure`` holds the message).
+    FAILED = "failed"
+    #: Ctrl-C (SIGINT) ended the run after an increment.
+    INTERRUPTED = "interrupted"
+
+    def __str__(self):
+        return self.value
+
+    @classmethod
+    def from_status_line(cls, line):
+        """The status of a status line (``"stopped: ..."``), by its first
+        word."""
+        word = str(line).split(":", 1)[0].split()[0] if str(line).strip() else ""
+        return cls(word)
+
+
+class Flow(_enum.Enum):
+    """What a run's callback returns: ``None`` (or ``Flow.CONTINUE``) goes
+    on; ``Flow.STOP`` ends the run after this increment (status
+    :attr:`Status.STOPPED`, status line ``stopped: stopped by the Python
+    callback``). :class:`Stop` stops with a reason of your own."""
+
+    CONTINUE = "continue"
+    STOP = "stop"
+
+
+class Stop:
+    """Returned by a run's callback: end the run after this increment with
+    ``reason`` (the status line is ``stopped: <reason>``)."""
+
+    __slots__ = ("reason",)
+
+    def __init__(self, reason="stopped by the Python callback"):
+        reason = str(reason)
+        self.reason = reason if reason else "stopped by the Python callback"
+
+    def __repr__(self):
+        return f"junta.Stop({self.reason!r})"
+
+
+_DEFAULT_STOP = "stopped by the Python callback"
+
+
+def _callback_answer(value):
+    """The native module's protocol for the callback's answer: ``None``
+    goes on, a str stops with that reason."""
+    if value is None or value is Flow.CONTINUE:
+        return None
+    if value is Flow.STOP:
+        return _DEFAULT_STOP
+    if isinstance(value, Stop):
+        return value.reason
+    if isinstance(value, bool) or value == "stop":
+        _warnings.warn(
+            "a run callback that returns True/False or \"stop\" is deprecated: return None to "
+            "go on and junta.Flow.STOP or junta.Stop(\"reason\") to stop",
+            DeprecationWarning,
+            stacklevel=3,
+        )
+        return None if value is True else _DEFAULT_STOP
+    raise TypeError(
+        f"a run callback returns None (go on), junta.Flow.STOP or junta.Stop(reason), not {value!r}"
+    )
+
+
+def _wrap_callback(callback):
+    if callback is None:
+        return None
+    if not callable(callback):
+        raise TypeError("run: `callback` must be callable")
+
+    def answer(inc):
+        return _callback_answer(callback(inc))
+
+    return answer
+
+
+class Law:
+    """The protocol of a traction law written in Python (the object a
+    :func:`register_law` factory returns). Subclassing is optional: any
+    object with these attributes works; this class documents them and
+    gives the optional ones their defaults.
+
+    Required:
+
+    * ``state_len`` (int): state values per integration point;
+    * ``initial_stiffness`` ``(d1, d2, d3)``: the undamaged stiffness;
+    * ``evaluate(jump, state, step) -> (traction, tangent, new_state)``:
+      ``jump`` float64 ``[n, 3]`` (local ``[s1, s2, n]``, positive
+      opening), ``state`` ``[n, k]`` (the committed state; a copy) and
+      ``step`` a dict with every field of the step a compiled law sees:
+      ``increment``, ``load_factor``, ``delta_load_factor``, ``secant``,
+      ``exact_tangent``, ``temperature_factor``, ``cycles``,
+      ``delta_cycles``, ``load_ratio`` and ``crack_drive`` (``None``, or a
+      dict ``{energy_release_rate, mode_ratio, process_zone_length}``);
+      returns traction ``[n, 3]``, tangent ``[n, 3, 3]`` (``d traction /
+      d jump``) and ``new_state`` ``[n, k]``. Called once per interface
+      block and assembly with every point of the block; keep no state of
+      your own.
+
+    Optional (the defaults below):
+
+    * ``tangent_kind``: ``"spd"``, ``"indefinite"`` or ``"general"``
+      (nonsymmetric; otherwise the element assembles the symmetric part);
+    * ``init_state(n) -> [n, k]`` (``None``: zeros);
+    * ``output_names`` and ``outputs(state) -> [n, len(names)]`` (a
+      ``damage`` output marks a point failed at 0.99, a
+      ``dissipated_energy`` output per unit area feeds the curve's
+      dissipated energy and arc-length path following);
+    * ``failure_index(state) -> [n]`` (``None``: no index);
+    * ``fracture_properties``: dict ``N, S, G_Ic, G_IIc`` (penalty and
+      mesh advice);
+    * ``warnings``: list of str.
+    """
+
+    state_len = 0
+    initial_stiffness = (0.0, 0.0, 0.0)
+    tangent_kind = "indefinite"
+    output_names = ()
+    fracture_properties = None
+    warnings = ()
+    init_state = None
+    outputs = None
+    failure_index = None
+
+    def evaluate(self, jump, state, step):
+        """``(traction [n, 3], tangent [n, 3, 3], new_state [n, k])``."""
+        raise NotImplementedError(f"{type(self).__name__}.evaluate(jump, state, step)")
 
 
 class Simulation:
@@ -129,11 +276,13 @@ class Simulation:
         ``callback(inc)`` is called after every converged increment with a
         dict ``{increment, step, load_factor, reaction, displacement,
         failed_points, iterations, row}`` (``row``: every column of
-        ``curve.csv`` for this increment). Returning ``False`` or
-        ``"stop"`` ends the run after this increment (status
-        ``"stopped"``, a valid restart point when ``output`` is given);
-        an exception it raises ends the run the same way and is re-raised
-        here.
+        ``curve.csv`` for this increment). It returns ``None`` to go on;
+        :attr:`Flow.STOP` or :class:`Stop` ``("reason")`` ends the run
+        after this increment (status :attr:`Status.STOPPED`, status line
+        ``stopped: reason``, a valid restart point when ``output`` is
+        given); an exception it raises ends the run the same way and is
+        re-raised here. Returning ``False`` or ``"stop"`` still stops
+        (deprecated: a ``DeprecationWarning``).
 
         ``output``: a directory to write the command line's files into
         (``curve.csv``, frames, ``checkpoint.json``, ``summary.json``);
@@ -154,7 +303,7 @@ class Simulation:
         if output is not None:
             output = _os.fspath(output)
         try:
-            d = self._native.run(callback, output, max_increments, frames_every)
+            d = self._native.run(_wrap_callback(callback), output, max_increments, frames_every)
         except BaseException as e:
             r = getattr(e, "_junta_results", None)
             if isinstance(r, dict):
@@ -255,7 +404,8 @@ class Results:
     """What a run returns.
 
     ===============  ==========================================================
-    ``status``       ``"completed"``, ``"stopped"``, ``"failed"``, ``"interrupted"``
+    ``status``       a :class:`Status` (a ``str`` enum: ``"completed"``,
+                     ``"stopped"``, ``"failed"``, ``"interrupted"``)
     ``status_line``  the command line's status (``stopped: ...``)
     ``curve``        dict of float64 arrays keyed as ``curve.csv``'s header
                      (``reaction``, ``displacement``, ``load_factor``, ...;
@@ -272,7 +422,7 @@ class Results:
     """
 
     def __init__(self, d):
-        self.status = d["status"]
+        self.status = Status.from_status_line(d["status"])
         self.status_line = d["status_line"]
         self.summary = d["summary"]
         self.curve = d["curve"]
@@ -289,12 +439,23 @@ class Results:
         return f"<junta.Results {self.status_line!r}, {n} increments, {len(self.frames)} frames>"
 
 
-def list():  # noqa: A001 (mirrors `junta list`)
+def catalog():
     """Every registered plugin, as ``junta list`` prints them: a list of
     sections ``{title, plugins: [{key, description, params: [{name, doc}],
     runtime}]}``; laws registered from Python are in the ``interface laws``
     section with ``runtime: True``."""
-    return _junta.list()
+    return _junta.catalog()
+
+
+def list():  # noqa: A001 (the deprecated name of catalog())
+    """Deprecated: :func:`catalog` (``list`` shadowed the builtin; this
+    alias goes in the next release)."""
+    _warnings.warn(
+        "junta.list() is deprecated (it shadows the builtin): use junta.catalog()",
+        DeprecationWarning,
+        stacklevel=2,
+    )
+    return catalog()
 
 
 def register_law(name, factory, description=None, params=None):
@@ -303,8 +464,9 @@ def register_law(name, factory, description=None, params=None):
     law; built-in names are refused).
 
     ``factory(params)`` gets the scene's ``[laws.X]`` table without
-    ``type`` (a dict) and returns a law object; raise ``ValueError`` on bad
-    parameters (it reaches the user as itself). The law object has:
+    ``type`` (a dict) and returns a law object (:class:`Law` documents the
+    protocol); raise ``ValueError`` on bad parameters (it reaches the user
+    as itself). The law object has:
 
     * ``state_len`` (int): state values per integration point;
     * ``initial_stiffness`` ``(d1, d2, d3)``: undamaged stiffness;
@@ -313,8 +475,9 @@ def register_law(name, factory, description=None, params=None):
       symmetric part of the tangent);
     * ``evaluate(jump, state, step) -> (traction, tangent, new_state)``:
       ``jump`` float64 ``[n, 3]`` (local ``[s1, s2, n]``, positive opening),
-      ``state`` ``[n, k]`` (the committed state; a copy), ``step`` a dict ``{increment,
-      load_factor, delta_load_factor, secant}``; returns traction ``[n, 3]``,
+      ``state`` ``[n, k]`` (the committed state; a copy), ``step`` a dict of
+      every step field (:class:`Law`: ``increment``, ``load_factor``, ...,
+      ``temperature_factor``, ``cycles``, ``load_ratio``, ``crack_drive``); returns traction ``[n, 3]``,
       tangent ``[n, 3, 3]`` (``d traction / d jump``) and ``new_state``
       ``[n, k]``. It is called once per interface block and assembly with
       every point of the block, and must not keep state of its own;
@@ -327,7 +490,7 @@ def register_law(name, factory, description=None, params=None):
     * ``fracture_properties`` (optional): dict ``N, S, G_Ic, G_IIc`` for the
       penalty and mesh advice; ``warnings`` (optional): list of str.
 
-    ``params``: documentation of the parameters for :func:`list`, a dict
+    ``params``: documentation of the parameters for :func:`catalog`, a dict
     ``{name: doc}`` or a list of ``(name, doc)``.
     """
     if isinstance(params, dict):
@@ -344,7 +507,19 @@ def unregister_law(name):
 
 
 def _default_step(step):
-    s = {"increment": 1, "load_factor": 1.0, "delta_load_factor": 0.1, "secant": False}
+    """The step dict a law sees (every field), with ``step``'s values."""
+    s = {
+        "increment": 1,
+        "load_factor": 1.0,
+        "delta_load_factor": 0.1,
+        "secant": False,
+        "exact_tangent": False,
+        "temperature_factor": 1.0,
+        "cycles": 0.0,
+        "delta_cycles": 0.0,
+        "load_ratio": 0.0,
+        "crack_drive": None,
+    }
     if step:
         s.update(step)
     return s
@@ -368,15 +543,7 @@ def evaluate_law(law, jumps, state=None, step=None):
         state = _initial_state(law, n)
     state = _np.asarray(state, dtype=float).reshape(n, int(law.state_len))
     s = _default_step(step)
-    return _junta.evaluate_law(
-        law,
-        [tuple(j) for j in jumps],
-        state.ravel().tolist(),
-        int(s["increment"]),
-        float(s["load_factor"]),
-        float(s["delta_load_factor"]),
-        bool(s["secant"]),
-    )
+    return _junta.evaluate_law(law, [tuple(j) for j in jumps], state.ravel().tolist(), s)
 
 
 def check_tangent(law, jumps, state=None, step=None, h=1e-7, rtol=1e-5, raise_on_error=False):
@@ -384,7 +551,7 @@ def check_tangent(law, jumps, state=None, step=None, h=1e-7, rtol=1e-5, raise_on
     traction in the jump, at the points ``jumps [n, 3]`` with the committed
     ``state [n, k]`` (default: the law's initial state) and ``step`` (a dict,
     default ``{increment: 1, load_factor: 1, delta_load_factor: 0.1,
-    secant: False}``).
+    secant: False, temperature_factor: 1, cycles: 0, ...}``).
 
     ``h`` is the absolute step in jump units (choose points at least a few
     ``h`` away from a kink of the law: onset, full separation, contact).
