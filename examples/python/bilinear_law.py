@@ -325,3 +325,22 @@ def register(name="py_bilinear"):
             "viscosity": "viscous regularisation (default 0)",
         },
     )
+
+
+def main():
+    """Register the law and check its tangent against central differences
+    at points below onset, softening and past full separation (the DCB's
+    parameters, N/mm units)."""
+    import junta
+
+    register()
+    params = {"K": 1.0e6, "N": 80.0, "S": 100.0, "G_Ic": 0.969, "G_IIc": 1.719, "eta": 2.284}
+    jumps = np.array([[0.0, 0.0, 2e-5], [1e-5, 0.0, 1e-4], [2e-4, 1e-4, 5e-3], [0.0, 0.0, 5e-2]])
+    r = junta.check_tangent(PyBilinear(params), jumps, h=1e-9, rtol=1e-4)
+    print(f"py_bilinear registered; tangent against central differences at {len(jumps)} points: "
+          f"max relative error {r['max_rel_error']:.2e} ({'ok' if r['ok'] else 'FAILED'})")
+    return 0 if r["ok"] else 1
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -14,7 +14,6 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::time::{Duration, Instant};
 
 /// The MPI-enabled `junta`: `JUNTA_MPI_BIN`, else `junta` next to the
 /// test's own target directory.
@@ -463,7 +462,6 @@ fn a_rank_with_bad_input_or_a_failing_solve_ends_every_rank() {
     assert!(err.contains("G_Ic"), "the message names the key: {err}");
     // rank 1 alone meets bad input while rank 0 runs the good scene and
     // waits for it in the first collective
-    let t = Instant::now();
     let out = timed_mpirun(120)
         .args(["-np", "1"])
         .arg(junta())
@@ -475,7 +473,7 @@ fn a_rank_with_bad_input_or_a_failing_solve_ends_every_rank() {
         .arg(tmp.path().join("c"))
         .output()
         .unwrap();
-    let err = assert_every_rank_ended(&out, t);
+    let err = assert_every_rank_ended(&out);
     assert!(err.contains("rank 1 of 2") && err.contains("G_Ic"), "{err}");
     // a failing solve: nothing holds the cube (no boundary condition)
     let deck = tmp.path().join("free.inp");
@@ -492,18 +490,17 @@ fn a_rank_with_bad_input_or_a_failing_solve_ends_every_rank() {
 /// `junta run INPUT -o OUT` on 2 ranks, which must end every rank with an
 /// error ([`assert_every_rank_ended`]); its stderr.
 fn failed_run_on_two_ranks(input: &Path, out: &Path) -> String {
-    let t = Instant::now();
     let args = ["run", input.to_str().unwrap(), "-o", out.to_str().unwrap()];
-    assert_every_rank_ended(&mpirun_with(2, 120, &args), t)
+    assert_every_rank_ended(&mpirun_with(2, 120, &args))
 }
 
-/// The run failed, not by the `timeout` around `mpirun` (exit 124), and
-/// within a minute of `started`; its stderr.
-fn assert_every_rank_ended(out: &Output, started: Instant) -> String {
+/// The run failed, not by the `timeout` around `mpirun` (exit 124: a rank
+/// that hung; no wall clock of the test's own, which a busy machine would
+/// trip); its stderr.
+fn assert_every_rank_ended(out: &Output) -> String {
     let err = String::from_utf8_lossy(&out.stderr).into_owned();
     assert!(!out.status.success(), "the run must fail: {err}");
     assert_ne!(out.status.code(), Some(124), "timed out: {err}");
-    assert!(started.elapsed() < Duration::from_secs(60), "{err}");
     err
 }
 
