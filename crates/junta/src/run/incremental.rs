@@ -637,7 +637,7 @@ fn finish(
         // `[output] probes` at the state the run ends on (a linear run's
         // are of its one solution)
         summary["probes"] =
-            output::probes(model, &p.probes, u).map_err(|e| err!("key `output.probes`: {e}"))?;
+            crate::output::summary::probes(model, &p.probes, u).map_err(|e| err!("key `output.probes`: {e}"))?;
     }
     match &run {
         Some(run) => run_totals(&mut summary, p, run, t0)?,
