@@ -636,8 +636,8 @@ fn finish(
     if let Some(u) = u.filter(|_| !p.probes.is_empty()) {
         // `[output] probes` at the state the run ends on (a linear run's
         // are of its one solution)
-        summary["probes"] =
-            crate::output::summary::probes(model, &p.probes, u).map_err(|e| err!("key `output.probes`: {e}"))?;
+        summary["probes"] = crate::output::summary::probes(model, &p.probes, u)
+            .map_err(|e| err!("key `output.probes`: {e}"))?;
     }
     match &run {
         Some(run) => run_totals(&mut summary, p, run, t0)?,
