@@ -338,6 +338,49 @@ impl DofMap {
         }
     }
 
+    /// The reactions of the reduced system, `T^T r` in full-dof form: for
+    /// the residual `r = f_int - lambda f_ext` (full length), `out[m] =
+    /// r_m + sum_d c_dm r_d` on every dof that is not dependent (the sum
+    /// over the dependents `d` whose terms hold `m`, `u_d = sum_m c_dm
+    /// u_m`), and 0 on the dependents, whose constraint forces are thereby
+    /// moved onto their independent dofs. Equal to `r` without equations.
+    ///
+    /// Why this is the force conjugate to a prescribed dof. Collect the
+    /// independent dofs (free `f` and prescribed `p`) in `w`; the
+    /// equations give `u = T w`. The elements' virtual work is `f_int .
+    /// du = (T^T f_int) . dw`, and equilibrium of the reduced system is
+    /// `(T^T r)_f = 0`. Hence the power of the internal forces is
+    ///
+    /// ```text
+    /// f_int . u' = lambda (T^T f_ext) . w' + (T^T r) . w'
+    ///            = lambda f_ext . u'       + sum_p R_p w_p',   R = T^T r,
+    /// ```
+    ///
+    /// so `R_p = r_p + sum_d c_dp r_d` (the Lagrange multipliers of the
+    /// equations, i.e. the dependents' constraint forces `r_d`, carried to
+    /// `p` with the equation coefficients) is the external force that works
+    /// on the prescribed motion `w_p`. `r_p` alone, the elements' share at
+    /// the node (what CalculiX prints as `RF`), misses the dependents'
+    /// part: for a face tied to a master node by `u_d - u_p = 0` the
+    /// master's generalized reaction is the total force on the face.
+    /// On a free dof `out` is the reduced residual (zero at convergence).
+    pub fn generalized_reactions_into(&self, residual: &[f64], out: &mut [f64]) {
+        out.copy_from_slice(residual);
+        for (d, terms) in self.dependents.iter() {
+            out[d] = 0.0;
+            for &(m, c) in terms {
+                out[m] += c * residual[d];
+            }
+        }
+    }
+
+    /// [`DofMap::generalized_reactions_into`] into a new vector.
+    pub fn generalized_reactions(&self, residual: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; residual.len()];
+        self.generalized_reactions_into(residual, &mut out);
+        out
+    }
+
     /// Node, component and body (from `node_body`, one per node) of each
     /// equation.
     pub fn equation_layout(&self, node_body: &[u32]) -> crate::solver::EquationLayout {
@@ -429,6 +472,43 @@ fn resolve(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `T^T r` moves a dependent's constraint force onto its terms with
+    /// their coefficients: `u_3 = -2 u_0 + 2 u_7` (from the test above)
+    /// puts `-2 r_3` on the prescribed dof 0 and `2 r_3` on dof 7; the work
+    /// `R . w'` then equals `r . u'` for any motion `u = T w`.
+    #[test]
+    fn generalized_reactions_carry_dependent_forces_to_their_terms() {
+        let used = [true; 3];
+        let mut m = DofMap::new(3, &[(0, 0.5)], &used).unwrap();
+        let eqs = [
+            LinearEquation {
+                terms: vec![(3, 1.0), (6, -2.0)],
+                origin: "a".into(),
+            },
+            LinearEquation {
+                terms: vec![(6, 2.0), (7, -2.0), (0, 2.0)],
+                origin: "b".into(),
+            },
+        ];
+        m.add_equations(&eqs, &[]).unwrap();
+        let r: Vec<f64> = (0..9).map(|i| 1.0 + i as f64).collect();
+        let g = m.generalized_reactions(&r);
+        // dependents 3 (= -2 u0 + 2 u7) and 6 (= u7 - u0)
+        assert_eq!(g[3], 0.0);
+        assert_eq!(g[6], 0.0);
+        assert_eq!(g[0], r[0] - 2.0 * r[3] - r[6]);
+        assert_eq!(g[7], r[7] + 2.0 * r[3] + r[6]);
+        assert_eq!(g[1], r[1]);
+        let free = [0.3, -1.0, 2.0, 0.7, 1.5, -0.2];
+        let u = m.expand(Some(&free), 1.0);
+        let ru: f64 = r.iter().zip(&u).map(|(a, b)| a * b).sum();
+        let gu: f64 = g.iter().zip(&u).map(|(a, b)| a * b).sum();
+        assert!((ru - gu).abs() < 1e-12 * ru.abs(), "{ru} vs {gu}");
+        // without equations it is the residual itself
+        let plain = DofMap::new(3, &[(0, 0.5)], &used).unwrap();
+        assert_eq!(plain.generalized_reactions(&r), r);
+    }
 
     #[test]
     fn equations_make_dependents_and_chains_are_substituted() {

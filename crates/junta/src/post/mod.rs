@@ -1,8 +1,10 @@
 //! Post-processing: quantities of a converged state. The fields the
 //! writers and observers read ([`fields`]), the curve row (`curve`), the
-//! typed frame (`frame`), the crack front ([`crack`]) and the largest element
+//! typed frame (`frame`), the crack front ([`crack`]), the generalized reactions under
+//! `*EQUATION`s (`constraint_force`) and the largest element
 //! rotation ([`rotation`]).
 
+pub(crate) mod constraint_force;
 pub mod crack;
 pub(crate) mod curve;
 pub mod fields;

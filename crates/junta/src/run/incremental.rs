@@ -335,11 +335,23 @@ impl Engine<'_> {
     /// u_i^prev)` over every dof, with `F` the external force: the
     /// reaction (`residual + lambda f_ext`, the internal force) on a
     /// prescribed dof, the applied load `lambda f_ext` on a free one.
+    /// With `*EQUATION`s the reaction on a prescribed dof is the reduced
+    /// system's, `r_p + sum_d c_dp r_d` (the dependents' constraint forces
+    /// carried onto the dof they follow; derivation at
+    /// [`junta_core::dof::DofMap::generalized_reactions_into`]), so that the
+    /// work holds with equations; a dependent dof gets only its load.
     /// Updates the previous state to this one.
     fn external_work(&mut self, v: &IncrementView<'_>, lambda: f64) -> f64 {
         let dofs = &self.model.dofs;
         let f_ext = &self.model.f_ext;
         let n = v.u.len();
+        let generalized;
+        let reaction: &[f64] = if dofs.has_equations() {
+            generalized = dofs.generalized_reactions(v.residual);
+            &generalized
+        } else {
+            v.residual
+        };
         let force: Vec<f64> = (0..n)
             .map(|i| {
                 let load = lambda * f_ext.get(i).copied().unwrap_or(0.0);
@@ -347,7 +359,7 @@ impl Engine<'_> {
                     && !dofs.orphan.get(i).copied().unwrap_or(false)
                     && !dofs.dependents.contains(i);
                 if prescribed {
-                    v.residual[i] + load
+                    reaction[i] + load
                 } else {
                     load
                 }
@@ -816,6 +828,7 @@ fn run_totals(
 ) -> Result<()> {
     let model = &p.model;
     summary["reactions"] = crate::output::summary::reactions(model, &run.residual)?;
+    crate::post::constraint_force::add_generalized_reactions(summary, model, &run.residual)?;
     summary["displacement_max"] = json!(crate::output::summary::displacement_max(&run.u));
     let t = run.summary.timings;
     summary["timings"] = json!({

@@ -135,6 +135,11 @@ pub(crate) fn run_linear(
         "notes": p.notes,
     });
     let mut summary = summary;
+    crate::post::constraint_force::add_generalized_reactions(
+        &mut summary,
+        &p.model,
+        &res.residual,
+    )?;
     if !warnings.is_empty() {
         summary["warnings"] = json!(warnings);
     }
