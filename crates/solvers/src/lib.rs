@@ -40,21 +40,13 @@
 
 #![warn(missing_docs)]
 
-pub mod amg;
-pub mod arc_length;
-pub mod cg;
-pub mod cholesky;
-mod common;
-pub mod gallery;
-pub mod ldlt;
-pub mod linear_static;
-pub mod lu;
-pub mod minres;
-pub mod newton;
-pub mod ordering;
-mod panel_lu;
-pub mod path_switch;
-mod supernodal;
+pub mod linear;
+pub mod nonlinear;
+
+// The crate's paths before the split (`junta_solvers::lu`, `junta_solvers::newton`, ...).
+pub use linear::{amg, cg, cholesky, gallery, ldlt, lu, minres, ordering};
+pub(crate) use linear::{common, panel_lu, supernodal};
+pub use nonlinear::{arc_length, linear_static, newton, path_switch};
 
 pub use cg::{CgSettings, CgSolver, KrylovMethod, Preconditioner};
 pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats, Precision};
