@@ -17,6 +17,11 @@
 //! points and snap-backs: cylindrical arc length, then a dissipation
 //! constraint once the laws dissipate).
 //!
+//! The two halves are two folders: [`linear`] (the back ends above and
+//! their kernels; nothing there knows the drivers) and [`nonlinear`] (the
+//! drivers, `path_switch` and `linear_static`). The old flat paths
+//! (`junta_solvers::lu`, `junta_solvers::newton`, ...) are re-exported.
+//!
 //! Embedders can skip the registry:
 //!
 //! ```
