@@ -72,6 +72,10 @@ pub enum CoreError {
         /// The different value prescribed later.
         b: f64,
     },
+    /// A part of the model is held by no support (its rigid-body modes
+    /// are free; [`crate::connectivity`]): the blocks, elements and modes.
+    #[error("{0}")]
+    Unsupported(String),
     /// Any other inconsistency in a model.
     #[error("{0}")]
     Invalid(String),

@@ -18,6 +18,7 @@
 pub use inventory;
 
 pub mod assembly;
+pub mod connectivity;
 pub mod crack_drive;
 pub mod criterion;
 pub mod distributed;
