@@ -10,12 +10,16 @@
 //!
 //! 1. **Components.** Union-find over the nodes. Every solid (or any
 //!    element that is not an interface) joins all its nodes. An interface
-//!    element joins its nodes only when its law carries stiffness in the
-//!    initial state in all three directions `[s1, s2, n]`
-//!    ([`Element::interface_stiffness`]): a bonded cohesive law does. A law
-//!    with no stiffness in some direction at zero jump (a contact law,
-//!    `[0, 0, k]`, stiff in compression only; a precrack) does not join its
-//!    faces: a part held only by contact is free to leave it. Each linear
+//!    element joins its nodes when its law carries stiffness in the initial
+//!    state in some direction `[s1, s2, n]`
+//!    ([`Element::interface_stiffness`]): a bonded cohesive law does, and so
+//!    does a contact law (`[0, 0, k]`, stiff in compression). The check is
+//!    for parts with no connection at all, and never refuses a model that
+//!    might run: a part held only by contact is counted as held (its
+//!    in-plane modes are free until friction or a load closes it, which
+//!    the solver reports if it matters). Only an interface whose law has
+//!    no stiffness at all (a precrack with no law, `[0, 0, 0]`) does not
+//!    join its faces. Each linear
 //!    equation (MPC) joins the nodes of its dependent dof and of its terms.
 //!    Nodes that belong to no element are skipped.
 //! 2. **Constrained dofs of a component.** A dof is constrained when it is
@@ -152,7 +156,7 @@ fn components(model: &Model) -> (Vec<usize>, Vec<bool>) {
     for (b, el) in model.mesh.blocks.iter().zip(&model.elements) {
         let joins = match el.interface_stiffness() {
             None => true,
-            Some(k) => k.iter().all(|v| *v > 0.0),
+            Some(k) => k.iter().any(|v| *v > 0.0),
         };
         let k = b.nodes_per_element().max(1);
         for cell in b.connectivity.chunks(k) {

@@ -43,6 +43,14 @@ pub enum SolverError {
         /// bytes needed and available when known.
         detail: String,
     },
+    /// A factorisation whose predicted fill (from the symbolic analysis)
+    /// exceeds the back end's bound: it was refused before it started, with
+    /// the entries predicted, the bound and what to change.
+    #[error("factorisation refused: {detail}")]
+    FillLimit {
+        /// Back end, predicted entries and bytes, the bound, the remedy.
+        detail: String,
+    },
     /// `factorize`/`solve` called before `analyze`, or with a different pattern.
     #[error("solver misuse: {0}")]
     Usage(String),

@@ -293,3 +293,90 @@ fn restricted_pivoting_matches_partial_pivoting_and_falls_back() {
         r.warnings
     );
 }
+
+/// `nonsymmetric_grid` with a decoupled 3 x 3 block of rank one
+/// appended: `[[2, 1, 1], [2, 1, 1], [4, 2, 2]]`, a part that nothing
+/// holds (its elimination leaves exact zeros).
+fn singular_grid() -> (SymmetricCsc, Vec<[f64; 3]>) {
+    let (a, mut coords) = nonsymmetric_grid(0.3);
+    let n = a.n;
+    let mut cols: Vec<Vec<usize>> = (0..n)
+        .map(|j| a.row_idx[a.col_ptr[j]..a.col_ptr[j + 1]].to_vec())
+        .collect();
+    cols.extend([vec![n], vec![n, n + 1], vec![n, n + 1, n + 2]]);
+    let mut s = SymmetricCsc::from_columns(cols);
+    s.set_general(true);
+    let block = [[2.0, 1.0, 1.0], [2.0, 1.0, 1.0], [4.0, 2.0, 2.0]];
+    let (mut upper, mut lower) = (a.values.clone(), a.lower.clone());
+    for j in 0..3 {
+        for i in 0..=j {
+            upper.push(block[i][j]);
+            lower.push(block[j][i]);
+        }
+    }
+    s.values = upper;
+    s.lower = lower;
+    coords.extend([[9.0, 0.0, 0.0], [9.0, 1.0, 0.0], [9.0, 2.0, 0.0]]);
+    (s, coords)
+}
+
+/// A singular matrix (a floating body: `A 1 = 0`) stops `auto` at its
+/// first factorisation, naming the pivot's step and equation, without
+/// the fallback to unrestricted pivoting (which cannot help and, on a
+/// mixed-mode bending model with a floating box, ran for minutes).
+#[test]
+fn auto_stops_at_a_singular_matrix_without_falling_back() {
+    let (a, coords) = singular_grid();
+    let mut lu = LuSolver::default();
+    lu.analyze(&a, Some(&coords)).unwrap();
+    let r = lu.factorize(&a);
+    let Err(SolverError::NotPositiveDefinite { detail }) = &r else {
+        panic!("expected a singular matrix, got {r:?}");
+    };
+    assert!(detail.contains("numerically singular"), "{detail}");
+    assert!(detail.contains("elimination step"), "{detail}");
+    assert!(detail.contains("equation"), "{detail}");
+    let rep = lu.report();
+    assert_eq!(rep.factorizations, 1, "no refactorisation");
+    assert!(!rep.notes.iter().any(|n| n.contains("unrestricted")), "{:?}", rep.notes);
+    // the same matrix with a regular block factorises
+    let (mut b, _) = singular_grid();
+    let m = b.values.len();
+    b.values[m - 1] = 3.0; // A[n+2][n+2]: the block's rank is three
+    b.values[m - 4] = 5.0; // A[n+1][n+1]
+    b.lower[m - 1] = 3.0;
+    b.lower[m - 4] = 5.0;
+    let mut lu = LuSolver::default();
+    lu.analyze(&b, Some(&coords)).unwrap();
+    lu.factorize(&b).unwrap();
+}
+
+/// The fallback's factor is predicted before any numeric work; above
+/// `max_fallback_fill` times the restricted factor it is refused with the
+/// numbers and the remedy.
+#[test]
+fn auto_refuses_a_fallback_whose_fill_runs_away() {
+    use junta_solvers::gallery::constrained_laplacian;
+    use junta_solvers::{LuPivoting, LuSettings, OrderingKind};
+    let (mut kkt, coords) = constrained_laplacian(8, 20);
+    kkt.set_general(true);
+    let mut lu = LuSolver::new(LuSettings {
+        pivoting: LuPivoting::Auto,
+        ordering: OrderingKind::NestedDissection,
+        max_fallback_fill: 1.0,
+        ..Default::default()
+    });
+    lu.analyze(&kkt, Some(&coords)).unwrap();
+    let r = lu.factorize(&kkt);
+    let Err(SolverError::FillLimit { detail }) = &r else {
+        panic!("expected the fill limit, got {r:?}");
+    };
+    assert!(detail.contains("max_fallback_fill = 1"), "{detail}");
+    assert!(detail.contains("pivoting = \"restricted\""), "{detail}");
+    // the entries predicted are more than the restricted factor's
+    let nums: Vec<f64> = detail
+        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    assert!(nums.len() > 3, "{detail}");
+}

@@ -286,6 +286,7 @@ pub fn prepare_scene_text(
 pub fn prepare_model(model: Model, analysis: scene::AnalysisSpec, key: &str) -> Result<Prepared> {
     let where_ = "(model built in code)";
     crate::input::validate::analysis(where_, &analysis)?;
+    check_supported(where_, &model)?;
     let mut key = key.to_string();
     let table = toml::Table::new();
     let mut notes = Vec::new();
@@ -810,9 +811,12 @@ fn check_path_following(input: &Path, a: &scene::AnalysisSpec) -> Result<()> {
         .map_err(|e| err!("{file}: key `analysis.arc_length`: {e}"))
 }
 
-/// What needs the model: probe, reference and curve sets, curve components.
+/// What needs the model: every part held by a support
+/// ([`junta_core::connectivity`]), probe, reference and curve sets, curve
+/// components.
 pub fn check_prepared(file: &str, p: &Prepared) -> Result<()> {
     crate::input::validate::analysis(file, &p.analysis)?;
+    check_supported(file, &p.model)?;
     let mesh = &p.model.mesh;
     for s in &p.probes {
         mesh.node_set(s)
@@ -843,6 +847,22 @@ pub fn check_prepared(file: &str, p: &Prepared) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Refuse a model with a part that no support holds (its free rigid-body
+/// modes make every factorisation singular), naming its blocks, elements
+/// and free modes, before any solver sees it.
+fn check_supported(file: &str, model: &Model) -> Result<()> {
+    let parts = junta_core::connectivity::floating_parts(model);
+    if parts.is_empty() {
+        return Ok(());
+    }
+    let lines: Vec<String> = parts.iter().map(|p| format!("  - {p}")).collect();
+    bail!(
+        "{file}: {} part(s) of the model held by no support (the stiffness matrix would be singular):\n{}",
+        parts.len(),
+        lines.join("\n")
+    )
 }
 
 #[cfg(test)]

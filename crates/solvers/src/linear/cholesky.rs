@@ -894,15 +894,6 @@ impl LinearSolver for CholeskySolver {
     }
 }
 
-/// Bytes of memory the system can still give (`MemAvailable` of
-/// `/proc/meminfo`, Linux); `None` where unknown.
-fn available_memory() -> Option<u64> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024)
-}
-
 /// Make `values` a zero-filled buffer of `len` entries (kept as is when it
 /// already has that length) and return its bytes; or, before anything is
 /// allocated, a [`SolverError::OutOfMemory`] with the numbers when the
@@ -934,7 +925,7 @@ fn allocate_values<T: Default + Clone>(
         ),
     }
     };
-    if let Some(avail) = available_memory() {
+    if let Some(avail) = crate::common::available_memory() {
         if bytes as u64 > avail {
             return Err(refuse(format!("{:.2} GB available", gb(avail))));
         }

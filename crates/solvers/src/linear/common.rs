@@ -574,3 +574,12 @@ mod tests {
         assert!(validate(&ok).is_ok());
     }
 }
+
+/// Bytes of memory the system can still give (`MemAvailable` of
+/// `/proc/meminfo`, Linux); `None` where unknown.
+pub(crate) fn available_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}

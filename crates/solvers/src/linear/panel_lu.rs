@@ -62,6 +62,12 @@ const UPPER: usize = 1 << (usize::BITS - 1);
 pub(crate) struct PanelLuStats {
     /// Pivots replaced by the static perturbation.
     pub(crate) perturbed: usize,
+    /// Of those, pivots whose whole column of the Schur complement (rows
+    /// below the panel included) is at most `tiny ||A||_inf`: the matrix is
+    /// numerically singular (module doc).
+    pub(crate) singular: usize,
+    /// The first such column (permuted numbering), `usize::MAX` if none.
+    pub(crate) first_singular: usize,
     /// Smallest `|u_kk| / ||A||_inf` of an unperturbed pivot.
     pub(crate) min_pivot_ratio: f64,
     /// Largest `|l_ij|` (at most 1 in `L_JJ`, unbounded in `L_RJ`).
@@ -71,6 +77,18 @@ pub(crate) struct PanelLuStats {
 }
 
 impl PanelLuStats {
+    /// The numbers of a factorisation with no pivot yet.
+    fn empty() -> Self {
+        PanelLuStats {
+            perturbed: 0,
+            singular: 0,
+            first_singular: usize::MAX,
+            min_pivot_ratio: f64::INFINITY,
+            max_multiplier: 0.0,
+            max_upper: 0.0,
+        }
+    }
+
     /// Growth `max(1, max|L|) max|U| / ||A||_inf` (`norm`): the backward
     /// error of the factor is a modest multiple of `eps |L| |U|`.
     pub(crate) fn growth(&self, norm: f64) -> f64 {
@@ -224,15 +242,12 @@ impl PanelLu {
             });
         let Ok(()) = done;
         stats.into_inner().expect("not poisoned").iter().fold(
-            PanelLuStats {
-                perturbed: 0,
-                min_pivot_ratio: f64::INFINITY,
-                max_multiplier: 0.0,
-                max_upper: 0.0,
-            },
+            PanelLuStats::empty(),
             |acc, st| PanelLuStats {
                 max_upper: nan_max(acc.max_upper, st.max_upper),
                 perturbed: acc.perturbed + st.perturbed,
+                singular: acc.singular + st.singular,
+                first_singular: acc.first_singular.min(st.first_singular),
                 min_pivot_ratio: acc.min_pivot_ratio.min(st.min_pivot_ratio / norm),
                 max_multiplier: nan_max(acc.max_multiplier, st.max_multiplier),
             },
@@ -306,6 +321,8 @@ struct Scratch {
     prod: Vec<f64>,
     loc: Vec<u32>,
     cols: Vec<f64>,
+    /// Panel-local columns whose pivot was perturbed.
+    perturbed: Vec<usize>,
 }
 
 /// Left-looking update and dense restricted-pivoting `LU` of panel `s`.
@@ -401,12 +418,8 @@ fn factor_panel(
         }
     }
     // dense LU of the diagonal block with row interchanges among its rows
-    let mut st = PanelLuStats {
-        perturbed: 0,
-        min_pivot_ratio: f64::INFINITY,
-        max_multiplier: 0.0,
-        max_upper: 0.0,
-    };
+    let mut st = PanelLuStats::empty();
+    scratch.perturbed.clear();
     for (i, p) in rows.iter_mut().enumerate() {
         *p = i as u32;
     }
@@ -429,6 +442,7 @@ fn factor_panel(
             piv = if piv < 0.0 { -perturb } else { perturb };
             ls[k * m + k] = piv;
             st.perturbed += 1;
+            scratch.perturbed.push(k);
         } else {
             st.min_pivot_ratio = st.min_pivot_ratio.min(piv.abs());
         }
@@ -474,6 +488,16 @@ fn factor_panel(
         }
         let mut u = MatMut::from_column_major_slice_mut(&mut us[..], r, w);
         tri::solve_unit_lower_triangular_in_place(top.rb(), u.rb_mut().transpose_mut(), par);
+    }
+    // perturbed pivots with nothing below the panel either: singular
+    for &k in &scratch.perturbed {
+        let below = ls[k * m + w..(k + 1) * m]
+            .iter()
+            .fold(0.0f64, |a, v| nan_max(a, v.abs()));
+        if !(below * perturb > tiny) {
+            st.singular += 1;
+            st.first_singular = st.first_singular.min(b + k);
+        }
     }
     for j in 0..w {
         let col = &ls[j * m..(j + 1) * m];
