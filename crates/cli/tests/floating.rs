@@ -46,7 +46,11 @@ fn check_refuses_a_floating_box_and_names_it() {
         .arg(repo().join("examples/delamination/mmb80_short.toml"))
         .output()
         .unwrap();
-    assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
 }
 
 #[test]
@@ -122,5 +126,9 @@ force = [1.0, 0.0, 0.0]
             .replace("fixed = [\"x\"]", "fixed = \"all\""),
     );
     let out = junta().arg("check").arg(&held).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }

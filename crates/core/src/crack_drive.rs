@@ -53,20 +53,7 @@ use crate::element::PointOutput;
 use crate::state::StateStore;
 use crate::{CoreError, Model};
 
-/// The crack's driving force measured on the interface at one converged
-/// state (see the module docs).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct CrackDrive {
-    /// J integral of the cohesive tractions along the line with the
-    /// largest one [energy/area].
-    pub energy_release_rate: f64,
-    /// Mode ratio `G_II / G` of that line: the shear components' part of
-    /// the integral over the whole (0 when J is 0).
-    pub mode_ratio: f64,
-    /// Length of that line's process zone along the direction (0: no
-    /// point of it is past onset).
-    pub process_zone_length: f64,
-}
+pub use crate::step::CrackDrive;
 
 /// One interface point, as the J integral reads it.
 struct LinePoint {

@@ -52,76 +52,7 @@ pub enum Kinematics {
     Finite,
 }
 
-/// Increment information handed down to elements and laws.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StepInfo {
-    /// Index of the increment being computed: 1 + the number of converged
-    /// increments (1-based; the same on every iteration and cut-back retry).
-    pub increment: usize,
-    /// Load factor at the end of the current increment.
-    pub load_factor: f64,
-    /// Size of the current load-factor increment.
-    pub delta_load_factor: f64,
-    /// Ask for a secant tangent instead of the consistent one. The Newton
-    /// driver sets it for the rest of an attempt when an iteration with the
-    /// consistent tangent fails to reduce the residual (Newton cycling
-    /// between the loading and unloading branches of a softening point).
-    /// Laws without a secant form ignore it.
-    pub secant: bool,
-    /// Assemble the law's exact tangent in full, nonsymmetric where it is,
-    /// also for a law that declares a symmetric kind (whose tangent is
-    /// otherwise stored as its symmetric part). The drivers set it after
-    /// switching to the exact tangent when Newton stagnated on the
-    /// symmetric part ([`crate::Element::symmetrises_tangent`]).
-    pub exact_tangent: bool,
-    /// Temperature factor at the end of the current increment: the
-    /// temperature change of every node is this factor times the model's
-    /// [`crate::Model::temperature`] (the change from the stress-free
-    /// temperature at the end of the thermal program). 1 by default (a
-    /// linear analysis applies the whole change); the incremental drivers
-    /// set it from the program's temperature steps.
-    pub temperature_factor: f64,
-    /// Cycle count `N` at the end of the current increment of a fatigue
-    /// step (a cycle-jump step holds the load at the envelope maximum of a
-    /// constant-amplitude cycle and counts cycles as pseudo-time). 0 outside
-    /// fatigue steps.
-    pub cycles: f64,
-    /// Cycles advanced in the current increment, `dN >= 0`. Fatigue laws
-    /// grow their damage by their rate per cycle times `dN`; 0 (the
-    /// default, and every non-fatigue step) means the law behaves as its
-    /// static counterpart.
-    pub delta_cycles: f64,
-    /// Load ratio `R = min / max` of the constant-amplitude cycle of a
-    /// fatigue step (0 by default). Laws use it through the cyclic energy
-    /// release rate (`(1 - R^2) G_max`).
-    pub load_ratio: f64,
-    /// The crack's energy release rate and process-zone length measured
-    /// on the interface at the start of a fatigue increment
-    /// ([`crate::Model::crack_drive`]), when the fatigue program asks for
-    /// it ([`crate::FatigueProgram::front_direction`]); `None` otherwise.
-    /// Fatigue laws use it instead of their point-local estimates.
-    pub crack_drive: Option<crate::crack_drive::CrackDrive>,
-}
-
-impl Default for StepInfo {
-    /// Increment 0, load factor 0, no secant or exact tangent, temperature
-    /// factor 1 (the whole temperature change of the model, if it has one),
-    /// no cycles (`cycles = delta_cycles = load_ratio = 0`).
-    fn default() -> Self {
-        StepInfo {
-            increment: 0,
-            load_factor: 0.0,
-            delta_load_factor: 0.0,
-            secant: false,
-            exact_tangent: false,
-            temperature_factor: 1.0,
-            cycles: 0.0,
-            delta_cycles: 0.0,
-            load_ratio: 0.0,
-            crack_drive: None,
-        }
-    }
-}
+pub use crate::step::StepInfo;
 
 /// Everything an element kernel reads. Buffers are owned by the caller.
 #[derive(Debug, Clone, Copy)]

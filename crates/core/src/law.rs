@@ -2,7 +2,7 @@
 //! `[s1, s2, n]` (two slips, then the opening; positive opening separates).
 //! Laws never see geometry.
 
-use crate::element::StepInfo;
+use crate::step::StepInfo;
 use thiserror::Error;
 
 /// Errors raised by a law.
@@ -168,7 +168,7 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     /// True when the law's tangent can be nonsymmetric although its
     /// [`InterfaceLaw::tangent_kind`] is symmetric (the element then
     /// stores its symmetric part, and a driver may switch to the exact
-    /// tangent: [`crate::element::StepInfo::exact_tangent`]). Default: false.
+    /// tangent: [`crate::step::StepInfo::exact_tangent`]). Default: false.
     fn tangent_is_symmetrised(&self) -> bool {
         false
     }

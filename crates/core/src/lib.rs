@@ -34,9 +34,9 @@ pub mod registry;
 pub mod solver;
 pub mod sparse;
 pub mod state;
+pub mod step;
 pub mod topology;
 
-pub use crack_drive::CrackDrive;
 pub use criterion::{FailureCriterion, FailureMode, FailureResult, OnsetInput};
 pub use dual::Dual3;
 pub use element::{Element, ElementContext, ElementError, Kinematics, PointOutput};
@@ -48,3 +48,4 @@ pub use solver::{
     EquationLayout, LinearSolver, MatrixKind, PrecomputedDissection, SolveReport, SolverError,
 };
 pub use sparse::SymmetricCsc;
+pub use step::{CrackDrive, StepInfo};

@@ -415,3 +415,20 @@ impl Model {
         Ok(())
     }
 }
+
+impl crate::step::StepInfo {
+    /// This step at pseudo-time `t` (0 to 1) of step `step` of `model`'s
+    /// load program: the temperature factor, the cycle count and the load
+    /// ratio from the model's programs ([`Model::temperature_factor`],
+    /// [`Model::cycles`], [`Model::load_ratio`]); `delta_cycles` and the
+    /// rest unchanged. `StepInfo::at(inc, lambda, dlambda).in_program(model,
+    /// step, t)` is the step a driver hands to the elements.
+    pub fn in_program(self, model: &Model, step: usize, t: f64) -> Self {
+        crate::step::StepInfo {
+            temperature_factor: model.temperature_factor(step, t),
+            cycles: model.cycles(step, t),
+            load_ratio: model.load_ratio(step),
+            ..self
+        }
+    }
+}

@@ -39,18 +39,7 @@ fn ctx(jump: [f64; 3], committed: &[f64], increment: usize) -> LawContext<'_> {
     LawContext {
         jump,
         state_committed: committed,
-        step: StepInfo {
-            increment,
-            load_factor: 0.0,
-            delta_load_factor: 0.0,
-            secant: false,
-            exact_tangent: false,
-            temperature_factor: 1.0,
-            cycles: 0.0,
-            delta_cycles: 0.0,
-            load_ratio: 0.0,
-            crack_drive: None,
-        },
+        step: StepInfo::at(increment, 0.0, 0.0),
     }
 }
 
@@ -563,18 +552,7 @@ fn inter8_top_face_pulled_uniformly() {
                 coords: &coords,
                 disp: &disp,
                 state_committed: &committed,
-                step: StepInfo {
-                    increment: inc,
-                    load_factor: 0.0,
-                    delta_load_factor: 0.0,
-                    secant: false,
-                    exact_tangent: false,
-                    temperature_factor: 1.0,
-                    cycles: 0.0,
-                    delta_cycles: 0.0,
-                    load_ratio: 0.0,
-                    crack_drive: None,
-                },
+                step: StepInfo::at(inc, 0.0, 0.0),
                 law_responses: None,
                 temperature: None,
             },

@@ -166,14 +166,7 @@ fn finite(shape: CellShape, rule: InterfaceRule, law: Arc<dyn InterfaceLaw>) -> 
 }
 
 fn step() -> StepInfo {
-    StepInfo {
-        increment: 2,
-        load_factor: 1.0,
-        delta_load_factor: 0.5,
-        secant: false,
-        exact_tangent: false,
-        ..Default::default()
-    }
+    StepInfo::at(2, 1.0, 0.5)
 }
 
 fn ctx<'a>(coords: &'a [V3], disp: &'a [f64], state: &'a [f64]) -> ElementContext<'a> {

@@ -79,18 +79,7 @@ impl Point {
                 &LawContext {
                     jump,
                     state_committed: &self.state,
-                    step: StepInfo {
-                        increment: 1,
-                        load_factor: 0.0,
-                        delta_load_factor: 1.0,
-                        secant: false,
-                        exact_tangent: false,
-                        temperature_factor: 1.0,
-                        cycles: 0.0,
-                        delta_cycles: 0.0,
-                        load_ratio: 0.0,
-                        crack_drive: None,
-                    },
+                    step: StepInfo::at(1, 0.0, 1.0),
                 },
                 &mut trial,
             )

@@ -338,7 +338,11 @@ fn auto_stops_at_a_singular_matrix_without_falling_back() {
     assert!(detail.contains("equation"), "{detail}");
     let rep = lu.report();
     assert_eq!(rep.factorizations, 1, "no refactorisation");
-    assert!(!rep.notes.iter().any(|n| n.contains("unrestricted")), "{:?}", rep.notes);
+    assert!(
+        !rep.notes.iter().any(|n| n.contains("unrestricted")),
+        "{:?}",
+        rep.notes
+    );
     // the same matrix with a regular block factorises
     let (mut b, _) = singular_grid();
     let m = b.values.len();

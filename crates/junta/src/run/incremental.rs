@@ -197,16 +197,10 @@ impl Engine<'_> {
         let r = v.report;
         let model = self.model;
         let step = StepInfo {
-            increment: r.increment_index,
-            load_factor: r.lambda,
-            delta_load_factor: r.delta_lambda,
-            secant: false,
-            exact_tangent: false,
             temperature_factor: r.temperature_factor,
             cycles: r.cycles,
-            delta_cycles: 0.0,
             load_ratio: model.load_ratio(r.step),
-            crack_drive: None,
+            ..StepInfo::at(r.increment_index, r.lambda, r.delta_lambda)
         };
         let ifs = crate::post::fields::interface_results_at(model, v.u, v.state, step)?;
         let row = self.row_of(v, &ifs)?;
@@ -622,16 +616,12 @@ fn finish(
     let model = &p.model;
     let mut summary = base_summary(input, p, &log, &ending.status);
     let step = StepInfo {
-        increment: log.last_increment,
-        load_factor: log.rows.last().map_or(0.0, |r| r.lambda),
-        delta_load_factor: 0.0,
-        secant: false,
-        exact_tangent: false,
         temperature_factor: log.rows.last().map_or(0.0, |r| r.temperature_factor),
-        cycles: 0.0,
-        delta_cycles: 0.0,
-        load_ratio: 0.0,
-        crack_drive: None,
+        ..StepInfo::at(
+            log.last_increment,
+            log.rows.last().map_or(0.0, |r| r.lambda),
+            0.0,
+        )
     };
     // the state the run ends on: the driver's, else the last converged one
     let converged_here = log.last_increment > log.start_increment;

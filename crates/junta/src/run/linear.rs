@@ -345,10 +345,7 @@ fn end_linear(
     summary: &serde_json::Value,
     observers: &mut [&mut dyn Observer],
 ) -> Result<Option<crate::post::frame::Frame>> {
-    let step = junta_core::element::StepInfo {
-        load_factor: 1.0,
-        ..Default::default()
-    };
+    let step = junta_core::StepInfo::at(0, 1.0, 0.0);
     let interfaces = crate::post::fields::interface_results(model, &res.u, &res.state)?;
     let end = RunEnd {
         model,

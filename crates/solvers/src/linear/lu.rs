@@ -440,7 +440,11 @@ impl LuSolver {
     /// [`Self::analyze_partial`]) exceeds `max_fallback_fill` times the
     /// `restricted` factor's entries, or the memory available. The
     /// analysis is dropped so that a later call analyses again.
-    fn check_fallback_fill(&mut self, restricted: usize, perturbed: usize) -> Result<(), SolverError> {
+    fn check_fallback_fill(
+        &mut self,
+        restricted: usize,
+        perturbed: usize,
+    ) -> Result<(), SolverError> {
         let predicted = self.report.factor_nonzeros;
         let ratio = predicted as f64 / restricted.max(1) as f64;
         let bytes = predicted as u64 * 8;

@@ -241,17 +241,18 @@ impl PanelLu {
                 Ok(())
             });
         let Ok(()) = done;
-        stats.into_inner().expect("not poisoned").iter().fold(
-            PanelLuStats::empty(),
-            |acc, st| PanelLuStats {
+        stats
+            .into_inner()
+            .expect("not poisoned")
+            .iter()
+            .fold(PanelLuStats::empty(), |acc, st| PanelLuStats {
                 max_upper: nan_max(acc.max_upper, st.max_upper),
                 perturbed: acc.perturbed + st.perturbed,
                 singular: acc.singular + st.singular,
                 first_singular: acc.first_singular.min(st.first_singular),
                 min_pivot_ratio: acc.min_pivot_ratio.min(st.min_pivot_ratio / norm),
                 max_multiplier: nan_max(acc.max_multiplier, st.max_multiplier),
-            },
-        )
+            })
     }
 
     /// `x <- (L U)^-1 x` in the permuted numbering.

@@ -1179,18 +1179,12 @@ impl<'a> PathRun<'a> {
     /// on a switch the converged state is restored.
     fn try_exact_tangent(&mut self, reason: &IncrementFailure) -> Result<bool, NonlinearError> {
         let lambda = lambda_now(&self.w);
-        let step = StepInfo {
-            increment: self.cur.increment_index + 1,
-            load_factor: lambda,
-            delta_load_factor: lambda - self.cur.lambda,
-            secant: false,
-            exact_tangent: false,
-            temperature_factor: self.w.model.temperature_factor(self.cur.step, 1.0),
-            cycles: self.w.model.cycles(self.cur.step, 1.0),
-            delta_cycles: 0.0,
-            load_ratio: self.w.model.load_ratio(self.cur.step),
-            crack_drive: None,
-        };
+        let step = StepInfo::at(
+            self.cur.increment_index + 1,
+            lambda,
+            lambda - self.cur.lambda,
+        )
+        .in_program(self.w.model, self.cur.step, 1.0);
         let program_step = self.cur.step;
         if !self
             .w
@@ -1694,16 +1688,13 @@ impl PathAttempt<'_, '_> {
 
     fn step(&self) -> StepInfo {
         StepInfo {
-            increment: self.cur.increment_index + 1,
-            load_factor: self.lambda,
-            delta_load_factor: self.lambda - self.cur.lambda,
             secant: self.secant,
-            exact_tangent: false,
-            temperature_factor: self.w.model.temperature_factor(self.cur.step, 1.0),
-            cycles: self.w.model.cycles(self.cur.step, 1.0),
-            delta_cycles: 0.0,
-            load_ratio: self.w.model.load_ratio(self.cur.step),
-            crack_drive: None,
+            ..StepInfo::at(
+                self.cur.increment_index + 1,
+                self.lambda,
+                self.lambda - self.cur.lambda,
+            )
+            .in_program(self.w.model, self.cur.step, 1.0)
         }
     }
 

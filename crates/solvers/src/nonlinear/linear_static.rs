@@ -143,18 +143,7 @@ pub fn solve_linear_static_cases(
             && solver.accepts(junta_core::MatrixKind::General),
     );
     let mut f_int = vec![0.0; ndof];
-    let step = StepInfo {
-        increment: 0,
-        load_factor: 1.0,
-        delta_load_factor: 1.0,
-        secant: false,
-        exact_tangent: false,
-        temperature_factor: 1.0,
-        cycles: 0.0,
-        delta_cycles: 0.0,
-        load_ratio: 0.0,
-        crack_drive: None,
-    };
+    let step = StepInfo::at(0, 1.0, 1.0);
     let initial = |case: &LoadCase<'_>| -> Vec<f64> {
         let mut u: Vec<f64> = (0..ndof)
             .map(|d| match model.dofs.eq[d] {

@@ -895,18 +895,8 @@ impl<'m> Work<'m> {
         state: &mut StateStore,
         cur: &Cursor,
     ) -> Result<Eval, CoreError> {
-        let step = StepInfo {
-            increment: cur.increment_index,
-            load_factor: cur.lambda,
-            delta_load_factor: 0.0,
-            secant: false,
-            exact_tangent: false,
-            temperature_factor: self.model.temperature_factor(cur.step, cur.t),
-            cycles: self.model.cycles(cur.step, cur.t),
-            delta_cycles: 0.0,
-            load_ratio: self.model.load_ratio(cur.step),
-            crack_drive: None,
-        };
+        let step = StepInfo::at(cur.increment_index, cur.lambda, 0.0)
+            .in_program(self.model, cur.step, cur.t);
         let ev = self.evaluate(state, step, cur.lambda, cur.force_peak)?;
         state.restore();
         Ok(ev)
@@ -1926,16 +1916,10 @@ impl LoadRun<'_> {
                 start + t_new * (end - start)
             };
             let step = StepInfo {
-                increment: cur.increment_index + 1,
-                load_factor: lambda_new,
-                delta_load_factor: lambda_new - cur.lambda,
-                secant: false,
-                exact_tangent: false,
-                temperature_factor: model.temperature_factor(cur.step, t_new),
-                cycles: model.cycles(cur.step, t_new),
                 delta_cycles: model.cycles(cur.step, t_new) - model.cycles(cur.step, cur.t),
-                load_ratio: model.load_ratio(cur.step),
                 crack_drive,
+                ..StepInfo::at(cur.increment_index + 1, lambda_new, lambda_new - cur.lambda)
+                    .in_program(model, cur.step, t_new)
             };
             let attempt = self
                 .w
