@@ -231,3 +231,18 @@ fn slender_h8_beam_bent_through_one_layer_warns_once() {
     let s = check_text(dir.path(), "pulled.toml", &pulled);
     assert!(h8_warnings(&s).is_empty(), "{s}");
 }
+
+/// The peel examples' H8 substrate is fixed on its base (every node of
+/// `substrate.z0`, half of its nodes, fixed in all directions): it is held
+/// along a face and does not bend, so it gets no locking warning (it got
+/// one, judged through its thickness, before bodies held along a face
+/// were set aside).
+#[test]
+fn a_substrate_held_on_its_base_gets_no_locking_warning() {
+    for name in ["peel45.toml", "peel90.toml"] {
+        let path = repo().join("examples/large_deformation").join(name);
+        let s = check(&path);
+        assert!(h8_warnings(&s).is_empty(), "{name}: {s}");
+        assert!(!s.contains("locks"), "{name}: {s}");
+    }
+}

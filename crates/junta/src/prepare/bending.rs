@@ -26,7 +26,9 @@
 //! thinnest direction, whose bending stiffness (`~ w t^3`) is the least.
 //! So a DCB 25 mm wide with one element across, opened along z, is judged
 //! through its 1.56 mm arms (z) only, never across its width (y), and a bar
-//! pulled along its axis gets no warning.
+//! pulled along its axis gets no warning. A body with at least
+//! [`HELD_SHARE`] of its nodes fixed in all directions is held along a face
+//! (the substrate of a peel test, fixed on its base) and does not bend.
 //!
 //! The number of element layers through the bending direction is the
 //! body's extent along it over the median extent of the block's elements
@@ -258,6 +260,33 @@ fn body_boxes(
     boxes
 }
 
+/// A body with at least this share of its nodes fixed in every direction
+/// is held along a face (a substrate on its base), not a beam: it does
+/// not bend.
+pub const HELD_SHARE: f64 = 0.25;
+
+/// The bodies (roots of [`solid_bodies`]) with at least [`HELD_SHARE`] of
+/// their nodes constrained in all three directions.
+fn held_bodies(model: &Model, body: &[usize]) -> std::collections::HashSet<usize> {
+    let mut count: std::collections::HashMap<usize, (usize, usize)> =
+        std::collections::HashMap::new();
+    for (n, &r) in body.iter().enumerate() {
+        if r == usize::MAX {
+            continue;
+        }
+        let fixed =
+            (0..3).all(|c| model.dofs.eq.get(3 * n + c) == Some(&junta_core::dof::CONSTRAINED));
+        let e = count.entry(r).or_default();
+        e.0 += 1;
+        e.1 += usize::from(fixed);
+    }
+    count
+        .into_iter()
+        .filter(|(_, (all, fixed))| *fixed as f64 >= HELD_SHARE * *all as f64)
+        .map(|(r, _)| r)
+        .collect()
+}
+
 /// The thin `h8` blocks of `model` with fewer than [`MIN_LAYERS`] element
 /// layers through the direction their body bends in (see the module
 /// documentation).
@@ -266,9 +295,11 @@ pub fn thin_h8_blocks(model: &Model) -> Vec<ThinH8Block> {
     let loaded = loaded_directions(model);
     let body = solid_bodies(model);
     let boxes = body_boxes(model, &body);
+    let held = held_bodies(model, &body);
     let mut out = Vec::new();
     for (bi, b) in mesh.blocks.iter().enumerate() {
-        if model.elements[bi].key() != "h8" || b.is_empty() {
+        if model.elements[bi].key() != "h8" || b.is_empty() || held.contains(&body[b.element(0)[0]])
+        {
             continue;
         }
         // the block's bodies (usually one) and its element extents
