@@ -49,6 +49,7 @@ pub mod run;
 pub mod study;
 
 pub use post::curve::{Curve, CurveRow};
+pub use post::curve_columns::{curve_header, Cell, CurveColumn, CURVE_COLUMNS};
 pub use post::frame::Frame;
 pub use prepare::check::{BlockReport, CheckReport, StepReport};
 pub use run::checkpoint::FirstFailure;

@@ -24,7 +24,7 @@
 use crate::error::{Context, Result};
 use crate::input::scene::CurveSpec;
 use crate::output::deck_print;
-use crate::post::curve::{read_reference_curve, CurveRow, CURVE_HEADER};
+use crate::post::curve::{curve_header, read_reference_curve, CurveRow};
 use crate::post::fields::InterfaceResults;
 use crate::prepare::Prepared;
 use crate::run::checkpoint::{read_restart, write_atomic, InputHash, RestartFile};
@@ -55,7 +55,7 @@ impl CurveCsv {
 impl Observer for CurveCsv {
     fn on_start(&mut self, _p: &Prepared, log: &RunLog) -> Result<()> {
         // a restart keeps the rows up to its checkpoint
-        let mut text = String::from(CURVE_HEADER);
+        let mut text = curve_header();
         for r in &log.rows {
             text += &r.csv();
         }

@@ -3,6 +3,7 @@
 //! a run that stops past a peak gives, and reference curves to compare.
 
 use crate::error::{bail, Context, Result};
+pub use crate::post::curve_columns::{curve_header, CURVE_COLUMNS};
 use serde_json::json;
 use std::path::Path;
 
@@ -94,55 +95,16 @@ pub struct CurveRow {
     pub crack_growth_rate: Option<f64>,
 }
 
-/// Header line of `curve.csv` (with its newline): the column names of
-/// [`CurveRow::csv`], in order.
-pub const CURVE_HEADER: &str =
-    "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation,temperature_factor,viscous_energy,external_work,crack_length,crack_front,process_zone_length,process_zone_points,cycles,energy_release_rate,crack_mode_ratio,crack_growth_rate\n";
-
-fn opt(v: Option<f64>) -> String {
-    v.map(|x| format!("{x:e}")).unwrap_or_default()
-}
-
 impl CurveRow {
-    /// The row as a line of `curve.csv` (with its newline; the columns of
-    /// [`CURVE_HEADER`], floats in `{:e}` form, `None` as an empty field).
+    /// The row as a line of `curve.csv` (with its newline): the cells of
+    /// [`CURVE_COLUMNS`] in order, floats in `{:e}` form, `None` as an
+    /// empty field.
     pub fn csv(&self) -> String {
-        format!(
-            "{},{},{:e},{},{},{},{},{},{},{:e},{},{:e},{:e},{},{},{},{:e},{:e},{:e},{:e},{:e},{},{},{},{},{:e},{},{},{}\n",
-            self.increment,
-            self.step,
-            self.lambda,
-            opt(self.reaction),
-            opt(self.displacement),
-            self.failed,
-            self.points,
-            self.iterations,
-            self.cutbacks,
-            self.seconds,
-            self.small as u8,
-            self.dissipated,
-            self.damaged_area,
-            self.negative_pivots
-                .map(|n| n.to_string())
-                .unwrap_or_default(),
-            self.load_sign,
-            self.control,
-            self.conjugate,
-            self.frictional,
-            self.temperature_factor,
-            self.viscous,
-            self.external_work,
-            opt(self.crack_length),
-            opt(self.crack_front),
-            opt(self.process_zone_length),
-            self.process_zone_points
-                .map(|n| n.to_string())
-                .unwrap_or_default(),
-            self.cycles,
-            opt(self.energy_release_rate),
-            opt(self.crack_mode_ratio),
-            opt(self.crack_growth_rate),
-        )
+        let cells: Vec<String> = CURVE_COLUMNS
+            .iter()
+            .map(|c| (c.value)(self).csv())
+            .collect();
+        format!("{}\n", cells.join(","))
     }
 
     /// A row from a line of `curve.csv` (without its newline), or `None` if
@@ -365,59 +327,21 @@ pub struct Curve {
 }
 
 impl Curve {
-    /// The columns of `rows`.
+    /// The columns of `rows` ([`CURVE_COLUMNS`], `control` apart).
     pub fn from_rows(rows: &[CurveRow]) -> Curve {
-        let f = |o: Option<f64>| o.unwrap_or(f64::NAN);
-        let cols: Vec<(&str, Box<dyn Fn(&CurveRow) -> f64>)> = vec![
-            ("increment", Box::new(|r| r.increment as f64)),
-            ("step", Box::new(|r| r.step as f64)),
-            ("load_factor", Box::new(|r| r.lambda)),
-            ("reaction", Box::new(move |r| f(r.reaction))),
-            ("displacement", Box::new(move |r| f(r.displacement))),
-            ("failed_points", Box::new(|r| r.failed as f64)),
-            ("interface_points", Box::new(|r| r.points as f64)),
-            ("newton_iterations", Box::new(|r| r.iterations as f64)),
-            ("cutbacks", Box::new(|r| r.cutbacks as f64)),
-            ("seconds", Box::new(|r| r.seconds)),
-            ("small_increment", Box::new(|r| r.small as u8 as f64)),
-            ("dissipated_energy", Box::new(|r| r.dissipated)),
-            ("damaged_area", Box::new(|r| r.damaged_area)),
-            (
-                "negative_pivots",
-                Box::new(|r| r.negative_pivots.map_or(f64::NAN, |n| n as f64)),
-            ),
-            ("load_increment_sign", Box::new(|r| r.load_sign as f64)),
-            ("conjugate_displacement", Box::new(|r| r.conjugate)),
-            ("frictional_dissipation", Box::new(|r| r.frictional)),
-            ("temperature_factor", Box::new(|r| r.temperature_factor)),
-            ("viscous_energy", Box::new(|r| r.viscous)),
-            ("external_work", Box::new(|r| r.external_work)),
-            ("crack_length", Box::new(move |r| f(r.crack_length))),
-            ("crack_front", Box::new(move |r| f(r.crack_front))),
-            (
-                "process_zone_length",
-                Box::new(move |r| f(r.process_zone_length)),
-            ),
-            (
-                "process_zone_points",
-                Box::new(|r| r.process_zone_points.map_or(f64::NAN, |n| n as f64)),
-            ),
-            ("cycles", Box::new(|r| r.cycles)),
-            (
-                "energy_release_rate",
-                Box::new(move |r| f(r.energy_release_rate)),
-            ),
-            ("crack_mode_ratio", Box::new(move |r| f(r.crack_mode_ratio))),
-            (
-                "crack_growth_rate",
-                Box::new(move |r| f(r.crack_growth_rate)),
-            ),
-        ];
+        let columns = CURVE_COLUMNS
+            .iter()
+            .filter(|c| c.name != "control")
+            .map(|c| {
+                let values = rows
+                    .iter()
+                    .map(|r| (c.value)(r).number().unwrap_or(f64::NAN))
+                    .collect();
+                (c.name.to_string(), values)
+            })
+            .collect();
         Curve {
-            columns: cols
-                .into_iter()
-                .map(|(n, get)| (n.to_string(), rows.iter().map(|r| get(r)).collect()))
-                .collect(),
+            columns,
             control: rows.iter().map(|r| r.control.clone()).collect(),
         }
     }
@@ -461,7 +385,10 @@ mod tests {
         let row = CurveRow::parse(line).expect("29 columns");
         assert_eq!(row.csv().trim_end(), line);
         let c = Curve::from_rows(&[row]);
-        let header: Vec<&str> = CURVE_HEADER
+        // the header every run since the fatigue columns wrote
+        let old = "increment,step,load_factor,reaction,displacement,failed_points,interface_points,newton_iterations,cutbacks,seconds,small_increment,dissipated_energy,damaged_area,negative_pivots,load_increment_sign,control,conjugate_displacement,frictional_dissipation,temperature_factor,viscous_energy,external_work,crack_length,crack_front,process_zone_length,process_zone_points,cycles,energy_release_rate,crack_mode_ratio,crack_growth_rate\n";
+        assert_eq!(curve_header(), old);
+        let header: Vec<&str> = old
             .trim_end()
             .split(',')
             .filter(|h| *h != "control")

@@ -1,5 +1,5 @@
 //! Post-processing: quantities of a converged state. The fields the
-//! writers and observers read ([`fields`]), the curve row (`curve`), the
+//! writers and observers read ([`fields`]), the curve row (`curve`) and the table of its columns ([`curve_columns`]), the
 //! typed frame (`frame`), the crack front ([`crack`]), the generalized reactions under
 //! `*EQUATION`s (`constraint_force`) and the largest element
 //! rotation ([`rotation`]).
@@ -7,6 +7,7 @@
 pub(crate) mod constraint_force;
 pub mod crack;
 pub(crate) mod curve;
+pub mod curve_columns;
 pub mod fields;
 pub(crate) mod frame;
 pub mod rotation;
