@@ -48,13 +48,14 @@ pub mod prepare;
 pub mod run;
 pub mod study;
 
+pub use input::scene::AnalysisKind;
 pub use post::curve::{Curve, CurveRow};
 pub use post::curve_columns::{curve_header, Cell, CurveColumn, CURVE_COLUMNS};
 pub use post::frame::Frame;
 pub use prepare::check::{BlockReport, CheckReport, StepReport};
 pub use run::checkpoint::FirstFailure;
 pub use run::observer::{Flow, FnObserver, FrameCollector, Increment, Observer, RunEnd, RunLog};
-pub use run::simulation::{Options, RunResults, RunSettings, Simulation, Status};
+pub use run::simulation::{EndReason, Options, RunResults, RunSettings, Simulation, Status};
 
 /// The crates underneath, for code that builds models by hand.
 pub use junta_core as core;

@@ -108,7 +108,7 @@ use crate::input::inp::{
     read_inp, InpDeck, InpExpansion, InpMaterial, InpMaterialKind, InpMixedMode, InpOnset,
     InpSoftening, InpStep,
 };
-use crate::input::scene::{AnalysisSpec, CurveSpec};
+use crate::input::scene::{AnalysisKind, AnalysisSpec, CurveSpec};
 use junta_core::registry::{self, ElementBuild, ElementEntry, LawEntry, MaterialEntry};
 use junta_core::{Element, Kinematics, Model};
 use junta_elements::Orientation;
@@ -978,7 +978,7 @@ fn incremental_program(
         riks_path(deck, steps.len(), file, &mut program, &mut newton, notes)?;
     Ok(DeckIncremental {
         analysis: AnalysisSpec {
-            kind: "static".into(),
+            kind: AnalysisKind::Static,
             steps: program,
             stop_when_separated: false,
             newton,
@@ -1768,7 +1768,7 @@ mod tests {
         let one =
             "*STEP, INC=7\n*STATIC\n0.1, 2.0, 0.001, 0.5\n*BOUNDARY\nTOP, 3, 3, 0.2\n*END STEP\n";
         let p = program(one).unwrap();
-        assert_eq!(p.analysis.kind, "static");
+        assert_eq!(p.analysis.kind, AnalysisKind::Static);
         assert_eq!(p.analysis.steps, vec![1.0]);
         let n = &p.analysis.newton;
         assert_eq!(

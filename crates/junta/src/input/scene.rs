@@ -173,6 +173,32 @@ pub enum Ramp {
     WithFirst,
 }
 
+/// `[analysis] type`: what a run does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AnalysisKind {
+    /// One linear solve (`"linear"`, the default).
+    #[default]
+    Linear,
+    /// Incremental-iterative over the load program (`"static"`).
+    Static,
+}
+
+impl AnalysisKind {
+    /// The name in a scene and in `summary.json` (`"linear"`, `"static"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            AnalysisKind::Linear => "linear",
+            AnalysisKind::Static => "static",
+        }
+    }
+
+    /// True for the incremental-iterative kind.
+    pub fn is_incremental(self) -> bool {
+        self == AnalysisKind::Static
+    }
+}
+
 /// `[analysis]`: `type = "linear"` (default, one solve) or `"static"`
 /// (incremental-iterative Newton-Raphson over a proportional load program:
 /// forces and prescribed displacements scale with the load factor).
@@ -180,8 +206,8 @@ pub enum Ramp {
 #[serde(deny_unknown_fields)]
 pub struct AnalysisSpec {
     /// `linear` or `static`.
-    #[serde(rename = "type", default = "linear")]
-    pub kind: String,
+    #[serde(rename = "type", default)]
+    pub kind: AnalysisKind,
     /// Load factor at the end of each step (default `[1.0]`).
     #[serde(default = "one_step")]
     pub steps: Vec<f64>,
@@ -229,9 +255,6 @@ pub enum Control {
     ArcLength,
 }
 
-fn linear() -> String {
-    "linear".into()
-}
 fn one_step() -> Vec<f64> {
     vec![1.0]
 }
@@ -239,7 +262,7 @@ fn one_step() -> Vec<f64> {
 impl Default for AnalysisSpec {
     fn default() -> Self {
         AnalysisSpec {
-            kind: linear(),
+            kind: AnalysisKind::Linear,
             steps: one_step(),
             stop_when_separated: false,
             newton: Default::default(),

@@ -108,17 +108,11 @@ pub fn scene(sf: &SceneFile) -> Result<()> {
 
 /// The analysis type, load program and Newton settings.
 pub fn analysis(file: &str, a: &scene::AnalysisSpec) -> Result<()> {
-    if a.kind != "linear" && a.kind != "static" {
-        bail!(
-            "{file}: key `analysis.type`: `{}` is not valid; use \"linear\" or \"static\"",
-            a.kind
-        );
-    }
     if a.steps.is_empty() {
         bail!("{file}: key `analysis.steps`: the load program is empty; give the load factor at the end of each step, e.g. [1.0]");
     }
     finite(file, "analysis.steps", &a.steps)?;
-    if a.kind != "static" {
+    if !a.kind.is_incremental() {
         return Ok(());
     }
     let n = &a.newton;

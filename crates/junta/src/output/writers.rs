@@ -221,8 +221,7 @@ impl Observer for Checkpoints {
             return Ok(());
         }
         let mut restart = read_restart(&self.dir)?;
-        let ended =
-            end.status == "completed" || end.status.starts_with("stopped: every interface point");
+        let ended = end.reason.is_final();
         let frames_changed = restart.frames != log.frames;
         if !ended && !frames_changed {
             return Ok(());

@@ -106,7 +106,7 @@ impl CheckReport {
             crate::output::summary::penalty_advice(m, &|b| p.thickness.get(b).copied())?;
         let (_, mesh_advice, mut warnings) = crate::output::summary::cohesive_zone_advice(m)?;
         warnings.extend(crate::prepare::bending::bending_warnings(m));
-        let analysis = (p.analysis.kind == "static").then(|| {
+        let analysis = p.analysis.kind.is_incremental().then(|| {
             let n = &p.analysis.newton;
             format!(
                 "incremental static, load program {:?}, increments (fractions of a step) initial {}, min {}, max {}",

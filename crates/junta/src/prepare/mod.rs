@@ -528,8 +528,8 @@ fn prepare_scene(
     check_path_following(input, &sf.scene.analysis)?;
     let mut notes = Vec::new();
     let mut analysis = sf.scene.analysis.clone();
-    if analysis.nlgeom && analysis.kind == "linear" {
-        analysis.kind = "static".into();
+    if analysis.nlgeom && analysis.kind == scene::AnalysisKind::Linear {
+        analysis.kind = scene::AnalysisKind::Static;
         notes.push(
             "nlgeom = true: the analysis runs incrementally (type = \"static\"), as a large-deformation run must"
                 .into(),
@@ -540,7 +540,7 @@ fn prepare_scene(
     fatigue_program(input, sf, &mut analysis, &mut model, &mut notes)?;
     let (mut key, mut table) = scene::solver_table(sf);
     apply_solver_overrides(&mut key, &mut table, solver_overrides)?;
-    if analysis.kind == "static" && !sf.scene.output.fractions.is_empty() {
+    if analysis.kind.is_incremental() && !sf.scene.output.fractions.is_empty() {
         bail!(
             "{}: key `output.fractions`: only a linear run scales its one solution to fractions of the load; an incremental run writes a frame every `output.every` increments (frames/, results.pvd): remove `fractions`",
             sf.path.display()
@@ -608,7 +608,7 @@ fn thermal_program(
     let Some(t) = &sf.scene.temperature else {
         return Ok(None);
     };
-    let applied = if analysis.kind != "static" {
+    let applied = if !analysis.kind.is_incremental() {
         "with the loads (linear analysis)"
     } else {
         model.temperature_steps = vec![1.0];
@@ -647,7 +647,7 @@ fn fatigue_program(
         return Ok(());
     };
     let at = input.display();
-    if analysis.kind != "static" {
+    if !analysis.kind.is_incremental() {
         bail!("{at}: key `fatigue`: a fatigue step follows an incremental load program: set `[analysis] type = \"static\"` and its `steps`");
     }
     if analysis.control == scene::Control::ArcLength {
@@ -797,7 +797,7 @@ fn check_path_following(input: &Path, a: &scene::AnalysisSpec) -> Result<()> {
         return Ok(());
     }
     let file = input.display();
-    if a.kind != "static" {
+    if !a.kind.is_incremental() {
         bail!("{file}: key `analysis.control`: \"arc_length\" needs `analysis.type = \"static\"`");
     }
     if a.steps.len() != 1 || !a.steps[0].is_finite() || a.steps[0] == 0.0 {

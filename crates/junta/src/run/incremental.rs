@@ -18,6 +18,7 @@ use crate::post::curve::{limit_points, CurveRow};
 use crate::prepare::Prepared;
 use crate::run::checkpoint::{FirstFailure, RestartFile};
 use crate::run::observer::{Flow, Increment, Observer, RunEnd, RunLog, Stop};
+use crate::run::results::EndReason;
 use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
 use junta_core::Model;
@@ -421,7 +422,9 @@ fn total_energy(
 
 /// How an incremental run ended.
 pub(crate) struct Ending {
-    /// `completed`, `stopped: ...`, `failed: ...`, `interrupted (Ctrl-C)`.
+    /// Why the run ended.
+    pub reason: EndReason,
+    /// Its status line ([`EndReason::line`]).
     pub status: String,
     /// The driver's failure (an increment below the smallest size).
     pub failure: Option<NonlinearError>,
@@ -554,39 +557,35 @@ fn ending_of(
     failure: Option<NonlinearError>,
 ) -> Ending {
     let interrupted = matches!(engine.stop, Some(Stop::Interrupted));
-    let status = match (&failure, run) {
-        (Some(e), _) => format!("failed: {e}"),
-        (None, Some(run)) => {
+    let reason = match (&failure, run) {
+        (Some(e), _) => EndReason::Failed(e.to_string()),
+        (None, run) => {
+            let stopped = run.is_some_and(|r| r.summary.stopped_by_observer);
             if interrupted {
-                "interrupted (Ctrl-C)".to_string()
+                EndReason::Interrupted
             } else if let Some((_, n, line)) = engine.inc_reached {
-                format!(
-                    "stopped: the *STEP at line {line} reached its maximum number of increments INC={n} before its end; raise INC"
-                )
+                EndReason::DeckIncrementLimit {
+                    increments: n,
+                    line,
+                }
             } else if let Some(Stop::Requested(why)) = &engine.stop {
-                format!("stopped: {why}")
-            } else if run.summary.stopped_by_observer
-                && engine.log.separated
-                && analysis.stop_when_separated
-            {
-                "stopped: every interface point has failed".to_string()
-            } else if run.summary.stopped_by_observer {
-                "stopped after the requested number of increments".to_string()
+                EndReason::Requested(why.clone())
+            } else if stopped && engine.log.separated && analysis.stop_when_separated {
+                EndReason::Separated
+            } else if stopped {
+                EndReason::IncrementLimit
             } else if path_end == Some(PathEnd::Unloaded) {
-                "completed: the load factor fell back to zero after its maximum (the structure carries no load any more)".to_string()
+                EndReason::Unloaded
             } else if path_end == Some(PathEnd::IncrementLimit) {
-                format!(
-                    "stopped: [analysis.arc_length] max_increments = {} reached before the end load factor",
-                    analysis.arc_length.max_increments
-                )
+                EndReason::ArcLengthLimit(analysis.arc_length.max_increments)
             } else {
-                "completed".to_string()
+                EndReason::EndOfProgram
             }
         }
-        (None, None) => String::new(),
     };
     Ending {
-        status,
+        status: reason.line(),
+        reason,
         failure,
         interrupted,
         warnings: Vec::new(),
@@ -681,6 +680,7 @@ fn finish(
         step,
         converged_here,
         status: &ending.status,
+        reason: &ending.reason,
         summary: &summary,
     };
     for o in observers.iter_mut() {

@@ -152,6 +152,7 @@ pub(crate) fn run_linear(
     let frame = end_linear(&p.model, &res, &summary, observers)?;
     Ok(RunResults {
         status: Status::Completed,
+        reason: crate::run::results::EndReason::EndOfProgram,
         status_line: "completed".into(),
         summary,
         curve: Default::default(),
@@ -356,6 +357,7 @@ fn end_linear(
         step,
         converged_here: true,
         status: "completed",
+        reason: &crate::run::results::EndReason::EndOfProgram,
         summary,
     };
     let mut log = RunLog::default();

@@ -138,6 +138,8 @@ pub struct RunEnd<'a> {
     pub converged_here: bool,
     /// The status line (`completed`, `stopped: ...`, `failed: ...`).
     pub status: &'a str,
+    /// Why the run ended (the status line is written from it).
+    pub reason: &'a crate::run::results::EndReason,
     /// The summary (what `summary.json` holds).
     pub summary: &'a serde_json::Value,
 }

@@ -24,6 +24,7 @@
 //! error the command line exits with.
 
 use crate::error::{bail, err, Context, Error, Result};
+use crate::input::scene::AnalysisKind;
 use crate::output::writers;
 use crate::post::curve::{past_peak_hint, Curve};
 use crate::prepare::check::CheckReport;
@@ -31,7 +32,7 @@ use crate::prepare::{prepare_with, Prepared};
 use crate::run::checkpoint::{check_fields, check_inputs, read_restart, RestartFile};
 use crate::run::incremental::{run_incremental, Limits};
 use crate::run::observer::{Observer, RunLog};
-pub use crate::run::results::{RunResults, Status};
+pub use crate::run::results::{EndReason, RunResults, Status};
 use std::path::{Path, PathBuf};
 
 /// Options of reading an input.
@@ -117,7 +118,7 @@ impl Simulation {
     }
 
     /// A model built in code, run as `analysis` (linear when
-    /// `analysis.kind == "linear"`) with the linear solver `solver`
+    /// `analysis.kind` is [`AnalysisKind::Linear`]) with the linear solver `solver`
     /// (`"auto"` chooses from the model).
     pub fn from_model(
         model: junta_core::Model,
@@ -155,7 +156,7 @@ impl Simulation {
     /// True for an incremental run (`[analysis] type = "static"`, a deck
     /// with a softening law or amplitudes).
     pub fn is_incremental(&self) -> bool {
-        self.prepared.analysis.kind == "static"
+        self.prepared.analysis.kind.is_incremental()
     }
 
     /// What `junta check` prints, as data.
@@ -180,24 +181,20 @@ impl Simulation {
         observers: &mut [&mut dyn Observer],
     ) -> Result<RunResults> {
         let dir = create_output(settings.output.as_deref())?;
-        match self.prepared.analysis.kind.as_str() {
-            "linear" => crate::run::linear::run_linear(
+        match self.prepared.analysis.kind {
+            AnalysisKind::Linear => crate::run::linear::run_linear(
                 &self.input,
                 &mut self.prepared,
                 dir.as_deref(),
                 observers,
             ),
-            "static" => run_static(
+            AnalysisKind::Static => run_static(
                 &self.input,
                 &mut self.prepared,
                 dir,
                 None,
                 settings,
                 observers,
-            ),
-            other => bail!(
-                "{}: key `analysis.type`: `{other}` is not valid; use \"linear\" or \"static\"",
-                self.input.display()
             ),
         }
     }
@@ -264,7 +261,7 @@ pub fn restart(
         overrides: Vec::new(),
     };
     let mut p = prepare_with(&input, &options)?;
-    if p.analysis.kind != "static" {
+    if !p.analysis.kind.is_incremental() {
         bail!(
             "{}: only incremental runs ([analysis] type = \"static\") can be restarted",
             input.display()
@@ -323,15 +320,7 @@ fn run_static(
     let (mut ending, summary, log) = run_incremental(input, p, restart, limits, &mut all)?;
     let notes = standard.map(|s| s.prints.notes).unwrap_or_default();
     let warnings = std::mem::take(&mut ending.warnings);
-    let status = if ending.interrupted {
-        Status::Interrupted
-    } else if ending.failure.is_some() {
-        Status::Failed
-    } else if ending.status.starts_with("completed") {
-        Status::Completed
-    } else {
-        Status::Stopped
-    };
+    let status = ending.reason.status();
     let failure = failure_of(
         input,
         p,
@@ -342,6 +331,7 @@ fn run_static(
     );
     Ok(RunResults {
         status,
+        reason: ending.reason,
         status_line: ending.status,
         summary,
         curve: Curve::from_rows(&log.rows),

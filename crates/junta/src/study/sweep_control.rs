@@ -110,7 +110,7 @@ fn analysis(t: &mut toml::Table) -> &mut toml::Table {
 pub fn sweep_control(input: &Path, out: &Path) -> Result<Vec<ControlRun>> {
     // validate as a scene first (clear errors with the file and key)
     let sf = crate::input::validate::read_scene(input)?;
-    if sf.scene.analysis.kind != "static" {
+    if !sf.scene.analysis.kind.is_incremental() {
         bail!(
             "{}: key `analysis.type`: `junta sweep control` needs an incremental scene (\"static\")",
             input.display()
