@@ -69,7 +69,7 @@ impl Observer for Progress {
         }
         Ok(Flow::Continue)
     }
-    fn on_phase(&mut self, phase: &str) {
+    fn on_phase(&mut self, phase: &junta::Phase) {
         self.bar.set_message(phase.to_string());
     }
 }

@@ -54,7 +54,9 @@ pub use post::curve_columns::{curve_header, Cell, CurveColumn, CURVE_COLUMNS};
 pub use post::frame::Frame;
 pub use prepare::check::{BlockReport, CheckReport, StepReport};
 pub use run::checkpoint::FirstFailure;
-pub use run::observer::{Flow, FnObserver, FrameCollector, Increment, Observer, RunEnd, RunLog};
+pub use run::observer::{
+    Flow, FnObserver, FrameCollector, Increment, Observer, Phase, RunEnd, RunInfo, RunLog,
+};
 pub use run::simulation::{EndReason, Options, RunResults, RunSettings, Simulation, Status};
 
 /// The crates underneath, for code that builds models by hand.

@@ -28,7 +28,7 @@ use crate::post::curve::{curve_header, read_reference_curve, CurveRow};
 use crate::post::fields::InterfaceResults;
 use crate::prepare::Prepared;
 use crate::run::checkpoint::{read_restart, write_atomic, InputHash, RestartFile};
-use crate::run::observer::{Flow, Increment, Observer, RunEnd, RunLog};
+use crate::run::observer::{Flow, Increment, Observer, RunEnd, RunInfo, RunLog};
 use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
 use junta_core::Model;
@@ -53,7 +53,7 @@ impl CurveCsv {
 }
 
 impl Observer for CurveCsv {
-    fn on_start(&mut self, _p: &Prepared, log: &RunLog) -> Result<()> {
+    fn on_start(&mut self, _run: &RunInfo<'_>, log: &RunLog) -> Result<()> {
         // a restart keeps the rows up to its checkpoint
         let mut text = curve_header();
         for r in &log.rows {
@@ -125,7 +125,7 @@ impl VtuFrames {
 }
 
 impl Observer for VtuFrames {
-    fn on_start(&mut self, _p: &Prepared, _log: &RunLog) -> Result<()> {
+    fn on_start(&mut self, _run: &RunInfo<'_>, _log: &RunLog) -> Result<()> {
         let frames_dir = self.dir.join("frames");
         std::fs::create_dir_all(&frames_dir)
             .with_context(|| format!("cannot create {}", frames_dir.display()))

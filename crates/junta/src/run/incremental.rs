@@ -17,7 +17,7 @@ use crate::post::crack::CrackProbe;
 use crate::post::curve::{limit_points, CurveRow};
 use crate::prepare::Prepared;
 use crate::run::checkpoint::{FirstFailure, RestartFile};
-use crate::run::observer::{Flow, Increment, Observer, RunEnd, RunLog, Stop};
+use crate::run::observer::{Flow, Increment, Observer, RunEnd, RunInfo, RunLog, Stop};
 use crate::run::results::EndReason;
 use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
@@ -467,8 +467,16 @@ pub(crate) fn run_incremental(
         None => (None, RunLog::default()),
     };
     let prev_u = checkpoint.as_ref().map(|c| c.u.clone()).unwrap_or_default();
+    let info = RunInfo {
+        input,
+        title: &p.title,
+        model: &p.model,
+        steps: &p.analysis.steps,
+        solver: p.solver.key(),
+        start_increment: log.start_increment,
+    };
     for o in observers.iter_mut() {
-        o.on_start(p, &log)?;
+        o.on_start(&info, &log)?;
     }
     // SAFETY of the borrow: the engine holds the observers for the run only
     let model = &p.model;

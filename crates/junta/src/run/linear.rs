@@ -5,7 +5,7 @@ use crate::error::{err, Context, Result};
 use crate::input::deck;
 use crate::prepare::{build_solver, Prepared};
 use crate::run::observer::Observer;
-use crate::run::observer::{RunEnd, RunLog};
+use crate::run::observer::{Phase, RunEnd, RunLog};
 use crate::run::results::{RunResults, Status};
 use junta_core::Model;
 use junta_solvers::linear_static::solve_linear_static;
@@ -25,12 +25,11 @@ pub(crate) fn run_linear(
     let mut notes = p.notes.clone();
     let mut warnings = Vec::new();
     for o in observers.iter_mut() {
-        o.on_phase(&format!(
-            "solving {} equations ({} elements) with {}",
-            p.model.dofs.num_free,
-            p.model.mesh.num_elements(),
-            p.solver.key()
-        ));
+        o.on_phase(&Phase::Solving {
+            equations: p.model.dofs.num_free,
+            elements: p.model.mesh.num_elements(),
+            solver: p.solver.key().to_string(),
+        });
     }
     let read_seconds = p.read_seconds;
     let mut prints = std::mem::take(&mut p.prints);
@@ -65,7 +64,7 @@ pub(crate) fn run_linear(
         ));
     }
     for o in observers.iter_mut() {
-        o.on_phase("writing results");
+        o.on_phase(&Phase::WritingResults);
     }
     let t_out = Instant::now();
     let interfaces = crate::post::fields::interface_results(&p.model, &res.u, &res.state)?;
@@ -277,13 +276,12 @@ fn solve_deck_steps(
                 f_ext: &s.f_ext,
             })
             .collect();
-        let phase = format!(
-            "solving steps {}..{} of {} ({} equations, one factorisation)",
-            k + 1,
-            end,
-            steps.len(),
-            p.model.dofs.num_free
-        );
+        let phase = Phase::SolvingSteps {
+            first: k + 1,
+            last: end,
+            total: steps.len(),
+            equations: p.model.dofs.num_free,
+        };
         for o in observers.iter_mut() {
             o.on_phase(&phase);
         }

@@ -22,7 +22,6 @@ use crate::error::Result;
 use crate::post::curve::CurveRow;
 use crate::post::fields::InterfaceResults;
 use crate::post::frame::Frame;
-use crate::prepare::Prepared;
 use crate::run::checkpoint::FirstFailure;
 use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
@@ -55,6 +54,78 @@ impl Flow {
             Flow::Continue => None,
             Flow::Stop(why) => Some(Stop::Requested(why)),
             Flow::Interrupt => Some(Stop::Interrupted),
+        }
+    }
+}
+
+/// What an observer learns of the run before its first increment: a
+/// read-only view, not the prepared model.
+#[derive(Debug, Clone, Copy)]
+pub struct RunInfo<'a> {
+    /// The input file (scene or deck).
+    pub input: &'a std::path::Path,
+    /// The model's title (empty when it has none).
+    pub title: &'a str,
+    /// The model.
+    pub model: &'a Model,
+    /// Load factor at the end of each step of the program.
+    pub steps: &'a [f64],
+    /// Registry key of the linear solver.
+    pub solver: &'a str,
+    /// Increment the run starts from (0, or a restart's checkpoint).
+    pub start_increment: usize,
+}
+
+/// A phase of a run, for progress displays ([`Observer::on_phase`]); its
+/// `Display` is the line a progress bar shows.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Phase {
+    /// One linear solve.
+    Solving {
+        /// Equations.
+        equations: usize,
+        /// Elements.
+        elements: usize,
+        /// Registry key of the linear solver.
+        solver: String,
+    },
+    /// A deck's linear steps `first..=last` (1-based) of `total`, on one
+    /// factorisation.
+    SolvingSteps {
+        /// First step (1-based).
+        first: usize,
+        /// Last step (1-based).
+        last: usize,
+        /// Steps of the deck.
+        total: usize,
+        /// Equations.
+        equations: usize,
+    },
+    /// Writing the result files.
+    WritingResults,
+}
+
+impl std::fmt::Display for Phase {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Phase::Solving {
+                equations,
+                elements,
+                solver,
+            } => write!(
+                f,
+                "solving {equations} equations ({elements} elements) with {solver}"
+            ),
+            Phase::SolvingSteps {
+                first,
+                last,
+                total,
+                equations,
+            } => write!(
+                f,
+                "solving steps {first}..{last} of {total} ({equations} equations, one factorisation)"
+            ),
+            Phase::WritingResults => f.write_str("writing results"),
         }
     }
 }
@@ -149,7 +220,7 @@ pub struct RunEnd<'a> {
 pub trait Observer {
     /// Before the first increment (after a restart: the log holds the past
     /// rows and frames).
-    fn on_start(&mut self, _prepared: &Prepared, _log: &RunLog) -> Result<()> {
+    fn on_start(&mut self, _run: &RunInfo<'_>, _log: &RunLog) -> Result<()> {
         Ok(())
     }
     /// After each converged increment. An error ends the run (the
@@ -159,9 +230,8 @@ pub trait Observer {
     fn on_end(&mut self, _end: &RunEnd<'_>, _log: &mut RunLog) -> Result<()> {
         Ok(())
     }
-    /// A phase of a run begins (`reading`, `solving`, `writing results`):
-    /// for progress displays.
-    fn on_phase(&mut self, _phase: &str) {}
+    /// A phase of a run begins: for progress displays.
+    fn on_phase(&mut self, _phase: &Phase) {}
 }
 
 /// A closure as an observer: `|inc| Flow::Continue`.
