@@ -528,7 +528,7 @@ fn results_dict<'py>(
     let d = PyDict::new(py);
     d.set_item("status", status_name(&r.status))?;
     d.set_item("status_line", &r.status_line)?;
-    d.set_item("summary", json_to_py(py, &r.summary)?)?;
+    d.set_item("summary", json_to_py(py, &r.summary.to_json())?)?;
     d.set_item("curve", curve_dict(py, &r.curve)?)?;
     d.set_item("output", r.output.as_ref().map(|p| p.display().to_string()))?;
     d.set_item("notes", PyList::new(py, &r.notes)?)?;

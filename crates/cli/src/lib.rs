@@ -402,11 +402,11 @@ fn finish(input: &Path, r: &RunResults, shown: usize, writer: bool) -> Result<()
     }
     let s = &r.summary;
     let dir = r.output.as_deref().unwrap_or(Path::new("."));
-    if r.rows.is_empty() && s["analysis"] == "linear_static" {
+    if r.rows.is_empty() && s.analysis == junta::SummaryAnalysis::LinearStatic {
         println!(
             "{}: {} equations, max |u| = {:.6e}, total {:.2} s -> {}",
             input.display(),
-            s["equations"],
+            s.equations,
             s["displacement_max"].as_f64().unwrap_or(0.0),
             s["timings"]["total"].as_f64().unwrap_or(0.0),
             dir.display()
@@ -421,7 +421,7 @@ fn finish(input: &Path, r: &RunResults, shown: usize, writer: bool) -> Result<()
             "{}: {}; {} increments, {} Newton iterations, load factor {:.6} -> {}",
             input.display(),
             r.status_line,
-            s["increments"],
+            s.increments.unwrap_or(0),
             s["newton_iterations"]["total"],
             s["load_factor"].as_f64().unwrap_or(0.0),
             dir.display()

@@ -57,6 +57,7 @@ pub use run::checkpoint::FirstFailure;
 pub use run::observer::{
     Flow, FnObserver, FrameCollector, Increment, Observer, Phase, RunEnd, RunInfo, RunLog,
 };
+pub use run::results::{Summary, SummaryAnalysis};
 pub use run::simulation::{EndReason, Options, RunResults, RunSettings, Simulation, Status};
 
 /// The crates underneath, for code that builds models by hand.

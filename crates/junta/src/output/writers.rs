@@ -354,7 +354,7 @@ impl Observer for SummaryJson {
         Ok(Flow::Continue)
     }
     fn on_end(&mut self, end: &RunEnd<'_>, log: &mut RunLog) -> Result<()> {
-        crate::output::summary::write_json(&self.dir.join("summary.json"), end.summary)?;
+        crate::output::summary::write_json(&self.dir.join("summary.json"), &end.summary.to_json())?;
         if let Some((law, r)) = &self.fatigue_law {
             write_fatigue_svg(
                 &self.dir.join("fatigue.svg"),

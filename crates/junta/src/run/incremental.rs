@@ -18,7 +18,7 @@ use crate::post::curve::{limit_points, CurveRow};
 use crate::prepare::Prepared;
 use crate::run::checkpoint::{FirstFailure, RestartFile};
 use crate::run::observer::{Flow, Increment, Observer, RunEnd, RunInfo, RunLog, Stop};
-use crate::run::results::EndReason;
+use crate::run::results::{EndReason, Summary};
 use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
 use junta_core::Model;
@@ -443,7 +443,7 @@ pub(crate) fn run_incremental(
     restart: Option<(RestartFile, Vec<CurveRow>)>,
     limits: Limits,
     observers: &mut [&mut dyn Observer],
-) -> Result<(Ending, serde_json::Value, RunLog)> {
+) -> Result<(Ending, Summary, RunLog)> {
     let t0 = Instant::now();
     let file = input.display().to_string();
     let curve = CurveProbe::of(p, &file)?;
@@ -609,7 +609,7 @@ fn finish(
     run: Option<NonlinearRun>,
     mut ending: Ending,
     t0: Instant,
-) -> Result<(Ending, serde_json::Value, RunLog)> {
+) -> Result<(Ending, Summary, RunLog)> {
     let Engine {
         mut log,
         last_u,
@@ -679,6 +679,7 @@ fn finish(
             ending.warnings.push(w);
         }
     }
+    let summary = Summary::from_json(summary)?;
     let end = RunEnd {
         model: &p.model,
         u: u.map(|v| v.as_slice()),

@@ -145,8 +145,9 @@ pub(crate) fn run_linear(
     if let Some(steps) = steps_summary {
         summary["steps"] = json!(steps);
     }
+    let summary = crate::run::results::Summary::from_json(summary)?;
     if let Some(dir) = dir {
-        crate::output::summary::write_json(&dir.join("summary.json"), &summary)?;
+        crate::output::summary::write_json(&dir.join("summary.json"), &summary.to_json())?;
     }
     let frame = end_linear(&p.model, &res, &summary, observers)?;
     Ok(RunResults {
@@ -341,7 +342,7 @@ fn solve_deck_steps(
 fn end_linear(
     model: &junta_core::Model,
     res: &junta_solvers::linear_static::LinearStaticResult,
-    summary: &serde_json::Value,
+    summary: &crate::run::results::Summary,
     observers: &mut [&mut dyn Observer],
 ) -> Result<Option<crate::post::frame::Frame>> {
     let step = junta_core::StepInfo::at(0, 1.0, 0.0);

@@ -212,7 +212,7 @@ pub struct RunEnd<'a> {
     /// Why the run ended (the status line is written from it).
     pub reason: &'a crate::run::results::EndReason,
     /// The summary (what `summary.json` holds).
-    pub summary: &'a serde_json::Value,
+    pub summary: &'a crate::run::results::Summary,
 }
 
 /// Something a run reports to. Every method but `on_increment` has a

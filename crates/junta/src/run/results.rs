@@ -89,6 +89,92 @@ impl EndReason {
     }
 }
 
+/// What a run's `summary.json` holds, typed where every run has it: the
+/// input, the model's size, the kind and end of the run, its warnings.
+/// The sections that differ by kind of run (reactions, solver, timings,
+/// energies, crack, fatigue, advice, ...) are kept by name in
+/// [`Summary::sections`], as the JSON they are written as
+/// (`docs/outputs.md` describes each). `summary.json` is written from this
+/// struct, and reads back into it ([`Summary::read`]): the round trip
+/// gives the same value.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Summary {
+    /// The input file.
+    pub input: String,
+    /// The model's title.
+    pub title: String,
+    /// The model's units, when the input states them.
+    pub units: Option<String>,
+    /// What ran.
+    pub analysis: SummaryAnalysis,
+    /// The status line of an incremental run ([`EndReason::line`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub status: Option<String>,
+    /// Nodes of the model.
+    pub nodes: usize,
+    /// Degrees of freedom (three per node).
+    pub dofs: usize,
+    /// Free equations solved for.
+    pub equations: usize,
+    /// Elements per element type.
+    pub elements: std::collections::BTreeMap<String, usize>,
+    /// Converged increments (incremental runs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub increments: Option<usize>,
+    /// Warnings for the user (each also printed once by the command line).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
+    /// Every other section, by its key in `summary.json`.
+    #[serde(flatten)]
+    pub sections: std::collections::BTreeMap<String, serde_json::Value>,
+}
+
+/// `summary.json` `analysis`: what ran.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum SummaryAnalysis {
+    /// One linear solve (`"linear_static"`), or a deck's linear steps.
+    #[serde(rename = "linear_static")]
+    LinearStatic,
+    /// An incremental-iterative run (`"static"`).
+    #[serde(rename = "static")]
+    Static,
+}
+
+impl Summary {
+    /// The summary a run built as JSON; an error names the key that does
+    /// not fit.
+    pub(crate) fn from_json(v: serde_json::Value) -> crate::Result<Summary> {
+        serde_json::from_value(v).map_err(|e| crate::error::err!("summary.json: {e}"))
+    }
+
+    /// The summary as JSON (what `summary.json` holds).
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::to_value(self).unwrap_or_default()
+    }
+
+    /// Read a run's `summary.json`.
+    pub fn read(path: &std::path::Path) -> crate::Result<Summary> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| crate::error::err!("cannot read {}: {e}", path.display()))?;
+        serde_json::from_str(&text).map_err(|e| crate::error::err!("{}: {e}", path.display()))
+    }
+
+    /// A section by its key (`"reactions"`, `"solver"`, ...), or `None`.
+    pub fn section(&self, key: &str) -> Option<&serde_json::Value> {
+        self.sections.get(key)
+    }
+}
+
+/// `summary["reactions"]`: a section by its key; `Null` when there is none
+/// (the typed fields are read as fields).
+impl std::ops::Index<&str> for Summary {
+    type Output = serde_json::Value;
+    fn index(&self, key: &str) -> &serde_json::Value {
+        static NULL: serde_json::Value = serde_json::Value::Null;
+        self.sections.get(key).unwrap_or(&NULL)
+    }
+}
+
 /// What a run returns.
 #[derive(Debug)]
 pub struct RunResults {
@@ -99,7 +185,7 @@ pub struct RunResults {
     /// The status line (`completed`, `stopped: ...`, `failed: ...`).
     pub status_line: String,
     /// The summary (what `summary.json` holds).
-    pub summary: serde_json::Value,
+    pub summary: Summary,
     /// The curve of an incremental run, as columns (empty for linear runs).
     pub curve: Curve,
     /// The rows of the curve.
@@ -121,7 +207,7 @@ pub struct RunResults {
 impl RunResults {
     /// The summary as text (pretty JSON).
     pub fn summary_json(&self) -> String {
-        serde_json::to_string_pretty(&self.summary).unwrap_or_default()
+        serde_json::to_string_pretty(&self.summary.to_json()).unwrap_or_default()
     }
 }
 
