@@ -174,7 +174,7 @@ pub enum Ramp {
 }
 
 /// `[analysis] type`: what a run does.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum AnalysisKind {
     /// One linear solve (`"linear"`, the default).
@@ -182,6 +182,21 @@ pub enum AnalysisKind {
     Linear,
     /// Incremental-iterative over the load program (`"static"`).
     Static,
+}
+
+/// Read from its name; another name is an error naming the key and the
+/// valid names (the TOML reader adds the file and line).
+impl<'de> Deserialize<'de> for AnalysisKind {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        match name.as_str() {
+            "linear" => Ok(AnalysisKind::Linear),
+            "static" => Ok(AnalysisKind::Static),
+            other => Err(serde::de::Error::custom(format!(
+                "key `analysis.type`: `{other}` is not valid; use \"linear\" or \"static\""
+            ))),
+        }
+    }
 }
 
 impl AnalysisKind {
@@ -1349,6 +1364,34 @@ pub fn build_model_with_notes(sf: &SceneFile, notes: &mut Vec<String>) -> Result
     let laws = build_laws(sf)?;
     let mut mesh = build_mesh(sf)?;
     let elements = build_elements(sf, &mut mesh, &materials, &laws)?;
+    let (constraints, reaction_sets) = boundary_constraints(sf, &mesh)?;
+    let f_ext = nodal_loads(sf, &mesh, notes)?;
+    crate::prepare::limits::check_memory(
+        &format!(
+            "{}: the model ({} nodes, {} elements)",
+            sf.path.display(),
+            mesh.nodes.len(),
+            mesh.num_elements()
+        ),
+        crate::prepare::limits::model_bytes(&mesh),
+    )?;
+    let mut model = Model::new(mesh, elements, &constraints, f_ext, reaction_sets)
+        .map_err(|e| err!("{}: {e}", sf.path.display()))?;
+    if let Some(t) = &sf.scene.temperature {
+        let delta = temperature_change(sf, t, &model, notes)?;
+        model
+            .set_temperature(Some(delta))
+            .map_err(|e| err!("{}: key `temperature`: {e}", sf.path.display()))?;
+    }
+    Ok(model)
+}
+
+/// `[[boundary]]`: the prescribed dofs `(dof, value)` and the sets whose
+/// reactions are reported.
+fn boundary_constraints(
+    sf: &SceneFile,
+    mesh: &junta_core::mesh::Mesh,
+) -> Result<(Vec<(usize, f64)>, Vec<String>)> {
     let mut constraints = Vec::new();
     let mut reaction_sets = Vec::new();
     for (i, bc) in sf.scene.boundary.iter().enumerate() {
@@ -1398,131 +1441,163 @@ pub fn build_model_with_notes(sf: &SceneFile, notes: &mut Vec<String>) -> Result
             reaction_sets.push(set.clone());
         }
     }
+    Ok((constraints, reaction_sets))
+}
+
+/// `[[load]]`: the external nodal forces at load factor 1.
+fn nodal_loads(
+    sf: &SceneFile,
+    mesh: &junta_core::mesh::Mesh,
+    notes: &mut Vec<String>,
+) -> Result<Vec<f64>> {
     let mut f_ext = vec![0.0; 3 * mesh.nodes.len()];
     for (i, l) in sf.scene.load.iter().enumerate() {
         match (&l.set, &l.face_set) {
-            (Some(set), None) => {
-                if l.pressure.is_some() || l.traction.is_some() {
-                    bail!(
-                        "{}: key `load[{i}]`: `pressure` and `traction` need `face_set`, not `set`",
-                        sf.at(set.span())
-                    );
-                }
-                let nodes = mesh
-                    .node_set(set.get_ref())
-                    .map_err(|e| err!("{}: key `load[{i}].set`: {e}", sf.at(set.span())))?;
-                if let Some(sp) = &l.split {
-                    if l.total_force.is_none() {
-                        bail!(
-                            "{}: key `load[{i}].split`: `split` goes with `total_force` on a node set (it says how the total is shared), not with `force`",
-                            sf.at(sp.span())
-                        );
-                    }
-                }
-                match (l.force, l.total_force) {
-                    (Some(f), None) => {
-                        for &n in nodes {
-                            for c in 0..3 {
-                                f_ext[3 * n + c] += f[c];
-                            }
-                        }
-                    }
-                    (None, Some(t)) if !nodes.is_empty() => {
-                        let split = l.split.as_ref().map(|s| (s.get_ref().as_str(), s.span()));
-                        let weights = match split {
-                            None | Some(("consistent", _)) => {
-                                let w = junta_elements::face_load::set_weights(&mesh, nodes)
-                                    .map_err(|e| {
-                                        err!("{}: key `load[{i}].total_force`: node set `{}`: {e}", sf.at(set.span()), set.get_ref())
-                                    })?;
-                                if w.span == junta_elements::face_load::SetSpan::Points {
-                                    notes.push(format!(
-                                        "{}: key `load[{i}]`: node set `{}` holds no complete element face or edge, so its {} nodes share `total_force` equally (write `split = \"equal\"` to say so)",
-                                        sf.at(set.span()),
-                                        set.get_ref(),
-                                        nodes.len()
-                                    ));
-                                } else {
-                                    let idle = w.off_span;
-                                    if idle > 0 {
-                                        notes.push(format!(
-                                            "{}: key `load[{i}]`: {idle} of the {} nodes of set `{}` lie on none of the element {} it spans and get no share of `total_force`",
-                                            sf.at(set.span()),
-                                            nodes.len(),
-                                            set.get_ref(),
-                                            match w.span {
-                                                junta_elements::face_load::SetSpan::Faces(_) => "faces",
-                                                _ => "edges",
-                                            }
-                                        ));
-                                    }
-                                }
-                                w.weights
-                            }
-                            Some(("equal", _)) => vec![1.0 / nodes.len() as f64; nodes.len()],
-                            Some((other, span)) => bail!(
-                                "{}: key `load[{i}].split`: `{other}` is not valid; use \"consistent\" (the default: shares from the element faces or edges the set spans) or \"equal\" (the same share for every node)",
-                                sf.at(span)
-                            ),
-                        };
-                        for (&n, w) in nodes.iter().zip(weights) {
-                            for c in 0..3 {
-                                f_ext[3 * n + c] += w * t[c];
-                            }
-                        }
-                    }
-                    _ => bail!(
-                        "{}: key `load[{i}]`: a node-set load needs exactly one of `force = [fx, fy, fz]` (per node) or `total_force` (shared by the set's nodes, see `split`)",
-                        sf.at(set.span())
-                    ),
-                }
-            }
-            (None, Some(fs)) => {
-                let faces = mesh
-                    .face_set(fs.get_ref())
-                    .map_err(|e| err!("{}: key `load[{i}].face_set`: {e}", sf.at(fs.span())))?
-                    .to_vec();
-                if let Some(sp) = &l.split {
-                    bail!(
-                        "{}: key `load[{i}].split`: `split` goes with `total_force` on a node set (`set`), not with `face_set`",
-                        sf.at(sp.span())
-                    );
-                }
-                let load = match (l.pressure, l.traction, l.force.or(l.total_force)) {
-                    (Some(p), None, None) => junta_elements::face_load::FaceLoad::Pressure(p),
-                    (None, Some(t), None) => junta_elements::face_load::FaceLoad::Traction(t),
-                    _ => bail!(
-                        "{}: key `load[{i}]`: a face-set load needs exactly one of `pressure` or `traction`",
-                        sf.at(fs.span())
-                    ),
-                };
-                junta_elements::face_load::add_face_load(&mesh, &faces, load, &mut f_ext)
-                    .map_err(|e| err!("{}: key `load[{i}]`: {e}", sf.at(fs.span())))?;
-            }
+            (Some(set), None) => node_set_load(sf, i, l, set, mesh, notes, &mut f_ext)?,
+            (None, Some(fs)) => face_set_load(sf, i, l, fs, mesh, &mut f_ext)?,
             _ => bail!(
                 "{}: key `load[{i}]`: give exactly one of `set` (nodal force) or `face_set` (pressure, traction)",
                 sf.path.display()
             ),
         }
     }
-    crate::prepare::limits::check_memory(
-        &format!(
-            "{}: the model ({} nodes, {} elements)",
-            sf.path.display(),
-            mesh.nodes.len(),
-            mesh.num_elements()
-        ),
-        crate::prepare::limits::model_bytes(&mesh),
-    )?;
-    let mut model = Model::new(mesh, elements, &constraints, f_ext, reaction_sets)
-        .map_err(|e| err!("{}: {e}", sf.path.display()))?;
-    if let Some(t) = &sf.scene.temperature {
-        let delta = temperature_change(sf, t, &model, notes)?;
-        model
-            .set_temperature(Some(delta))
-            .map_err(|e| err!("{}: key `temperature`: {e}", sf.path.display()))?;
+    Ok(f_ext)
+}
+
+/// A `[[load]]` on a node set: `force` at each node, or `total_force`
+/// shared by the set's nodes ([`total_force_weights`]).
+fn node_set_load(
+    sf: &SceneFile,
+    i: usize,
+    l: &LoadSpec,
+    set: &Spanned<String>,
+    mesh: &junta_core::mesh::Mesh,
+    notes: &mut Vec<String>,
+    f_ext: &mut [f64],
+) -> Result<()> {
+    if l.pressure.is_some() || l.traction.is_some() {
+        bail!(
+            "{}: key `load[{i}]`: `pressure` and `traction` need `face_set`, not `set`",
+            sf.at(set.span())
+        );
     }
-    Ok(model)
+    let nodes = mesh
+        .node_set(set.get_ref())
+        .map_err(|e| err!("{}: key `load[{i}].set`: {e}", sf.at(set.span())))?;
+    if let Some(sp) = &l.split {
+        if l.total_force.is_none() {
+            bail!(
+                "{}: key `load[{i}].split`: `split` goes with `total_force` on a node set (it says how the total is shared), not with `force`",
+                sf.at(sp.span())
+            );
+        }
+    }
+    match (l.force, l.total_force) {
+        (Some(f), None) => {
+            for &n in nodes {
+                for c in 0..3 {
+                    f_ext[3 * n + c] += f[c];
+                }
+            }
+        }
+        (None, Some(t)) if !nodes.is_empty() => {
+            let weights = total_force_weights(sf, i, l, set, mesh, nodes, notes)?;
+            for (&n, w) in nodes.iter().zip(weights) {
+                for c in 0..3 {
+                    f_ext[3 * n + c] += w * t[c];
+                }
+            }
+        }
+        _ => bail!(
+            "{}: key `load[{i}]`: a node-set load needs exactly one of `force = [fx, fy, fz]` (per node) or `total_force` (shared by the set's nodes, see `split`)",
+            sf.at(set.span())
+        ),
+    }
+    Ok(())
+}
+
+/// The shares of a `total_force` over the nodes of its set: from the
+/// element faces or edges the set spans (`split = "consistent"`, the
+/// default; a note when it spans none or leaves nodes out), or equal.
+fn total_force_weights(
+    sf: &SceneFile,
+    i: usize,
+    l: &LoadSpec,
+    set: &Spanned<String>,
+    mesh: &junta_core::mesh::Mesh,
+    nodes: &[usize],
+    notes: &mut Vec<String>,
+) -> Result<Vec<f64>> {
+    let split = l.split.as_ref().map(|s| (s.get_ref().as_str(), s.span()));
+    let weights = match split {
+        None | Some(("consistent", _)) => {
+            let w = junta_elements::face_load::set_weights(mesh, nodes)
+                .map_err(|e| {
+                    err!("{}: key `load[{i}].total_force`: node set `{}`: {e}", sf.at(set.span()), set.get_ref())
+                })?;
+            if w.span == junta_elements::face_load::SetSpan::Points {
+                notes.push(format!(
+                    "{}: key `load[{i}]`: node set `{}` holds no complete element face or edge, so its {} nodes share `total_force` equally (write `split = \"equal\"` to say so)",
+                    sf.at(set.span()),
+                    set.get_ref(),
+                    nodes.len()
+                ));
+            } else {
+                let idle = w.off_span;
+                if idle > 0 {
+                    notes.push(format!(
+                        "{}: key `load[{i}]`: {idle} of the {} nodes of set `{}` lie on none of the element {} it spans and get no share of `total_force`",
+                        sf.at(set.span()),
+                        nodes.len(),
+                        set.get_ref(),
+                        match w.span {
+                            junta_elements::face_load::SetSpan::Faces(_) => "faces",
+                            _ => "edges",
+                        }
+                    ));
+                }
+            }
+            w.weights
+        }
+        Some(("equal", _)) => vec![1.0 / nodes.len() as f64; nodes.len()],
+        Some((other, span)) => bail!(
+            "{}: key `load[{i}].split`: `{other}` is not valid; use \"consistent\" (the default: shares from the element faces or edges the set spans) or \"equal\" (the same share for every node)",
+            sf.at(span)
+        ),
+    };
+    Ok(weights)
+}
+
+/// A `[[load]]` on a face set: `pressure` or `traction`.
+fn face_set_load(
+    sf: &SceneFile,
+    i: usize,
+    l: &LoadSpec,
+    fs: &Spanned<String>,
+    mesh: &junta_core::mesh::Mesh,
+    f_ext: &mut [f64],
+) -> Result<()> {
+    let faces = mesh
+        .face_set(fs.get_ref())
+        .map_err(|e| err!("{}: key `load[{i}].face_set`: {e}", sf.at(fs.span())))?
+        .to_vec();
+    if let Some(sp) = &l.split {
+        bail!(
+            "{}: key `load[{i}].split`: `split` goes with `total_force` on a node set (`set`), not with `face_set`",
+            sf.at(sp.span())
+        );
+    }
+    let load = match (l.pressure, l.traction, l.force.or(l.total_force)) {
+        (Some(p), None, None) => junta_elements::face_load::FaceLoad::Pressure(p),
+        (None, Some(t), None) => junta_elements::face_load::FaceLoad::Traction(t),
+        _ => bail!(
+            "{}: key `load[{i}]`: a face-set load needs exactly one of `pressure` or `traction`",
+            sf.at(fs.span())
+        ),
+    };
+    junta_elements::face_load::add_face_load(mesh, &faces, load, f_ext)
+        .map_err(|e| err!("{}: key `load[{i}]`: {e}", sf.at(fs.span())))?;
+    Ok(())
 }
 
 /// The temperature change of every node from `[temperature]`
