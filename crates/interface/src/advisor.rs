@@ -214,6 +214,72 @@ pub fn penalty_advice(
         .get(block)
         .filter(|b| b.shape.is_interface())
         .ok_or_else(|| CoreError::Invalid(format!("block {block} is not an interface block")))?;
+    let (on_interface, pairs, area) = interface_area(model, block)?;
+    let (diag, modulus) = solid_diagonal(model, &on_interface)?;
+    let (k_min, n) = smallest_free_stiffness(model, &on_interface, &diag);
+    if n == 0 || !k_min.is_finite() {
+        return Err(CoreError::Invalid(format!(
+            "interface `{}` has no free dof on a solid: nothing for the penalty to act on",
+            ib.name
+        )));
+    }
+    let e_c = f64::EPSILON;
+    let eps_op = k_min / (n as f64 * e_c).sqrt();
+    let area_per_pair = area / pairs as f64;
+    let d_scene = iel_law_stiffness(model, block);
+    let mut advice = PenaltyAdvice {
+        block: ib.name.clone(),
+        k_min,
+        n,
+        e_c,
+        eps_op,
+        area,
+        pairs,
+        area_per_pair,
+        d_op: eps_op / area_per_pair,
+        d_scene,
+        constraint_error: 0.0,
+        roundoff_error: 0.0,
+        best_error: 2.0 * (n as f64 * e_c).sqrt(),
+        verdict: PenaltyVerdict::Good,
+        turon: thickness
+            .filter(|t| *t > 0.0 && modulus > 0.0)
+            .map(|t| 50.0 * modulus / t),
+        role: model.elements[block]
+            .penalty_role()
+            .unwrap_or(PenaltyRole::Constraint),
+        cohesive: None,
+    };
+    let (ce, re) = advice.errors_at(d_scene[2]);
+    advice.constraint_error = ce;
+    advice.roundoff_error = re;
+    advice.verdict = if ce > 10.0 * re {
+        PenaltyVerdict::TooLow
+    } else if re > 10.0 * ce {
+        PenaltyVerdict::TooHigh
+    } else {
+        PenaltyVerdict::Good
+    };
+    if advice.role == PenaltyRole::Cohesive {
+        advice.cohesive = match adjacent_solids(model, block)? {
+            Some(AdjacentSolids {
+                modulus_normal: e,
+                arm_thickness: t,
+                ..
+            }) if e > 0.0 && e.is_finite() && t > 0.0 && t.is_finite() && d_scene[2] > 0.0 => {
+                Some(CohesivePenalty::new(d_scene[2], e, t, advice.d_op))
+            }
+            _ => None,
+        };
+    }
+    Ok(advice)
+}
+
+/// The nodes of interface block `block` (a flag per node of the mesh),
+/// its node pairs and its area (the sum of its points' `area` outputs).
+fn interface_area(model: &Model, block: usize) -> Result<(Vec<bool>, usize, f64), CoreError> {
+    let mesh = &model.mesh;
+    let ib = &mesh.blocks[block];
     let iel = &model.elements[block];
     let mut on_interface = vec![false; mesh.nodes.len()];
     let mut pairs = std::collections::BTreeSet::new();
@@ -250,6 +316,14 @@ pub fn penalty_advice(
             .map(|a| a[0])
             .sum::<f64>();
     }
+    Ok((on_interface, pairs.len(), area))
+}
+
+/// The stiffness diagonal of the solid elements touching the interface
+/// nodes (`on_interface`), in the reference state, and the largest
+/// reference modulus of their materials.
+fn solid_diagonal(model: &Model, on_interface: &[bool]) -> Result<(Vec<f64>, f64), CoreError> {
+    let mesh = &model.mesh;
     // diagonal of the solids touching the interface
     let mut diag = vec![0.0; 3 * mesh.nodes.len()];
     let mut modulus: f64 = 0.0;
@@ -300,6 +374,12 @@ pub fn penalty_advice(
             }
         }
     }
+    Ok((diag, modulus))
+}
+
+/// The smallest diagonal stiffness `k_min` of a free dof on the interface
+/// and the number `n` of such dofs.
+fn smallest_free_stiffness(model: &Model, on_interface: &[bool], diag: &[f64]) -> (f64, usize) {
     let mut k_min = f64::INFINITY;
     let mut n = 0;
     for (node, &on) in on_interface.iter().enumerate() {
@@ -314,62 +394,7 @@ pub fn penalty_advice(
             }
         }
     }
-    if n == 0 || !k_min.is_finite() {
-        return Err(CoreError::Invalid(format!(
-            "interface `{}` has no free dof on a solid: nothing for the penalty to act on",
-            ib.name
-        )));
-    }
-    let e_c = f64::EPSILON;
-    let eps_op = k_min / (n as f64 * e_c).sqrt();
-    let area_per_pair = area / pairs.len() as f64;
-    let d_scene = iel_law_stiffness(model, block);
-    let mut advice = PenaltyAdvice {
-        block: ib.name.clone(),
-        k_min,
-        n,
-        e_c,
-        eps_op,
-        area,
-        pairs: pairs.len(),
-        area_per_pair,
-        d_op: eps_op / area_per_pair,
-        d_scene,
-        constraint_error: 0.0,
-        roundoff_error: 0.0,
-        best_error: 2.0 * (n as f64 * e_c).sqrt(),
-        verdict: PenaltyVerdict::Good,
-        turon: thickness
-            .filter(|t| *t > 0.0 && modulus > 0.0)
-            .map(|t| 50.0 * modulus / t),
-        role: model.elements[block]
-            .penalty_role()
-            .unwrap_or(PenaltyRole::Constraint),
-        cohesive: None,
-    };
-    let (ce, re) = advice.errors_at(d_scene[2]);
-    advice.constraint_error = ce;
-    advice.roundoff_error = re;
-    advice.verdict = if ce > 10.0 * re {
-        PenaltyVerdict::TooLow
-    } else if re > 10.0 * ce {
-        PenaltyVerdict::TooHigh
-    } else {
-        PenaltyVerdict::Good
-    };
-    if advice.role == PenaltyRole::Cohesive {
-        advice.cohesive = match adjacent_solids(model, block)? {
-            Some(AdjacentSolids {
-                modulus_normal: e,
-                arm_thickness: t,
-                ..
-            }) if e > 0.0 && e.is_finite() && t > 0.0 && t.is_finite() && d_scene[2] > 0.0 => {
-                Some(CohesivePenalty::new(d_scene[2], e, t, advice.d_op))
-            }
-            _ => None,
-        };
-    }
-    Ok(advice)
+    (k_min, n)
 }
 
 fn material_modulus(model: &Model, block: usize) -> Option<f64> {

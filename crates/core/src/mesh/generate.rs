@@ -83,25 +83,8 @@ fn axis_ticks(origin: f64, length: f64, n: usize, ratio: f64) -> Vec<f64> {
     x
 }
 
-/// Generate a box mesh with one block named `block_name`, element type key
-/// `element_type` and material `material`.
-pub fn box_mesh(
-    spec: &BoxSpec,
-    block_name: &str,
-    element_type: &str,
-    material: &str,
-) -> Result<Mesh, CoreError> {
-    let p = match spec.shape {
-        CellShape::Hex8 | CellShape::Wedge6 => 1,
-        CellShape::Hex20 | CellShape::Hex27 | CellShape::Wedge15 => 2,
-        s => {
-            return Err(CoreError::Invalid(format!(
-                "box generator makes hexahedra (hex8, hex20, hex27) or wedges (wedge6, wedge15), not {}",
-                s.name()
-            )))
-        }
-    };
-    let wedge = matches!(spec.shape, CellShape::Wedge6 | CellShape::Wedge15);
+/// The size, divisions and grading of a box: positive and finite.
+fn check_box_spec(spec: &BoxSpec) -> Result<(), CoreError> {
     for a in 0..3 {
         if spec.divisions[a] == 0 {
             return Err(CoreError::Invalid("box divisions must be >= 1".into()));
@@ -119,9 +102,14 @@ pub fn box_mesh(
             )));
         }
     }
-    let [nx, ny, nz] = spec.divisions;
+    Ok(())
+}
+
+/// The lattice coordinates of each axis: the element ends, with the
+/// midpoints for quadratic cells (`p = 2`).
+fn box_lattice(spec: &BoxSpec, p: usize) -> Vec<Vec<f64>> {
     // lattice coordinates per axis (element ends, plus midpoints if quadratic)
-    let lattice: Vec<Vec<f64>> = (0..3)
+    (0..3)
         .map(|a| {
             let t = axis_ticks(
                 spec.origin[a],
@@ -141,8 +129,19 @@ pub fn box_mesh(
                 v
             }
         })
-        .collect();
-    let (lx, ly, lz) = (lattice[0].len(), lattice[1].len(), lattice[2].len());
+        .collect()
+}
+
+/// The connectivity of the box's cells on the lattice (`[lx, ly]` points
+/// along x and y), the faces on each side of the box (in
+/// `HEX_FACE_NAMES` order) and the number of elements.
+fn box_cells(
+    spec: &BoxSpec,
+    p: usize,
+    wedge: bool,
+    [lx, ly]: [usize; 2],
+) -> (Vec<usize>, Vec<Vec<FaceRef>>, usize) {
+    let [nx, ny, nz] = spec.divisions;
     let lid = |i: usize, j: usize, k: usize| (k * ly + j) * lx + i;
     let npe = spec.shape.num_nodes();
     // lattice points of one cell, in H8 (p = 1) or H27 (p = 2) order
@@ -200,11 +199,18 @@ pub fn box_mesh(
             }
         }
     }
-    // compact: drop lattice points no element uses (H20 has no face/body centres)
+    (conn, faces, e)
+}
+
+/// Drop the lattice points no element uses (H20 has no face or body
+/// centres); renumber `conn` and return the nodes' coordinates.
+fn compact_lattice(lattice: &[Vec<f64>], conn: &mut [usize]) -> Vec<[f64; 3]> {
+    let (lx, ly, lz) = (lattice[0].len(), lattice[1].len(), lattice[2].len());
+    let lid = |i: usize, j: usize, k: usize| (k * ly + j) * lx + i;
     let mut new_id = vec![usize::MAX; lx * ly * lz];
     let mut nodes = Vec::new();
     let mut used = vec![false; lx * ly * lz];
-    for &c in &conn {
+    for &c in conn.iter() {
         used[c] = true;
     }
     for k in 0..lz {
@@ -221,6 +227,33 @@ pub fn box_mesh(
     for c in conn.iter_mut() {
         *c = new_id[*c];
     }
+    nodes
+}
+
+/// Generate a box mesh with one block named `block_name`, element type key
+/// `element_type` and material `material`.
+pub fn box_mesh(
+    spec: &BoxSpec,
+    block_name: &str,
+    element_type: &str,
+    material: &str,
+) -> Result<Mesh, CoreError> {
+    let p = match spec.shape {
+        CellShape::Hex8 | CellShape::Wedge6 => 1,
+        CellShape::Hex20 | CellShape::Hex27 | CellShape::Wedge15 => 2,
+        s => {
+            return Err(CoreError::Invalid(format!(
+                "box generator makes hexahedra (hex8, hex20, hex27) or wedges (wedge6, wedge15), not {}",
+                s.name()
+            )))
+        }
+    };
+    let wedge = matches!(spec.shape, CellShape::Wedge6 | CellShape::Wedge15);
+    check_box_spec(spec)?;
+    let lattice = box_lattice(spec, p);
+    let (lx, ly) = (lattice[0].len(), lattice[1].len());
+    let (mut conn, faces, e) = box_cells(spec, p, wedge, [lx, ly]);
+    let nodes = compact_lattice(&lattice, &mut conn);
     let mut mesh = Mesh {
         nodes,
         blocks: vec![ElementBlock {
