@@ -24,7 +24,8 @@
 use crate::error::{Context, Result};
 use crate::input::scene::CurveSpec;
 use crate::output::deck_print;
-use crate::post::curve::{curve_header, read_reference_curve, CurveRow};
+use crate::post::curve::{read_reference_curve, CurveRow};
+use crate::post::curve_columns::curve_header;
 use crate::post::fields::InterfaceResults;
 use crate::prepare::Prepared;
 use crate::run::checkpoint::{read_restart, write_atomic, InputHash, RestartFile};

@@ -3,11 +3,11 @@
 //! a run that stops past a peak gives, and reference curves to compare.
 
 use crate::error::{bail, Context, Result};
-pub use crate::post::curve_columns::{curve_header, CURVE_COLUMNS};
 use serde_json::json;
 use std::path::Path;
 
-/// One row of `curve.csv`: one converged increment.
+/// One row of `curve.csv`: one converged increment (its columns, and how
+/// a row is written: [`crate::post::curve_columns`]).
 #[derive(Debug, Clone)]
 pub struct CurveRow {
     /// Global index of the increment (1-based, converged increments only,
@@ -96,17 +96,6 @@ pub struct CurveRow {
 }
 
 impl CurveRow {
-    /// The row as a line of `curve.csv` (with its newline): the cells of
-    /// [`CURVE_COLUMNS`] in order, floats in `{:e}` form, `None` as an
-    /// empty field.
-    pub fn csv(&self) -> String {
-        let cells: Vec<String> = CURVE_COLUMNS
-            .iter()
-            .map(|c| (c.value)(self).csv())
-            .collect();
-        format!("{}\n", cells.join(","))
-    }
-
     /// A row from a line of `curve.csv` (without its newline), or `None` if
     /// it is not one. Reads files of older runs too: 14 columns (before the
     /// path-following and frictional columns), 16, 17 or 18 (before the
@@ -327,25 +316,6 @@ pub struct Curve {
 }
 
 impl Curve {
-    /// The columns of `rows` ([`CURVE_COLUMNS`], `control` apart).
-    pub fn from_rows(rows: &[CurveRow]) -> Curve {
-        let columns = CURVE_COLUMNS
-            .iter()
-            .filter(|c| c.name != "control")
-            .map(|c| {
-                let values = rows
-                    .iter()
-                    .map(|r| (c.value)(r).number().unwrap_or(f64::NAN))
-                    .collect();
-                (c.name.to_string(), values)
-            })
-            .collect();
-        Curve {
-            columns,
-            control: rows.iter().map(|r| r.control.clone()).collect(),
-        }
-    }
-
     /// The column `name`, if there is one.
     pub fn get(&self, name: &str) -> Option<&[f64]> {
         self.columns
@@ -378,6 +348,7 @@ impl Curve {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::post::curve_columns::curve_header;
 
     #[test]
     fn columns_follow_the_csv_header_and_read_back_the_rows() {

@@ -7,7 +7,7 @@
 //! is one new line here, appended at the end (readers find columns by
 //! name, and `junta run --restart` reads shorter rows of older runs).
 
-use crate::post::curve::CurveRow;
+use crate::post::curve::{Curve, CurveRow};
 
 /// The value of one cell, as `curve.csv` writes it.
 #[derive(Debug, Clone, PartialEq)]
@@ -266,4 +266,38 @@ pub fn markdown_table() -> String {
         s.push_str(&format!("| `{}` | {} | {} |\n", c.name, c.unit, c.meaning));
     }
     s
+}
+
+impl CurveRow {
+    /// The row as a line of `curve.csv` (with its newline): the cells of
+    /// [`CURVE_COLUMNS`] in order, floats in `{:e}` form, `None` as an
+    /// empty field.
+    pub fn csv(&self) -> String {
+        let cells: Vec<String> = CURVE_COLUMNS
+            .iter()
+            .map(|c| (c.value)(self).csv())
+            .collect();
+        format!("{}\n", cells.join(","))
+    }
+}
+
+impl Curve {
+    /// The columns of `rows` ([`CURVE_COLUMNS`], `control` apart).
+    pub fn from_rows(rows: &[CurveRow]) -> Curve {
+        let columns = CURVE_COLUMNS
+            .iter()
+            .filter(|c| c.name != "control")
+            .map(|c| {
+                let values = rows
+                    .iter()
+                    .map(|r| (c.value)(r).number().unwrap_or(f64::NAN))
+                    .collect();
+                (c.name.to_string(), values)
+            })
+            .collect();
+        Curve {
+            columns,
+            control: rows.iter().map(|r| r.control.clone()).collect(),
+        }
+    }
 }
