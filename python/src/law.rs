@@ -103,7 +103,7 @@ thread_local! {
     static BUILT: RefCell<Option<Vec<Arc<ErrorSlot>>>> = const { RefCell::new(None) };
     /// The exception a factory raised while a simulation was being read.
     static FACTORY_ERROR: RefCell<Option<PyErr>> = const { RefCell::new(None) };
-    /// The outputs of the last state asked for (`outputs`, `is_failed`
+    /// The outputs of the last state asked for (`outputs`, `stage`
     /// and `failure_index` read the same point in a row).
     static LAST_OUTPUTS: RefCell<Option<CachedOutputs>> = const { RefCell::new(None) };
 }

@@ -128,10 +128,10 @@ impl PointStage {
 
     /// The stage a damage variable `d` alone gives, for laws whose
     /// traction is `(1 - d)` times the undamaged one (no energy left once
-    /// it is traction-free): failed at `d >= 1`, process zone for
-    /// `0 < d < 1`.
+    /// it is traction-free): failed at `d >= 1 - 1e-12` (1 to round-off,
+    /// as the built-in laws take it), process zone for `0 < d` below.
     pub fn of_damage(d: f64) -> PointStage {
-        if d >= 1.0 {
+        if d >= 1.0 - 1e-12 {
             PointStage::Failed
         } else if d > 0.0 {
             PointStage::ProcessZone
