@@ -15,7 +15,7 @@
 //! | `tangent_kind` | `"spd"`, `"indefinite"` (default) or `"general"` |
 //! | `evaluate(jump, state, step)` | `-> (traction [n,3], tangent [n,3,3], new_state [n,k])` |
 //! | `init_state(n)` | optional, `-> [n, k]` (default zeros) |
-//! | `output_names`, `outputs(state)` | optional, `-> [n, len(names)]`; a `damage` output marks points failed at 0.99 |
+//! | `output_names`, `outputs(state)` | optional, `-> [n, len(names)]`; a `damage` output gives the point stage: failed at 1 (traction-free), process zone between 0 and 1 |
 //! | `failure_index(state)` | optional, `-> [n]` |
 //! | `fracture_properties` | optional dict `N, S, G_Ic, G_IIc` (mesh and penalty advice) |
 //! | `warnings` | optional list of str |
@@ -31,7 +31,7 @@ use crate::convert::{array, toml_table_to_py};
 use crate::errors::describe;
 use junta_core::element::StepInfo;
 use junta_core::law::{
-    output, FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse,
+    output, FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse, PointStage,
 };
 use junta_core::registry::{self, RuntimeLaw};
 use junta_core::{CoreError, MatrixKind};
@@ -103,7 +103,7 @@ thread_local! {
     static BUILT: RefCell<Option<Vec<Arc<ErrorSlot>>>> = const { RefCell::new(None) };
     /// The exception a factory raised while a simulation was being read.
     static FACTORY_ERROR: RefCell<Option<PyErr>> = const { RefCell::new(None) };
-    /// The outputs of the last state asked for (`outputs`, `is_failed`
+    /// The outputs of the last state asked for (`outputs`, `stage`
     /// and `failure_index` read the same point in a row).
     static LAST_OUTPUTS: RefCell<Option<CachedOutputs>> = const { RefCell::new(None) };
 }
@@ -423,10 +423,10 @@ impl InterfaceLaw for PyLaw {
     fn initial_stiffness(&self) -> [f64; 3] {
         self.stiffness
     }
-    fn is_failed(&self, state: &[f64]) -> bool {
+    fn stage(&self, state: &[f64]) -> PointStage {
         match self.damage {
-            Some(i) => self.outputs_of(state)[i] >= output::DAMAGED_THRESHOLD,
-            None => false,
+            Some(i) => PointStage::of_damage(self.outputs_of(state)[i]),
+            None => PointStage::Intact,
         }
     }
     fn failure_index(&self, state: &[f64]) -> Option<f64> {

@@ -285,8 +285,8 @@ fn batched_law_path_gives_the_per_point_curve_bit_for_bit() {
         fn wants_small_increments(&self, s: &[f64]) -> bool {
             self.inner.wants_small_increments(s)
         }
-        fn is_failed(&self, s: &[f64]) -> bool {
-            self.inner.is_failed(s)
+        fn stage(&self, s: &[f64]) -> junta_core::PointStage {
+            self.inner.stage(s)
         }
         fn failure_index(&self, s: &[f64]) -> Option<f64> {
             self.inner.failure_index(s)

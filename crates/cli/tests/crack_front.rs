@@ -155,10 +155,8 @@ fn dcb_crack_front_follows_beam_theory_and_the_energy_balances() {
         worst_balance.1
     );
     // the dissipated energy per unit of damaged area is G_Ic within 10 %:
-    // less, as the points just behind the front (damage >= 0.99, reached
-    // at a quarter of the final opening) have not dissipated all of it,
-    // and more by what the process zone ahead has dissipated (measured
-    // 0.947 N/mm: -2.3 %)
+    // every failed point has dissipated all of it, and the process zone
+    // ahead adds what it has dissipated so far
     let g = w_d[last] / (B * a[last]);
     assert!((g / 0.969 - 1.0).abs() < 0.1, "W_d / (b Delta a) = {g:.4}");
     // the fine mesh resolves the process zone: no warning
@@ -182,50 +180,53 @@ fn dcb_crack_front_follows_beam_theory_and_the_energy_balances() {
 
 /// Largest difference allowed between `a0 + crack_length` and corrected
 /// beam theory's `a(P, delta)` past the peak: two elements of the 0.25 mm
-/// mesh (measured: 0.275 mm, the damaged area ahead of the compliance's
-/// crack, as damage 0.99 is reached while a point still carries 3/4 of
-/// its strength; 0.31 mm on 0.5 mm elements).
+/// mesh (measured 0.275 mm when a point counted as failed at secant
+/// damage 0.99, the damaged area then ran ahead of the compliance's crack;
+/// now the failed points are traction-free and the compliance's crack
+/// lies inside the process zone ahead of them).
 const CBT_TOLERANCE: f64 = 0.5;
 /// Largest relative error of the energy balance allowed (measured:
 /// 2.3e-4 with 0.25 mm elements and 0.14 mm increments up to the peak,
 /// the trapezoid rule's error).
 const BALANCE_TOLERANCE: f64 = 2e-3;
 
-/// 2 mm elements along the bond (mesh_advice: a cohesive zone of 1.35 mm)
-/// leave one or two points in the process zone; the 0.25 mm mesh above
-/// leaves four or more (0.5 mm elements: two to four, and a warning).
+/// 2 mm elements along the bond (mesh_advice: a cohesive zone of 1.35 mm,
+/// "too coarse"). The process zone, from onset to the traction-free point,
+/// is smeared over 2 to 4 integration points by the coarse elements
+/// (measured: fewer than 3 in 4 of the 12 increments in which the crack
+/// grew), against 12 to 15 on the 0.25 mm mesh above. The process-zone
+/// warning says "fewer than 3 points in most growth increments", which is
+/// not true here, so it does not fire; the mesh advice does say the mesh
+/// is too coarse. (Before the failed point had one definition the zone
+/// was truncated at secant damage 0.99 and this mesh drew the warning.)
 #[test]
-fn coarse_dcb_warns_of_an_unresolved_process_zone() {
+fn coarse_dcb_process_zone_spans_few_points_and_the_advice_says_too_coarse() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("coarse");
-    let input = scene(tmp.path(), 20);
-    let run = junta()
-        .arg("run")
-        .arg(&input)
-        .arg("-o")
-        .arg(&out)
-        .arg("-q")
-        .output()
+    let s = run_ok(&scene(tmp.path(), 20), &out);
+    assert_eq!(s["mesh_advice"]["bond"]["verdict"], "too coarse");
+    let fewest = s["crack"]["process_zone_points_min_while_growing"]
+        .as_u64()
         .unwrap();
-    let err = String::from_utf8_lossy(&run.stderr);
-    assert!(run.status.success(), "{err}");
     assert!(
-        err.contains("warning: the process zone")
-            && err.contains("fewer than 3 integration points"),
-        "{err}"
+        fewest < 3,
+        "fewest process-zone points while growing: {fewest}"
     );
-    let s: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    assert!(
-        s["warnings"].to_string().contains("process zone"),
-        "{}",
+    let col = columns(&out);
+    let (a, n) = (col("crack_length"), col("process_zone_points"));
+    let (mut growing, mut under) = (0, 0);
+    for k in 1..a.len() {
+        if a[k] > a[k - 1] {
+            growing += 1;
+            under += usize::from(n[k] < 3.0);
+        }
+    }
+    let warned = s["warnings"].to_string().contains("process zone");
+    assert_eq!(
+        warned,
+        2 * under > growing,
+        "{under} of {growing}: {}",
         s["warnings"]
-    );
-    assert!(
-        s["crack"]["process_zone_points_min_while_growing"]
-            .as_u64()
-            .unwrap()
-            < 3
     );
 }
 

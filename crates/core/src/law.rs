@@ -78,8 +78,67 @@ pub mod output {
     /// Fatigue laws: the energy-damage rate `dD/dN` per cycle of the last
     /// evaluation (0 outside the process zone or under the threshold).
     pub const DAMAGE_RATE: &str = "damage_rate";
-    /// Damage from which a point counts as fully damaged (damaged area).
-    pub const DAMAGED_THRESHOLD: f64 = 0.99;
+}
+
+/// Where an interface point stands on its way to a crack: the one
+/// definition of a failed point and of the process zone that every output
+/// and stop criterion reads ([`InterfaceLaw::stage`]).
+///
+/// - `Failed`: the point has dissipated its fracture energy for its mode
+///   mix, or carries no traction (contact aside). For the bilinear-type
+///   laws that is the same thing: the equivalent opening has reached the
+///   final opening `lam_f` of its mode mix. Each law's doc says how it
+///   decides (a law whose traction never reaches zero states the energy
+///   fraction it uses).
+/// - `ProcessZone`: damage has started and the point has not failed (it
+///   still carries traction and has energy left to dissipate).
+/// - `Intact`: no damage yet, or a law without fracture.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum PointStage {
+    /// No damage (or a law that never fractures).
+    Intact,
+    /// Damage started, fracture energy not yet dissipated.
+    ProcessZone,
+    /// Fracture energy dissipated: a crack.
+    Failed,
+}
+
+impl PointStage {
+    /// The point output value: 0 intact, 1 process zone, 2 failed (the
+    /// `stage` of a point's results).
+    pub fn code(self) -> f64 {
+        match self {
+            PointStage::Intact => 0.0,
+            PointStage::ProcessZone => 1.0,
+            PointStage::Failed => 2.0,
+        }
+    }
+
+    /// The stage of an output value written by [`PointStage::code`]
+    /// (nearest code; anything above 1.5 is failed).
+    pub fn of_code(code: f64) -> PointStage {
+        if code > 1.5 {
+            PointStage::Failed
+        } else if code > 0.5 {
+            PointStage::ProcessZone
+        } else {
+            PointStage::Intact
+        }
+    }
+
+    /// The stage a damage variable `d` alone gives, for laws whose
+    /// traction is `(1 - d)` times the undamaged one (no energy left once
+    /// it is traction-free): failed at `d >= 1 - 1e-12` (1 to round-off,
+    /// as the built-in laws take it), process zone for `0 < d` below.
+    pub fn of_damage(d: f64) -> PointStage {
+        if d >= 1.0 - 1e-12 {
+            PointStage::Failed
+        } else if d > 0.0 {
+            PointStage::ProcessZone
+        } else {
+            PointStage::Intact
+        }
+    }
 }
 
 /// Fracture properties of a softening law, for diagnostics (mesh advice,
@@ -149,10 +208,17 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     fn wants_small_increments(&self, _state_committed: &[f64]) -> bool {
         false
     }
-    /// True when the point has failed (for output: failed fractions,
-    /// crack fronts). Laws without failure return false.
-    fn is_failed(&self, _state: &[f64]) -> bool {
-        false
+    /// The point's [`PointStage`] from its state: the one definition of a
+    /// failed point and of the process zone (failed points, damaged area,
+    /// crack length and front, process zone, `stop_when_separated`).
+    /// Laws without fracture keep the default, `Intact`.
+    fn stage(&self, _state: &[f64]) -> PointStage {
+        PointStage::Intact
+    }
+    /// True when the point has failed: [`InterfaceLaw::stage`] is
+    /// `Failed`. Implement `stage`, not this.
+    fn is_failed(&self, state: &[f64]) -> bool {
+        self.stage(state) == PointStage::Failed
     }
     /// The last failure index stored in the state, if the law keeps one.
     fn failure_index(&self, _state: &[f64]) -> Option<f64> {

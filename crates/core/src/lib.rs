@@ -41,7 +41,9 @@ pub use criterion::{FailureCriterion, FailureMode, FailureResult, OnsetInput};
 pub use dual::Dual3;
 pub use element::{Element, ElementContext, ElementError, Kinematics, PointOutput};
 pub use error::CoreError;
-pub use law::{FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse, PenaltyRole};
+pub use law::{
+    FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse, PenaltyRole, PointStage,
+};
 pub use material::{Material, Voigt6};
 pub use model::{FatigueProgram, Model};
 pub use solver::{

@@ -130,7 +130,7 @@
 //! output position is on the reference mid-surface.
 
 use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
-use junta_core::law::{InterfaceLaw, LawContext, LawResponse};
+use junta_core::law::{InterfaceLaw, LawContext, LawResponse, PointStage};
 use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
 use junta_core::topology::CellShape;
 use junta_core::{CoreError, Kinematics, MatrixKind};
@@ -758,6 +758,7 @@ impl Element for InterfaceElement {
                 Some(rs) => rs[q],
                 None => self.evaluate_point(ctx, q, &fr, &n, &mut trial)?,
             };
+            let stage = self.law.stage(committed);
             let names = self.law.output_names();
             let mut law_out = [0.0; 16];
             let nl = names.len().min(law_out.len());
@@ -770,12 +771,13 @@ impl Element for InterfaceElement {
                 ("state", committed.to_vec()),
                 (
                     "failed",
-                    vec![if self.law.is_failed(committed) {
+                    vec![if stage == PointStage::Failed {
                         1.0
                     } else {
                         0.0
                     }],
                 ),
+                ("stage", vec![stage.code()]),
                 (
                     "failure_index",
                     vec![self.law.failure_index(committed).unwrap_or(0.0)],

@@ -177,7 +177,7 @@ class Law:
       (nonsymmetric; otherwise the element assembles the symmetric part);
     * ``init_state(n) -> [n, k]`` (``None``: zeros);
     * ``output_names`` and ``outputs(state) -> [n, len(names)]`` (a
-      ``damage`` output marks a point failed at 0.99, a
+      ``damage`` output marks a point failed at 1 (traction-free), a
       ``dissipated_energy`` output per unit area feeds the curve's
       dissipated energy and arc-length path following);
     * ``failure_index(state) -> [n]`` (``None``: no index);
@@ -483,7 +483,7 @@ def register_law(name, factory, description=None, params=None):
       every point of the block, and must not keep state of its own;
     * ``init_state(n) -> [n, k]`` (optional, default zeros);
     * ``output_names`` (list of str) and ``outputs(state) -> [n, len(names)]``
-      (optional; a ``damage`` output marks a point failed at 0.99, and a
+      (optional; a ``damage`` output marks a point failed at 1 (traction-free), and a
       ``dissipated_energy`` output per unit area feeds the dissipated energy
       of the curve and arc-length path following);
     * ``failure_index(state) -> [n]`` (optional);

@@ -191,8 +191,10 @@ impl InterfaceLaw for BilinearFriction {
             .wants_small_increments(&state[..cohesive::slot::STATE_LEN.min(state.len())])
     }
 
-    fn is_failed(&self, state: &[f64]) -> bool {
-        self.cohesive.is_failed(state)
+    /// The cohesive part's stage: failed once it is traction-free and
+    /// has dissipated `G_c(B)` (friction goes on; it is not fracture).
+    fn stage(&self, state: &[f64]) -> junta_core::PointStage {
+        self.cohesive.stage_of(state)
     }
 
     fn failure_index(&self, state: &[f64]) -> Option<f64> {

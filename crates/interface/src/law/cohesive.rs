@@ -94,7 +94,7 @@
 //! [`StepInfo::secant`]: junta_core::element::StepInfo::secant
 
 use junta_core::law::{
-    output, FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse,
+    output, FractureProperties, InterfaceLaw, LawContext, LawError, LawResponse, PointStage,
 };
 use junta_core::registry::{entries, find, parse_params, CriterionEntry};
 use junta_core::{CoreError, Dual3, FailureCriterion, MatrixKind, OnsetInput};
@@ -136,6 +136,14 @@ pub trait Softening: Send + Sync + std::fmt::Debug {
     /// Energy dissipated per unit area by a monotone path from the
     /// undamaged state to damage `d` on this curve (`F(1) = g_c`).
     fn dissipated(&self, d: f64, lam0: f64, g_c: f64, k_b: f64) -> f64;
+    /// The fraction of `g_c` a point has dissipated when it counts as
+    /// failed ([`junta_core::PointStage::Failed`]). 1 (the default): the
+    /// point fails where the curve reaches zero traction, having
+    /// dissipated all of `g_c`; a shape whose traction never reaches zero
+    /// states a fraction below 1 in its doc.
+    fn failed_energy_fraction(&self) -> f64 {
+        1.0
+    }
 }
 
 /// Propagation criterion: the toughness at mode ratio B.
@@ -337,6 +345,27 @@ impl CohesiveLaw {
         };
         law.check_consistency().map_err(invalid)?;
         Ok(law)
+    }
+
+    /// The [`PointStage`] of a point's state (the first
+    /// [`slot::STATE_LEN`] values), see [`InterfaceLaw::stage`] above.
+    pub fn stage_of(&self, state: &[f64]) -> PointStage {
+        let d = state.get(slot::DAMAGE).copied().unwrap_or(0.0);
+        if d <= 0.0 {
+            return PointStage::Intact;
+        }
+        if d >= FULL {
+            return PointStage::Failed;
+        }
+        let fraction = self.shape.failed_energy_fraction();
+        if fraction < 1.0 {
+            let b = state.get(slot::MODE_RATIO).copied().unwrap_or(0.0);
+            let (lam0, g_c, k_b) = self.mode_properties(b);
+            if self.shape.dissipated(d, lam0, g_c, k_b) >= fraction * g_c {
+                return PointStage::Failed;
+            }
+        }
+        PointStage::ProcessZone
     }
 
     /// The onset criterion.
@@ -550,8 +579,14 @@ impl InterfaceLaw for CohesiveLaw {
         junta_core::PenaltyRole::Cohesive
     }
 
-    fn is_failed(&self, state: &[f64]) -> bool {
-        state.get(slot::DAMAGE).copied().unwrap_or(0.0) >= output::DAMAGED_THRESHOLD
+    /// Failed once the damage the traction uses reaches 1 (the point is
+    /// traction-free: the equivalent jump has reached `lam_f` and `G_c(B)`
+    /// is dissipated), or, for a shape whose traction never reaches zero,
+    /// once a monotone path to that damage at the last mode ratio has
+    /// dissipated [`Softening::failed_energy_fraction`] of `G_c(B)`;
+    /// process zone while `0 < d` short of that.
+    fn stage(&self, state: &[f64]) -> PointStage {
+        self.stage_of(state)
     }
 
     fn failure_index(&self, state: &[f64]) -> Option<f64> {

@@ -12,7 +12,12 @@
 //!
 //! so the area under the whole curve is `K_B lam_0^2 / 2 + tau_0 l = G_c`.
 //! The traction never reaches zero: damage counts as 1 once it exceeds
-//! `1 - 1e-12`. Dissipated energy of a monotone path to damage `d`:
+//! `1 - 1e-12`. **Failed point**: since no finite jump dissipates all of
+//! `G_c`, a point counts as failed ([`junta_core::PointStage::Failed`])
+//! once a monotone path to its damage has dissipated 99 % of `G_c(B)`
+//! (`F(d) >= 0.99 G_c`, [`FAILED_ENERGY_FRACTION`]): at `x = (lam -
+//! lam_0) / l` of about 4.6 to 6.6 (depending on `K_B lam_0^2 / 2 G_c`),
+//! where the traction has fallen below 1 % of `tau_0`. Dissipated energy of a monotone path to damage `d`:
 //! `lam(d)` solves `ln(lam_0 / lam) - (lam - lam_0) / l = ln(1 - d)` (a
 //! decreasing convex function of `lam`: Newton from `lam_0` converges
 //! monotonically), and
@@ -28,6 +33,10 @@ use junta_core::registry::LawEntry;
 use junta_core::{CoreError, Dual3};
 use std::sync::Arc;
 
+/// Fraction of `G_c` an exponential point has dissipated when it counts
+/// as failed (see the module doc).
+pub const FAILED_ENERGY_FRACTION: f64 = 0.99;
+
 /// Exponential softening.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ExponentialSoftening;
@@ -41,6 +50,10 @@ impl Softening for ExponentialSoftening {
         let tau0 = k_b * lam0;
         let l = (g_c - k_b * lam0 * lam0 * 0.5) / tau0;
         (1.0 - lam0 / lam * (-(lam - lam0) / l).exp()).max(Dual3::cst(0.0))
+    }
+
+    fn failed_energy_fraction(&self) -> f64 {
+        FAILED_ENERGY_FRACTION
     }
 
     fn dissipated(&self, d: f64, lam0: f64, g_c: f64, k_b: f64) -> f64 {

@@ -380,6 +380,25 @@ pub(crate) fn energy_damage_at(base: &CohesiveLaw, d: f64, b: f64) -> f64 {
     d * lam0 / (lam_f * (1.0 - d) + d * lam0)
 }
 
+/// Energy damage `D` from which a fatigue point counts as failed: the
+/// fraction of its toughness left is below 1e-9.
+pub const FAILED_ENERGY_DAMAGE: f64 = 1.0 - 1e-9;
+
+/// The [`junta_core::PointStage`] of a fatigue point built on `base` (its
+/// state starts with `base`'s slots): failed once its energy damage `D`
+/// reaches [`FAILED_ENERGY_DAMAGE`], process zone while `0 < d` short of it.
+pub(crate) fn fatigue_stage(base: &CohesiveLaw, state: &[f64]) -> junta_core::PointStage {
+    let d = state.get(slot::DAMAGE).copied().unwrap_or(0.0);
+    let b = state.get(slot::MODE_RATIO).copied().unwrap_or(0.0);
+    if d <= 0.0 {
+        junta_core::PointStage::Intact
+    } else if energy_damage_at(base, d, b) >= FAILED_ENERGY_DAMAGE {
+        junta_core::PointStage::Failed
+    } else {
+        junta_core::PointStage::ProcessZone
+    }
+}
+
 /// The stiffness damage of the energy damage `big_d` ([`energy_of_stiffness`] inverted).
 pub(crate) fn stiffness_of_energy(big_d: Dual3, lam0: Dual3, lam_f: Dual3) -> Dual3 {
     lam_f * big_d / (lam0 + big_d * (lam_f - lam0))
@@ -730,9 +749,11 @@ macro_rules! fatigue_law_common {
             junta_core::PenaltyRole::Cohesive
         }
 
-        fn is_failed(&self, state: &[f64]) -> bool {
-            state.get($slot::DAMAGE).copied().unwrap_or(0.0)
-                >= junta_core::law::output::DAMAGED_THRESHOLD
+        /// Failed once the energy damage `D` (the fraction of `G_c(B)`
+        /// dissipated) reaches 1 (to within `FAILED_ENERGY_DAMAGE`);
+        /// process zone while `0 < d` short of that.
+        fn stage(&self, state: &[f64]) -> junta_core::PointStage {
+            $crate::law::fatigue_paris::fatigue_stage(&self.base, state)
         }
 
         fn failure_index(&self, state: &[f64]) -> Option<f64> {

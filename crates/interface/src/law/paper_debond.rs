@@ -417,8 +417,15 @@ impl InterfaceLaw for PaperDebond {
         state_committed.get(slot::STATUS) == Some(&RELEASING)
     }
 
-    fn is_failed(&self, state: &[f64]) -> bool {
-        debond_status(state).phase != DebondPhase::Intact
+    /// Intact while bonded, process zone while its traction is being
+    /// released, failed once released completely (contact only: it
+    /// carries no traction in tension).
+    fn stage(&self, state: &[f64]) -> junta_core::PointStage {
+        match debond_status(state).phase {
+            DebondPhase::Intact => junta_core::PointStage::Intact,
+            DebondPhase::Releasing => junta_core::PointStage::ProcessZone,
+            DebondPhase::Failed => junta_core::PointStage::Failed,
+        }
     }
 
     fn failure_index(&self, state: &[f64]) -> Option<f64> {

@@ -21,9 +21,11 @@
 //! outputs as `law<i>.<name>` (`law1.damage`, `law2.dissipated_energy`,
 //! ...), and the shared names summed over the laws that report them
 //! (`dissipated_energy`, `viscous_energy`, `frictional_dissipation`); the
-//! point's `damage` is the first law's, so that the crack front (damage
-//! >= 0.99) is the initiation law's failure, with the bridging zone behind
-//! it. A point has failed when every law has. The tangent kind is the
+//! point's `damage` is the first law's. A point has failed
+//! ([`junta_core::PointStage::Failed`]) when every law has, having
+//! dissipated the sum of the toughnesses: the crack front is where the
+//! bridging law is exhausted too, and the process zone spans the
+//! initiation law's softening and the bridging zone. The tangent kind is the
 //! widest of the laws'; the fracture properties (for the mesh advice) are
 //! those of the sum: strengths, toughnesses and penalties added.
 //!
@@ -226,8 +228,24 @@ impl InterfaceLaw for Superposed {
         (0..self.laws.len()).any(|i| self.laws[i].wants_small_increments(self.state_of(i, state)))
     }
 
-    fn is_failed(&self, state: &[f64]) -> bool {
-        (0..self.laws.len()).all(|i| self.laws[i].is_failed(self.state_of(i, state)))
+    /// Failed when every law has failed (the point has dissipated the
+    /// sum of the toughnesses); process zone when any law has left
+    /// `Intact` short of that.
+    fn stage(&self, state: &[f64]) -> junta_core::PointStage {
+        use junta_core::PointStage;
+        let stages = (0..self.laws.len()).map(|i| self.laws[i].stage(self.state_of(i, state)));
+        let (mut all_failed, mut any_started) = (true, false);
+        for s in stages {
+            all_failed &= s == PointStage::Failed;
+            any_started |= s != PointStage::Intact;
+        }
+        if all_failed {
+            PointStage::Failed
+        } else if any_started {
+            PointStage::ProcessZone
+        } else {
+            PointStage::Intact
+        }
     }
 
     fn failure_index(&self, state: &[f64]) -> Option<f64> {

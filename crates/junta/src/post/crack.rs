@@ -7,15 +7,17 @@
 //! Along the unit direction `d` of `[output] crack` (default: the global
 //! axis along which the measured interfaces' nodes spread the most) every
 //! integration point has the coordinate `s = (x - origin) . d` of its
-//! reference position `x`. Then, with `DAMAGED_THRESHOLD` = 0.99
-//! ([`junta_core::law::output::DAMAGED_THRESHOLD`]):
+//! reference position `x`. Then, with each point's stage
+//! ([`junta_core::PointStage`], the law's one definition: failed once it
+//! has dissipated its fracture energy for its mode mix or carries no
+//! traction; process zone from damage onset until then):
 //!
-//! - crack length `a = A_d / w`: the damaged area `A_d` (points with
-//!   damage >= 0.99, integrated over their reference area) over the width
+//! - crack length `a = A_d / w`: the damaged area `A_d` (the failed points,
+//!   integrated over their reference area) over the width
 //!   `w` (`width`, default the interface's area over its extent along `d`);
-//! - crack front: the largest `s` of a damaged point (none before the
-//!   first point is damaged);
-//! - process zone: the points with 0 < damage < 0.99 and `s` larger than
+//! - crack front: the largest `s` of a failed point (none before the
+//!   first point fails);
+//! - process zone: the process-zone points with `s` larger than
 //!   the front (all of them before there is a front); its length is the
 //!   largest `s` among them less the front (less their smallest `s`
 //!   before there is a front), and its point count the number of distinct
@@ -24,9 +26,10 @@
 
 use crate::error::{bail, Result};
 use crate::input::scene::CrackFrontSpec;
-use crate::post::fields::InterfaceResults;
+use crate::post::fields::{point_stage, InterfaceResults};
 use junta_core::law::output;
 use junta_core::Model;
+use junta_core::PointStage;
 
 /// Fewer process-zone points along the direction than this in most of the
 /// increments in which the crack grows draws a warning: the cohesive zone
@@ -149,16 +152,18 @@ impl CrackProbe {
                     .or_else(|| p.get("area"))
                     .map_or(0.0, |a| a[0]);
                 total_area += area;
-                let Some(d) = p.get(output::DAMAGE) else {
+                if p.get(output::DAMAGE).is_none() {
                     continue;
-                };
+                }
                 has_damage = true;
                 let s = dot(p.position, self.direction) - s0;
-                if d[0] >= output::DAMAGED_THRESHOLD {
-                    damaged_area += area;
-                    front = Some(front.map_or(s, |f| f.max(s)));
-                } else if d[0] > 0.0 {
-                    zone.push(s);
+                match point_stage(p) {
+                    PointStage::Failed => {
+                        damaged_area += area;
+                        front = Some(front.map_or(s, |f| f.max(s)));
+                    }
+                    PointStage::ProcessZone => zone.push(s),
+                    PointStage::Intact => {}
                 }
             }
         }
@@ -360,8 +365,7 @@ pub(crate) fn process_zone_warning(rows: &[crate::post::curve::CurveRow]) -> Opt
         return None;
     }
     Some(format!(
-        "the process zone (0 < damage < {}) spans fewer than {MIN_PROCESS_ZONE_POINTS} integration points along the crack direction in {under} of the {growing} increments in which the crack grew (fewest: {n} at increment {inc}, process zone {len:.4e} long): the cohesive zone is not resolved, so the load and the crack growth depend on the mesh; refine the interface along the crack direction (summary.json `mesh_advice` gives the cohesive-zone length), see docs/outputs.md",
-        output::DAMAGED_THRESHOLD
+        "the process zone (damage started, point not failed) spans fewer than {MIN_PROCESS_ZONE_POINTS} integration points along the crack direction in {under} of the {growing} increments in which the crack grew (fewest: {n} at increment {inc}, process zone {len:.4e} long): the cohesive zone is not resolved, so the load and the crack growth depend on the mesh; refine the interface along the crack direction (summary.json `mesh_advice` gives the cohesive-zone length), see docs/outputs.md"
     ))
 }
 
@@ -423,17 +427,24 @@ mod tests {
         );
     }
 
+    /// A point whose law's stage follows its damage (failed at 1, as
+    /// the bilinear law's).
     fn point(x: f64, damage: f64) -> PointOutput {
         PointOutput {
             position: [x, 0.5, 0.0],
-            values: vec![("area", vec![0.5]), (output::DAMAGE, vec![damage])],
+            values: vec![
+                ("area", vec![0.5]),
+                (output::DAMAGE, vec![damage]),
+                ("stage", vec![PointStage::of_damage(damage).code()]),
+            ],
         }
     }
 
     #[test]
     fn front_length_and_process_zone_of_a_row_of_points() {
         // a row of points 0.5 apart, each of area 0.5: the bond 4.5 long, 1
-        // wide; damaged up to x = 1.25, softening up to x = 3.25
+        // wide; failed (damage 1, traction-free) up to x = 0.75, softening
+        // up to x = 3.25 (damage 0.995 still carries traction: process zone)
         let damages = [1.0, 1.0, 0.995, 0.5, 0.3, 0.1, 0.01, 0.0, 0.0];
         let points: Vec<PointOutput> = damages
             .iter()
@@ -454,9 +465,9 @@ mod tests {
         };
         let c = probe.measure(&ifs).unwrap();
         assert!((c.width - 1.0).abs() < 1e-12);
-        assert!((c.length - 1.5).abs() < 1e-12);
-        assert_eq!(c.front, Some(1.25));
-        assert_eq!(c.process_zone_points, 4);
-        assert!((c.process_zone_length - (3.25 - 1.25)).abs() < 1e-12);
+        assert!((c.length - 1.0).abs() < 1e-12);
+        assert_eq!(c.front, Some(0.75));
+        assert_eq!(c.process_zone_points, 5);
+        assert!((c.process_zone_length - (3.25 - 0.75)).abs() < 1e-12);
     }
 }

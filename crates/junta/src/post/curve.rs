@@ -41,7 +41,8 @@ pub struct CurveRow {
     pub small: bool,
     /// Fracture energy dissipated in all interfaces so far.
     pub dissipated: f64,
-    /// Damaged area (damage >= 0.99) of all interfaces.
+    /// Damaged area (the failed points, [`junta_core::PointStage::Failed`])
+    /// of all interfaces.
     pub damaged_area: f64,
     /// Negative pivots of the last factorised tangent (inertia), when the
     /// back end knows it.

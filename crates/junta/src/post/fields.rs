@@ -8,6 +8,7 @@ use crate::error::{Context, Result};
 use junta_core::element::{ElementContext, StepInfo};
 use junta_core::state::StateStore;
 use junta_core::Model;
+use junta_core::PointStage;
 
 /// Cell-averaged output of every solid element, in block order, and the
 /// range of each stress component over the integration points per block.
@@ -203,6 +204,7 @@ pub const FIXED_POINT_VALUES: &[&str] = &[
     "area",
     "state",
     "failed",
+    "stage",
     "failure_index",
 ];
 
@@ -224,7 +226,8 @@ pub fn law_output_names(res: &[InterfaceResults]) -> Vec<&'static str> {
 
 /// Energies and areas of one interface block, from its law outputs:
 /// fracture and viscous energy (integrals of the per-area densities),
-/// damaged area (damage >= 0.99) and process-zone area (0 < damage < 0.99).
+/// damaged area (the failed points, [`junta_core::PointStage::Failed`]) and
+/// process-zone area (damage started, not failed).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct InterfaceEnergy {
     /// Fracture energy dissipated in the block (integral of the points'
@@ -233,9 +236,9 @@ pub struct InterfaceEnergy {
     /// Energy dissipated by viscous regularisation (same integral of
     /// `viscous_energy`).
     pub viscous_energy: f64,
-    /// Area of the points with damage >= 0.99.
+    /// Area of the failed points ([`junta_core::PointStage::Failed`]).
     pub damaged_area: f64,
-    /// Area of the points with 0 < damage < 0.99 (the process zone).
+    /// Area of the process-zone points (damage started, not failed).
     pub process_zone_area: f64,
     /// Whether the law reports damage (else the numbers are zero).
     pub has_damage: bool,
@@ -244,6 +247,14 @@ pub struct InterfaceEnergy {
     pub frictional_dissipation: f64,
     /// Whether a law reports frictional dissipation.
     pub has_friction: bool,
+}
+
+/// The [`PointStage`] of an interface point's results (its `stage`, which
+/// the interface element writes from [`junta_core::InterfaceLaw::stage`];
+/// `Intact` for a point without one).
+pub fn point_stage(p: &junta_core::PointOutput) -> PointStage {
+    p.get("stage")
+        .map_or(PointStage::Intact, |s| PointStage::of_code(s[0]))
 }
 
 /// [`InterfaceEnergy`] of one block's points.
@@ -274,12 +285,12 @@ pub fn interface_energy(r: &InterfaceResults) -> InterfaceEnergy {
             e.has_friction = true;
             e.frictional_dissipation += d[0] * area;
         }
-        if let Some(d) = p.get(output::DAMAGE) {
+        if p.get(output::DAMAGE).is_some() {
             e.has_damage = true;
-            if d[0] >= output::DAMAGED_THRESHOLD {
-                e.damaged_area += area;
-            } else if d[0] > 0.0 {
-                e.process_zone_area += area;
+            match point_stage(p) {
+                PointStage::Failed => e.damaged_area += area,
+                PointStage::ProcessZone => e.process_zone_area += area,
+                PointStage::Intact => {}
             }
         }
     }
