@@ -151,11 +151,17 @@ impl CurveRow {
 /// drop of the load, e.g. an element separating, that load or displacement
 /// control cannot follow at any increment size), or, under load control,
 /// the curve flattened to a horizontal tangent (a load maximum).
-pub(crate) fn past_peak_hint(rows: &[CurveRow], kind: junta_core::MatrixKind) -> String {
+pub(crate) fn past_peak_hint(
+    rows: &[CurveRow],
+    kind: junta_core::MatrixKind,
+    control: crate::input::scene::Control,
+    nlgeom: bool,
+) -> String {
     if kind == junta_core::MatrixKind::SymmetricPositiveDefinite {
         return String::new();
     }
-    const REMEDY: &str = "leave `control` out (the default `auto` switches to path following at a limit point and back; for a deck, drop `--solver control=load`), or use path following throughout (`[analysis] control = \"arc_length\"`, which follows snap-backs through the dissipated energy), or add a small `viscosity` to the softening law (its energy is reported apart)";
+    let remedy = remedy_past_peak(control, nlgeom);
+    let remedy = remedy.as_str();
     let unstable = rows
         .iter()
         .filter(|r| r.negative_pivots.unwrap_or(0) > 0)
@@ -170,7 +176,7 @@ pub(crate) fn past_peak_hint(rows: &[CurveRow], kind: junta_core::MatrixKind) ->
     let last = rows.last().and_then(|r| r.reaction).map_or(peak, f64::abs);
     if last < peak * (1.0 - 1e-4) {
         return format!(
-            ". Limit point: the reaction peaked at {peak:.6e} (increment {}, load factor {:.6e}) and the run stopped after that maximum, at {:.6e} ({} increments with a negative pivot so far): most likely a snap-back. To trace it, {REMEDY}",
+            ". Limit point: the reaction peaked at {peak:.6e} (increment {}, load factor {:.6e}) and the run stopped after that maximum, at {:.6e} ({} increments with a negative pivot so far): most likely a snap-back. To trace it, {remedy}",
             peak_row.increment, peak_row.lambda, last, unstable
         );
     }
@@ -180,7 +186,7 @@ pub(crate) fn past_peak_hint(rows: &[CurveRow], kind: junta_core::MatrixKind) ->
     let n = rows.len();
     if n >= 3 && rows[n - 3..].iter().all(|r| r.cutbacks > 0) && last >= peak * (1.0 - 1e-3) {
         return format!(
-            ". Limit point: the increments were cut back in each of the last three while the reaction peaked at {peak:.6e} (increment {}, load factor {:.6e}), its largest value so far: most likely a snap-back starting there (e.g. an element separating). To trace it, {REMEDY}",
+            ". Limit point: the increments were cut back in each of the last three while the reaction peaked at {peak:.6e} (increment {}, load factor {:.6e}), its largest value so far: most likely a snap-back starting there (e.g. an element separating). To trace it, {remedy}",
             peak_row.increment, peak_row.lambda
         );
     }
@@ -195,7 +201,7 @@ pub(crate) fn past_peak_hint(rows: &[CurveRow], kind: junta_core::MatrixKind) ->
         {
             if k0 != 0.0 && (k1 / k0) < 0.05 {
                 return format!(
-                    ". Limit point: the load-displacement slope fell to {:.2} % of its initial value at reaction {last:.6e} (load factor {:.6e}): a load maximum, past which load control has no solution. To go past it, {REMEDY}",
+                    ". Limit point: the load-displacement slope fell to {:.2} % of its initial value at reaction {last:.6e} (load factor {:.6e}): a load maximum, past which load control has no solution. To go past it, {remedy}",
                     100.0 * k1 / k0,
                     rows[n - 1].lambda
                 );
@@ -204,11 +210,45 @@ pub(crate) fn past_peak_hint(rows: &[CurveRow], kind: junta_core::MatrixKind) ->
     }
     if rows.last().and_then(|r| r.negative_pivots).unwrap_or(0) > 0 {
         return format!(
-            ". The tangent of the last converged increment is indefinite ({} negative pivots): the structure is past a limit point or a bifurcation. {REMEDY}",
+            ". The tangent of the last converged increment is indefinite ({} negative pivots): the structure is past a limit point or a bifurcation. To go past it, {remedy}",
             rows.last().and_then(|r| r.negative_pivots).unwrap_or(0)
         );
     }
     String::new()
+}
+
+/// What to change to trace a limit point, never what was already in force:
+/// under load control, the default `auto` or path following throughout;
+/// under `auto`, path following throughout; under path following, a
+/// shorter arc. Under `nlgeom` path following has only the cylindrical arc
+/// length (the dissipation constraint's energy balance assumes linear
+/// solids), which a sharp snap-back can defeat. A small `viscosity` always
+/// helps.
+fn remedy_past_peak(control: crate::input::scene::Control, nlgeom: bool) -> String {
+    use crate::input::scene::Control;
+    const VISCOSITY: &str =
+        "add a small `viscosity` to the softening law (its energy is reported apart)";
+    let arc = if nlgeom {
+        "path following throughout (`[analysis] control = \"arc_length\"`; under `nlgeom` it has the cylindrical arc length only)"
+    } else {
+        "path following throughout (`[analysis] control = \"arc_length\"`, which follows snap-backs through the dissipated energy)"
+    };
+    match control {
+        Control::Load => format!(
+            "leave `control` out (the default `auto` switches to path following at a limit point and back; for a deck, drop `--solver control=load`), or use {arc}, or {VISCOSITY}"
+        ),
+        Control::Auto => format!(
+            "use {arc} (`auto`, in force here, switched to it at the limit point and could not follow it), or {VISCOSITY}"
+        ),
+        Control::ArcLength => format!(
+            "shorten the arc (`[analysis.arc_length] max_arc`, or a smaller first increment `[analysis.newton] initial_increment`; path following was in force here{}), or {VISCOSITY}",
+            if nlgeom {
+                ", with the cylindrical arc length only under `nlgeom`"
+            } else {
+                ""
+            }
+        ),
+    }
 }
 
 /// Limit points and changes of stability along the converged increments:
@@ -350,6 +390,29 @@ impl Curve {
 mod tests {
     use super::*;
     use crate::post::curve_columns::curve_header;
+
+    /// The stop's remedy never recommends the control that was in force
+    /// (issue 37: a DCB under nlgeom without `control` stopped at its
+    /// peak and was told to leave `control` out).
+    #[test]
+    fn the_remedy_never_names_what_was_in_force() {
+        use crate::input::scene::Control;
+        for nlgeom in [false, true] {
+            let load = remedy_past_peak(Control::Load, nlgeom);
+            assert!(load.contains("leave `control` out"), "{load}");
+            let auto = remedy_past_peak(Control::Auto, nlgeom);
+            assert!(!auto.contains("leave `control` out"), "{auto}");
+            assert!(auto.contains("control = \"arc_length\""), "{auto}");
+            let arc = remedy_past_peak(Control::ArcLength, nlgeom);
+            assert!(!arc.contains("leave `control` out"), "{arc}");
+            assert!(!arc.contains("control = \"arc_length\""), "{arc}");
+            assert!(arc.contains("max_arc"), "{arc}");
+            for r in [&load, &auto, &arc] {
+                assert!(r.contains("viscosity"), "{r}");
+                assert_eq!(r.contains("nlgeom"), nlgeom, "{r}");
+            }
+        }
+    }
 
     #[test]
     fn columns_follow_the_csv_header_and_read_back_the_rows() {

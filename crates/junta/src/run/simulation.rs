@@ -359,7 +359,12 @@ fn failure_of(
             "{}: the run stopped; the {} converged increments are in {where_} (restart with `junta run --restart {where_}` after changing [analysis.newton]){}",
             input.display(),
             log.last_increment,
-            past_peak_hint(&log.rows, p.model.matrix_kind())
+            past_peak_hint(
+                &log.rows,
+                p.model.matrix_kind(),
+                p.analysis.control,
+                p.analysis.nlgeom
+            )
         )));
     }
     interrupted.then(|| err!("interrupted; the converged increments are in {where_}"))
