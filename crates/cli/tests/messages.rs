@@ -128,3 +128,33 @@ fn an_incremental_run_refuses_fractions() {
         "{err}"
     );
 }
+
+/// `[output] vtu = false` writes no VTU file in an incremental run either
+/// (it wrote every frame before), and the curve and the summary are the
+/// same as with frames.
+#[test]
+fn vtu_false_writes_no_frame_in_an_incremental_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = std::fs::read_to_string(repo().join("examples/cantilever.toml")).unwrap();
+    let with = write(
+        dir.path(),
+        "with.toml",
+        &format!("{}\n\n[analysis]\nnlgeom = true\n", base.trim_end()),
+    );
+    let without = write(
+        dir.path(),
+        "without.toml",
+        &format!(
+            "{}\nvtu = false\n\n[analysis]\nnlgeom = true\n",
+            base.trim_end()
+        ),
+    );
+    let (a, b) = (dir.path().join("with"), dir.path().join("without"));
+    let s_with = run_ok(&with, &a);
+    let s_without = run_ok(&without, &b);
+    assert!(a.join("results.pvd").exists() && a.join("frames").exists());
+    assert!(!b.join("results.pvd").exists(), "a pvd without frames");
+    assert!(!b.join("frames").exists(), "a frames folder");
+    assert_eq!(curve_without_seconds(&a), curve_without_seconds(&b));
+    assert_eq!(s_with["displacement_max"], s_without["displacement_max"]);
+}

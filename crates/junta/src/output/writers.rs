@@ -83,10 +83,11 @@ fn frame_name(increment: usize) -> String {
     format!("frames/results_{increment:04}.vtu")
 }
 
-/// The VTU frames and `results.pvd`.
+/// The VTU frames and `results.pvd` (none with `[output] vtu = false`).
 pub struct VtuFrames {
     dir: PathBuf,
     every: usize,
+    enabled: bool,
 }
 
 impl VtuFrames {
@@ -95,6 +96,15 @@ impl VtuFrames {
         VtuFrames {
             dir: dir.to_path_buf(),
             every: every.max(1),
+            enabled: true,
+        }
+    }
+
+    /// No frame at all (`[output] vtu = false`).
+    pub fn disabled(dir: &Path) -> Self {
+        VtuFrames {
+            enabled: false,
+            ..Self::new(dir, 1)
         }
     }
 
@@ -127,11 +137,17 @@ impl VtuFrames {
 
 impl Observer for VtuFrames {
     fn on_start(&mut self, _run: &RunInfo<'_>, _log: &RunLog) -> Result<()> {
+        if !self.enabled {
+            return Ok(());
+        }
         let frames_dir = self.dir.join("frames");
         std::fs::create_dir_all(&frames_dir)
             .with_context(|| format!("cannot create {}", frames_dir.display()))
     }
     fn on_increment(&mut self, inc: &Increment<'_>, log: &mut RunLog) -> Result<Flow> {
+        if !self.enabled {
+            return Ok(Flow::Continue);
+        }
         if inc.step.increment.is_multiple_of(self.every) || log.separated {
             self.write(
                 inc.model,
@@ -149,6 +165,9 @@ impl Observer for VtuFrames {
     /// min_increment), so that nothing computed is lost.
     fn on_end(&mut self, end: &RunEnd<'_>, log: &mut RunLog) -> Result<()> {
         let last = end.step.increment;
+        if !self.enabled {
+            return Ok(());
+        }
         let (Some(u), Some(state)) = (end.u, end.state) else {
             return Ok(());
         };
@@ -508,7 +527,11 @@ pub fn standard(
     Standard {
         curve: CurveCsv::new(dir),
         prints: PrintTables::new(dir, p, checkpoint),
-        frames: VtuFrames::new(dir, p.every),
+        frames: if p.vtu {
+            VtuFrames::new(dir, p.every)
+        } else {
+            VtuFrames::disabled(dir)
+        },
         checkpoints: Checkpoints::new(dir, input, &p.solver_overrides),
         summary: SummaryJson::new(dir, input, p),
     }
