@@ -62,28 +62,15 @@
 //! holds the path state, so a restart continues under it; one taken under
 //! load control restarts under load control.
 
-use crate::arc_length::{run_path, ArcLengthSettings, LoadReturn, PathEnd, PathMode, PathState};
-use crate::newton::{
-    run_load, Checkpoint, Control, IncrementView, LoadOptions, LoadOutcome, NewtonSettings,
-    NonlinearError, NonlinearRun, NonlinearSummary,
-};
-use junta_core::{LinearSolver, Model};
-use serde::{Deserialize, Serialize};
+pub use super::vocabulary::{LoadTrack, PathSwitch};
 
-/// A change of control at a limit point, or back.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct PathSwitch {
-    /// The last converged increment before the switch.
-    pub increment: usize,
-    /// Step (0-based) of the program.
-    pub step: usize,
-    /// Load factor there.
-    pub lambda: f64,
-    /// The control after the switch: `arc_length` or `load`.
-    pub to: String,
-    /// Why.
-    pub reason: String,
-}
+use super::vocabulary::{
+    energy_balance_holds, moves_away_from_zero, Checkpoint, Control, IncrementView, LoadReturn,
+    NewtonSettings, NonlinearError, NonlinearRun, NonlinearSummary, PathMode, PathState,
+};
+use crate::arc_length::{run_path, ArcLengthSettings, PathEnd};
+use crate::newton::{run_load, LoadOptions, LoadOutcome};
+use junta_core::{LinearSolver, Model};
 
 /// Run the load program with the Newton driver, switching to path
 /// following at limit points and back (module documentation). Returns the
@@ -264,40 +251,6 @@ where
     })
 }
 
-/// Whether step `step` of `program` loads away from zero (path following
-/// runs to its end load factor from any point of it).
-pub(crate) fn moves_away_from_zero(program: &[f64], step: usize) -> bool {
-    let Some(&end) = program.get(step) else {
-        return false;
-    };
-    let start = if step == 0 { 0.0 } else { program[step - 1] };
-    end != 0.0 && (start == 0.0 || (start * end > 0.0 && end.abs() > start.abs()))
-}
-
-/// The last two converged increments of a load-controlled phase: what
-/// path following needs to start from the last one. Part of a
-/// load-controlled checkpoint of a `control = "auto"` run, so that a
-/// restarted run switches where an uninterrupted one does.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-pub struct LoadTrack {
-    /// The last increment's displacement (the checkpoint's own `u`).
-    #[serde(skip)]
-    u_last: Vec<f64>,
-    u_before: Vec<f64>,
-    lambda_last: f64,
-    lambda_before: f64,
-    lambda_max: f64,
-    pivots_last: Option<usize>,
-    /// Largest arc length of an increment so far.
-    arc_max: f64,
-    /// Energy the laws report dissipated at the last increment.
-    dissipated: f64,
-    /// The last increment dissipated (the laws' energy grew).
-    dissipating: bool,
-    /// Largest energy the laws dissipated in one increment.
-    tau_max: f64,
-}
-
 impl LoadTrack {
     fn record(&mut self, v: &IncrementView<'_>, program: &[f64], model: &Model) {
         std::mem::swap(&mut self.u_last, &mut self.u_before);
@@ -351,15 +304,13 @@ impl LoadTrack {
         // degrees); its size a quarter of the largest increment's
         // dissipation, the driver adapts it (not under large deformation,
         // where its energy balance does not hold: `energy_balance_holds`)
-        let (mode, size, tau0) = if self.dissipating
-            && self.tau_max > 0.0
-            && crate::arc_length::energy_balance_holds(model)
-        {
-            let tau = FIRST_ARC_OF_LARGEST * self.tau_max;
-            (PathMode::Dissipation, tau, tau)
-        } else {
-            (PathMode::Arc, arc, 0.0)
-        };
+        let (mode, size, tau0) =
+            if self.dissipating && self.tau_max > 0.0 && energy_balance_holds(model) {
+                let tau = FIRST_ARC_OF_LARGEST * self.tau_max;
+                (PathMode::Dissipation, tau, tau)
+            } else {
+                (PathMode::Arc, arc, 0.0)
+            };
         c.path = Some(PathState {
             mode,
             size,
