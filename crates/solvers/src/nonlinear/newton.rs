@@ -571,32 +571,8 @@ impl LoadRun<'_> {
                     );
                     let pivots = solver.report().negative_pivots;
                     self.cur.cutbacks_in_a_row += 1;
-                    // the early signs of a limit point, where path
-                    // following can take over (a step loading away from 0)
-                    let early = self.stop_at_limit && moves_away_from_zero(self.program, cur.step);
                     let below_min = next < self.settings.min_increment || span == 0.0;
-                    let why = if below_min {
-                        Some(format!(
-                            "the increment was cut back below min_increment = {:e} of the step \
-                             ({reason})",
-                            self.settings.min_increment
-                        ))
-                    } else {
-                        match (early, cur.pivots, pivots) {
-                            (true, Some(before), Some(now)) if now > before => Some(format!(
-                                "the tangent's inertia changed: {now} negative pivots in a \
-                                 failed attempt against {before} at the last converged increment"
-                            )),
-                            _ if early && self.cur.cutbacks_in_a_row >= LIMIT_CUTBACKS => {
-                                Some(format!(
-                                    "{} cut-backs in a row without an increment converging at its \
-                                 full size ({reason})",
-                                    self.cur.cutbacks_in_a_row
-                                ))
-                            }
-                            _ => None,
-                        }
-                    };
+                    let why = self.limit_reason(below_min, pivots, &reason);
                     if let Some(why) = why {
                         let error = NonlinearError::IncrementTooSmall {
                             step: cur.step,
@@ -615,6 +591,44 @@ impl LoadRun<'_> {
                     size = next;
                 }
             }
+        }
+    }
+
+    /// Why a failed attempt (its tangent's negative `pivots`, when
+    /// reported; `below_min`: the next size would fall below
+    /// `min_increment`) is taken for a limit point ([`LimitSign`]), or
+    /// `None` to cut back and go on. Besides `below_min`, the early signs
+    /// (with `stop_at_limit`, in a step loading away from zero, where path
+    /// following can take over): the tangent has more negative pivots than
+    /// the last converged one's, or [`LIMIT_CUTBACKS`] cut-backs in a row.
+    fn limit_reason(
+        &self,
+        below_min: bool,
+        pivots: Option<usize>,
+        reason: &IncrementFailure,
+    ) -> Option<String> {
+        let cur = &self.cur;
+        // the early signs of a limit point, where path
+        // following can take over (a step loading away from 0)
+        let early = self.stop_at_limit && moves_away_from_zero(self.program, cur.step);
+        if below_min {
+            return Some(format!(
+                "the increment was cut back below min_increment = {:e} of the step \
+                 ({reason})",
+                self.settings.min_increment
+            ));
+        }
+        match (early, cur.pivots, pivots) {
+            (true, Some(before), Some(now)) if now > before => Some(format!(
+                "the tangent's inertia changed: {now} negative pivots in a \
+                 failed attempt against {before} at the last converged increment"
+            )),
+            _ if early && cur.cutbacks_in_a_row >= LIMIT_CUTBACKS => Some(format!(
+                "{} cut-backs in a row without an increment converging at its \
+                 full size ({reason})",
+                cur.cutbacks_in_a_row
+            )),
+            _ => None,
         }
     }
 

@@ -90,146 +90,225 @@ where
     F: FnMut(&IncrementView<'_>) -> Control,
 {
     arc.validate()?;
-    let mut from = restart.cloned();
-    let mut totals = NonlinearSummary::default();
-    let mut analyzed = false;
-    let mut pending: Option<PathSwitch> = None;
-    // the load-controlled state of a switch taken on an early sign, and
-    // whether the load phase now goes on without the early signs
-    let mut fallback: Option<Checkpoint> = None;
-    let mut early_signs = true;
+    let mut run = SwitchRun {
+        model,
+        program,
+        settings,
+        arc,
+        from: restart.cloned(),
+        totals: NonlinearSummary::default(),
+        analyzed: false,
+        pending: None,
+        fallback: None,
+        early_signs: true,
+    };
     loop {
-        let path_phase = from.as_ref().is_some_and(|c| c.path.is_some());
-        if !path_phase {
-            let mut track = match &from {
-                Some(c) => c
-                    .load_track
-                    .clone()
-                    .map_or_else(LoadTrack::default, |mut t| {
-                        t.u_last = c.u.clone();
-                        t
-                    }),
-                None => LoadTrack::default(),
-            };
-            let outcome = {
-                let mut obs = |v: &IncrementView<'_>| {
-                    track.record(v, program, model);
-                    let view = IncrementView {
-                        track: Some(&track),
-                        ..*v
-                    };
-                    forward(&mut observer, &view, &mut pending)
-                };
-                let options = LoadOptions {
-                    analyzed,
-                    stop_at_limit: early_signs,
-                };
-                run_load(
-                    model,
-                    solver,
-                    program,
-                    settings,
-                    from.as_ref(),
-                    &mut obs,
-                    options,
-                )?
-            };
-            analyzed |= match &outcome {
-                LoadOutcome::Finished(run) | LoadOutcome::Limit { run, .. } => {
-                    run.summary.analyze_count > 0
-                }
-            };
-            match outcome {
-                LoadOutcome::Finished(run) => return Ok((add_totals(&mut totals, run), None)),
-                LoadOutcome::Limit {
-                    run,
-                    error,
-                    reason,
-                    early,
-                } => {
-                    let c = run.checkpoint();
-                    if !moves_away_from_zero(program, c.step) {
-                        return Err(error);
-                    }
-                    early_signs = true;
-                    fallback = early.then(|| Checkpoint {
-                        load_track: Some(track.clone()),
-                        ..c.clone()
-                    });
-                    add_totals(&mut totals, run);
-                    let switch = PathSwitch {
-                        increment: c.increment_index,
-                        step: c.step,
-                        lambda: c.lambda,
-                        to: "arc_length".into(),
-                        reason,
-                    };
-                    tracing::warn!(
-                        lambda = switch.lambda,
-                        increment = switch.increment,
-                        "limit point ({}): path following takes over",
-                        switch.reason
-                    );
-                    from = Some(track.path_checkpoint(c, model, settings));
-                    pending = Some(switch);
-                }
-            }
+        let path_phase = run.from.as_ref().is_some_and(|c| c.path.is_some());
+        let end = if path_phase {
+            run.path_phase(solver, &mut observer)?
         } else {
-            let c = from.take().expect("a path phase starts from a checkpoint");
-            let end = program[c.step.min(program.len() - 1)];
-            let result = {
-                let obs = |v: &IncrementView<'_>| forward(&mut observer, v, &mut pending);
-                run_path(model, solver, end, settings, arc, Some(&c), obs, analyzed)
+            run.load_phase(solver, &mut observer)?
+        };
+        if let Some(end) = end {
+            return Ok(end);
+        }
+    }
+}
+
+/// A run of [`solve_with_path_switch`] between its phases: the problem,
+/// where the next phase starts and what the phases so far left for it.
+struct SwitchRun<'a> {
+    model: &'a Model,
+    program: &'a [f64],
+    settings: &'a NewtonSettings,
+    arc: &'a ArcLengthSettings,
+    /// Start of the next phase (a path state in it: path following).
+    from: Option<Checkpoint>,
+    /// Counts and timings of the phases so far.
+    totals: NonlinearSummary,
+    /// The solver holds the symbolic analysis of the model's pattern.
+    analyzed: bool,
+    /// The switch record for the next increment's report.
+    pending: Option<PathSwitch>,
+    /// The load-controlled state of a switch taken on an early sign.
+    fallback: Option<Checkpoint>,
+    /// The load phase stops at the early signs of a limit point (false
+    /// after path following could not start from one).
+    early_signs: bool,
+}
+
+/// How a run of [`solve_with_path_switch`] ended, when it did.
+type SwitchEnd = Option<(NonlinearRun, Option<PathEnd>)>;
+
+impl SwitchRun<'_> {
+    /// A load-controlled phase from `from` to the end of the program or to
+    /// a limit point, where the next phase (path following) is set up.
+    fn load_phase<F>(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+        observer: &mut F,
+    ) -> Result<SwitchEnd, NonlinearError>
+    where
+        F: FnMut(&IncrementView<'_>) -> Control,
+    {
+        let (model, program, settings) = (self.model, self.program, self.settings);
+        let mut track = match &self.from {
+            Some(c) => c
+                .load_track
+                .clone()
+                .map_or_else(LoadTrack::default, |mut t| {
+                    t.u_last = c.u.clone();
+                    t
+                }),
+            None => LoadTrack::default(),
+        };
+        let outcome = {
+            let pending = &mut self.pending;
+            let mut obs = |v: &IncrementView<'_>| {
+                track.record(v, program, model);
+                let view = IncrementView {
+                    track: Some(&track),
+                    ..*v
+                };
+                forward(observer, &view, pending)
             };
-            let (run, end_reason) = match result {
-                Ok(r) => r,
-                // path following could not make a single increment from a
-                // switch taken on an early sign: load control goes on
-                // cutting back, as without the switch
-                Err(NonlinearError::IncrementTooSmall { .. })
-                    if pending.is_some() && fallback.is_some() =>
-                {
-                    let back = fallback.take().expect("checked");
-                    tracing::warn!(
-                        lambda = back.lambda,
-                        "path following could not start: load control goes on"
-                    );
-                    pending = None;
-                    early_signs = false;
-                    analyzed = true;
-                    from = Some(back);
-                    continue;
-                }
-                Err(e) => return Err(e),
+            let options = LoadOptions {
+                analyzed: self.analyzed,
+                stop_at_limit: self.early_signs,
             };
-            fallback = None;
-            analyzed |= run.summary.analyze_count > 0;
-            let done = run.cursor.step + 1 >= program.len();
-            match end_reason {
-                PathEnd::ReturnToLoad => {
-                    let back = load_checkpoint(run.checkpoint(), program, settings);
-                    pending = Some(PathSwitch {
-                        increment: back.increment_index,
-                        step: back.step,
-                        lambda: back.lambda,
-                        to: "load".into(),
-                        reason: "past the limit point the path loads again on a stable branch"
-                            .into(),
-                    });
-                    tracing::warn!(
-                        lambda = back.lambda,
-                        "the path is a stable loading branch again: load control takes over"
-                    );
-                    add_totals(&mut totals, run);
-                    from = Some(back);
-                }
-                PathEnd::Completed if !done => {
-                    let back = load_checkpoint(run.checkpoint(), program, settings);
-                    add_totals(&mut totals, run);
-                    from = Some(back);
-                }
-                _ => return Ok((add_totals(&mut totals, run), Some(end_reason))),
+            run_load(
+                model,
+                solver,
+                program,
+                settings,
+                self.from.as_ref(),
+                &mut obs,
+                options,
+            )?
+        };
+        self.analyzed |= match &outcome {
+            LoadOutcome::Finished(run) | LoadOutcome::Limit { run, .. } => {
+                run.summary.analyze_count > 0
             }
+        };
+        match outcome {
+            LoadOutcome::Finished(run) => Ok(Some((add_totals(&mut self.totals, run), None))),
+            LoadOutcome::Limit {
+                run,
+                error,
+                reason,
+                early,
+            } => {
+                let c = run.checkpoint();
+                if !moves_away_from_zero(program, c.step) {
+                    return Err(error);
+                }
+                self.early_signs = true;
+                self.fallback = early.then(|| Checkpoint {
+                    load_track: Some(track.clone()),
+                    ..c.clone()
+                });
+                add_totals(&mut self.totals, run);
+                let switch = PathSwitch {
+                    increment: c.increment_index,
+                    step: c.step,
+                    lambda: c.lambda,
+                    to: "arc_length".into(),
+                    reason,
+                };
+                tracing::warn!(
+                    lambda = switch.lambda,
+                    increment = switch.increment,
+                    "limit point ({}): path following takes over",
+                    switch.reason
+                );
+                self.from = Some(track.path_checkpoint(c, model, settings));
+                self.pending = Some(switch);
+                Ok(None)
+            }
+        }
+    }
+
+    /// A path-following phase from `from` (a checkpoint with a path state)
+    /// to the end of its step, or to where load control takes over again
+    /// (set up as the next phase).
+    fn path_phase<F>(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+        observer: &mut F,
+    ) -> Result<SwitchEnd, NonlinearError>
+    where
+        F: FnMut(&IncrementView<'_>) -> Control,
+    {
+        let (program, settings) = (self.program, self.settings);
+        let c = self
+            .from
+            .take()
+            .expect("a path phase starts from a checkpoint");
+        let end = program[c.step.min(program.len() - 1)];
+        let result = {
+            let pending = &mut self.pending;
+            let obs = |v: &IncrementView<'_>| forward(observer, v, pending);
+            run_path(
+                self.model,
+                solver,
+                end,
+                settings,
+                self.arc,
+                Some(&c),
+                obs,
+                self.analyzed,
+            )
+        };
+        let (run, end_reason) = match result {
+            Ok(r) => r,
+            // path following could not make a single increment from a
+            // switch taken on an early sign: load control goes on
+            // cutting back, as without the switch
+            Err(NonlinearError::IncrementTooSmall { .. })
+                if self.pending.is_some() && self.fallback.is_some() =>
+            {
+                let back = self.fallback.take().expect("checked");
+                tracing::warn!(
+                    lambda = back.lambda,
+                    "path following could not start: load control goes on"
+                );
+                self.pending = None;
+                self.early_signs = false;
+                self.analyzed = true;
+                self.from = Some(back);
+                return Ok(None);
+            }
+            Err(e) => return Err(e),
+        };
+        self.fallback = None;
+        self.analyzed |= run.summary.analyze_count > 0;
+        let done = run.cursor.step + 1 >= program.len();
+        match end_reason {
+            PathEnd::ReturnToLoad => {
+                let back = load_checkpoint(run.checkpoint(), program, settings);
+                self.pending = Some(PathSwitch {
+                    increment: back.increment_index,
+                    step: back.step,
+                    lambda: back.lambda,
+                    to: "load".into(),
+                    reason: "past the limit point the path loads again on a stable branch".into(),
+                });
+                tracing::warn!(
+                    lambda = back.lambda,
+                    "the path is a stable loading branch again: load control takes over"
+                );
+                add_totals(&mut self.totals, run);
+                self.from = Some(back);
+                Ok(None)
+            }
+            PathEnd::Completed if !done => {
+                let back = load_checkpoint(run.checkpoint(), program, settings);
+                add_totals(&mut self.totals, run);
+                self.from = Some(back);
+                Ok(None)
+            }
+            _ => Ok(Some((add_totals(&mut self.totals, run), Some(end_reason)))),
         }
     }
 }
