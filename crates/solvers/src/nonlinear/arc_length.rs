@@ -107,9 +107,11 @@
 //! `|ΔD - tau| <= 1e-6 tau`.
 //!
 //! This driver shares with [`crate::newton`] the assembly and residual
-//! buffers (`Work`), the [`Checkpoint`], the observer and its
-//! [`IncrementView`], and the restart; it has its own increment loop (the
-//! constraint, the size rule, the switching and the end of the run).
+//! buffers (`Work`, in the crate's `nonlinear::engine`), and the
+//! [`Checkpoint`], the observer and its [`IncrementView`] and the restart
+//! ([`crate::nonlinear::vocabulary`]); it imports those two modules, not
+//! the Newton driver, and has its own increment loop (the constraint, the
+//! size rule, the switching and the end of the run).
 //!
 //! # Increments
 //!
