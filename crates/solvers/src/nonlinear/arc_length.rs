@@ -73,7 +73,8 @@
 //! energy ([`junta_core::Model::dissipated_energy`]); a model whose laws
 //! dissipate nothing stays on the cylindrical constraint, and so does a
 //! model under large deformation (any element with
-//! [`Kinematics::Finite`], scene `nlgeom`: see [`energy_balance_holds`]).
+//! [`Kinematics::Finite`](junta_core::element::Kinematics::Finite), scene
+//! `nlgeom`: see `energy_balance_holds` in [`crate::nonlinear::vocabulary`]).
 //! When the
 //! dissipation constraint cannot be met any more (nothing left that can
 //! dissipate, e.g. the crack stopped under a contact zone: the dissipation

@@ -2,7 +2,7 @@
 //! ([`crate::newton`]), path following ([`crate::arc_length`]) and the
 //! switch between them ([`crate::path_switch`]) say to each other and to
 //! their caller. Each driver imports this module and the Newton engine
-//! ([`super::engine`]); no driver imports another, so there is no import
+//! (`super::engine`); no driver imports another, so there is no import
 //! circle (`path_switch` calls both drivers, neither calls it).
 //!
 //! | items | what |
@@ -280,7 +280,7 @@ pub struct IncrementReport {
     pub dissipation: Option<f64>,
     /// On the first increment after the driver changed the control at a
     /// limit point (or back), or switched to the exact tangent: where and
-    /// why ([`crate::path_switch`], [`Work::try_exact_tangent`](crate::nonlinear::engine::Work::try_exact_tangent)).
+    /// why ([`crate::path_switch`], `Work::try_exact_tangent` of the engine).
     pub switched: Vec<PathSwitch>,
 }
 
@@ -294,7 +294,7 @@ pub(crate) struct Cursor {
     pub(crate) size: f64,
     pub(crate) small: bool,
     pub(crate) force_peak: f64,
-    /// The exact tangent is in use ([`Work::try_exact_tangent`](crate::nonlinear::engine::Work::try_exact_tangent)).
+    /// The exact tangent is in use (`Work::try_exact_tangent` of the engine).
     pub(crate) exact: bool,
     /// Cut-backs since the last increment that converged at its full size
     /// (load control's limit-point test).
