@@ -13,14 +13,38 @@
 //! | `minres` | [`MinresSolver`] | MINRES for symmetric indefinite tangents, `|diag(A)|` preconditioner |
 //!
 //! Nonlinear drivers: [`newton`] (incremental Newton-Raphson under load or
-//! displacement control) and [`arc_length`] (path following through limit
+//! displacement control), [`arc_length`] (path following through limit
 //! points and snap-backs: cylindrical arc length, then a dissipation
-//! constraint once the laws dissipate).
+//! constraint once the laws dissipate) and [`path_switch`] (load control
+//! that hands over to path following at limit points and back), plus
+//! [`linear_static`].
 //!
 //! The two halves are two folders: [`linear`] (the back ends above and
 //! their kernels; nothing there knows the drivers) and [`nonlinear`] (the
-//! drivers, `path_switch` and `linear_static`). The old flat paths
-//! (`junta_solvers::lu`, `junta_solvers::newton`, ...) are re-exported.
+//! drivers). The nonlinear half reaches the linear one only through
+//! [`junta_core::LinearSolver`]: the caller's back end, and for the exact
+//! (nonsymmetric) tangent the registry's `lu` entry.
+//!
+//! | file | what it holds |
+//! |---|---|
+//! | `linear/cholesky.rs`, `ldlt.rs`, `lu.rs` | the direct back ends (keys `cholesky`, `ldlt`, `lu`) |
+//! | `linear/supernodal.rs`, `panel_lu.rs` | the panel kernels of the factors |
+//! | `linear/ordering.rs` | fill-reducing orderings |
+//! | `linear/cg.rs`, `cg/gmres.rs`, `amg.rs`, `minres.rs` | the iterative back ends and the AMG preconditioner |
+//! | `linear/common.rs`, `gallery.rs` | shared helpers, test matrices |
+//! | `nonlinear/vocabulary.rs` | what the drivers share: settings, observer protocol, reports, checkpoints, path state, errors |
+//! | `nonlinear/engine.rs` | the Newton engine (`Work`): residual, one Newton attempt, line search, exact tangent |
+//! | `nonlinear/newton.rs` | load/displacement control |
+//! | `nonlinear/arc_length.rs` | path following |
+//! | `nonlinear/path_switch.rs` | load control with path following at limit points |
+//! | `nonlinear/linear_static.rs` | the linear static solve |
+//!
+//! The drivers import `vocabulary` and `engine`, never each other (only
+//! `path_switch` calls both). The old flat paths (`junta_solvers::lu`,
+//! `junta_solvers::newton`, ...) are re-exported, and each driver
+//! re-exports the shared types it used to define
+//! (`junta_solvers::newton::Checkpoint`,
+//! `junta_solvers::arc_length::PathState`, ...).
 //!
 //! Embedders can skip the registry:
 //!
@@ -51,7 +75,7 @@ pub mod nonlinear;
 // The crate's paths before the split (`junta_solvers::lu`, `junta_solvers::newton`, ...).
 pub use linear::{amg, cg, cholesky, gallery, ldlt, lu, minres, ordering};
 pub(crate) use linear::{common, panel_lu, supernodal};
-pub use nonlinear::{arc_length, linear_static, newton, path_switch};
+pub use nonlinear::{arc_length, linear_static, newton, path_switch, vocabulary};
 
 pub use cg::{CgSettings, CgSolver, KrylovMethod, Preconditioner};
 pub use cholesky::{CholeskySettings, CholeskySolver, CholeskyStats, Precision};

@@ -735,6 +735,123 @@ impl LdltSolver {
         Ok(())
     }
 
+    /// The matrix entries of a numeric factorisation, in one pass: with
+    /// `incremental` (a previous factorisation of this pattern exists), the
+    /// entries that changed since it are checked for finiteness, copied
+    /// into `kept`, their panels marked in `dirty` and the row sums of
+    /// `|A|` updated with them; otherwise every entry is new (checked,
+    /// copied, row sums computed afresh).
+    fn take_entries(
+        &mut self,
+        matrix: &SymmetricCsc,
+        kept: &mut Vec<f64>,
+        incremental: bool,
+    ) -> Result<(), SolverError> {
+        let f = self.factor.as_ref().expect("analysed");
+        let index = self.scatter_index.as_ref().expect("built above");
+        if incremental {
+            let changed = changed_entries(matrix, kept);
+            self.dirty.clear();
+            self.dirty.resize(f.n_panels(), false);
+            for &(p, i, j, delta) in &changed {
+                if !matrix.values[p].is_finite() {
+                    return Err(non_finite_entry(matrix, p, i, j));
+                }
+                self.dirty[index.panel[p] as usize] = true;
+                self.row_sums[i] += delta;
+                if i != j {
+                    self.row_sums[j] += delta;
+                }
+            }
+        } else {
+            if let Some(p) = matrix.values.par_iter().position_first(|v| !v.is_finite()) {
+                let j = matrix.col_ptr.partition_point(|&c| c <= p) - 1;
+                return Err(non_finite_entry(matrix, p, matrix.row_idx[p], j));
+            }
+            self.row_sums = symmetric_row_sums(matrix);
+            kept.clear();
+            kept.extend_from_slice(&matrix.values);
+        }
+        Ok(())
+    }
+
+    /// Checks and statistics of the numeric factorisation just done
+    /// (`partial`: only the panels of `dirty_list` were refactorised): a
+    /// pivot or multiplier that is not finite is an error; the pivot
+    /// statistics (inertia, smallest pivot, growth) are computed, and
+    /// perturbed pivots or a near-singular matrix give a warning.
+    fn check_factor(
+        &mut self,
+        n: usize,
+        partial: bool,
+        rule: PivotRule,
+    ) -> Result<(), SolverError> {
+        let f = self.factor.as_ref().expect("analysed");
+        if let Some(k) = self.pivots.diag.iter().position(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite {
+                method: format!(
+                    "ldlt factorisation: pivot {} at elimination step {k} of {n} (about equation {})",
+                    self.pivots.diag[k], self.perm[k]
+                ),
+            });
+        }
+        // largest multiplier of each refactorised panel (not finite: the
+        // factor overflowed); the kept panels keep theirs
+        self.panel_max_multiplier.resize(f.n_panels(), 0.0);
+        let panel_max = |s: usize| max_multiplier(f, &self.values, s);
+        if partial {
+            let maxima: Vec<f64> = self
+                .dirty_list
+                .par_iter()
+                .map(|&s| panel_max(s as usize))
+                .collect();
+            for (&s, m) in self.dirty_list.iter().zip(maxima) {
+                self.panel_max_multiplier[s as usize] = m;
+            }
+        } else {
+            self.panel_max_multiplier
+                .par_iter_mut()
+                .enumerate()
+                .for_each(|(s, m)| *m = panel_max(s));
+        }
+        if self.panel_max_multiplier.iter().any(|m| !m.is_finite()) {
+            return Err(SolverError::NonFinite {
+                method: "ldlt factorisation: the factor overflowed".into(),
+            });
+        }
+        self.pivot_statistics();
+        let st = &self.stats;
+        tracing::info!(
+            negative_pivots = st.negative_pivots,
+            pivots_2x2 = st.pivots_2x2,
+            perturbed = st.perturbed_pivots,
+            min_pivot_ratio = st.min_pivot_ratio,
+            growth = st.growth,
+            "ldlt: numeric factorisation"
+        );
+        if st.perturbed_pivots > 0 {
+            let w = format!(
+                "ldlt: {} pivot(s) below {:.1e} * ||A||_inf = {:.3e} within their panel (restricted pivoting) were replaced by +-{:.3e}; the inertia ({} negative pivots) may be unreliable and the solution relies on iterative refinement",
+                st.perturbed_pivots,
+                self.settings.tiny_pivot,
+                rule.tiny,
+                rule.perturb,
+                st.negative_pivots
+            );
+            self.push_warning(w);
+        }
+        if self.stats.min_pivot_ratio < self.settings.pivot_warn {
+            let w = format!(
+                "ldlt: near-singular matrix: smallest pivot |eigenvalue| / ||A||_inf = {:.3e} (||A||_inf = {:.3e}); expect to lose about {:.0} digits",
+                self.stats.min_pivot_ratio,
+                self.stats.matrix_norm_inf,
+                -self.stats.min_pivot_ratio.log10()
+            );
+            self.push_warning(w);
+        }
+        Ok(())
+    }
+
     /// Inertia and pivot statistics of the current `D`.
     fn pivot_statistics(&mut self) {
         let piv = &self.pivots;
@@ -1507,37 +1624,13 @@ impl LinearSolver for LdltSolver {
         if self.scatter_index.is_none() {
             self.scatter_index = Some(f.scatter_index(matrix, &self.perm_inv));
         }
-        let index = self.scatter_index.as_ref().expect("built above");
-        // One pass over the entries: the ones that changed since the last
-        // factorisation (checked for finiteness, copied into `kept`, their
-        // panels marked) and the row sums of |A| updated with them; without
-        // a previous factorisation, everything is new.
+        // without a previous factorisation of this pattern, every entry is new
         let incremental = kept.len() == matrix.values.len()
             && self.row_sums.len() == matrix.n
             && self.values.len() == f.len_val();
-        if incremental {
-            let changed = changed_entries(matrix, &mut kept);
-            self.dirty.clear();
-            self.dirty.resize(f.n_panels(), false);
-            for &(p, i, j, delta) in &changed {
-                if !matrix.values[p].is_finite() {
-                    return Err(non_finite_entry(matrix, p, i, j));
-                }
-                self.dirty[index.panel[p] as usize] = true;
-                self.row_sums[i] += delta;
-                if i != j {
-                    self.row_sums[j] += delta;
-                }
-            }
-        } else {
-            if let Some(p) = matrix.values.par_iter().position_first(|v| !v.is_finite()) {
-                let j = matrix.col_ptr.partition_point(|&c| c <= p) - 1;
-                return Err(non_finite_entry(matrix, p, matrix.row_idx[p], j));
-            }
-            self.row_sums = symmetric_row_sums(matrix);
-            kept.clear();
-            kept.extend_from_slice(&matrix.values);
-        }
+        self.take_entries(matrix, &mut kept, incremental)?;
+        let f = self.factor.as_ref().expect("analysed");
+        let index = self.scatter_index.as_ref().expect("built above");
         let norm = inf_norm(&self.row_sums);
         self.stats.matrix_norm_inf = norm;
         if norm == 0.0 && matrix.n > 0 {
@@ -1605,71 +1698,7 @@ impl LinearSolver for LdltSolver {
         self.values = values;
         self.stats.factor_count += 1;
         self.report.factor_seconds += t0.elapsed().as_secs_f64();
-        let n = matrix.n;
-        if let Some(k) = self.pivots.diag.iter().position(|v| !v.is_finite()) {
-            return Err(SolverError::NonFinite {
-                method: format!(
-                    "ldlt factorisation: pivot {} at elimination step {k} of {n} (about equation {})",
-                    self.pivots.diag[k], self.perm[k]
-                ),
-            });
-        }
-        // largest multiplier of each refactorised panel (not finite: the
-        // factor overflowed); the kept panels keep theirs
-        self.panel_max_multiplier.resize(f.n_panels(), 0.0);
-        let panel_max = |s: usize| max_multiplier(f, &self.values, s);
-        match dirty {
-            None => self
-                .panel_max_multiplier
-                .par_iter_mut()
-                .enumerate()
-                .for_each(|(s, m)| *m = panel_max(s)),
-            Some(_) => {
-                let maxima: Vec<f64> = self
-                    .dirty_list
-                    .par_iter()
-                    .map(|&s| panel_max(s as usize))
-                    .collect();
-                for (&s, m) in self.dirty_list.iter().zip(maxima) {
-                    self.panel_max_multiplier[s as usize] = m;
-                }
-            }
-        }
-        if self.panel_max_multiplier.iter().any(|m| !m.is_finite()) {
-            return Err(SolverError::NonFinite {
-                method: "ldlt factorisation: the factor overflowed".into(),
-            });
-        }
-        self.pivot_statistics();
-        let st = &self.stats;
-        tracing::info!(
-            negative_pivots = st.negative_pivots,
-            pivots_2x2 = st.pivots_2x2,
-            perturbed = st.perturbed_pivots,
-            min_pivot_ratio = st.min_pivot_ratio,
-            growth = st.growth,
-            "ldlt: numeric factorisation"
-        );
-        if st.perturbed_pivots > 0 {
-            let w = format!(
-                "ldlt: {} pivot(s) below {:.1e} * ||A||_inf = {:.3e} within their panel (restricted pivoting) were replaced by +-{:.3e}; the inertia ({} negative pivots) may be unreliable and the solution relies on iterative refinement",
-                st.perturbed_pivots,
-                self.settings.tiny_pivot,
-                rule.tiny,
-                rule.perturb,
-                st.negative_pivots
-            );
-            self.push_warning(w);
-        }
-        if self.stats.min_pivot_ratio < self.settings.pivot_warn {
-            let w = format!(
-                "ldlt: near-singular matrix: smallest pivot |eigenvalue| / ||A||_inf = {:.3e} (||A||_inf = {:.3e}); expect to lose about {:.0} digits",
-                self.stats.min_pivot_ratio,
-                self.stats.matrix_norm_inf,
-                -self.stats.min_pivot_ratio.log10()
-            );
-            self.push_warning(w);
-        }
+        self.check_factor(matrix.n, dirty.is_some(), rule)?;
         self.report.negative_pivots = Some(self.stats.negative_pivots);
         self.factored = true;
         self.factored_matrix = kept;

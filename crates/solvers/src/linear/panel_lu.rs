@@ -326,7 +326,11 @@ struct Scratch {
     perturbed: Vec<usize>,
 }
 
-/// Left-looking update and dense restricted-pivoting `LU` of panel `s`.
+/// Left-looking update and dense restricted-pivoting `LU` of panel `s`:
+/// the updates of its descendants ([`update_from_descendants`]), the
+/// dense `LU` of its diagonal block ([`factor_diagonal_block`]), the
+/// triangular solves of its off-diagonal parts ([`solve_off_diagonal`])
+/// and its statistics ([`panel_statistics`]).
 fn factor_panel(
     f: &PanelFactor,
     upper_ptr: &[usize],
@@ -347,6 +351,49 @@ fn factor_panel(
             std::slice::from_raw_parts_mut(ptrs.rows.get().add(b), w),
         )
     };
+    update_from_descendants(f, upper_ptr, s, ptrs, threads, scratch, ls, us);
+    // dense LU of the diagonal block with row interchanges among its rows
+    let mut st = PanelLuStats::empty();
+    factor_diagonal_block(
+        ls,
+        rows,
+        (m, w),
+        (tiny, perturb),
+        &mut st,
+        &mut scratch.perturbed,
+    );
+    if r > 0 {
+        solve_off_diagonal(ls, us, rows, (m, w, r), threads, &mut scratch.cols);
+    }
+    panel_statistics(
+        ls,
+        us,
+        (m, w, b),
+        (tiny, perturb),
+        &scratch.perturbed,
+        &mut st,
+    );
+    st
+}
+
+/// The updates of panel `s` (lower part `ls`: `m x w`, upper part `us`:
+/// `r x w`, column-major) by each descendant `d` that touches it:
+/// `A'[rows, J] -= L[rows, K_d] U[K_d, J]` on the lower side and
+/// `A'[J, R] -= L[J, K_d] U[K_d, R]` on the upper side (stored
+/// transposed), large products in parallel.
+#[allow(clippy::too_many_arguments)]
+fn update_from_descendants(
+    f: &PanelFactor,
+    upper_ptr: &[usize],
+    s: usize,
+    ptrs: Ptrs,
+    threads: usize,
+    scratch: &mut Scratch,
+    ls: &mut [f64],
+    us: &mut [f64],
+) {
+    let (_, w, pat_s) = panel(f, s);
+    let (r, m) = (pat_s.len(), w + pat_s.len());
     for &d in &f.desc[f.desc_ptr[s]..f.desc_ptr[s + 1]] {
         let d = d as usize;
         let (_, wd, pd) = panel(f, d);
@@ -357,6 +404,7 @@ fn factor_panel(
         if mid == 0 {
             continue;
         }
+        // SAFETY: descendant d is complete and only read.
         let (ld, ud) = unsafe {
             (
                 std::slice::from_raw_parts(
@@ -418,9 +466,22 @@ fn factor_panel(
             }
         }
     }
-    // dense LU of the diagonal block with row interchanges among its rows
-    let mut st = PanelLuStats::empty();
-    scratch.perturbed.clear();
+}
+
+/// Dense `LU` with partial pivoting of the `w x w` diagonal block of a
+/// panel (`ls`, column-major with leading dimension `m`): row interchanges
+/// among the block's rows only, recorded in `rows`; a pivot not above
+/// `tiny` is replaced by `+-perturb` (its column pushed to `perturbed`),
+/// the others lower `min_pivot_ratio` of `st`.
+fn factor_diagonal_block(
+    ls: &mut [f64],
+    rows: &mut [u32],
+    (m, w): (usize, usize),
+    (tiny, perturb): (f64, f64),
+    st: &mut PanelLuStats,
+    perturbed: &mut Vec<usize>,
+) {
+    perturbed.clear();
     for (i, p) in rows.iter_mut().enumerate() {
         *p = i as u32;
     }
@@ -443,7 +504,7 @@ fn factor_panel(
             piv = if piv < 0.0 { -perturb } else { perturb };
             ls[k * m + k] = piv;
             st.perturbed += 1;
-            scratch.perturbed.push(k);
+            perturbed.push(k);
         } else {
             st.min_pivot_ratio = st.min_pivot_ratio.min(piv.abs());
         }
@@ -463,35 +524,56 @@ fn factor_panel(
             }
         }
     }
-    if r > 0 {
-        let par = if threads > 1 && m * w >= 128 * 128 {
-            Par::rayon(threads)
-        } else {
-            Par::Seq
-        };
-        let mut panel = MatMut::from_column_major_slice_mut(&mut ls[..], m, w);
-        let (top, mut bot) = panel.rb_mut().split_at_row_mut(w);
-        // L_RJ U_JJ = A'[R, J]  <=>  U_JJ^T L_RJ^T = A'[R, J]^T
-        tri::solve_lower_triangular_in_place(
-            top.rb().transpose(),
-            bot.rb_mut().transpose_mut(),
-            par,
-        );
-        // U_JR^T = (Q_s A'[J, R])^T L_JJ^-T: columns of `us` in pivot order
-        if rows.iter().enumerate().any(|(i, &p)| p as usize != i) {
-            let cols = &mut scratch.cols;
-            cols.clear();
-            cols.extend_from_slice(us);
-            for (i, &p) in rows.iter().enumerate() {
-                let p = p as usize;
-                us[i * r..(i + 1) * r].copy_from_slice(&cols[p * r..(p + 1) * r]);
-            }
+}
+
+/// The off-diagonal parts of a panel with `r > 0` rows below its `w x w`
+/// diagonal block: `L_RJ` from `L_RJ U_JJ = A'[R, J]` and `U_JR` from
+/// `L_JJ U_JR = Q_s A'[J, R]` (`Q_s` the block's row interchanges `rows`),
+/// both in place; `cols` is scratch.
+fn solve_off_diagonal(
+    ls: &mut [f64],
+    us: &mut [f64],
+    rows: &[u32],
+    (m, w, r): (usize, usize, usize),
+    threads: usize,
+    cols: &mut Vec<f64>,
+) {
+    let par = if threads > 1 && m * w >= 128 * 128 {
+        Par::rayon(threads)
+    } else {
+        Par::Seq
+    };
+    let mut panel = MatMut::from_column_major_slice_mut(&mut ls[..], m, w);
+    let (top, mut bot) = panel.rb_mut().split_at_row_mut(w);
+    // L_RJ U_JJ = A'[R, J]  <=>  U_JJ^T L_RJ^T = A'[R, J]^T
+    tri::solve_lower_triangular_in_place(top.rb().transpose(), bot.rb_mut().transpose_mut(), par);
+    // U_JR^T = (Q_s A'[J, R])^T L_JJ^-T: columns of `us` in pivot order
+    if rows.iter().enumerate().any(|(i, &p)| p as usize != i) {
+        cols.clear();
+        cols.extend_from_slice(us);
+        for (i, &p) in rows.iter().enumerate() {
+            let p = p as usize;
+            us[i * r..(i + 1) * r].copy_from_slice(&cols[p * r..(p + 1) * r]);
         }
-        let mut u = MatMut::from_column_major_slice_mut(&mut us[..], r, w);
-        tri::solve_unit_lower_triangular_in_place(top.rb(), u.rb_mut().transpose_mut(), par);
     }
+    let mut u = MatMut::from_column_major_slice_mut(&mut us[..], r, w);
+    tri::solve_unit_lower_triangular_in_place(top.rb(), u.rb_mut().transpose_mut(), par);
+}
+
+/// Statistics of a factored panel (`w` columns from column `b`, `m` rows):
+/// perturbed pivots with nothing below the panel either are singular
+/// (`singular`, `first_singular`); the largest entries of `U` and the
+/// largest multiplier of `L`.
+fn panel_statistics(
+    ls: &[f64],
+    us: &[f64],
+    (m, w, b): (usize, usize, usize),
+    (tiny, perturb): (f64, f64),
+    perturbed: &[usize],
+    st: &mut PanelLuStats,
+) {
     // perturbed pivots with nothing below the panel either: singular
-    for &k in &scratch.perturbed {
+    for &k in perturbed {
         let below = ls[k * m + w..(k + 1) * m]
             .iter()
             .fold(0.0f64, |a, v| nan_max(a, v.abs()));
@@ -510,5 +592,4 @@ fn factor_panel(
             .fold(st.max_multiplier, |a, v| nan_max(a, v.abs()));
     }
     st.max_upper = us.iter().fold(st.max_upper, |a, v| nan_max(a, v.abs()));
-    st
 }

@@ -73,7 +73,8 @@
 //! energy ([`junta_core::Model::dissipated_energy`]); a model whose laws
 //! dissipate nothing stays on the cylindrical constraint, and so does a
 //! model under large deformation (any element with
-//! [`Kinematics::Finite`], scene `nlgeom`: see [`energy_balance_holds`]).
+//! [`Kinematics::Finite`](junta_core::element::Kinematics::Finite), scene
+//! `nlgeom`: see `energy_balance_holds` in [`crate::nonlinear::vocabulary`]).
 //! When the
 //! dissipation constraint cannot be met any more (nothing left that can
 //! dissipate, e.g. the crack stopped under a contact zone: the dissipation
@@ -107,9 +108,11 @@
 //! `|ΔD - tau| <= 1e-6 tau`.
 //!
 //! This driver shares with [`crate::newton`] the assembly and residual
-//! buffers (`Work`), the [`Checkpoint`], the observer and its
-//! [`IncrementView`], and the restart; it has its own increment loop (the
-//! constraint, the size rule, the switching and the end of the run).
+//! buffers (`Work`, in the crate's `nonlinear::engine`), and the
+//! [`Checkpoint`], the observer and its [`IncrementView`] and the restart
+//! ([`crate::nonlinear::vocabulary`]); it imports those two modules, not
+//! the Newton driver, and has its own increment loop (the constraint, the
+//! size rule, the switching and the end of the run).
 //!
 //! # Increments
 //!
@@ -148,42 +151,21 @@
 //! sign) is part of the [`Checkpoint`], so a restarted run computes the
 //! increments of an uninterrupted one.
 
-use crate::linear_static::Timings;
-use crate::newton::{
-    any_wants_small, check_checkpoint_fits, increment_timings, is_element_error, Abort, Checkpoint,
-    Control, Cursor, Eval, IncrementFailure, IncrementReport, IncrementView, NewtonSettings,
-    NonlinearError, NonlinearRun, NonlinearSummary, SolveClock, Work,
+pub use super::vocabulary::{LoadReturn, PathMode, PathState};
+
+use super::engine::{internal_force_at_zero, is_element_error, Abort, Eval, SolveClock, Work};
+use super::vocabulary::{
+    any_wants_small, check_checkpoint_fits, energy_balance_holds, increment_timings, Checkpoint,
+    Control, Cursor, IncrementFailure, IncrementReport, IncrementView, NewtonSettings,
+    NonlinearError, NonlinearRun, NonlinearSummary,
 };
+use crate::linear_static::Timings;
 use junta_core::dof::CONSTRAINED;
-use junta_core::element::{ElementContext, Kinematics, StepInfo};
+use junta_core::element::{ElementContext, StepInfo};
 use junta_core::state::StateStore;
 use junta_core::{CoreError, LinearSolver, Model};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
-
-/// What constrains an increment.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum PathMode {
-    /// The load factor is prescribed (load or displacement control).
-    #[default]
-    Load,
-    /// Cylindrical arc length on the displacements.
-    Arc,
-    /// Energy dissipated in the increment.
-    Dissipation,
-}
-
-impl PathMode {
-    /// Name written to `curve.csv`.
-    pub fn name(self) -> &'static str {
-        match self {
-            PathMode::Load => "load",
-            PathMode::Arc => "arc",
-            PathMode::Dissipation => "dissipation",
-        }
-    }
-}
 
 /// Settings of the path-following driver (`[analysis.arc_length]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -292,92 +274,6 @@ impl ArcLengthSettings {
     }
 }
 
-/// The path-following part of a restart point.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct PathState {
-    /// Constraint of the next increment.
-    pub mode: PathMode,
-    /// Size of the next increment: arc length `Δl` or dissipation `tau`.
-    pub size: f64,
-    /// First arc length `Δl_0` (0 before the first increment).
-    pub arc0: f64,
-    /// First dissipation step `tau_0` of the current dissipation phase.
-    pub tau0: f64,
-    /// Arc length of the last converged increment.
-    pub arc_last: f64,
-    /// Load factor of the converged increment before the last one.
-    pub previous_lambda: f64,
-    /// Full displacement of the converged increment before the last one.
-    pub previous_u: Vec<f64>,
-    /// Largest load factor reached.
-    pub lambda_max: f64,
-    /// Largest stored energy met at a converged increment (floor of the
-    /// energy scale of the dissipation tests once the load has dropped).
-    #[serde(default)]
-    pub stored_max: f64,
-    /// Dissipation step of the last converged increment when it ran
-    /// under the dissipation constraint, else 0 (the secant predictor).
-    #[serde(default)]
-    pub last_tau: f64,
-    /// When path following took over from load control at a limit point
-    /// ([`crate::path_switch`]): what tells when load control can take
-    /// over again.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub return_to_load: Option<LoadReturn>,
-}
-
-/// When path following that took over at a limit point hands back to load
-/// (or displacement) control: after it has passed the limit (an increment
-/// with a falling load factor, or one under the dissipation constraint),
-/// at the second consecutive cylindrical arc-length increment whose load
-/// factor rises past the one at the switch, with a tangent whose inertia
-/// is back to the one before the switch (when the back end reports it).
-/// There the path is a stable, loading branch again, which load control
-/// follows.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct LoadReturn {
-    /// Load factor at the switch (the last converged load-controlled
-    /// increment).
-    pub lambda_switch: f64,
-    /// Negative pivots of the tangent there, when reported.
-    pub pivots_switch: Option<usize>,
-    /// The path has passed the limit point.
-    pub passed: bool,
-    /// Consecutive rising arc-length increments past `lambda_switch`.
-    pub rising: usize,
-}
-
-impl LoadReturn {
-    /// Rising increments in a row before load control takes over again.
-    const RISING_INCREMENTS: usize = 2;
-
-    /// Account for a converged increment; true when load control can take
-    /// over from here.
-    fn update(&mut self, r: &IncrementReport, end: f64) -> bool {
-        let sign = end.signum();
-        let falling = r.delta_lambda * sign < 0.0;
-        if falling || r.control == PathMode::Dissipation {
-            self.passed = true;
-        }
-        let stable = match (self.pivots_switch, r.negative_pivots) {
-            (Some(before), Some(now)) => now <= before,
-            _ => true,
-        };
-        let rising = r.control == PathMode::Arc
-            && r.delta_lambda * sign > 0.0
-            && (r.lambda - self.lambda_switch) * sign > 0.0
-            && stable;
-        self.rising = if rising { self.rising + 1 } else { 0 };
-        self.ready()
-    }
-
-    /// Load control can take over (also at the start of a run restarted
-    /// from a checkpoint taken right where it could).
-    fn ready(&self) -> bool {
-        self.passed && self.rising >= Self::RISING_INCREMENTS
-    }
-}
-
 /// Why a path-following run ended without error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PathEnd {
@@ -423,7 +319,7 @@ struct Coupling {
 
 impl Coupling {
     /// `f0`: the internal force at zero displacement at the step's
-    /// temperature ([`crate::newton::internal_force_at_zero`]), if the
+    /// temperature ([`internal_force_at_zero`]), if the
     /// model has a temperature field.
     fn new(model: &Model, f0: Option<Vec<f64>>) -> Self {
         // the prescribed values, and the dependents of linear equations
@@ -599,23 +495,6 @@ fn work_measures(model: &Model, coupling: &Coupling, u: &[f64], f_int: &[f64]) -
     (a, p, thermal_measure(coupling, u))
 }
 
-/// Whether the dissipation constraint's energy balance holds for `model`:
-/// the stored energy is `½ u . f_int` (Clapeyron) only where the solids
-/// are linear, i.e. every element under small kinematics. Under large
-/// deformation (`nlgeom`) it is not: on an elastic path that stiffens as
-/// it turns (a peeled arm swinging round to its load) the balance reads
-/// unloading as dissipation, and a dissipation-controlled run unloads
-/// elastically while it believes a crack is running. Such a model is
-/// followed by the cylindrical arc length throughout (no switch to the
-/// dissipation constraint, no dissipation rescue, no `max_arc_dissipation`
-/// test, which reads the same balance).
-pub(crate) fn energy_balance_holds(model: &Model) -> bool {
-    model
-        .elements
-        .iter()
-        .all(|e| e.kinematics() == Kinematics::Small)
-}
-
 /// Converged state at the start of an increment.
 #[derive(Debug, Clone, Copy)]
 struct Base {
@@ -774,7 +653,7 @@ where
     let (mut w, timings) = Work::for_run(model, solver, u_start, settings);
     w.analyzed = analyzed;
     if cur.exact {
-        w.use_exact_tangent();
+        w.use_exact_tangent()?;
     }
     let mut run = PathRun::new(w, state, cur, path, settings, arc, end)?;
     let mut end_reason = PathEnd::Completed;
@@ -975,10 +854,7 @@ impl<'a> PathRun<'a> {
         let model = w.model;
         let nf = model.dofs.num_free;
         let theta = model.temperature_factor(cur.step, 1.0);
-        let coupling = Coupling::new(
-            model,
-            crate::newton::internal_force_at_zero(model, &w.asm, theta),
-        );
+        let coupling = Coupling::new(model, internal_force_at_zero(model, &w.asm, theta));
         let mut pw = PathWork {
             q: vec![0.0; nf],
             g: vec![0.0; nf],

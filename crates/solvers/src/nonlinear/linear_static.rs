@@ -109,16 +109,7 @@ pub fn solve_linear_static_cases(
     cases: &[LoadCase<'_>],
 ) -> Result<Vec<LinearStaticResult>, AnalysisError> {
     let ndof = model.dofs.num_dofs();
-    for (i, c) in cases.iter().enumerate() {
-        if c.prescribed.len() != ndof || c.f_ext.len() != ndof {
-            return Err(CoreError::Invalid(format!(
-                "load case {i}: {} prescribed values and {} forces for {ndof} dofs",
-                c.prescribed.len(),
-                c.f_ext.len()
-            ))
-            .into());
-        }
-    }
+    check_cases(cases, ndof)?;
     let mut t0 = Instant::now();
     let mut timings = Timings::default();
     let t = Instant::now();
@@ -144,17 +135,9 @@ pub fn solve_linear_static_cases(
     );
     let mut f_int = vec![0.0; ndof];
     let step = StepInfo::at(0, 1.0, 1.0);
-    let initial = |case: &LoadCase<'_>| -> Vec<f64> {
-        let mut u: Vec<f64> = (0..ndof)
-            .map(|d| match model.dofs.eq[d] {
-                CONSTRAINED if !model.dofs.dependents.contains(d) => case.prescribed[d],
-                _ => 0.0,
-            })
-            .collect();
-        model.dofs.fill_dependents(&mut u);
-        u
-    };
-    let u0_first = cases.first().map_or_else(|| vec![0.0; ndof], initial);
+    let u0_first = cases
+        .first()
+        .map_or_else(|| vec![0.0; ndof], |c| initial_displacement(model, c));
     let t = Instant::now();
     asm.assemble(
         &model.mesh,
@@ -182,7 +165,7 @@ pub fn solve_linear_static_cases(
         let mut state = model.initial_state();
         // u0: the case's prescribed values on the constrained dofs, and
         // f_int(u0) (the first case's came with the stiffness)
-        let u0 = initial(case);
+        let u0 = initial_displacement(model, case);
         if i > 0 {
             let t = Instant::now();
             asm.assemble(
@@ -246,4 +229,35 @@ pub fn solve_linear_static_cases(
     }
     drop(k);
     Ok(results)
+}
+
+/// Every load case gives a prescribed value and a force for each of the
+/// model's `ndof` dofs.
+fn check_cases(cases: &[LoadCase<'_>], ndof: usize) -> Result<(), AnalysisError> {
+    for (i, c) in cases.iter().enumerate() {
+        if c.prescribed.len() != ndof || c.f_ext.len() != ndof {
+            return Err(CoreError::Invalid(format!(
+                "load case {i}: {} prescribed values and {} forces for {ndof} dofs",
+                c.prescribed.len(),
+                c.f_ext.len()
+            ))
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// The starting displacement of a load case: its prescribed values on the
+/// constrained dofs (dependents of linear equations excepted), zero on the
+/// free ones, the dependents from their equations.
+fn initial_displacement(model: &Model, case: &LoadCase<'_>) -> Vec<f64> {
+    let ndof = model.dofs.num_dofs();
+    let mut u: Vec<f64> = (0..ndof)
+        .map(|d| match model.dofs.eq[d] {
+            CONSTRAINED if !model.dofs.dependents.contains(d) => case.prescribed[d],
+            _ => 0.0,
+        })
+        .collect();
+    model.dofs.fill_dependents(&mut u);
+    u
 }

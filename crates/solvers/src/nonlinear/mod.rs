@@ -5,11 +5,15 @@
 //! | file | what |
 //! |---|---|
 //! | `linear_static.rs` | one assembly and one solve per load case |
-//! | `newton.rs` | the shared vocabulary, the Newton engine and load/displacement control |
+//! | `vocabulary.rs` | the drivers' shared vocabulary: settings, observer protocol, reports, checkpoints and path state, errors |
+//! | `engine.rs` | the Newton engine (`Work`): buffers, residual, one Newton attempt, line search, exact tangent |
+//! | `newton.rs` | load/displacement control |
 //! | `arc_length.rs` | path following through limit points and snap-backs |
-//! | `path_switch.rs` | switching between load control and arc length |
+//! | `path_switch.rs` | switching between load control and arc length (calls both drivers; neither calls it) |
 
 pub mod arc_length;
+pub(crate) mod engine;
 pub mod linear_static;
 pub mod newton;
 pub mod path_switch;
+pub mod vocabulary;

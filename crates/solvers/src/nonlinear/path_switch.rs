@@ -62,28 +62,15 @@
 //! holds the path state, so a restart continues under it; one taken under
 //! load control restarts under load control.
 
-use crate::arc_length::{run_path, ArcLengthSettings, LoadReturn, PathEnd, PathMode, PathState};
-use crate::newton::{
-    run_load, Checkpoint, Control, IncrementView, LoadOptions, LoadOutcome, NewtonSettings,
-    NonlinearError, NonlinearRun, NonlinearSummary,
-};
-use junta_core::{LinearSolver, Model};
-use serde::{Deserialize, Serialize};
+pub use super::vocabulary::{LoadTrack, PathSwitch};
 
-/// A change of control at a limit point, or back.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct PathSwitch {
-    /// The last converged increment before the switch.
-    pub increment: usize,
-    /// Step (0-based) of the program.
-    pub step: usize,
-    /// Load factor there.
-    pub lambda: f64,
-    /// The control after the switch: `arc_length` or `load`.
-    pub to: String,
-    /// Why.
-    pub reason: String,
-}
+use super::vocabulary::{
+    energy_balance_holds, moves_away_from_zero, Checkpoint, Control, IncrementView, LoadReturn,
+    NewtonSettings, NonlinearError, NonlinearRun, NonlinearSummary, PathMode, PathState,
+};
+use crate::arc_length::{run_path, ArcLengthSettings, PathEnd};
+use crate::newton::{run_load, LoadOptions, LoadOutcome};
+use junta_core::{LinearSolver, Model};
 
 /// Run the load program with the Newton driver, switching to path
 /// following at limit points and back (module documentation). Returns the
@@ -103,146 +90,225 @@ where
     F: FnMut(&IncrementView<'_>) -> Control,
 {
     arc.validate()?;
-    let mut from = restart.cloned();
-    let mut totals = NonlinearSummary::default();
-    let mut analyzed = false;
-    let mut pending: Option<PathSwitch> = None;
-    // the load-controlled state of a switch taken on an early sign, and
-    // whether the load phase now goes on without the early signs
-    let mut fallback: Option<Checkpoint> = None;
-    let mut early_signs = true;
+    let mut run = SwitchRun {
+        model,
+        program,
+        settings,
+        arc,
+        from: restart.cloned(),
+        totals: NonlinearSummary::default(),
+        analyzed: false,
+        pending: None,
+        fallback: None,
+        early_signs: true,
+    };
     loop {
-        let path_phase = from.as_ref().is_some_and(|c| c.path.is_some());
-        if !path_phase {
-            let mut track = match &from {
-                Some(c) => c
-                    .load_track
-                    .clone()
-                    .map_or_else(LoadTrack::default, |mut t| {
-                        t.u_last = c.u.clone();
-                        t
-                    }),
-                None => LoadTrack::default(),
-            };
-            let outcome = {
-                let mut obs = |v: &IncrementView<'_>| {
-                    track.record(v, program, model);
-                    let view = IncrementView {
-                        track: Some(&track),
-                        ..*v
-                    };
-                    forward(&mut observer, &view, &mut pending)
-                };
-                let options = LoadOptions {
-                    analyzed,
-                    stop_at_limit: early_signs,
-                };
-                run_load(
-                    model,
-                    solver,
-                    program,
-                    settings,
-                    from.as_ref(),
-                    &mut obs,
-                    options,
-                )?
-            };
-            analyzed |= match &outcome {
-                LoadOutcome::Finished(run) | LoadOutcome::Limit { run, .. } => {
-                    run.summary.analyze_count > 0
-                }
-            };
-            match outcome {
-                LoadOutcome::Finished(run) => return Ok((add_totals(&mut totals, run), None)),
-                LoadOutcome::Limit {
-                    run,
-                    error,
-                    reason,
-                    early,
-                } => {
-                    let c = run.checkpoint();
-                    if !moves_away_from_zero(program, c.step) {
-                        return Err(error);
-                    }
-                    early_signs = true;
-                    fallback = early.then(|| Checkpoint {
-                        load_track: Some(track.clone()),
-                        ..c.clone()
-                    });
-                    add_totals(&mut totals, run);
-                    let switch = PathSwitch {
-                        increment: c.increment_index,
-                        step: c.step,
-                        lambda: c.lambda,
-                        to: "arc_length".into(),
-                        reason,
-                    };
-                    tracing::warn!(
-                        lambda = switch.lambda,
-                        increment = switch.increment,
-                        "limit point ({}): path following takes over",
-                        switch.reason
-                    );
-                    from = Some(track.path_checkpoint(c, model, settings));
-                    pending = Some(switch);
-                }
-            }
+        let path_phase = run.from.as_ref().is_some_and(|c| c.path.is_some());
+        let end = if path_phase {
+            run.path_phase(solver, &mut observer)?
         } else {
-            let c = from.take().expect("a path phase starts from a checkpoint");
-            let end = program[c.step.min(program.len() - 1)];
-            let result = {
-                let obs = |v: &IncrementView<'_>| forward(&mut observer, v, &mut pending);
-                run_path(model, solver, end, settings, arc, Some(&c), obs, analyzed)
+            run.load_phase(solver, &mut observer)?
+        };
+        if let Some(end) = end {
+            return Ok(end);
+        }
+    }
+}
+
+/// A run of [`solve_with_path_switch`] between its phases: the problem,
+/// where the next phase starts and what the phases so far left for it.
+struct SwitchRun<'a> {
+    model: &'a Model,
+    program: &'a [f64],
+    settings: &'a NewtonSettings,
+    arc: &'a ArcLengthSettings,
+    /// Start of the next phase (a path state in it: path following).
+    from: Option<Checkpoint>,
+    /// Counts and timings of the phases so far.
+    totals: NonlinearSummary,
+    /// The solver holds the symbolic analysis of the model's pattern.
+    analyzed: bool,
+    /// The switch record for the next increment's report.
+    pending: Option<PathSwitch>,
+    /// The load-controlled state of a switch taken on an early sign.
+    fallback: Option<Checkpoint>,
+    /// The load phase stops at the early signs of a limit point (false
+    /// after path following could not start from one).
+    early_signs: bool,
+}
+
+/// How a run of [`solve_with_path_switch`] ended, when it did.
+type SwitchEnd = Option<(NonlinearRun, Option<PathEnd>)>;
+
+impl SwitchRun<'_> {
+    /// A load-controlled phase from `from` to the end of the program or to
+    /// a limit point, where the next phase (path following) is set up.
+    fn load_phase<F>(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+        observer: &mut F,
+    ) -> Result<SwitchEnd, NonlinearError>
+    where
+        F: FnMut(&IncrementView<'_>) -> Control,
+    {
+        let (model, program, settings) = (self.model, self.program, self.settings);
+        let mut track = match &self.from {
+            Some(c) => c
+                .load_track
+                .clone()
+                .map_or_else(LoadTrack::default, |mut t| {
+                    t.u_last = c.u.clone();
+                    t
+                }),
+            None => LoadTrack::default(),
+        };
+        let outcome = {
+            let pending = &mut self.pending;
+            let mut obs = |v: &IncrementView<'_>| {
+                track.record(v, program, model);
+                let view = IncrementView {
+                    track: Some(&track),
+                    ..*v
+                };
+                forward(observer, &view, pending)
             };
-            let (run, end_reason) = match result {
-                Ok(r) => r,
-                // path following could not make a single increment from a
-                // switch taken on an early sign: load control goes on
-                // cutting back, as without the switch
-                Err(NonlinearError::IncrementTooSmall { .. })
-                    if pending.is_some() && fallback.is_some() =>
-                {
-                    let back = fallback.take().expect("checked");
-                    tracing::warn!(
-                        lambda = back.lambda,
-                        "path following could not start: load control goes on"
-                    );
-                    pending = None;
-                    early_signs = false;
-                    analyzed = true;
-                    from = Some(back);
-                    continue;
-                }
-                Err(e) => return Err(e),
+            let options = LoadOptions {
+                analyzed: self.analyzed,
+                stop_at_limit: self.early_signs,
             };
-            fallback = None;
-            analyzed |= run.summary.analyze_count > 0;
-            let done = run.cursor.step + 1 >= program.len();
-            match end_reason {
-                PathEnd::ReturnToLoad => {
-                    let back = load_checkpoint(run.checkpoint(), program, settings);
-                    pending = Some(PathSwitch {
-                        increment: back.increment_index,
-                        step: back.step,
-                        lambda: back.lambda,
-                        to: "load".into(),
-                        reason: "past the limit point the path loads again on a stable branch"
-                            .into(),
-                    });
-                    tracing::warn!(
-                        lambda = back.lambda,
-                        "the path is a stable loading branch again: load control takes over"
-                    );
-                    add_totals(&mut totals, run);
-                    from = Some(back);
-                }
-                PathEnd::Completed if !done => {
-                    let back = load_checkpoint(run.checkpoint(), program, settings);
-                    add_totals(&mut totals, run);
-                    from = Some(back);
-                }
-                _ => return Ok((add_totals(&mut totals, run), Some(end_reason))),
+            run_load(
+                model,
+                solver,
+                program,
+                settings,
+                self.from.as_ref(),
+                &mut obs,
+                options,
+            )?
+        };
+        self.analyzed |= match &outcome {
+            LoadOutcome::Finished(run) | LoadOutcome::Limit { run, .. } => {
+                run.summary.analyze_count > 0
             }
+        };
+        match outcome {
+            LoadOutcome::Finished(run) => Ok(Some((add_totals(&mut self.totals, run), None))),
+            LoadOutcome::Limit {
+                run,
+                error,
+                reason,
+                early,
+            } => {
+                let c = run.checkpoint();
+                if !moves_away_from_zero(program, c.step) {
+                    return Err(error);
+                }
+                self.early_signs = true;
+                self.fallback = early.then(|| Checkpoint {
+                    load_track: Some(track.clone()),
+                    ..c.clone()
+                });
+                add_totals(&mut self.totals, run);
+                let switch = PathSwitch {
+                    increment: c.increment_index,
+                    step: c.step,
+                    lambda: c.lambda,
+                    to: "arc_length".into(),
+                    reason,
+                };
+                tracing::warn!(
+                    lambda = switch.lambda,
+                    increment = switch.increment,
+                    "limit point ({}): path following takes over",
+                    switch.reason
+                );
+                self.from = Some(track.path_checkpoint(c, model, settings));
+                self.pending = Some(switch);
+                Ok(None)
+            }
+        }
+    }
+
+    /// A path-following phase from `from` (a checkpoint with a path state)
+    /// to the end of its step, or to where load control takes over again
+    /// (set up as the next phase).
+    fn path_phase<F>(
+        &mut self,
+        solver: &mut dyn LinearSolver,
+        observer: &mut F,
+    ) -> Result<SwitchEnd, NonlinearError>
+    where
+        F: FnMut(&IncrementView<'_>) -> Control,
+    {
+        let (program, settings) = (self.program, self.settings);
+        let c = self
+            .from
+            .take()
+            .expect("a path phase starts from a checkpoint");
+        let end = program[c.step.min(program.len() - 1)];
+        let result = {
+            let pending = &mut self.pending;
+            let obs = |v: &IncrementView<'_>| forward(observer, v, pending);
+            run_path(
+                self.model,
+                solver,
+                end,
+                settings,
+                self.arc,
+                Some(&c),
+                obs,
+                self.analyzed,
+            )
+        };
+        let (run, end_reason) = match result {
+            Ok(r) => r,
+            // path following could not make a single increment from a
+            // switch taken on an early sign: load control goes on
+            // cutting back, as without the switch
+            Err(NonlinearError::IncrementTooSmall { .. })
+                if self.pending.is_some() && self.fallback.is_some() =>
+            {
+                let back = self.fallback.take().expect("checked");
+                tracing::warn!(
+                    lambda = back.lambda,
+                    "path following could not start: load control goes on"
+                );
+                self.pending = None;
+                self.early_signs = false;
+                self.analyzed = true;
+                self.from = Some(back);
+                return Ok(None);
+            }
+            Err(e) => return Err(e),
+        };
+        self.fallback = None;
+        self.analyzed |= run.summary.analyze_count > 0;
+        let done = run.cursor.step + 1 >= program.len();
+        match end_reason {
+            PathEnd::ReturnToLoad => {
+                let back = load_checkpoint(run.checkpoint(), program, settings);
+                self.pending = Some(PathSwitch {
+                    increment: back.increment_index,
+                    step: back.step,
+                    lambda: back.lambda,
+                    to: "load".into(),
+                    reason: "past the limit point the path loads again on a stable branch".into(),
+                });
+                tracing::warn!(
+                    lambda = back.lambda,
+                    "the path is a stable loading branch again: load control takes over"
+                );
+                add_totals(&mut self.totals, run);
+                self.from = Some(back);
+                Ok(None)
+            }
+            PathEnd::Completed if !done => {
+                let back = load_checkpoint(run.checkpoint(), program, settings);
+                add_totals(&mut self.totals, run);
+                self.from = Some(back);
+                Ok(None)
+            }
+            _ => Ok(Some((add_totals(&mut self.totals, run), Some(end_reason)))),
         }
     }
 }
@@ -262,40 +328,6 @@ where
         report: &report,
         ..*v
     })
-}
-
-/// Whether step `step` of `program` loads away from zero (path following
-/// runs to its end load factor from any point of it).
-pub(crate) fn moves_away_from_zero(program: &[f64], step: usize) -> bool {
-    let Some(&end) = program.get(step) else {
-        return false;
-    };
-    let start = if step == 0 { 0.0 } else { program[step - 1] };
-    end != 0.0 && (start == 0.0 || (start * end > 0.0 && end.abs() > start.abs()))
-}
-
-/// The last two converged increments of a load-controlled phase: what
-/// path following needs to start from the last one. Part of a
-/// load-controlled checkpoint of a `control = "auto"` run, so that a
-/// restarted run switches where an uninterrupted one does.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-pub struct LoadTrack {
-    /// The last increment's displacement (the checkpoint's own `u`).
-    #[serde(skip)]
-    u_last: Vec<f64>,
-    u_before: Vec<f64>,
-    lambda_last: f64,
-    lambda_before: f64,
-    lambda_max: f64,
-    pivots_last: Option<usize>,
-    /// Largest arc length of an increment so far.
-    arc_max: f64,
-    /// Energy the laws report dissipated at the last increment.
-    dissipated: f64,
-    /// The last increment dissipated (the laws' energy grew).
-    dissipating: bool,
-    /// Largest energy the laws dissipated in one increment.
-    tau_max: f64,
 }
 
 impl LoadTrack {
@@ -351,15 +383,13 @@ impl LoadTrack {
         // degrees); its size a quarter of the largest increment's
         // dissipation, the driver adapts it (not under large deformation,
         // where its energy balance does not hold: `energy_balance_holds`)
-        let (mode, size, tau0) = if self.dissipating
-            && self.tau_max > 0.0
-            && crate::arc_length::energy_balance_holds(model)
-        {
-            let tau = FIRST_ARC_OF_LARGEST * self.tau_max;
-            (PathMode::Dissipation, tau, tau)
-        } else {
-            (PathMode::Arc, arc, 0.0)
-        };
+        let (mode, size, tau0) =
+            if self.dissipating && self.tau_max > 0.0 && energy_balance_holds(model) {
+                let tau = FIRST_ARC_OF_LARGEST * self.tau_max;
+                (PathMode::Dissipation, tau, tau)
+            } else {
+                (PathMode::Arc, arc, 0.0)
+            };
         c.path = Some(PathState {
             mode,
             size,
