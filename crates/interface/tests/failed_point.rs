@@ -80,18 +80,7 @@ fn drive(law: &Arc<dyn InterfaceLaw>, b: f64, lam_end: f64, steps: usize) -> Pat
                 &LawContext {
                     jump,
                     state_committed: &state,
-                    step: StepInfo {
-                        increment: k,
-                        load_factor: lam / lam_end,
-                        delta_load_factor: 1.0 / steps as f64,
-                        secant: false,
-                        exact_tangent: false,
-                        temperature_factor: 1.0,
-                        cycles: 0.0,
-                        delta_cycles: 0.0,
-                        load_ratio: 0.0,
-                        crack_drive: None,
-                    },
+                    step: StepInfo::at(k, lam / lam_end, 1.0 / steps as f64),
                 },
                 &mut trial,
             )
