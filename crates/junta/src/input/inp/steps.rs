@@ -786,28 +786,44 @@ impl Parser<'_> {
                     ))
                 }
             };
-            self.dload_targets.push(DloadTarget::Elements {
+            let target = DloadTarget::Elements {
                 target: f[0].to_string(),
                 face,
-            });
-            self.deck.dloads.push(InpDload {
-                label,
-                kind,
-                elements: Vec::new(),
-                step: self.step_open.map(|_| self.deck.steps.len() - 1),
-                op_new,
-                keyword_line: line,
-                line: dl,
-                amplitude: None,
-            });
-            self.refer_amplitude(
-                AmplitudeUse::Dload,
-                self.deck.dloads.len() - 1,
-                &amplitude,
-                line,
-            );
+            };
+            self.push_dload(target, label, kind, op_new, (line, dl), &amplitude);
         }
         Ok(())
+    }
+
+    /// One distributed load of the open step (or of the model): its
+    /// target, the load, and its amplitude, if the keyword names one;
+    /// `(line, dl)`: the keyword line and the data line.
+    fn push_dload(
+        &mut self,
+        target: DloadTarget,
+        label: String,
+        kind: InpDloadKind,
+        op_new: bool,
+        (line, dl): (usize, usize),
+        amplitude: &Option<String>,
+    ) {
+        self.dload_targets.push(target);
+        self.deck.dloads.push(InpDload {
+            label,
+            kind,
+            elements: Vec::new(),
+            step: self.step_open.map(|_| self.deck.steps.len() - 1),
+            op_new,
+            keyword_line: line,
+            line: dl,
+            amplitude: None,
+        });
+        self.refer_amplitude(
+            AmplitudeUse::Dload,
+            self.deck.dloads.len() - 1,
+            amplitude,
+            line,
+        );
     }
 
     /// `*DSLOAD [, OP=]`: `surface, P, pressure` on an element surface.
@@ -836,24 +852,9 @@ impl Parser<'_> {
                 ));
             }
             let p = self.float(dl, kw, "pressure", f[2])?;
-            self.dload_targets
-                .push(DloadTarget::Surface(f[0].to_string()));
-            self.deck.dloads.push(InpDload {
-                label: "P".into(),
-                kind: InpDloadKind::Pressure(p),
-                elements: Vec::new(),
-                step: self.step_open.map(|_| self.deck.steps.len() - 1),
-                op_new,
-                keyword_line: line,
-                line: dl,
-                amplitude: None,
-            });
-            self.refer_amplitude(
-                AmplitudeUse::Dload,
-                self.deck.dloads.len() - 1,
-                &amplitude,
-                line,
-            );
+            let target = DloadTarget::Surface(f[0].to_string());
+            let kind = InpDloadKind::Pressure(p);
+            self.push_dload(target, "P".into(), kind, op_new, (line, dl), &amplitude);
         }
         Ok(())
     }
