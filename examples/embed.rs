@@ -55,7 +55,7 @@ fn dcb_peak() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "DCB: {} after {} increments; peak {:.1} N at {:.2} mm (corrected beam theory: 138.5 N at 4.21 mm)",
         results.status_line,
-        results.curve.len(),
+        results.curve().len(),
         peak.0,
         peak.1
     );

@@ -349,7 +349,7 @@ struct PyObserver {
 }
 
 impl Observer for PyObserver {
-    fn on_increment(&mut self, inc: &Increment<'_>, _log: &mut RunLog) -> junta::Result<Flow> {
+    fn on_increment(&mut self, inc: &Increment<'_>, _log: &RunLog) -> junta::Result<Flow> {
         Ok(Python::attach(|py| self.increment(py, inc)))
     }
 }
@@ -529,7 +529,7 @@ fn results_dict<'py>(
     d.set_item("status", status_name(&r.status))?;
     d.set_item("status_line", &r.status_line)?;
     d.set_item("summary", json_to_py(py, &r.summary.to_json())?)?;
-    d.set_item("curve", curve_dict(py, &r.curve)?)?;
+    d.set_item("curve", curve_dict(py, &r.curve())?)?;
     d.set_item("output", r.output.as_ref().map(|p| p.display().to_string()))?;
     d.set_item("notes", PyList::new(py, &r.notes)?)?;
     d.set_item("warnings", PyList::new(py, &r.warnings)?)?;

@@ -407,8 +407,8 @@ fn finish(input: &Path, r: &RunResults, shown: usize, writer: bool) -> Result<()
             "{}: {} equations, max |u| = {:.6e}, total {:.2} s -> {}",
             input.display(),
             s.equations,
-            s["displacement_max"].as_f64().unwrap_or(0.0),
-            s["timings"]["total"].as_f64().unwrap_or(0.0),
+            s.displacement_max.unwrap_or(0.0),
+            s.timings.map_or(0.0, |t| t.total),
             dir.display()
         );
         if let Some(obj) = s["reactions"].as_object() {
@@ -422,7 +422,7 @@ fn finish(input: &Path, r: &RunResults, shown: usize, writer: bool) -> Result<()
             input.display(),
             r.status_line,
             s.increments.unwrap_or(0),
-            s["newton_iterations"]["total"],
+            s.newton_iterations.as_ref().map_or(0, |n| n.total),
             s["load_factor"].as_f64().unwrap_or(0.0),
             dir.display()
         );

@@ -44,7 +44,7 @@ impl Progress {
 }
 
 impl Observer for Progress {
-    fn on_increment(&mut self, inc: &Increment<'_>, _log: &mut RunLog) -> junta::Result<Flow> {
+    fn on_increment(&mut self, inc: &Increment<'_>, _log: &RunLog) -> junta::Result<Flow> {
         let r = inc.report;
         self.bar.set_message(format!(
             "increment {} lambda = {:.5} ({} iterations{}), {}/{} interface points failed",

@@ -45,7 +45,10 @@ fn dcb_through_the_api_writes_the_cli_curve_bit_for_bit() {
         .skip(1)
         .map(|l| l.split(',').nth(3).unwrap().parse().unwrap())
         .collect();
-    assert_eq!(results.curve.get("reaction").unwrap(), reactions.as_slice());
+    assert_eq!(
+        results.curve().get("reaction").unwrap(),
+        reactions.as_slice()
+    );
     // the peak is the corrected-beam-theory one within the scene's own
     // tolerance (BENCHMARKS.md section 4: 138.5 N)
     let peak = reactions.iter().cloned().fold(0.0, f64::max);
@@ -129,7 +132,7 @@ fn overrides_act_as_edits_of_the_scene() {
         .unwrap()
         .run(&RunSettings::in_memory(), &mut [])
         .unwrap();
-    let r = |x: &junta::RunResults| x.curve.get("reaction").unwrap().to_vec();
+    let r = |x: &junta::RunResults| x.curve().get("reaction").unwrap().to_vec();
     assert_eq!(r(&by_file), r(&by_override));
     assert_ne!(
         r(&plain),
@@ -186,7 +189,7 @@ fn frames_and_check_report_are_typed_values() {
         .chunks(3)
         .map(|c| (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt())
         .fold(0.0, f64::max);
-    let reported = results.summary["displacement_max"].as_f64().unwrap();
+    let reported = results.summary.displacement_max.unwrap();
     assert!(
         (umax - reported).abs() <= 1e-12 * reported.abs().max(1.0),
         "{umax} {reported}"
@@ -354,11 +357,11 @@ fn batched_law_path_gives_the_per_point_curve_bit_for_bit() {
         "displacement",
         "dissipated_energy",
     ] {
-        assert_eq!(plain.curve.get(name), batched.curve.get(name), "{name}");
+        assert_eq!(plain.curve().get(name), batched.curve().get(name), "{name}");
     }
     assert_eq!(points.load(Ordering::Relaxed), 0, "no per-point call");
     let n = batches.load(Ordering::Relaxed);
-    let solves = batched.summary["driver"]["linear_solves"].as_u64().unwrap() as usize;
+    let solves = batched.summary.driver.unwrap().linear_solves;
     // one batch per assembly; outputs of an increment batch element by
     // element, so at least one call per assembly and no call per point
     assert!(n >= solves, "{n} batches for {solves} solves");

@@ -8,6 +8,14 @@ use common::*;
 use junta::{RunSettings, Simulation, Status, Summary, SummaryAnalysis};
 
 fn round_trip(input: &std::path::Path, max_increments: Option<usize>) -> (Summary, Status) {
+    let (s, status, _) = run_and_read(input, max_increments);
+    (s, status)
+}
+
+fn run_and_read(
+    input: &std::path::Path,
+    max_increments: Option<usize>,
+) -> (Summary, Status, junta::RunResults) {
     let dir = tempfile::tempdir().unwrap();
     let settings = RunSettings {
         max_increments,
@@ -23,7 +31,8 @@ fn round_trip(input: &std::path::Path, max_increments: Option<usize>) -> (Summar
     let text = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     assert_eq!(v, results.summary.to_json());
-    (read, results.status)
+    let status = results.status;
+    (read, status, results)
 }
 
 #[test]
@@ -37,6 +46,28 @@ fn a_linear_summary_round_trips() {
     assert_eq!(s.equations, 45);
     assert_eq!(s.dofs, 3 * s.nodes);
     assert!(s.section("reactions").is_some());
+    assert!(s.energy.is_none() && s.newton_iterations.is_none());
+    let t = s.timings.expect("a linear run has timings");
+    assert!(t.pattern.is_some() && t.driver_total.is_none());
+}
+
+/// The typed end-of-run sections say what the run's own curve says.
+#[test]
+fn the_typed_sections_agree_with_the_curve() {
+    let input = repo().join("examples/fatigue/held_opening.toml");
+    let (s, _, results) = run_and_read(&input, None);
+    let last = results.rows.last().unwrap();
+    let energy = s.energy.unwrap();
+    assert_eq!(energy.dissipated_energy, last.dissipated);
+    assert_eq!(energy.external_work, last.external_work);
+    let it = s.newton_iterations.unwrap();
+    let per: Vec<usize> = results.rows.iter().map(|r| r.iterations).collect();
+    assert_eq!(it.per_increment, per);
+    assert_eq!(it.total, per.iter().sum::<usize>());
+    assert_eq!(Some(it.per_increment.len()), s.increments);
+    let driver = s.driver.unwrap();
+    assert!(driver.newton_iterations_with_failed_attempts >= it.total);
+    assert!(s.timings.unwrap().driver_total.is_some());
 }
 
 #[test]

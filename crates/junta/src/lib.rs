@@ -7,7 +7,7 @@
 //! let sim = Simulation::from_file("examples/delamination/dcb.toml")?;
 //! print!("{}", sim.check()?);
 //! let results = sim.run(&RunSettings::into_dir("out/dcb"), &mut [])?;
-//! let peak = results.curve.get("reaction").unwrap().iter().cloned().fold(0.0, f64::max);
+//! let peak = results.curve().get("reaction").unwrap().iter().cloned().fold(0.0, f64::max);
 //! println!("{}: peak {peak:.2} N", results.status_line);
 //! # Ok::<(), junta::Error>(())
 //! ```
@@ -57,7 +57,9 @@ pub use run::checkpoint::FirstFailure;
 pub use run::observer::{
     Flow, FnObserver, FrameCollector, Increment, Observer, Phase, RunEnd, RunInfo, RunLog,
 };
-pub use run::results::{Summary, SummaryAnalysis};
+pub use run::results::{
+    CrackSummary, DriverSummary, EnergySummary, IterationSummary, Summary, SummaryAnalysis, Timings,
+};
 pub use run::simulation::{EndReason, Options, RunResults, RunSettings, Simulation, Status};
 
 /// The crates underneath, for code that builds models by hand.

@@ -1,4 +1,5 @@
-//! The files of an incremental run, each written by an observer:
+//! The files of an incremental run, each written by a
+//! [`Writer`](crate::run::observer::Writer) (an observer that keeps the run's log):
 //!
 //! - [`CurveCsv`]: `curve.csv`, one row per converged increment (increment,
 //!   step, load factor, reaction, displacement, failed points, Newton
@@ -29,7 +30,7 @@ use crate::post::curve_columns::curve_header;
 use crate::post::fields::InterfaceResults;
 use crate::prepare::Prepared;
 use crate::run::checkpoint::{read_restart, write_atomic, InputHash, RestartFile};
-use crate::run::observer::{Flow, Increment, Observer, RunEnd, RunInfo, RunLog};
+use crate::run::observer::{Flow, Increment, RunEnd, RunInfo, RunLog, Writer};
 use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
 use junta_core::Model;
@@ -53,7 +54,7 @@ impl CurveCsv {
     }
 }
 
-impl Observer for CurveCsv {
+impl Writer for CurveCsv {
     fn on_start(&mut self, _run: &RunInfo<'_>, log: &RunLog) -> Result<()> {
         // a restart keeps the rows up to its checkpoint
         let mut text = curve_header();
@@ -135,7 +136,7 @@ impl VtuFrames {
     }
 }
 
-impl Observer for VtuFrames {
+impl Writer for VtuFrames {
     fn on_start(&mut self, _run: &RunInfo<'_>, _log: &RunLog) -> Result<()> {
         if !self.enabled {
             return Ok(());
@@ -213,7 +214,7 @@ impl Checkpoints {
     }
 }
 
-impl Observer for Checkpoints {
+impl Writer for Checkpoints {
     fn on_increment(&mut self, inc: &Increment<'_>, log: &mut RunLog) -> Result<Flow> {
         let restart = RestartFile {
             input: self.input.clone(),
@@ -295,7 +296,7 @@ impl PrintTables {
     }
 }
 
-impl Observer for PrintTables {
+impl Writer for PrintTables {
     fn on_increment(&mut self, inc: &Increment<'_>, _log: &mut RunLog) -> Result<Flow> {
         let r = inc.report;
         if let Some(ds) = self.deck_step_ends(r.step, r.step_fraction) {
@@ -369,7 +370,7 @@ impl SummaryJson {
     }
 }
 
-impl Observer for SummaryJson {
+impl Writer for SummaryJson {
     fn on_increment(&mut self, _inc: &Increment<'_>, _log: &mut RunLog) -> Result<Flow> {
         Ok(Flow::Continue)
     }
@@ -538,8 +539,8 @@ pub fn standard(
 }
 
 impl Standard {
-    /// The writers as observers, in order.
-    pub fn observers(&mut self) -> [&mut dyn Observer; 5] {
+    /// The writers, in order.
+    pub(crate) fn writers(&mut self) -> [&mut dyn Writer; 5] {
         [
             &mut self.curve,
             &mut self.prints,

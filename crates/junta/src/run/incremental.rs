@@ -17,7 +17,7 @@ use crate::post::crack::CrackProbe;
 use crate::post::curve::{limit_points, CurveRow};
 use crate::prepare::Prepared;
 use crate::run::checkpoint::{FirstFailure, RestartFile};
-use crate::run::observer::{Flow, Increment, Observer, RunEnd, RunInfo, RunLog, Stop};
+use crate::run::observer::{Flow, Increment, RunEnd, RunInfo, RunLog, Stop, Writer};
 use crate::run::results::{EndReason, Summary};
 use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
@@ -147,7 +147,7 @@ impl Engine<'_> {
     fn on_increment(
         &mut self,
         v: &IncrementView<'_>,
-        observers: &mut [&mut dyn Observer],
+        reporters: &mut [&mut dyn Writer],
     ) -> Control {
         let r = v.report;
         for s in &r.switched {
@@ -163,7 +163,7 @@ impl Engine<'_> {
             );
             self.log.path_switches.push(s.clone());
         }
-        let flow = self.increment(v, observers);
+        let flow = self.increment(v, reporters);
         self.log.last_increment = r.increment_index;
         let flow = match flow {
             Ok(f) => f,
@@ -189,11 +189,12 @@ impl Engine<'_> {
         Control::Continue
     }
 
-    /// The row of a converged increment, then every observer in order.
+    /// The row of a converged increment, then every reporter in order (the
+    /// standard writers, then the caller's observers).
     fn increment(
         &mut self,
         v: &IncrementView<'_>,
-        observers: &mut [&mut dyn Observer],
+        reporters: &mut [&mut dyn Writer],
     ) -> Result<Flow> {
         let r = v.report;
         let model = self.model;
@@ -224,7 +225,7 @@ impl Engine<'_> {
             view: v,
         };
         let mut flow = Flow::Continue;
-        for o in observers.iter_mut() {
+        for o in reporters.iter_mut() {
             let f = o.on_increment(&inc, &mut self.log)?;
             if matches!(flow, Flow::Continue) {
                 flow = f;
@@ -436,13 +437,14 @@ pub(crate) struct Ending {
 }
 
 /// Run the incremental analysis of `p`, from the start or from `restart`
-/// (its rows in `past_rows`), reporting to `observers` in order.
+/// (its rows in `past_rows`), reporting to `reporters` in order: the
+/// standard writers, then the caller's observers behind [`crate::run::observer::ReadOnly`].
 pub(crate) fn run_incremental(
     input: &Path,
     p: &mut Prepared,
     restart: Option<(RestartFile, Vec<CurveRow>)>,
     limits: Limits,
-    observers: &mut [&mut dyn Observer],
+    reporters: &mut [&mut dyn Writer],
 ) -> Result<(Ending, Summary, RunLog)> {
     let t0 = Instant::now();
     let file = input.display().to_string();
@@ -475,7 +477,7 @@ pub(crate) fn run_incremental(
         solver: p.solver.key(),
         start_increment: log.start_increment,
     };
-    for o in observers.iter_mut() {
+    for o in reporters.iter_mut() {
         o.on_start(&info, &log)?;
     }
     // SAFETY of the borrow: the engine holds the observers for the run only
@@ -499,7 +501,7 @@ pub(crate) fn run_incremental(
         &analysis,
         checkpoint.as_ref(),
         &mut engine,
-        observers,
+        reporters,
     );
     if let Some(e) = engine.error.take() {
         return Err(e.context("writing the results of an increment"));
@@ -510,7 +512,7 @@ pub(crate) fn run_incremental(
         Err(e) => return Err(crate::Error::from(e).context(format!("solving {file}"))),
     };
     let ending = ending_of(&engine, &analysis, run.as_ref(), path_end, failure);
-    finish(input, p, engine, observers, run, ending, t0)
+    finish(input, p, engine, reporters, run, ending, t0)
 }
 
 /// The driver the analysis asks for, with the engine as its callback.
@@ -520,9 +522,9 @@ fn drive(
     analysis: &scene::AnalysisSpec,
     checkpoint: Option<&Checkpoint>,
     engine: &mut Engine<'_>,
-    observers: &mut [&mut dyn Observer],
+    reporters: &mut [&mut dyn Writer],
 ) -> Result<(NonlinearRun, Option<PathEnd>), NonlinearError> {
-    let mut callback = |v: &IncrementView<'_>| engine.on_increment(v, observers);
+    let mut callback = |v: &IncrementView<'_>| engine.on_increment(v, reporters);
     match analysis.control {
         scene::Control::Auto => solve_with_path_switch(
             model,
@@ -605,7 +607,7 @@ fn finish(
     input: &Path,
     p: &Prepared,
     engine: Engine<'_>,
-    observers: &mut [&mut dyn Observer],
+    reporters: &mut [&mut dyn Writer],
     run: Option<NonlinearRun>,
     mut ending: Ending,
     t0: Instant,
@@ -692,7 +694,7 @@ fn finish(
         reason: &ending.reason,
         summary: &summary,
     };
-    for o in observers.iter_mut() {
+    for o in reporters.iter_mut() {
         o.on_end(&end, &mut log)?;
     }
     Ok((ending, summary, log))

@@ -155,7 +155,6 @@ pub(crate) fn run_linear(
         reason: crate::run::results::EndReason::EndOfProgram,
         status_line: "completed".into(),
         summary,
-        curve: Default::default(),
         rows: Vec::new(),
         output: dir.map(Path::to_path_buf),
         notes,
@@ -359,9 +358,9 @@ fn end_linear(
         reason: &crate::run::results::EndReason::EndOfProgram,
         summary,
     };
-    let mut log = RunLog::default();
+    let log = RunLog::default();
     for o in observers.iter_mut() {
-        o.on_end(&end, &mut log)?;
+        o.on_end(&end, &log)?;
     }
     Ok(Some(crate::post::frame::Frame::at(
         model,

@@ -8,15 +8,16 @@
 //! [`Flow::Interrupt`]: the driver stops cleanly after that increment, so
 //! the files the writers left are a valid restart point.
 //!
-//! The writers of `curve.csv`, the VTU frames, `checkpoint.json` and
-//! `summary.json` (`crate::output::writers`) are observers like any other; so are the
-//! command line's progress bar, the Python callback and
-//! [`FrameCollector`], which keeps typed fields in memory.
-//!
-//! Observers share one [`RunLog`]: the rows of the curve so far, the frames
-//! written, the first failure. A writer that needs what another one did
-//! (the checkpoint lists the frames) reads it there, so the order of the
-//! observers matters: frames before the checkpoint.
+//! The command line's progress bar, the Python callback and
+//! [`FrameCollector`] (which keeps typed fields in memory) are observers.
+//! They read the run's [`RunLog`] (the rows of the curve so far, the
+//! frames written, the first failure) but cannot change it: only the run
+//! and its standard writers of `curve.csv`, the VTU frames,
+//! `checkpoint.json` and `summary.json` (`crate::output::writers`, a
+//! crate-private [`Writer`] trait) write to it, in a fixed order (frames
+//! before the checkpoint that lists them), and always before the caller's
+//! observers. So an observer sees the same log whatever its place in the
+//! list.
 
 use crate::error::Result;
 use crate::post::curve::CurveRow;
@@ -223,22 +224,51 @@ pub trait Observer {
     fn on_start(&mut self, _run: &RunInfo<'_>, _log: &RunLog) -> Result<()> {
         Ok(())
     }
-    /// After each converged increment. An error ends the run (the
-    /// increments before stay on disk).
-    fn on_increment(&mut self, inc: &Increment<'_>, log: &mut RunLog) -> Result<Flow>;
+    /// After each converged increment (the log holds its row and frame).
+    /// An error ends the run (the increments before stay on disk).
+    fn on_increment(&mut self, inc: &Increment<'_>, log: &RunLog) -> Result<Flow>;
     /// Once, at the end, whatever ended the run.
-    fn on_end(&mut self, _end: &RunEnd<'_>, _log: &mut RunLog) -> Result<()> {
+    fn on_end(&mut self, _end: &RunEnd<'_>, _log: &RunLog) -> Result<()> {
         Ok(())
     }
     /// A phase of a run begins: for progress displays.
     fn on_phase(&mut self, _phase: &Phase) {}
 }
 
+/// The run's own reporters, which keep the [`RunLog`] (the standard file
+/// writers): the same calls as [`Observer`], with the log writable. The
+/// run calls them in their fixed order, then the observers.
+pub(crate) trait Writer {
+    fn on_start(&mut self, _run: &RunInfo<'_>, _log: &RunLog) -> Result<()> {
+        Ok(())
+    }
+    fn on_increment(&mut self, inc: &Increment<'_>, log: &mut RunLog) -> Result<Flow>;
+    fn on_end(&mut self, _end: &RunEnd<'_>, _log: &mut RunLog) -> Result<()> {
+        Ok(())
+    }
+}
+
+/// A caller's observer in the run's list of reporters, with the log
+/// read-only.
+pub(crate) struct ReadOnly<'o>(pub &'o mut dyn Observer);
+
+impl Writer for ReadOnly<'_> {
+    fn on_start(&mut self, run: &RunInfo<'_>, log: &RunLog) -> Result<()> {
+        self.0.on_start(run, log)
+    }
+    fn on_increment(&mut self, inc: &Increment<'_>, log: &mut RunLog) -> Result<Flow> {
+        self.0.on_increment(inc, log)
+    }
+    fn on_end(&mut self, end: &RunEnd<'_>, log: &mut RunLog) -> Result<()> {
+        self.0.on_end(end, log)
+    }
+}
+
 /// A closure as an observer: `|inc| Flow::Continue`.
 pub struct FnObserver<F>(pub F);
 
 impl<F: FnMut(&Increment<'_>) -> Flow> Observer for FnObserver<F> {
-    fn on_increment(&mut self, inc: &Increment<'_>, _log: &mut RunLog) -> Result<Flow> {
+    fn on_increment(&mut self, inc: &Increment<'_>, _log: &RunLog) -> Result<Flow> {
         Ok((self.0)(inc))
     }
 }
@@ -264,13 +294,13 @@ impl FrameCollector {
 }
 
 impl Observer for FrameCollector {
-    fn on_increment(&mut self, inc: &Increment<'_>, _log: &mut RunLog) -> Result<Flow> {
+    fn on_increment(&mut self, inc: &Increment<'_>, _log: &RunLog) -> Result<Flow> {
         if inc.step.increment.is_multiple_of(self.every.max(1)) {
             self.frames.push(inc.frame()?);
         }
         Ok(Flow::Continue)
     }
-    fn on_end(&mut self, end: &RunEnd<'_>, _log: &mut RunLog) -> Result<()> {
+    fn on_end(&mut self, end: &RunEnd<'_>, _log: &RunLog) -> Result<()> {
         let kept = self.frames.last().map(|f| f.increment);
         if let (Some(u), Some(state)) = (end.u, end.state) {
             if end.converged_here && kept != Some(end.step.increment) {

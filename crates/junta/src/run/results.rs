@@ -6,7 +6,7 @@ use crate::post::frame::Frame;
 use std::path::PathBuf;
 
 /// How a run ended.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Status {
     /// The load program ran to its end.
     Completed,
@@ -89,10 +89,12 @@ impl EndReason {
     }
 }
 
-/// What a run's `summary.json` holds, typed where every run has it: the
-/// input, the model's size, the kind and end of the run, its warnings.
-/// The sections that differ by kind of run (reactions, solver, timings,
-/// energies, crack, fatigue, advice, ...) are kept by name in
+/// What a run's `summary.json` holds, typed where a program reads it: the
+/// input, the model's size, the kind and end of the run, its warnings, and
+/// the sections of an incremental run's end (energies, crack, iterations,
+/// driver counts, timings). The sections that are tables keyed by the
+/// model's own names (reactions, interfaces, advice per interface, solver
+/// report, fatigue, limit points, ...) are kept by name in
 /// [`Summary::sections`], as the JSON they are written as
 /// (`docs/outputs.md` describes each). `summary.json` is written from this
 /// struct, and reads back into it ([`Summary::read`]): the round trip
@@ -124,9 +126,128 @@ pub struct Summary {
     /// Warnings for the user (each also printed once by the command line).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+    /// Largest nodal displacement magnitude at the end state.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub displacement_max: Option<f64>,
+    /// Energies at the last converged increment (incremental runs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub energy: Option<EnergySummary>,
+    /// The crack at the last converged increment (incremental runs whose
+    /// interfaces have a crack to measure).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crack: Option<CrackSummary>,
+    /// Newton iterations of the converged increments (incremental runs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub newton_iterations: Option<IterationSummary>,
+    /// The driver's own counts, failed attempts included (incremental runs
+    /// whose driver returned).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub driver: Option<DriverSummary>,
+    /// Cut-backs of the driver (incremental runs whose driver returned).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cutbacks: Option<usize>,
+    /// Symbolic analyses (orderings) of the linear solver (incremental runs
+    /// whose driver returned).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub symbolic_analyses: Option<usize>,
+    /// Wall-clock seconds per phase (absent after a failed increment).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub timings: Option<Timings>,
     /// Every other section, by its key in `summary.json`.
     #[serde(flatten)]
     pub sections: std::collections::BTreeMap<String, serde_json::Value>,
+}
+
+/// `summary.json` `energy`: energies at the last converged increment.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct EnergySummary {
+    /// Work of the applied loads and prescribed displacements.
+    pub external_work: f64,
+    /// Fracture energy dissipated in all interfaces.
+    pub dissipated_energy: f64,
+    /// Energy dissipated by viscous regularisation.
+    pub viscous_energy: f64,
+    /// Energy dissipated by friction.
+    pub frictional_dissipation: f64,
+}
+
+/// `summary.json` `crack`: the crack at the last converged increment
+/// (`docs/outputs.md`, "the crack": failed points and the process zone).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct CrackSummary {
+    /// Point the crack length is measured from.
+    pub origin: [f64; 3],
+    /// Direction the crack runs in.
+    pub direction: [f64; 3],
+    /// Width across which the damaged area is divided.
+    pub width: f64,
+    /// Damaged (failed) area divided by the width.
+    pub crack_length: f64,
+    /// Position of the furthest failed point along the direction.
+    pub crack_front: Option<f64>,
+    /// Length of the process zone (damage started, not yet failed).
+    pub process_zone_length: Option<f64>,
+    /// Integration points in the process zone.
+    pub process_zone_points: Option<usize>,
+    /// The fewest process-zone points in an increment in which the crack
+    /// grew.
+    pub process_zone_points_min_while_growing: Option<usize>,
+    /// Fewest points the process zone should span (the warning's bound).
+    pub min_process_zone_points: usize,
+}
+
+/// `summary.json` `newton_iterations`: iterations of the converged
+/// increments.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct IterationSummary {
+    /// Sum over increments.
+    pub total: usize,
+    /// Most in one increment.
+    pub max_per_increment: usize,
+    /// Mean per increment.
+    pub mean_per_increment: f64,
+    /// Per increment, in order.
+    pub per_increment: Vec<usize>,
+}
+
+/// `summary.json` `driver`: counts of this call of the driver (a restarted
+/// run counts from its restart), failed attempts included.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct DriverSummary {
+    /// Newton iterations, failed attempts included.
+    pub newton_iterations_with_failed_attempts: usize,
+    /// Linear solves.
+    pub linear_solves: usize,
+    /// Attempts that switched to the laws' secant tangent.
+    pub secant_attempts: usize,
+}
+
+/// `summary.json` `timings`: wall-clock seconds per phase.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Timings {
+    /// Reading and preparing the input.
+    pub read: f64,
+    /// Choosing the linear solver.
+    pub choose_solver: f64,
+    /// Building the matrix pattern (linear runs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pattern: Option<f64>,
+    /// Assembly.
+    pub assemble: f64,
+    /// Symbolic analysis.
+    pub analyze: f64,
+    /// Numeric factorisation.
+    pub factor: f64,
+    /// Triangular solves.
+    pub solve: f64,
+    /// Writing the result files (linear runs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub output: Option<f64>,
+    /// The nonlinear driver, start to end (incremental runs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub driver_total: Option<f64>,
+    /// The whole run.
+    pub total: f64,
 }
 
 /// `summary.json` `analysis`: what ran.
@@ -165,12 +286,43 @@ impl Summary {
     }
 }
 
-/// `summary["reactions"]`: a section by its key; `Null` when there is none
-/// (the typed fields are read as fields).
+/// The keys of `summary.json` that are typed fields of [`Summary`].
+const TYPED_KEYS: [&str; 19] = [
+    "input",
+    "title",
+    "units",
+    "analysis",
+    "status",
+    "nodes",
+    "dofs",
+    "equations",
+    "elements",
+    "increments",
+    "warnings",
+    "displacement_max",
+    "energy",
+    "crack",
+    "newton_iterations",
+    "driver",
+    "cutbacks",
+    "symbolic_analyses",
+    "timings",
+];
+
+/// `summary["reactions"]`: an untyped section by its key; `Null` when there
+/// is none.
+///
+/// # Panics
+/// On a typed key (`summary["crack"]`): read the field (`summary.crack`),
+/// which the compiler checks.
 impl std::ops::Index<&str> for Summary {
     type Output = serde_json::Value;
     fn index(&self, key: &str) -> &serde_json::Value {
         static NULL: serde_json::Value = serde_json::Value::Null;
+        assert!(
+            !TYPED_KEYS.contains(&key),
+            "summary[\"{key}\"] is a typed field of junta::Summary: read `summary.{key}`"
+        );
         self.sections.get(key).unwrap_or(&NULL)
     }
 }
@@ -186,9 +338,9 @@ pub struct RunResults {
     pub status_line: String,
     /// The summary (what `summary.json` holds).
     pub summary: Summary,
-    /// The curve of an incremental run, as columns (empty for linear runs).
-    pub curve: Curve,
-    /// The rows of the curve.
+    /// The rows of the curve of an incremental run, one per converged
+    /// increment (empty for linear runs); [`RunResults::curve`] gives them
+    /// as columns.
     pub rows: Vec<CurveRow>,
     /// The output directory, when the run wrote files.
     pub output: Option<PathBuf>,
@@ -205,6 +357,11 @@ pub struct RunResults {
 }
 
 impl RunResults {
+    /// The curve as columns (`curve.csv`'s, by name).
+    pub fn curve(&self) -> Curve {
+        Curve::from_rows(&self.rows)
+    }
+
     /// The summary as text (pretty JSON).
     pub fn summary_json(&self) -> String {
         serde_json::to_string_pretty(&self.summary.to_json()).unwrap_or_default()

@@ -11,7 +11,7 @@
 //!     if inc.row.failed >= 100 { Flow::Stop("100 points failed".into()) } else { Flow::Continue }
 //! });
 //! let results = sim.run(&RunSettings::in_memory(), &mut [&mut watch])?;
-//! let peak = results.curve.get("reaction").unwrap().iter().cloned().fold(0.0, f64::max);
+//! let peak = results.curve().get("reaction").unwrap().iter().cloned().fold(0.0, f64::max);
 //! println!("{}: peak {peak}", results.status_line);
 //! # Ok::<(), junta::Error>(())
 //! ```
@@ -31,7 +31,7 @@ use crate::prepare::check::CheckReport;
 use crate::prepare::{prepare_with, Prepared};
 use crate::run::checkpoint::{check_fields, check_inputs, read_restart, RestartFile};
 use crate::run::incremental::{run_incremental, Limits};
-use crate::run::observer::{Observer, RunLog};
+use crate::run::observer::{Observer, ReadOnly, RunLog, Writer};
 pub use crate::run::results::{EndReason, RunResults, Status};
 use std::path::{Path, PathBuf};
 
@@ -307,11 +307,13 @@ fn run_static(
     let mut standard = dir
         .as_deref()
         .map(|d| writers::standard(d, input, p, restart.as_ref().map(|r| &r.0.checkpoint)));
-    let mut all: Vec<&mut dyn Observer> = Vec::new();
+    let mut read_only: Vec<ReadOnly<'_>> =
+        observers.iter_mut().map(|o| ReadOnly(&mut **o)).collect();
+    let mut all: Vec<&mut dyn Writer> = Vec::new();
     if let Some(s) = &mut standard {
-        all.extend(s.observers());
+        all.extend(s.writers());
     }
-    all.extend(observers.iter_mut().map(|o| &mut **o as &mut dyn Observer));
+    all.extend(read_only.iter_mut().map(|o| o as &mut dyn Writer));
     let limits = Limits {
         max_increments: settings.max_increments,
         stop_when_separated: p.analysis.stop_when_separated,
@@ -334,7 +336,6 @@ fn run_static(
         reason: ending.reason,
         status_line: ending.status,
         summary,
-        curve: Curve::from_rows(&log.rows),
         rows: log.rows,
         output: dir,
         notes,
