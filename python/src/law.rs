@@ -40,7 +40,7 @@ use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyTuple};
 use std::cell::RefCell;
-use std::collections::{BTreeMap, HashSet};
+use std::collections::{BTreeMap, HashMap, HashSet};
 use std::sync::{Arc, Mutex};
 
 /// What went wrong in a Python law, kept for `Simulation.run`.
@@ -174,6 +174,29 @@ pub struct PyLaw {
     fracture: Option<FractureProperties>,
     warnings: Vec<String>,
     slot: Arc<ErrorSlot>,
+    /// The outputs and failure indices of the states of the last
+    /// [`InterfaceLaw::prefetch_outputs`].
+    prefetched: Mutex<Prefetched>,
+}
+
+/// What one batched call of `outputs` and `failure_index` gave for a
+/// block's distinct committed states, by state.
+#[derive(Default)]
+struct Prefetched {
+    /// Row of each distinct state (its bits).
+    rows: HashMap<Vec<u64>, usize>,
+    /// `outputs`, `output_names.len()` values per row (empty without the
+    /// method).
+    outputs: Vec<f64>,
+    /// `failure_index`, one per row (empty without the method).
+    failure_index: Vec<f64>,
+}
+
+impl Prefetched {
+    fn row(&self, state: &[f64]) -> Option<usize> {
+        let key: Vec<u64> = state.iter().map(|v| v.to_bits()).collect();
+        self.rows.get(&key).copied()
+    }
 }
 
 impl std::fmt::Debug for PyLaw {
@@ -343,9 +366,22 @@ impl PyLaw {
         method: &str,
         expected: &[usize],
     ) -> Result<Vec<f64>, Failure> {
-        let s = array(py, state.to_vec(), self.state_len.max(1))?;
+        self.on_states(py, f, state, 1, method, expected)
+    }
+
+    /// Call `f(states[n, k])` and read the shape `expected`.
+    fn on_states(
+        &self,
+        py: Python<'_>,
+        f: &Py<PyAny>,
+        states: &[f64],
+        n: usize,
+        method: &str,
+        expected: &[usize],
+    ) -> Result<Vec<f64>, Failure> {
+        let s = array(py, states.to_vec(), self.state_len.max(1))?;
         let s = if self.state_len == 0 {
-            s.call_method1("reshape", ((1, 0),))?
+            s.call_method1("reshape", ((n, 0),))?
         } else {
             s
         };
@@ -353,8 +389,52 @@ impl PyLaw {
         self.values(py, &r, method, "values", expected)
     }
 
+    /// `outputs` and `failure_index` of the distinct states among
+    /// `committed` (`state_len` values each), one call each.
+    fn prefetch(
+        &self,
+        py: Python<'_>,
+        committed: &[f64],
+    ) -> Result<Prefetched, (Failure, &'static str)> {
+        let k = self.state_len;
+        let mut p = Prefetched::default();
+        let mut distinct = Vec::new();
+        for s in committed.chunks(k) {
+            let key: Vec<u64> = s.iter().map(|v| v.to_bits()).collect();
+            let next = p.rows.len();
+            if let std::collections::hash_map::Entry::Vacant(e) = p.rows.entry(key) {
+                e.insert(next);
+                distinct.extend_from_slice(s);
+            }
+        }
+        let n = p.rows.len();
+        let m = self.output_names.len();
+        if let Some(f) = &self.outputs_fn {
+            p.outputs = self
+                .on_states(py, f, &distinct, n, "outputs", &[n, m])
+                .map_err(|e| (e, "outputs"))?;
+        }
+        if let Some(f) = &self.failure_index_fn {
+            p.failure_index = self
+                .on_states(py, f, &distinct, n, "failure_index", &[n])
+                .map_err(|e| (e, "failure_index"))?;
+        }
+        Ok(p)
+    }
+
+    /// The prefetched outputs of `state`, if the last prefetch had it.
+    fn prefetched_outputs(&self, state: &[f64]) -> Option<Vec<f64>> {
+        let p = self.prefetched.lock().ok()?;
+        let m = self.output_names.len();
+        let r = p.row(state).filter(|_| !p.outputs.is_empty())?;
+        Some(p.outputs[r * m..(r + 1) * m].to_vec())
+    }
+
     /// The outputs of one point's state (NaN after an error, recorded).
     fn outputs_of(&self, state: &[f64]) -> Vec<f64> {
+        if let Some(v) = self.prefetched_outputs(state) {
+            return v;
+        }
         let m = self.output_names.len();
         let me = self.id;
         if let Some(v) = LAST_OUTPUTS.with(|c| {
@@ -431,6 +511,11 @@ impl InterfaceLaw for PyLaw {
     }
     fn failure_index(&self, state: &[f64]) -> Option<f64> {
         let f = self.failure_index_fn.as_ref()?;
+        if let Ok(p) = self.prefetched.lock() {
+            if let Some(r) = p.row(state).filter(|_| !p.failure_index.is_empty()) {
+                return Some(p.failure_index[r]);
+            }
+        }
         Python::attach(
             |py| match self.per_point(py, f, state, "failure_index", &[1]) {
                 Ok(v) => Some(v[0]),
@@ -461,6 +546,41 @@ impl InterfaceLaw for PyLaw {
     }
     fn is_batched(&self) -> bool {
         true
+    }
+    fn prefetch_outputs(&self, committed: &[f64]) {
+        if self.state_len == 0 || (self.outputs_fn.is_none() && self.failure_index_fn.is_none()) {
+            return;
+        }
+        let fresh = Python::attach(|py| match self.prefetch(py, committed) {
+            Ok(p) => p,
+            Err((e, method)) => {
+                self.fail(py, e, method);
+                Prefetched::default()
+            }
+        });
+        if let Ok(mut p) = self.prefetched.lock() {
+            *p = fresh;
+        }
+    }
+    fn init_states(&self, states: &mut [f64]) {
+        let k = self.state_len;
+        states.iter_mut().for_each(|v| *v = 0.0);
+        let Some(f) = self.init_fn.as_ref().filter(|_| k > 0) else {
+            return;
+        };
+        let n = states.len() / k;
+        Python::attach(|py| {
+            let r = (|| -> Result<Vec<f64>, Failure> {
+                let r = f.bind(py).call1((n,))?;
+                self.values(py, &r, "init_state", "state", &[n, k])
+            })();
+            match r {
+                Ok(v) => states.copy_from_slice(&v),
+                Err(e) => {
+                    self.fail(py, e, "init_state");
+                }
+            }
+        });
     }
     fn evaluate_batch(
         &self,
@@ -742,6 +862,7 @@ pub fn from_object(py: Python<'_>, key: &str, obj: &Bound<'_, PyAny>) -> Result<
             let _ = slot.key.set(intern(key));
             slot
         },
+        prefetched: Mutex::new(Prefetched::default()),
     })
 }
 

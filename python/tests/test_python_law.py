@@ -231,3 +231,61 @@ def test_evaluate_law_hands_the_step_fields_over():
     assert (s["cycles"], s["temperature_factor"], s["increment"]) == (1e5, 0.5, 1)
     with pytest.raises(KeyError, match="unknown key `cycle`"):
         _junta.evaluate_law(rec, [(0.0, 0.0, 1e-3)], [], {"cycle": 1.0})
+
+
+class CountingBilinear(bilinear_law.PyBilinear):
+    """``py_bilinear`` that counts the calls of each method and the points
+    each call saw."""
+
+    calls = {}
+
+    def _count(self, name, n):
+        CountingBilinear.calls.setdefault(name, []).append(n)
+
+    def evaluate(self, jump, state, step):
+        self._count("evaluate", len(jump))
+        return super().evaluate(jump, state, step)
+
+    def outputs(self, state):
+        self._count("outputs", len(state))
+        return super().outputs(state)
+
+    def failure_index(self, state):
+        self._count("failure_index", len(state))
+        return super().failure_index(state)
+
+    def init_state(self, n):
+        self._count("init_state", n)
+        return np.zeros((n, bilinear_law.STATE_LEN))
+
+
+@pytest.fixture
+def counting_bilinear():
+    CountingBilinear.calls = {}
+    junta.register_law("py_counting_bilinear", CountingBilinear)
+    yield "py_counting_bilinear"
+    junta.unregister_law("py_counting_bilinear")
+
+
+def test_a_python_law_is_called_once_per_block_in_the_output_pass(counting_bilinear):
+    """The output pass after each increment asks the law once for the whole
+    interface block (its outputs, failure indices and responses), not once
+    per element and point; the results equal the per-point law's (the
+    compiled curve, test above)."""
+    increments = 8
+    r = junta.Simulation.from_file(DCB_COARSE, overrides={"laws.cz.type": counting_bilinear}).run(
+        max_increments=increments
+    )
+    assert len(r.curve["increment"]) == increments, r.status_line
+    calls = CountingBilinear.calls
+    # two passes per increment (its curve row; the dissipated energy the
+    # driver checks) and one for the end state, against one call per point
+    # (315 points) before; the check before the run may ask a single point
+    for name in ("outputs", "failure_index"):
+        assert len(calls[name]) <= 2 * increments + 4, (name, len(calls[name]))
+    # evaluate: every call (assembly, residual checks, output passes) holds
+    # every point of the block, none one element's
+    points = int(r.curve["interface_points"][0])
+    assert set(calls["evaluate"]) == {points}, sorted(set(calls["evaluate"]))
+    # initial states: one call per element, never one per point
+    assert min(calls["init_state"]) > 1

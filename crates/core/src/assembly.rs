@@ -961,47 +961,74 @@ pub fn batch_law_responses(
 ) -> Result<Vec<Vec<crate::LawResponse>>, CoreError> {
     let mut out = vec![Vec::new(); elements.len()];
     for (b, el) in elements.iter().enumerate() {
-        let Some(law) = el.batch_law() else { continue };
-        let block = &mesh.blocks[b];
-        let np = el.num_points();
-        let n = block.len();
-        let mut jumps = vec![[0.0; 3]; n * np];
-        let mut coords = Vec::new();
-        let mut disp = Vec::new();
-        for e in 0..n {
-            let conn = block.element(e);
-            coords.clear();
-            disp.clear();
-            coords.extend(conn.iter().map(|&node| mesh.nodes[node]));
-            disp.extend(
-                conn.iter()
-                    .flat_map(|&node| u[3 * node..3 * node + 3].iter().copied()),
-            );
-            let r = state.range(b, e);
-            let ctx = ElementContext {
-                coords: &coords,
-                disp: &disp,
-                state_committed: &state.committed[r],
-                step,
-                law_responses: None,
-                temperature: None,
-            };
-            el.jumps_into(&ctx, &mut jumps[e * np..(e + 1) * np])
-                .map_err(|source| CoreError::Element {
-                    block: block.name.clone(),
-                    element: e,
-                    source,
-                })?;
+        if el.batch_law().is_none() {
+            continue;
         }
-        let span = state.block_offsets[b]..state.block_offsets[b] + n * state.per_element[b];
-        let mut responses = vec![crate::LawResponse::default(); n * np];
-        law.evaluate_batch(
-            &jumps,
+        let span = state.block_offsets[b]
+            ..state.block_offsets[b] + mesh.blocks[b].len() * state.per_element[b];
+        out[b] = block_law_responses(
+            mesh,
+            el.as_ref(),
+            b,
+            u,
             &state.committed[span.clone()],
-            step,
             &mut state.trial[span],
-            &mut responses,
-        )
+            step,
+        )?;
+    }
+    Ok(out)
+}
+
+/// The batched law of block `b` (element `el`) evaluated once for all the
+/// block's points: `committed` and `trial` are the block's spans of the
+/// state (element-major, `el.state_len()` values per element). Returns
+/// the responses, element-major. An empty vector when the block's law is
+/// not batched.
+pub fn block_law_responses(
+    mesh: &Mesh,
+    el: &dyn Element,
+    b: usize,
+    u: &[f64],
+    committed: &[f64],
+    trial: &mut [f64],
+    step: StepInfo,
+) -> Result<Vec<crate::LawResponse>, CoreError> {
+    let Some(law) = el.batch_law() else {
+        return Ok(Vec::new());
+    };
+    let block = &mesh.blocks[b];
+    let np = el.num_points();
+    let per_element = el.state_len();
+    let n = block.len();
+    let mut jumps = vec![[0.0; 3]; n * np];
+    let mut coords = Vec::new();
+    let mut disp = Vec::new();
+    for e in 0..n {
+        let conn = block.element(e);
+        coords.clear();
+        disp.clear();
+        coords.extend(conn.iter().map(|&node| mesh.nodes[node]));
+        disp.extend(
+            conn.iter()
+                .flat_map(|&node| u[3 * node..3 * node + 3].iter().copied()),
+        );
+        let ctx = ElementContext {
+            coords: &coords,
+            disp: &disp,
+            state_committed: &committed[e * per_element..(e + 1) * per_element],
+            step,
+            law_responses: None,
+            temperature: None,
+        };
+        el.jumps_into(&ctx, &mut jumps[e * np..(e + 1) * np])
+            .map_err(|source| CoreError::Element {
+                block: block.name.clone(),
+                element: e,
+                source,
+            })?;
+    }
+    let mut responses = vec![crate::LawResponse::default(); n * np];
+    law.evaluate_batch(&jumps, committed, step, trial, &mut responses)
         .map_err(|e| {
             CoreError::Invalid(format!(
                 "interface block `{}`: law `{}`: {e}",
@@ -1009,9 +1036,7 @@ pub fn batch_law_responses(
                 law.key()
             ))
         })?;
-        out[b] = responses;
-    }
-    Ok(out)
+    Ok(responses)
 }
 
 /// Greedy colouring: no two elements of a colour share a node.

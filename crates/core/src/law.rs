@@ -196,6 +196,17 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     }
     /// Initial state of one point.
     fn init_state(&self, _state: &mut [f64]) {}
+    /// Initial states of many points, `state_len()` values each. The
+    /// default calls [`InterfaceLaw::init_state`] point by point; a law that
+    /// is costly per call (one written in Python) sets them all at once.
+    fn init_states(&self, states: &mut [f64]) {
+        let k = self.state_len();
+        if k > 0 {
+            for chunk in states.chunks_mut(k) {
+                self.init_state(chunk);
+            }
+        }
+    }
     /// Traction and tangent for the given jump; trial state into `state_trial`.
     fn evaluate(
         &self,
@@ -292,6 +303,16 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     fn is_batched(&self) -> bool {
         false
     }
+    /// A hint before the output pass asks [`InterfaceLaw::stage`],
+    /// [`InterfaceLaw::outputs`] and [`InterfaceLaw::failure_index`] of
+    /// many points: their committed states, `state_len()` values each (all
+    /// the points of an interface block). A batched law that is costly per
+    /// call (one written in Python) evaluates those queries for all the
+    /// points at once here and answers the per-point calls that follow from
+    /// what it kept; the answers must be the same as without the hint. The
+    /// default ignores it. Called for batched laws only
+    /// ([`InterfaceLaw::is_batched`]).
+    fn prefetch_outputs(&self, _committed: &[f64]) {}
     /// Evaluate `jumps.len()` points at once: point `i` has the jump
     /// `jumps[i]` and the committed state `committed[i*k..(i+1)*k]`
     /// (`k = state_len()`); its trial state goes to the same range of

@@ -371,6 +371,37 @@ impl Model {
         Ok(max)
     }
 
+    /// For interface block `b` with a batched law (a law written in
+    /// Python): its responses at `u` from one call for the whole block, and
+    /// the outputs of its committed states prefetched
+    /// ([`crate::InterfaceLaw::prefetch_outputs`]), so that a pass over its
+    /// points asks the law nothing per point. Empty for the other blocks.
+    fn batched_block_responses(
+        &self,
+        b: usize,
+        u: &[f64],
+        state: &StateStore,
+    ) -> Result<Vec<crate::LawResponse>, CoreError> {
+        let el = &self.elements[b];
+        let Some(law) = el.batch_law() else {
+            return Ok(Vec::new());
+        };
+        let span = state.block_offsets[b]
+            ..state.block_offsets[b] + self.mesh.blocks[b].len() * state.per_element[b];
+        let committed = &state.committed[span];
+        law.prefetch_outputs(committed);
+        let mut trial = committed.to_vec();
+        crate::assembly::block_law_responses(
+            &self.mesh,
+            el.as_ref(),
+            b,
+            u,
+            committed,
+            &mut trial,
+            crate::element::StepInfo::default(),
+        )
+    }
+
     /// Calls `f` with the outputs of every interface integration point at
     /// the displacement `u` and the committed `state`.
     pub(crate) fn for_each_interface_point(
@@ -386,6 +417,8 @@ impl Model {
                 continue;
             }
             let el = &self.elements[b];
+            let responses = self.batched_block_responses(b, u, state)?;
+            let np = el.num_points();
             for e in 0..block.len() {
                 let conn = block.element(e);
                 coords.clear();
@@ -399,7 +432,8 @@ impl Model {
                     disp: &disp,
                     state_committed: &state.committed[state.range(b, e)],
                     step: crate::element::StepInfo::default(),
-                    law_responses: None,
+                    law_responses: (!responses.is_empty())
+                        .then(|| &responses[e * np..(e + 1) * np]),
                     temperature: None,
                 };
                 let pts = el

@@ -285,6 +285,9 @@ fn interface_area(model: &Model, block: usize) -> Result<(Vec<bool>, usize, f64)
     let mut pairs = std::collections::BTreeSet::new();
     let m = ib.nodes_per_element() / 2;
     let mut area = 0.0;
+    let (states, responses) = initial_block_states(model, block)?;
+    let per = iel.state_len();
+    let np = iel.num_points();
     for e in 0..ib.len() {
         let nodes = ib.element(e);
         for a in 0..m {
@@ -294,15 +297,13 @@ fn interface_area(model: &Model, block: usize) -> Result<(Vec<bool>, usize, f64)
         }
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.nodes[n]).collect();
         let disp = vec![0.0; 3 * nodes.len()];
-        let mut state = vec![0.0; iel.state_len()];
-        iel.init_state(&mut state);
         let pts = iel
             .point_outputs(&ElementContext {
                 coords: &coords,
                 disp: &disp,
-                state_committed: &state,
+                state_committed: &states[e * per..(e + 1) * per],
                 step: StepInfo::default(),
-                law_responses: None,
+                law_responses: (!responses.is_empty()).then(|| &responses[e * np..(e + 1) * np]),
                 temperature: None,
             })
             .map_err(|source| CoreError::Element {
@@ -317,6 +318,42 @@ fn interface_area(model: &Model, block: usize) -> Result<(Vec<bool>, usize, f64)
             .sum::<f64>();
     }
     Ok((on_interface, pairs.len(), area))
+}
+
+/// The initial states of interface block `block`, element-major, and,
+/// when its law is batched (a law written in Python), its responses at
+/// zero jump from one call for the whole block, with the outputs of those
+/// states prefetched ([`junta_core::InterfaceLaw::prefetch_outputs`]): the area pass
+/// then asks the law nothing per point.
+fn initial_block_states(
+    model: &Model,
+    block: usize,
+) -> Result<(Vec<f64>, Vec<junta_core::LawResponse>), CoreError> {
+    let iel = &model.elements[block];
+    let per = iel.state_len();
+    let n = model.mesh.blocks[block].len();
+    let mut states = vec![0.0; per * n];
+    if per > 0 {
+        for chunk in states.chunks_mut(per) {
+            iel.init_state(chunk);
+        }
+    }
+    let Some(law) = iel.batch_law() else {
+        return Ok((states, Vec::new()));
+    };
+    law.prefetch_outputs(&states);
+    let u = vec![0.0; 3 * model.mesh.nodes.len()];
+    let mut trial = states.clone();
+    let responses = junta_core::assembly::block_law_responses(
+        &model.mesh,
+        iel.as_ref(),
+        block,
+        &u,
+        &states,
+        &mut trial,
+        StepInfo::default(),
+    )?;
+    Ok((states, responses))
 }
 
 /// The stiffness diagonal of the solid elements touching the interface

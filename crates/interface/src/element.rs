@@ -635,12 +635,7 @@ impl Element for InterfaceElement {
         self.points.len() * self.law.state_len()
     }
     fn init_state(&self, state: &mut [f64]) {
-        let s = self.law.state_len();
-        if s > 0 {
-            for chunk in state.chunks_mut(s) {
-                self.law.init_state(chunk);
-            }
-        }
+        self.law.init_states(state);
     }
 
     fn compute(

@@ -102,6 +102,20 @@ pub fn element_points(
     e: usize,
     step: StepInfo,
 ) -> Result<Vec<junta_core::PointOutput>> {
+    element_points_with(model, u, state, bi, e, step, None)
+}
+
+/// [`element_points`] with the element's law responses when its block's
+/// law was evaluated once for the whole block.
+fn element_points_with(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+    bi: usize,
+    e: usize,
+    step: StepInfo,
+    law_responses: Option<&[junta_core::LawResponse]>,
+) -> Result<Vec<junta_core::PointOutput>> {
     let b = &model.mesh.blocks[bi];
     let nodes = b.element(e);
     let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| model.mesh.nodes[n]).collect();
@@ -125,7 +139,7 @@ pub fn element_points(
         disp: &disp,
         state_committed: &state.committed[state.range(bi, e)],
         step,
-        law_responses: None,
+        law_responses,
         temperature: temperature.as_deref(),
     };
     model.elements[bi]
@@ -164,9 +178,12 @@ pub fn interface_results_at(
         if !b.shape.is_interface() {
             continue;
         }
+        let responses = batched_responses(model, u, state, bi, step)?;
+        let np = model.elements[bi].num_points();
         let mut points = Vec::new();
         for e in 0..b.len() {
-            points.extend(element_points(model, u, state, bi, e, step)?);
+            let own = (!responses.is_empty()).then(|| &responses[e * np..(e + 1) * np]);
+            points.extend(element_points_with(model, u, state, bi, e, step, own)?);
         }
         out.push(InterfaceResults {
             block: bi,
@@ -175,6 +192,39 @@ pub fn interface_results_at(
         });
     }
     Ok(out)
+}
+
+/// For a block whose law is batched (a law written in Python): the law
+/// evaluated once for all the block's points, and told to prefetch the
+/// outputs of their committed states
+/// ([`junta_core::InterfaceLaw::prefetch_outputs`]), so that the output
+/// pass calls it once per block rather than once per element and point.
+/// Empty for the other blocks.
+fn batched_responses(
+    model: &Model,
+    u: &[f64],
+    state: &StateStore,
+    bi: usize,
+    step: StepInfo,
+) -> Result<Vec<junta_core::LawResponse>> {
+    let el = &model.elements[bi];
+    let Some(law) = el.batch_law() else {
+        return Ok(Vec::new());
+    };
+    let span = state.block_offsets[bi]
+        ..state.block_offsets[bi] + model.mesh.blocks[bi].len() * state.per_element[bi];
+    let committed = &state.committed[span];
+    law.prefetch_outputs(committed);
+    let mut trial = committed.to_vec();
+    Ok(junta_core::assembly::block_law_responses(
+        &model.mesh,
+        el.as_ref(),
+        bi,
+        u,
+        committed,
+        &mut trial,
+        step,
+    )?)
 }
 
 pub(crate) fn component_range(
