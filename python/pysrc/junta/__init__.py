@@ -181,6 +181,8 @@ class Law:
       ``dissipated_energy`` output per unit area feeds the curve's
       dissipated energy and arc-length path following);
     * ``failure_index(state) -> [n]`` (``None``: no index);
+      ``outputs`` and ``failure_index`` are called once per interface
+      block with its distinct states, and must depend on the state alone;
     * ``fracture_properties``: dict ``N, S, G_Ic, G_IIc`` (penalty and
       mesh advice);
     * ``warnings``: list of str.
