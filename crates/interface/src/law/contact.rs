@@ -3,33 +3,40 @@
 //! other and must not interpenetrate, but carry no tension and no shear.
 //!
 //! ```text
-//! t = [0, 0, K min(delta_n, 0)],     dt/ddelta = diag(0, 0, K if delta_n <= 0 else 0)
+//! t = [0, 0, K min(delta_n, 0)],     dt/ddelta = diag(0, 0, K if delta_n < 0 else 0)
 //! ```
 //!
 //! The penalty `K` [force/length^3] plays the role of the normal penalty
 //! of a cohesive law (use the same value). No state.
 //!
-//! **Closed at a zero jump.** The traction is continuous at `delta_n = 0`
-//! but its derivative jumps from `K` to 0; both one-sided derivatives are
-//! valid there and the law takes the closed one (`K`). The open one made
-//! the first Newton iteration of every run (all jumps exactly zero) see a
-//! precrack without any normal stiffness: on an ENF (span 150 mm, a0 =
-//! 0.75 L, 1 mm wide, K = 3e7) that predictor pushed the arms 0.59 mm into
-//! each other, the line search cut the step to 1/32 and the driver fell
-//! back to the secant tangent for the whole attempt. Closed at zero, the
-//! first predictor is the "bonded in the normal direction" solution,
-//! whose largest open gap is 5e-10 mm on that specimen.
+//! **Open at a zero jump.** The traction is continuous at `delta_n = 0`
+//! but its derivative jumps from `K` to 0; the law takes the open branch
+//! there (a jump exactly zero carries nothing either way). Taking the
+//! closed one instead was tried (issue 37): it helps nothing on an ENF
+//! and keeps the precrack of an MMB, which opens, from starting.
 //!
-//! This does not by itself make that specimen start: both arms of an ENF
-//! bend alike over the precrack, so the whole precrack sits at a gap of
-//! order 1e-4 of the deflection whose sign is set by shear, Poisson and
-//! support-indentation terms, and the active set walks from "all closed"
-//! to the few points near the support by 6-10 points per Newton iteration
-//! (measured: 152 closed of 452 after the first iteration, 70 after 23),
-//! more than the 25 iterations allowed on a 150 mm span (100 mm: 8 of 300
-//! closed after 7 iterations). Since the problem is linear in the load
-//! until the bonded zone damages, a smaller increment repeats the same
-//! walk (see the issue 37 report).
+//! **Grazing contact: the status walk.** Both arms of an ENF bend alike
+//! over the precrack, so the whole precrack sits at a gap of order 1e-4 of
+//! the deflection (beam theory: no pressure between the arms except where
+//! the shear enters the upper arm, at its free end), whose sign is set by
+//! shear, Poisson and support terms. Newton on this law is a semi-smooth
+//! Newton on the contact status: each iteration solves with the status of
+//! the last iterate, and on slender arms (a beam on the penalty foundation
+//! of decay length `(4 E I / (K b))^(1/4)`, a fraction of a millimetre)
+//! the status changes only a few points beyond the last change: from "all
+//! open" (or all closed) to the few closed points at the support end the
+//! status walks along the precrack by one element or so per iteration
+//! (measured on 0.5 mm elements, 1 mm wide arms 1.55 mm thick, a0 =
+//! 0.75 L, K = 3e7: 11 iterations on a 150 mm span, 74 on 200 mm, 169 on
+//! 300 mm, against the 25 of `max_iterations`). Since the
+//! problem is positively homogeneous in the load until the bonded zone
+//! damages, a smaller increment repeats the same walk: the run could not
+//! start. The law declares its switch ([`InterfaceLaw::contact_closed`])
+//! so that the Newton driver counts such iterations as *contact
+//! iterations*, which do not count against the iteration limit (the
+//! severe discontinuity iterations of Abaqus/Standard): see the `newton`
+//! module of the solvers. Once the walk is done, the status carries over
+//! to the next increments, which converge in one or two iterations.
 
 use junta_core::law::{InterfaceLaw, LawContext, LawError, LawResponse};
 use junta_core::registry::{parse_params, LawEntry, ParamDoc};
@@ -80,11 +87,20 @@ impl InterfaceLaw for Contact {
 
     fn evaluate(&self, ctx: &LawContext<'_>, _trial: &mut [f64]) -> Result<LawResponse, LawError> {
         let mut r = LawResponse::default();
-        if ctx.jump[2] <= 0.0 {
+        if ctx.jump[2] < 0.0 {
             r.traction[2] = self.k * ctx.jump[2];
             r.tangent[2][2] = self.k;
         }
         Ok(r)
+    }
+
+    fn has_contact_switch(&self) -> bool {
+        true
+    }
+
+    /// Closed where [`InterfaceLaw::evaluate`] takes the closed branch.
+    fn contact_closed(&self, jump: [f64; 3], _state: &[f64]) -> bool {
+        jump[2] < 0.0
     }
 
     fn initial_stiffness(&self) -> [f64; 3] {
@@ -132,10 +148,9 @@ mod tests {
         assert_eq!(r, LawResponse::default());
     }
 
-    /// At a zero jump the law is closed: the first Newton predictor of a
-    /// run (all jumps zero) sees the contact stiffness, not a free precrack.
+    /// At a zero jump the law is open, and says so to the driver.
     #[test]
-    fn closed_at_zero_jump() {
+    fn open_at_zero_jump() {
         let c = Contact { k: 3e7 };
         let r = c
             .evaluate(
@@ -147,12 +162,14 @@ mod tests {
                 &mut [],
             )
             .unwrap();
-        assert_eq!(r.traction, [0.0; 3]);
-        assert_eq!(r.tangent[2][2], 3e7);
+        assert_eq!(r, LawResponse::default());
+        assert!(c.has_contact_switch());
+        assert!(!c.contact_closed([0.0; 3], &[]));
+        assert!(c.contact_closed([1.0, 0.0, -1e-12], &[]));
     }
 
     /// The tangent against central differences, open and closed; at zero the
-    /// one-sided difference towards closing.
+    /// one-sided difference towards opening.
     #[test]
     fn tangent_matches_finite_differences() {
         let c = Contact { k: 3e7 };
@@ -172,7 +189,7 @@ mod tests {
             let fd = (t(dn + h).traction[2] - t(dn - h).traction[2]) / (2.0 * h);
             assert!((fd - t(dn).tangent[2][2]).abs() <= 1e-6 * 3e7, "dn = {dn}");
         }
-        let fd_closing = (t(0.0).traction[2] - t(-h).traction[2]) / h;
-        assert!((fd_closing - t(0.0).tangent[2][2]).abs() <= 1e-6 * 3e7);
+        let fd_opening = (t(h).traction[2] - t(0.0).traction[2]) / h;
+        assert!((fd_opening - t(0.0).tangent[2][2]).abs() <= 1e-6 * 3e7);
     }
 }
