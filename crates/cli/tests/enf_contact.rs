@@ -39,7 +39,7 @@ const B: f64 = 1.0;
 
 /// The scene of an ENF with span `span`, `nx` elements along it, the
 /// contact penalty `k_contact` on the precrack, loaded to `end` mm.
-fn enf_scene(span: f64, nx: usize, k_contact: f64, end: f64) -> String {
+fn enf_scene(span: f64, nx: usize, k_contact: f64, end: f64, control: &str) -> String {
     let l = span / 2.0;
     let a0 = 0.75 * l;
     format!(
@@ -118,6 +118,7 @@ displacement = {{ z = -1.0 }}
 [analysis]
 type = "static"
 steps = [{end}]
+control = "{control}"
 
 [analysis.newton]
 initial_increment = 0.5
@@ -151,16 +152,21 @@ fn column(dir: &Path, name: &str) -> Vec<f64> {
         .collect()
 }
 
-/// One ENF run: the compliance of its first increment, and the Newton
-/// iterations of that increment. Panics unless the run completes at `end`.
-fn run_enf(span: f64, nx: usize, k_contact: f64) -> (f64, f64, usize) {
+/// One ENF run under `control`: the compliance of its first increment,
+/// beam theory's, and the Newton iterations of that increment. Panics
+/// unless the run completes at `end`.
+fn run_enf(span: f64, nx: usize, k_contact: f64, control: &str) -> (f64, f64, usize) {
     let l = span / 2.0;
     let a0 = 0.75 * l;
     // half the deflection at the propagation load P = 4 b sqrt(E h^3 G_IIc) / (3 a)
     let p_c = 4.0 * B * (E11 * H.powi(3) * G_IIC).sqrt() / (3.0 * a0);
     let end = 0.5 * p_c * beam_theory_compliance(l, a0);
     let dir = tempfile::tempdir().unwrap();
-    let scene = write(dir.path(), "enf.toml", &enf_scene(span, nx, k_contact, end));
+    let scene = write(
+        dir.path(),
+        "enf.toml",
+        &enf_scene(span, nx, k_contact, end, control),
+    );
     let out = dir.path().join("out");
     let s = run_ok(&scene, &out);
     assert_eq!(
@@ -194,7 +200,7 @@ fn enf_spans_and_contact_penalties_all_start_and_finish() {
     for span in [100.0, 150.0, 300.0] {
         let mut compliances = Vec::new();
         for k in [1e5, 1e6, 1e8] {
-            let (c, c_bt, iterations) = run_enf(span, 80, k);
+            let (c, c_bt, iterations) = run_enf(span, 80, k, "auto");
             assert!(
                 (c / c_bt - 1.0).abs() <= 0.025,
                 "span {span}, K {k:e}: compliance {c:.5e} against beam theory {c_bt:.5e}"
@@ -221,10 +227,23 @@ fn enf_spans_and_contact_penalties_all_start_and_finish() {
 fn enf_issue_specimen_on_its_mesh_starts() {
     for span in [150.0, 200.0, 300.0] {
         let nx = (span / 0.5) as usize;
-        let (c, c_bt, iterations) = run_enf(span, nx, 3e7);
+        let (c, c_bt, iterations) = run_enf(span, nx, 3e7, "auto");
         assert!(
             (c / c_bt - 1.0).abs() <= 0.025,
             "span {span}: compliance {c:.5e} against {c_bt:.5e} ({iterations} iterations)"
         );
     }
+}
+
+/// Path following counts contact iterations too: the 300 mm span under
+/// `control = "arc_length"` starts (it stopped at its first increment) and
+/// its first increment has beam theory's compliance.
+#[test]
+fn enf_long_span_starts_under_path_following() {
+    let (c, c_bt, iterations) = run_enf(300.0, 80, 1e6, "arc_length");
+    assert!(iterations > 25, "{iterations} iterations");
+    assert!(
+        (c / c_bt - 1.0).abs() <= 0.025,
+        "{c:.5e} against {c_bt:.5e}"
+    );
 }

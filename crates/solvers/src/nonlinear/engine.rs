@@ -584,7 +584,7 @@ impl<'m> Work<'m> {
     /// The number of points whose contact status changed from the last
     /// iterate to `u` (the largest over the ranks); the status of `u`
     /// becomes the current one. 0 for a model without a contact switch.
-    fn contact_switches(&mut self, state: &StateStore) -> Result<usize, CoreError> {
+    pub(crate) fn contact_switches(&mut self, state: &StateStore) -> Result<usize, CoreError> {
         if self.contact_allowance == 0 {
             return Ok(0);
         }

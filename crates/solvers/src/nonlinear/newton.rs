@@ -95,8 +95,9 @@
 //! the size nor the decrease of its residual says anything about the
 //! convergence of the smooth problem that follows. Convergence is tested
 //! as in any iteration. An attempt takes at most `max_iterations` plus
-//! twice the number of contact points iterations in all. A model without
-//! such a law iterates exactly as before. Why the status can need many
+//! twice the number of contact points iterations in all. The attempts of
+//! path following ([`crate::arc_length`]) count them the same way. A
+//! model without such a law iterates exactly as before. Why the status can need many
 //! iterations (a grazing precrack, e.g. an ENF's): the doc of the
 //! `contact` law.
 //!
