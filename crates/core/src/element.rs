@@ -204,6 +204,21 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     fn warnings(&self) -> Vec<String> {
         Vec::new()
     }
+    /// True for an interface element whose law has a contact switch
+    /// ([`crate::law::InterfaceLaw::contact_closed`]). Default: false.
+    fn has_contact_switch(&self) -> bool {
+        false
+    }
+    /// For an element with a contact switch ([`Element::has_contact_switch`]):
+    /// whether each integration point is closed at `ctx` (committed state),
+    /// into `out` (`out.len() == num_points()`). Default: nothing written.
+    fn contact_closed_into(
+        &self,
+        _ctx: &ElementContext<'_>,
+        _out: &mut [bool],
+    ) -> Result<(), ElementError> {
+        Ok(())
+    }
     /// Kind of the tangent this element can produce (its law's or
     /// material's); see [`crate::solver::MatrixKind`].
     fn tangent_kind(&self) -> crate::solver::MatrixKind {

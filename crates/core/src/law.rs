@@ -296,6 +296,21 @@ pub trait InterfaceLaw: Send + Sync + std::fmt::Debug {
     fn warnings(&self) -> Vec<String> {
         Vec::new()
     }
+    /// True for a law with a unilateral contact switch: its normal
+    /// response changes branch where the faces touch (e.g. `contact`).
+    /// The Newton driver counts the points whose status
+    /// ([`InterfaceLaw::contact_closed`]) changes from one iteration to the
+    /// next: such *contact iterations* do not count against the iteration
+    /// limit (see the `newton` module of the solvers). Default: false.
+    fn has_contact_switch(&self) -> bool {
+        false
+    }
+    /// For a law with a contact switch ([`InterfaceLaw::has_contact_switch`]):
+    /// whether the point is closed at the local `jump` with the committed
+    /// `state`. Default: false (never called for a law without a switch).
+    fn contact_closed(&self, _jump: [f64; 3], _state: &[f64]) -> bool {
+        false
+    }
     /// True for a law evaluated for all the points of an interface block
     /// at once ([`InterfaceLaw::evaluate_batch`]), such as a law written in
     /// Python: the assembler then calls `evaluate_batch` once per block and

@@ -402,6 +402,62 @@ impl Model {
         )
     }
 
+    /// True when some interface law of the model has a contact switch
+    /// ([`crate::InterfaceLaw::has_contact_switch`]).
+    pub fn has_contact_switch(&self) -> bool {
+        self.elements.iter().any(|e| e.has_contact_switch())
+    }
+
+    /// The contact status (closed or not) of every integration point of
+    /// the interfaces whose law has a contact switch, at the full
+    /// displacement `u` and the committed `state`, into `out` (cleared
+    /// first; block by block, element by element, point by point, so that
+    /// two calls on the same model compare point by point). Empty for a
+    /// model without such laws.
+    pub fn contact_statuses(
+        &self,
+        u: &[f64],
+        state: &StateStore,
+        out: &mut Vec<bool>,
+    ) -> Result<(), CoreError> {
+        out.clear();
+        let mut coords = Vec::new();
+        let mut disp = Vec::new();
+        for (b, block) in self.mesh.blocks.iter().enumerate() {
+            let el = &self.elements[b];
+            if !block.shape.is_interface() || !el.has_contact_switch() {
+                continue;
+            }
+            let np = el.num_points();
+            for e in 0..block.len() {
+                let conn = block.element(e);
+                coords.clear();
+                disp.clear();
+                for &n in conn {
+                    coords.push(self.mesh.nodes[n]);
+                    disp.extend_from_slice(&u[3 * n..3 * n + 3]);
+                }
+                let ctx = crate::element::ElementContext {
+                    coords: &coords,
+                    disp: &disp,
+                    state_committed: &state.committed[state.range(b, e)],
+                    step: crate::element::StepInfo::default(),
+                    law_responses: None,
+                    temperature: None,
+                };
+                let start = out.len();
+                out.resize(start + np, false);
+                el.contact_closed_into(&ctx, &mut out[start..])
+                    .map_err(|source| CoreError::Element {
+                        block: block.name.clone(),
+                        element: e,
+                        source,
+                    })?;
+            }
+        }
+        Ok(())
+    }
+
     /// Calls `f` with the outputs of every interface integration point at
     /// the displacement `u` and the committed `state`.
     pub(crate) fn for_each_interface_point(

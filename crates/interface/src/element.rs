@@ -838,6 +838,27 @@ impl Element for InterfaceElement {
         self.law.warnings()
     }
 
+    fn has_contact_switch(&self) -> bool {
+        self.law.has_contact_switch()
+    }
+
+    fn contact_closed_into(
+        &self,
+        ctx: &ElementContext<'_>,
+        out: &mut [bool],
+    ) -> Result<(), ElementError> {
+        let sl = self.law.state_len();
+        let mut n = [0.0; 9];
+        let mut dn = [[0.0; 2]; 9];
+        for (q, closed) in out.iter_mut().enumerate().take(self.points.len()) {
+            let fr = self.point_frame(ctx, q, &mut n, &mut dn)?;
+            let jump = self.jump(&fr, &n, ctx.disp);
+            let committed = &ctx.state_committed[q * sl..(q + 1) * sl];
+            *closed = self.law.contact_closed(jump, committed);
+        }
+        Ok(())
+    }
+
     fn wants_small_increments(&self, state_committed: &[f64]) -> bool {
         let sl = self.law.state_len();
         sl > 0

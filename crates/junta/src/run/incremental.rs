@@ -669,6 +669,13 @@ fn finish(
         tracing::debug!("{w}");
         ending.warnings.push(w);
     }
+    if let Some(w) = crate::post::crack::steady_zone_warning(&log.rows) {
+        match summary["warnings"].as_array_mut() {
+            Some(list) => list.push(json!(w)),
+            None => summary["warnings"] = json!([w]),
+        }
+        ending.warnings.push(w);
+    }
     if let Some(u) = u {
         let (rotation, warning) =
             crate::post::rotation::summary_entry(model, u, crate::post::rotation::is_deck(input));

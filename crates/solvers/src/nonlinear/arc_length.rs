@@ -1476,7 +1476,15 @@ impl PathAttempt<'_, '_> {
         let mut rho_first = 0.0;
         let mut rho_prev = f64::INFINITY;
         let max_iterations = self.w.settings.max_iterations;
-        for it in 1..=max_iterations {
+        if self.w.contact_allowance > 0 {
+            let w = &mut *self.w;
+            w.model
+                .contact_statuses(&w.u, self.state, &mut w.contact_status)?;
+        }
+        // contact iterations do not count (the `newton` module doc)
+        let (mut counted, mut it) = (0, 0);
+        while counted < max_iterations && it < max_iterations + self.w.contact_allowance {
+            it += 1;
             self.w.iterations += 1;
             let h = self.tangent(it)?;
             self.solve(it)?;
@@ -1494,15 +1502,16 @@ impl PathAttempt<'_, '_> {
             if it == 1 {
                 rho_first = self.ev.abs.max(rho0);
             }
+            if self.w.contact_switches(self.state)? > 0 {
+                rho_first = rho_first.max(self.ev.abs);
+            } else {
+                counted += 1;
+            }
             if let Some(done) = self.checks(it, rho_first) {
                 return Ok(done);
             }
         }
-        Ok(failed(
-            max_iterations,
-            self.ev.rel,
-            IncrementFailure::IterationLimit,
-        ))
+        Ok(failed(it, self.ev.rel, IncrementFailure::IterationLimit))
     }
 
     /// The first trial point: the converged displacements with the load

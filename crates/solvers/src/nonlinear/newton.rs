@@ -80,6 +80,27 @@
 //! step of a temperature-only program) may converge with zero iterations;
 //! a model without free dofs always does.
 //!
+//! # Contact iterations
+//!
+//! A law with a unilateral contact switch (`contact`:
+//! [`junta_core::InterfaceLaw::contact_closed`]) makes Newton a
+//! semi-smooth Newton on the contact status: each iteration solves with
+//! the status of the last iterate. An iteration after which some point's
+//! status differs from the last iterate's is a *contact iteration* (the
+//! "severe discontinuity iteration" of Abaqus/Standard): it does not count
+//! against `max_iterations`, it restarts the stagnation test from its
+//! residual, and the divergence test measures against the largest
+//! residual so far. It is not divergence: the correction solved a
+//! different linear problem than the one the new status poses, so neither
+//! the size nor the decrease of its residual says anything about the
+//! convergence of the smooth problem that follows. Convergence is tested
+//! as in any iteration. An attempt takes at most `max_iterations` plus
+//! twice the number of contact points iterations in all. The attempts of
+//! path following ([`crate::arc_length`]) count them the same way. A
+//! model without such a law iterates exactly as before. Why the status can need many
+//! iterations (a grazing precrack, e.g. an ENF's): the doc of the
+//! `contact` law.
+//!
 //! # Cut-back
 //!
 //! An attempt fails on: the iteration limit, a non-finite residual or
