@@ -173,7 +173,10 @@
 //! The run ends when `lambda` reaches the end of the (single-step) program:
 //! the increment that would cross it is redone under load control to end
 //! exactly there. It also ends when `lambda` falls back to zero after a
-//! maximum (the structure carries no load any more), or after
+//! maximum (the structure carries no load any more: below 1e-6 of its
+//! maximum, 1e-4 under the interface balance, where a peeled tape pulled
+//! by a dead force hangs from the last softening points of its bond and
+//! their traction decays by a few per mille an increment), or after
 //! `max_increments` increments.
 //!
 //! # Restart
@@ -320,8 +323,8 @@ pub enum PathEnd {
     /// The load factor reached the end of the program.
     Completed,
     /// The load factor fell back to zero after a maximum (below 1e-6 times
-    /// its maximum, or below 1e-3 of it when no further increment
-    /// converges).
+    /// its maximum, 1e-4 under the interfaces' energy balance, or below
+    /// 1e-3 of it when no further increment converges).
     Unloaded,
     /// `max_increments` reached.
     IncrementLimit,
@@ -524,7 +527,15 @@ where
             end_reason = PathEnd::Observer;
             break;
         }
-        if run.path.lambda_max > 0.0 && run.cur.lambda * end.signum() <= 1e-6 * run.path.lambda_max
+        let unloaded = match run.balance {
+            Balance::Global => 1e-6,
+            // a force-pulled arm hanging from the last softening points of
+            // a peeled bond: their traction decays along the path by a few
+            // per mille an increment
+            Balance::Interface => 1e-4,
+        };
+        if run.path.lambda_max > 0.0
+            && run.cur.lambda * end.signum() <= unloaded * run.path.lambda_max
         {
             end_reason = PathEnd::Unloaded;
             break;
