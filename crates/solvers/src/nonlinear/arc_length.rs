@@ -93,7 +93,7 @@
 //! with `f_I` the interface elements' internal force, linearised with their
 //! tangent `K_I` (`dΔD_I = ½ (f_I,0 - K_I^T u_0) . du`); both come from the
 //! same assembly pass as the residual. The maths, and why this and not the
-//! laws' own dissipation, are in [`crate::nonlinear::balance`]. The
+//! laws' own dissipation, are in `nonlinear/balance.rs`. The
 //! switch, the rescue and the fall-back are as under small kinematics; the
 //! `max_arc_dissipation` test is not made, and the switch to the
 //! dissipation constraint weighs an increment's dissipation against the
@@ -1694,7 +1694,7 @@ impl PathAttempt<'_, '_> {
     /// g) + ½ f_th,f` and `c_l = ½ (p_0 - a_0 - lambda_0 h + f_th .
     /// ubar_c)` (module doc; `f_th` = 0 without a temperature change).
     /// Interface balance: `w = T^T ½ (f_I,0 - K_I^T u_0)`, `c_l = ½ (f_I,0
-    /// - K_I^T u_0) . ubar` ([`crate::nonlinear::balance`]). A non-finite or
+    /// - K_I^T u_0) . ubar` (`nonlinear/balance.rs`). A non-finite or
     /// degenerate solution fails the attempt.
     fn dissipation_dlambda(&mut self, it: usize, tau: f64, h: f64) -> Result<f64, Abort<Attempt>> {
         let phi = self.dissipation() - tau;

@@ -28,7 +28,7 @@
 //!      = ½ (t_0 . Δdelta - Δt . delta_0)      (exact on the straight path)
 //! ```
 //!
-//! (Verhoosel, Remmers & Gutiérrez 2009, IJNME 77, eq. for the dissipated
+//! (Verhoosel, Remmers & Gutiérrez 2009, IJNME 77: the dissipated
 //! energy of a cohesive interface). The interface elements' internal force
 //! `f_I` (interfaces only, not the solids) is `f_I = Σ_q w_q B_q^T t_q`
 //! with `B_q` the jump operator; under small kinematics `delta_q = B_q u`,
