@@ -237,11 +237,12 @@ fn peel(
     );
     let nlgeom = text.contains("nlgeom = true");
     if nlgeom {
-        // under nlgeom path following stays on the arc length: the
-        // dissipation constraint's balance assumes linear solids
+        // under nlgeom the peel front is followed by the dissipation
+        // constraint on the interfaces' energy balance (issue 37 item 2;
+        // before it path following stayed on the cylindrical arc length)
         assert!(
-            rows.iter().all(|r| r.control != "dissipation"),
-            "{name}: a dissipation-controlled increment under nlgeom"
+            rows.iter().any(|r| r.control == "dissipation"),
+            "{name}: no dissipation-controlled increment under nlgeom"
         );
     }
     let p0 = GC * B / (1.0 - theta.to_radians().cos());
@@ -306,8 +307,9 @@ fn peel_90_degrees_plateau_is_kendalls() {
 /// under 3.4 N: its bending length is 2 mm): P/b = 3.409 (Kendall, with
 /// the stretch term), within 3 % at every steady increment and 1 % on
 /// average, the load's work = the dissipated energy (2 %). Measured: mean
-/// -0.08 %, -1.8 .. +1.3 %, work / dissipation 1.0007 (on a 12 mm tab and
-/// bond: +0.06 %, -1.8 .. +1.4 %).
+/// +0.00 %, -1.65 .. +1.28 %, work / dissipation 0.998 under the
+/// dissipation constraint on the interfaces' balance (on the cylindrical
+/// arc length before it: -0.08 %, -1.8 .. +1.3 %, 1.0007).
 #[test]
 fn peel_45_degrees_plateau_is_kendalls() {
     let tmp = tempfile::tempdir().unwrap();

@@ -143,6 +143,36 @@ impl Scratch {
     }
 }
 
+/// The interface elements' share of an assembly
+/// ([`Assembler::assemble_cached_sharing`]): their internal force `f_I` and
+/// `K_I^T x` for a probe vector `x`, with `K_I` their tangent, both full
+/// length (by dof, constrained dofs included), summed over the elements
+/// whose block is an interface ([`crate::topology::CellShape::is_interface`])
+/// during the same pass that assembles the whole model. Path following
+/// under large deformation builds its dissipation constraint on them (the
+/// energy balance of the interfaces alone, crate `junta_solvers`, module
+/// `arc_length`). Interface elements kept in the linear part of a cached
+/// assembly (a linear law without state) are left out: for a constant
+/// symmetric `K_e` the balance `½ (f_0 . u - f . u_0)` they would add is
+/// zero.
+pub struct InterfaceShare<'a> {
+    /// `x`: the probe vector (full length).
+    pub probe: &'a [f64],
+    /// `f_I` (full length), overwritten.
+    pub force: &'a mut [f64],
+    /// `K_I^T x` (full length), overwritten; zero when no tangent is
+    /// assembled.
+    pub tangent_probe: &'a mut [f64],
+}
+
+/// Raw pointers of an [`InterfaceShare`] for the parallel scatter.
+#[derive(Clone, Copy)]
+struct ShareOut<'a> {
+    probe: &'a [f64],
+    force: SharedMut,
+    tangent_probe: SharedMut,
+}
+
 impl Assembler {
     /// Build the pattern and the colouring.
     pub fn new(mesh: &Mesh, dofs: &DofMap) -> Self {
@@ -365,6 +395,33 @@ impl Assembler {
         k: Option<&mut SymmetricCsc>,
         f_int: &mut [f64],
     ) -> Result<(), CoreError> {
+        self.assemble_cached_sharing(mesh, elements, dofs, u, state, step, k, f_int, None)
+    }
+
+    /// [`Assembler::assemble_cached`] that also fills the interface
+    /// elements' share ([`InterfaceShare`]) in the same pass, when given.
+    #[allow(clippy::too_many_arguments)]
+    pub fn assemble_cached_sharing(
+        &mut self,
+        mesh: &Mesh,
+        elements: &[Arc<dyn Element>],
+        dofs: &DofMap,
+        u: &[f64],
+        state: &mut StateStore,
+        step: StepInfo,
+        k: Option<&mut SymmetricCsc>,
+        f_int: &mut [f64],
+        mut share: Option<InterfaceShare<'_>>,
+    ) -> Result<(), CoreError> {
+        if let Some(sh) = share.as_mut() {
+            sh.force.iter_mut().for_each(|v| *v = 0.0);
+            sh.tangent_probe.iter_mut().for_each(|v| *v = 0.0);
+        }
+        let out = share.as_mut().map(|sh| ShareOut {
+            probe: sh.probe,
+            force: SharedMut(sh.force.as_mut_ptr()),
+            tangent_probe: SharedMut(sh.tangent_probe.as_mut_ptr()),
+        });
         let mut outcome = Ok(());
         if self.linear.is_none() {
             match self.build_linear_cache(mesh, elements, dofs) {
@@ -373,9 +430,20 @@ impl Assembler {
             }
         }
         if outcome.is_ok() {
-            outcome = self.assemble_kept_and_others(mesh, elements, dofs, u, state, step, k, f_int);
+            outcome =
+                self.assemble_kept_and_others(mesh, elements, dofs, u, state, step, k, f_int, out);
         }
-        self.share_across_ranks(outcome, state, f_int)
+        let outcome = self.share_across_ranks(outcome, state, f_int);
+        if let (Ok(()), Some(sh), Some(_), Some(c)) = (
+            &outcome,
+            share.as_mut(),
+            &self.ranks,
+            crate::distributed::collective(),
+        ) {
+            c.sum_in_place(sh.force);
+            c.sum_in_place(sh.tangent_probe);
+        }
+        outcome
     }
 
     /// [`Assembler::assemble_cached`] on this process's elements.
@@ -390,6 +458,7 @@ impl Assembler {
         step: StepInfo,
         k: Option<&mut SymmetricCsc>,
         f_int: &mut [f64],
+        share: Option<ShareOut<'_>>,
     ) -> Result<(), CoreError> {
         let cache = self.linear.as_ref().expect("built by assemble_cached");
         self.assemble_colors(
@@ -404,6 +473,7 @@ impl Assembler {
             step,
             k,
             f_int,
+            share,
         )?;
         let fv = SharedMut(f_int.as_mut_ptr());
         let theta = step.temperature_factor;
@@ -626,13 +696,15 @@ impl Assembler {
             step,
             k,
             f_int,
+            None,
         );
         self.share_across_ranks(outcome, state, f_int)
     }
 
     /// Zero `f_int`, set `k` to `base` (both triangles: `base` is
     /// symmetric) or zero, then assemble the elements of `colors` (with
-    /// `map`, its pattern positions, built for `colors`).
+    /// `map`, its pattern positions, built for `colors`); the interface
+    /// elements' share into `share` (zeroed by the caller), when given.
     #[allow(clippy::too_many_arguments)]
     fn assemble_colors(
         &self,
@@ -647,6 +719,7 @@ impl Assembler {
         step: StepInfo,
         mut k: Option<&mut SymmetricCsc>,
         f_int: &mut [f64],
+        share: Option<ShareOut<'_>>,
     ) -> Result<(), CoreError> {
         f_int.iter_mut().for_each(|v| *v = 0.0);
         if let Some(k) = k.as_deref_mut() {
@@ -749,6 +822,14 @@ impl Assembler {
                         // SAFETY: elements of one colour share no node.
                         unsafe { fv.add(s.dofs[a], s.f[a]) };
                     }
+                    if let Some(sh) = share.filter(|_| block.shape.is_interface()) {
+                        add_interface_share(
+                            sh,
+                            &s.dofs[..nd],
+                            &s.f[..nd],
+                            want_k.then_some(&s.k[..nd * nd]),
+                        );
+                    }
                     // SAFETY: entry (i, j) belongs to nodes of this element
                     // only among the elements of this colour.
                     let store = |p: usize, upper: f64, lower: f64| match kl {
@@ -783,6 +864,24 @@ impl Assembler {
             )?;
         }
         Ok(())
+    }
+}
+
+/// Add an interface element's force `fe` and, with its tangent `ke`
+/// (row-major, `ke[a nd + b] = d f_a / d u_b`), `ke^T x` to the share.
+#[inline]
+fn add_interface_share(sh: ShareOut<'_>, edofs: &[usize], fe: &[f64], ke: Option<&[f64]>) {
+    let nd = edofs.len();
+    for (a, &d) in edofs.iter().enumerate() {
+        // SAFETY: elements of one colour share no node.
+        unsafe { sh.force.add(d, fe[a]) };
+    }
+    if let Some(ke) = ke {
+        for (b, &db) in edofs.iter().enumerate() {
+            let v: f64 = (0..nd).map(|a| ke[a * nd + b] * sh.probe[edofs[a]]).sum();
+            // SAFETY: as above.
+            unsafe { sh.tangent_probe.add(db, v) };
+        }
     }
 }
 

@@ -219,34 +219,33 @@ pub(crate) fn past_peak_hint(
 
 /// What to change to trace a limit point, never what was already in force:
 /// under load control, the default `auto` or path following throughout;
-/// under `auto`, path following throughout; under path following, a
-/// shorter arc. Under `nlgeom` path following has only the cylindrical arc
-/// length (the dissipation constraint's energy balance assumes linear
-/// solids), which a sharp snap-back can defeat. A small `viscosity` always
+/// under `auto` (which switched to path following at the limit point),
+/// path following from the start or a smaller dissipation step; under path
+/// following, shorter path steps. Under `nlgeom` the dissipation constraint
+/// reads the interfaces' energy balance (`junta_solvers`, module
+/// `nonlinear::balance`), which the text says. A small `viscosity` always
 /// helps.
 fn remedy_past_peak(control: crate::input::scene::Control, nlgeom: bool) -> String {
     use crate::input::scene::Control;
     const VISCOSITY: &str =
         "add a small `viscosity` to the softening law (its energy is reported apart)";
-    let arc = if nlgeom {
-        "path following throughout (`[analysis] control = \"arc_length\"`; under `nlgeom` it has the cylindrical arc length only)"
+    let balance = if nlgeom {
+        ", under `nlgeom` on the interfaces' energy balance"
     } else {
-        "path following throughout (`[analysis] control = \"arc_length\"`, which follows snap-backs through the dissipated energy)"
+        ""
     };
+    let arc = format!(
+        "path following throughout (`[analysis] control = \"arc_length\"`, which follows snap-backs through the dissipated energy{balance})"
+    );
     match control {
         Control::Load => format!(
             "leave `control` out (the default `auto` switches to path following at a limit point and back; for a deck, drop `--solver control=load`), or use {arc}, or {VISCOSITY}"
         ),
         Control::Auto => format!(
-            "use {arc} (`auto`, in force here, switched to it at the limit point and could not follow it), or {VISCOSITY}"
+            "use {arc} or a smaller dissipation step (`[analysis.arc_length] max_dissipation`; `auto`, in force here, switched to path following at the limit point and could not follow it), or {VISCOSITY}"
         ),
         Control::ArcLength => format!(
-            "shorten the arc (`[analysis.arc_length] max_arc`, or a smaller first increment `[analysis.newton] initial_increment`; path following was in force here{}), or {VISCOSITY}",
-            if nlgeom {
-                ", with the cylindrical arc length only under `nlgeom`"
-            } else {
-                ""
-            }
+            "shorten the path steps (`[analysis.arc_length] max_arc` or `max_dissipation`, or a smaller first increment `[analysis.newton] initial_increment`; path following was in force here{balance}), or {VISCOSITY}"
         ),
     }
 }

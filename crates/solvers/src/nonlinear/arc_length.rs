@@ -37,7 +37,21 @@
 //! included). It is quadratic in `dlambda`; of its two roots the one whose
 //! increment makes the smaller angle with the current one is taken, and the
 //! predictor's sign follows the previous converged increment
-//! (`du_II . Δu_prev + c Δlambda_prev > 0`).
+//! (`du_II . Δu_prev + c Δlambda_prev > 0`). Where the quadratic of an
+//! iteration has no real root the attempt fails and is cut back. Under
+//! large deformation (the interface balance below), when the cut-backs
+//! reach the floor (`min_step`) on that failure, the increment is tried
+//! once more from its first length with the constraint linearised at the
+//! current increment wherever the quadratic has no root,
+//!
+//! ```text
+//! |Δu|^2 + c Δlambda^2 + 2 (Δu . du + c Δlambda dlambda) = Δl^2
+//! ```
+//!
+//! (Newton on the constraint: met as the iterations converge), rather than
+//! stopping. (Not under small kinematics: there a stop on it hands the run
+//! back to load control under `auto`, e.g. the viscous
+//! `examples/delamination/dcb.toml` near 8 mm, whose results are kept.)
 //!
 //! *Dissipation* (Gutierrez 2004; Verhoosel, Remmers and Gutierrez 2009),
 //! once the laws dissipate. For laws with secant unloading
@@ -71,10 +85,31 @@
 //! when a converged increment dissipated more than `switch_dissipation`
 //! times the stored energy *and* the laws' own state reports dissipated
 //! energy ([`junta_core::Model::dissipated_energy`]); a model whose laws
-//! dissipate nothing stays on the cylindrical constraint, and so does a
-//! model under large deformation (any element with
+//! dissipate nothing stays on the cylindrical constraint.
+//!
+//! *Large deformation.* Under finite kinematics (any element with
 //! [`Kinematics::Finite`](junta_core::element::Kinematics::Finite), scene
-//! `nlgeom`: see `energy_balance_holds` in [`crate::nonlinear::vocabulary`]).
+//! `nlgeom`) the solids' stored energy is not `½ u . f_int`, and the
+//! balance above does not hold (`energy_balance_holds` in
+//! [`crate::nonlinear::vocabulary`]). The dissipation constraint then reads
+//! the interfaces' balance alone, `ΔD_I = ½ (f_I,0 . u - f_I . u_0) = tau`
+//! with `f_I` the interface elements' internal force, linearised with their
+//! tangent `K_I` (`dΔD_I = ½ (f_I,0 - K_I^T u_0) . du`); both come from the
+//! same assembly pass as the residual. The maths, and why this and not the
+//! laws' own dissipation, are in `nonlinear/balance.rs`. The
+//! switch, the rescue and the fall-back are as under small kinematics; the
+//! `max_arc_dissipation` test is not made, and the switch to the
+//! dissipation constraint weighs an increment's dissipation against the
+//! largest `½ lambda (a + p)` met, not the current one: under large
+//! deformation that measure is no stored energy (at the end of a peel, the
+//! tape hanging free under a vanishing load, the current one is near zero,
+//! and every arc would be cut back or switched for the last traces of
+//! dissipation). One test is
+//! added: an increment under the interface balance whose laws' own
+//! dissipated energy grew by less than half its `tau` counts as failed
+//! (the balance is approximate under large rotation, and a long Newton walk
+//! can meet it on an elastic branch).
+//!
 //! When the
 //! dissipation constraint cannot be met any more (nothing left that can
 //! dissipate, e.g. the crack stopped under a contact zone: the dissipation
@@ -141,7 +176,10 @@
 //! The run ends when `lambda` reaches the end of the (single-step) program:
 //! the increment that would cross it is redone under load control to end
 //! exactly there. It also ends when `lambda` falls back to zero after a
-//! maximum (the structure carries no load any more), or after
+//! maximum (the structure carries no load any more: below 1e-6 of its
+//! maximum, 1e-4 under the interface balance, where a peeled tape pulled
+//! by a dead force hangs from the last softening points of its bond and
+//! their traction decays by a few per mille an increment), or after
 //! `max_increments` increments.
 //!
 //! # Restart
@@ -153,15 +191,20 @@
 
 pub use super::vocabulary::{LoadReturn, PathMode, PathState};
 
-use super::engine::{internal_force_at_zero, is_element_error, Abort, Eval, SolveClock, Work};
+use super::balance::{
+    interface_dissipation, interface_gradient, work_measures, Balance, Base, Coupling,
+};
+use super::engine::{
+    internal_force_at_zero, is_element_error, Abort, Eval, InterfaceShareBuffers, SolveClock, Work,
+};
 use super::vocabulary::{
-    any_wants_small, check_checkpoint_fits, energy_balance_holds, increment_timings, Checkpoint,
-    Control, Cursor, IncrementFailure, IncrementReport, IncrementView, NewtonSettings,
-    NonlinearError, NonlinearRun, NonlinearSummary,
+    any_wants_small, check_checkpoint_fits, increment_timings, Checkpoint, Control, Cursor,
+    IncrementFailure, IncrementReport, IncrementView, NewtonSettings, NonlinearError, NonlinearRun,
+    NonlinearSummary,
 };
 use crate::linear_static::Timings;
 use junta_core::dof::CONSTRAINED;
-use junta_core::element::{ElementContext, StepInfo};
+use junta_core::element::StepInfo;
 use junta_core::state::StateStore;
 use junta_core::{CoreError, LinearSolver, Model};
 use serde::{Deserialize, Serialize};
@@ -274,14 +317,17 @@ impl ArcLengthSettings {
     }
 }
 
+/// The failure of an arc-length iteration whose quadratic has no real root.
+const NO_REAL_ROOT: &str = "arc-length constraint has no real root";
+
 /// Why a path-following run ended without error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PathEnd {
     /// The load factor reached the end of the program.
     Completed,
     /// The load factor fell back to zero after a maximum (below 1e-6 times
-    /// its maximum, or below 1e-3 of it when no further increment
-    /// converges).
+    /// its maximum, 1e-4 under the interfaces' energy balance, or below
+    /// 1e-3 of it when no further increment converges).
     Unloaded,
     /// `max_increments` reached.
     IncrementLimit,
@@ -293,230 +339,6 @@ pub enum PathEnd {
     ReturnToLoad,
 }
 
-/// Element matrices needed for `q`, `g`, `h` (see the module doc).
-struct Coupling {
-    /// The thermal force `f_th` of the step's temperature change (module
-    /// doc), if the model has one.
-    thermal: Option<ThermalForce>,
-    /// Elements `(block, element)` with a prescribed non-zero displacement.
-    elements: Vec<(usize, usize)>,
-    /// `ubar` (full length; zero on free dofs).
-    ubar: Vec<f64>,
-    /// `|ubar_c|^2`.
-    c: f64,
-    /// Scratch.
-    trial: Vec<f64>,
-    kbuf: Vec<f64>,
-    fbuf: Vec<f64>,
-    coords: Vec<[f64; 3]>,
-    disp: Vec<f64>,
-    /// The element's nodal temperature changes (scaled by the step's
-    /// temperature factor): the stress, hence the geometric stiffness of
-    /// an nlgeom solid, depends on them.
-    temps: Vec<f64>,
-    dofs: Vec<usize>,
-}
-
-impl Coupling {
-    /// `f0`: the internal force at zero displacement at the step's
-    /// temperature ([`internal_force_at_zero`]), if the
-    /// model has a temperature field.
-    fn new(model: &Model, f0: Option<Vec<f64>>) -> Self {
-        // the prescribed values, and the dependents of linear equations
-        // that follow them (`u = T u_f + lambda ubar`)
-        let mut ubar: Vec<f64> = model
-            .dofs
-            .prescribed
-            .iter()
-            .enumerate()
-            .map(|(d, &v)| {
-                if model.dofs.eq[d] == CONSTRAINED && !model.dofs.dependents.contains(d) {
-                    v
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        model.dofs.fill_dependents(&mut ubar);
-        let mut elements = Vec::new();
-        for (b, block) in model.mesh.blocks.iter().enumerate() {
-            for e in 0..block.len() {
-                if block
-                    .element(e)
-                    .iter()
-                    .any(|&n| (0..3).any(|c| ubar[3 * n + c] != 0.0))
-                {
-                    elements.push((b, e));
-                }
-            }
-        }
-        let thermal = f0.map(|f| ThermalForce::new(model, &ubar, f));
-        Coupling {
-            thermal,
-            elements,
-            c: ubar.iter().map(|v| v * v).sum(),
-            ubar,
-            trial: Vec::new(),
-            kbuf: Vec::new(),
-            fbuf: Vec::new(),
-            coords: Vec::new(),
-            disp: Vec::new(),
-            temps: Vec::new(),
-            dofs: Vec::new(),
-        }
-    }
-
-    /// `q` (free, by equation), `g` (free, by equation) and `h` at `u`.
-    /// With linear equations (`*EQUATION`), `ubar` holds the dependents
-    /// too and the element rows / columns go to the equations behind each
-    /// dof ([`junta_core::dof::DofMap::targets`]): `q = T^T (f_ext - K
-    /// ubar)`, `g = T^T K^T ubar`, `h = ubar^T K ubar`.
-    fn compute(
-        &mut self,
-        model: &Model,
-        u: &[f64],
-        state: &StateStore,
-        step: StepInfo,
-        q: &mut [f64],
-        g: &mut [f64],
-    ) -> Result<f64, CoreError> {
-        model.dofs.reduce_into(&model.f_ext, q);
-        g.fill(0.0);
-        let mut h = 0.0;
-        for &(b, e) in &self.elements {
-            let block = &model.mesh.blocks[b];
-            let el = &model.elements[b];
-            let conn = block.element(e);
-            let nd = 3 * conn.len();
-            self.coords.clear();
-            self.disp.clear();
-            self.dofs.clear();
-            self.temps.clear();
-            if let Some(t) = &model.temperature {
-                let theta = step.temperature_factor;
-                self.temps.extend(conn.iter().map(|&n| theta * t[n]));
-            }
-            for &n in conn {
-                self.coords.push(model.mesh.nodes[n]);
-                for c in 0..3 {
-                    self.disp.push(u[3 * n + c]);
-                    self.dofs.push(3 * n + c);
-                }
-            }
-            let r = state.range(b, e);
-            self.trial.clear();
-            self.trial.extend_from_slice(&state.committed[r.clone()]);
-            self.kbuf.resize(nd * nd, 0.0);
-            self.fbuf.resize(nd, 0.0);
-            let ctx = ElementContext {
-                coords: &self.coords,
-                disp: &self.disp,
-                state_committed: &state.committed[r],
-                step,
-                law_responses: None,
-                temperature: (model.temperature.is_some() && !el.shape().is_interface())
-                    .then_some(self.temps.as_slice()),
-            };
-            el.compute(&ctx, &mut self.trial, &mut self.fbuf, Some(&mut self.kbuf))
-                .map_err(|source| CoreError::Element {
-                    block: block.name.clone(),
-                    element: e,
-                    source,
-                })?;
-            for i in 0..nd {
-                let di = self.dofs[i];
-                let ui = self.ubar[di];
-                for j in 0..nd {
-                    let dj = self.dofs[j];
-                    let kij = self.kbuf[i * nd + j];
-                    let uj = self.ubar[dj];
-                    // row i's equations: -K ubar into q
-                    if uj != 0.0 {
-                        for (ei, ci) in model.dofs.targets(di) {
-                            q[ei] -= ci * kij * uj;
-                        }
-                    }
-                    // column j's equations: K^T ubar into g
-                    if ui != 0.0 {
-                        for (ej, cj) in model.dofs.targets(dj) {
-                            g[ej] += cj * ui * kij;
-                        }
-                    }
-                    h += ui * kij * uj;
-                }
-            }
-        }
-        Ok(h)
-    }
-}
-
-/// The thermal force of a step whose temperature is held: `f_th` by dof,
-/// its reduction to the equations and `f_th . ubar_c`.
-struct ThermalForce {
-    by_dof: Vec<f64>,
-    by_equation: Vec<f64>,
-    prescribed: f64,
-}
-
-impl ThermalForce {
-    /// From the internal force at zero displacement `f0 = -f_th`.
-    fn new(model: &Model, ubar: &[f64], f0: Vec<f64>) -> Self {
-        let by_dof: Vec<f64> = f0.iter().map(|v| -v).collect();
-        let by_equation = model.dofs.reduce(&by_dof);
-        let prescribed = by_dof.iter().zip(ubar).map(|(f, u)| f * u).sum();
-        ThermalForce {
-            by_dof,
-            by_equation,
-            prescribed,
-        }
-    }
-}
-
-/// `f_th . u` over all dofs (0 without a thermal force).
-fn thermal_measure(coupling: &Coupling, u: &[f64]) -> f64 {
-    coupling
-        .thermal
-        .as_ref()
-        .map_or(0.0, |t| t.by_dof.iter().zip(u).map(|(f, v)| f * v).sum())
-}
-
-/// Energy measures of a state: `a = f_ext,f . u_f`, `p = ubar_c . f_int,c`
-/// (with linear equations: `a` over the free and dependent dofs, `p` over
-/// the prescribed dofs and the dependents that follow them), and `t = f_th
-/// . u` ([`thermal_measure`]).
-fn work_measures(model: &Model, coupling: &Coupling, u: &[f64], f_int: &[f64]) -> (f64, f64, f64) {
-    let (mut a, mut p) = (0.0, 0.0);
-    for (d, &eq) in model.dofs.eq.iter().enumerate() {
-        if eq != CONSTRAINED || model.dofs.dependents.contains(d) {
-            a += model.f_ext[d] * u[d];
-        }
-        p += coupling.ubar[d] * f_int[d];
-    }
-    (a, p, thermal_measure(coupling, u))
-}
-
-/// Converged state at the start of an increment.
-#[derive(Debug, Clone, Copy)]
-struct Base {
-    lambda: f64,
-    a: f64,
-    p: f64,
-    /// `f_th . u` ([`thermal_measure`]).
-    t: f64,
-}
-
-impl Base {
-    /// `ΔD = ½ (lambda_0 Δa - Δlambda a_0 + p_0 Δlambda - lambda_0 Δp +
-    /// Δt)`: the energy dissipated from this state to one with the measures
-    /// `a`, `p`, `t` at the load factor `lambda` (module doc).
-    fn dissipation(&self, a: f64, p: f64, t: f64, lambda: f64) -> f64 {
-        0.5 * (self.lambda * (a - self.a) - (lambda - self.lambda) * self.a
-            + self.p * (lambda - self.lambda)
-            - self.lambda * (p - self.p)
-            + (t - self.t))
-    }
-}
-
 /// The constraint of one attempt.
 #[derive(Debug, Clone, Copy)]
 enum Constraint {
@@ -524,8 +346,10 @@ enum Constraint {
     Load(f64),
     /// Cylindrical arc length `Δl`; with `Some(sign)` the predictor goes
     /// in the direction of that sign of `dlambda` (loading), whatever the
-    /// previous increment did.
-    Arc(f64, Option<f64>),
+    /// previous increment did; `true`: an iteration whose quadratic has no
+    /// real root takes the linearised constraint instead
+    /// ([`PathAttempt::arc_dlambda`]).
+    Arc(f64, Option<f64>, bool),
     /// Dissipation `tau`.
     Dissipation(f64),
 }
@@ -546,6 +370,13 @@ struct PathWork {
     /// step of the previous increment (set per attempt by the increment
     /// loop from [`PathState::last_tau`]).
     extrapolate_from: Option<f64>,
+    /// Under the interface balance: `f_I,0`, the interface force of the
+    /// converged state (by dof; empty under the global balance).
+    interface_base: Vec<f64>,
+    /// Under the interface balance: the constraint's gradient `w` by dof
+    /// (scratch) and by equation.
+    w_full: Vec<f64>,
+    w_eq: Vec<f64>,
 }
 
 /// What a converged attempt reached.
@@ -699,7 +530,15 @@ where
             end_reason = PathEnd::Observer;
             break;
         }
-        if run.path.lambda_max > 0.0 && run.cur.lambda * end.signum() <= 1e-6 * run.path.lambda_max
+        let unloaded = match run.balance {
+            Balance::Global => 1e-6,
+            // a force-pulled arm hanging from the last softening points of
+            // a peeled bond: their traction decays along the path by a few
+            // per mille an increment
+            Balance::Interface => 1e-4,
+        };
+        if run.path.lambda_max > 0.0
+            && run.cur.lambda * end.signum() <= unloaded * run.path.lambda_max
         {
             end_reason = PathEnd::Unloaded;
             break;
@@ -794,8 +633,8 @@ struct PathRun<'a> {
     /// Energy the laws' state reports dissipated at the last converged
     /// increment.
     dissipated_laws: f64,
-    /// [`energy_balance_holds`]: the dissipation constraint may be used.
-    balance: bool,
+    /// The energy balance of the dissipation constraint.
+    balance: Balance,
     summary: NonlinearSummary,
 }
 
@@ -815,6 +654,12 @@ struct Retry {
     rescued: bool,
     /// Start dissipation attempts from the secant prediction.
     extrapolate: bool,
+    /// The arc length's iterations without a real root take the
+    /// linearised constraint (after the cut-backs of an arc that had none
+    /// reached the floor).
+    linearised: bool,
+    /// The arc length this increment's arc-length phase started with.
+    arc_start: f64,
 }
 
 /// A converged increment: its attempt, what constrained it, the size that
@@ -833,7 +678,8 @@ struct Committed {
     delta_lambda: f64,
     /// `sqrt(|Δu|^2 + c Δlambda^2)`.
     arc_len: f64,
-    /// Stored energy `½ lambda (a + p)` (floored by the largest met).
+    /// Stored energy `½ lambda (a + p)` (floored by the largest met);
+    /// under the interface balance the largest met.
     stored: f64,
     /// The laws' own dissipated energy grew.
     laws_dissipate: bool,
@@ -855,6 +701,16 @@ impl<'a> PathRun<'a> {
         let nf = model.dofs.num_free;
         let theta = model.temperature_factor(cur.step, 1.0);
         let coupling = Coupling::new(model, internal_force_at_zero(model, &w.asm, theta));
+        let balance = Balance::of(model);
+        let ndof = model.dofs.num_dofs();
+        let interface = balance == Balance::Interface;
+        if interface {
+            // the probe of every assembly is the converged state u_0
+            let mut share = InterfaceShareBuffers::new(ndof);
+            share.probe.copy_from_slice(&w.u_conv);
+            w.interface_share = Some(share);
+        }
+        let sized = |n: usize| if interface { vec![0.0; n] } else { Vec::new() };
         let mut pw = PathWork {
             q: vec![0.0; nf],
             g: vec![0.0; nf],
@@ -864,6 +720,9 @@ impl<'a> PathRun<'a> {
             delta_prev: vec![0.0; nf],
             delta_lambda_prev: cur.lambda - path.previous_lambda,
             extrapolate_from: None,
+            interface_base: sized(ndof),
+            w_full: sized(ndof),
+            w_eq: sized(nf),
         };
         for (e, &d) in w.free_dofs.iter().enumerate() {
             pw.delta_prev[e] = w.u_conv[d] - path.previous_u[d];
@@ -874,6 +733,9 @@ impl<'a> PathRun<'a> {
         };
         // state and measures of the starting point
         w.evaluate_at_rest(&mut state, &cur)?;
+        if let Some(share) = &w.interface_share {
+            pw.interface_base.copy_from_slice(&share.force);
+        }
         let (a0, p0, t0) = work_measures(model, &coupling, &w.u, &w.f_int);
         let base = Base {
             lambda: cur.lambda,
@@ -895,7 +757,7 @@ impl<'a> PathRun<'a> {
             path,
             base,
             dissipated_laws,
-            balance: energy_balance_holds(model),
+            balance,
             summary,
         })
     }
@@ -923,6 +785,8 @@ impl<'a> PathRun<'a> {
             fell_back: false,
             rescued: false,
             extrapolate: self.arc.predictor == Predictor::Secant,
+            linearised: false,
+            arc_start: path.size,
         };
         loop {
             let (outcome, control) = self.try_increment(solver, &r)?;
@@ -958,7 +822,7 @@ impl<'a> PathRun<'a> {
                 r.extrapolate = false;
                 continue;
             }
-            if r.mode == PathMode::Arc && !r.rescued && self.balance {
+            if r.mode == PathMode::Arc && !r.rescued {
                 r.rescued = true;
                 if let Some((conv, tau)) = self.rescue(solver)? {
                     return Ok(Some(PathIncrement {
@@ -992,9 +856,11 @@ impl<'a> PathRun<'a> {
                     l
                 })
             }
-            PathMode::Arc => {
-                Constraint::Arc(r.size, (self.path.tau0 > 0.0).then_some(end.signum()))
-            }
+            PathMode::Arc => Constraint::Arc(
+                r.size,
+                (self.path.tau0 > 0.0).then_some(end.signum()),
+                r.linearised,
+            ),
             PathMode::Dissipation => Constraint::Dissipation(r.size),
         }
     }
@@ -1033,7 +899,7 @@ impl<'a> PathRun<'a> {
                 .max(1e-9 * self.path.stored_max);
             let dissipation = c.dissipation;
             if r.mode != PathMode::Dissipation
-                && self.balance
+                && self.balance == Balance::Global
                 && dissipation > self.arc.max_arc_dissipation * stored
             {
                 outcome = failed(
@@ -1046,9 +912,39 @@ impl<'a> PathRun<'a> {
                         self.arc.max_arc_dissipation
                     )),
                 );
+            } else if let Some(reason) = self.laws_disagree(&r.mode, dissipation)? {
+                outcome = failed(c.iterations, c.rel, reason);
             }
         }
         Ok((outcome, r.mode))
+    }
+
+    /// Under the interface balance, a dissipation-controlled increment
+    /// whose laws' own dissipation (from the trial state,
+    /// [`Model::dissipated_energy`]) grew by less than half its `tau`: the
+    /// balance is exact for small interface kinematics only, and a long
+    /// Newton walk (the arms swinging back through a large rotation) can
+    /// meet `ΔD_I = tau` on an elastic branch where nothing dissipates. The
+    /// increment then counts as failed, and a shorter one follows.
+    fn laws_disagree(
+        &mut self,
+        mode: &PathMode,
+        tau: f64,
+    ) -> Result<Option<IncrementFailure>, NonlinearError> {
+        if *mode != PathMode::Dissipation || self.balance != Balance::Interface {
+            return Ok(None);
+        }
+        // the laws read the committed state: hand them the trial one
+        std::mem::swap(&mut self.state.committed, &mut self.state.trial);
+        let d = self.model.dissipated_energy(&self.w.u, &self.state);
+        std::mem::swap(&mut self.state.committed, &mut self.state.trial);
+        let d_laws = d? - self.dissipated_laws;
+        Ok((d_laws < 0.5 * tau).then(|| {
+            IncrementFailure::Element(format!(
+                "the laws dissipated {d_laws:.3e} in an increment whose interface balance \
+                 dissipated {tau:.3e}: another branch; shorter step"
+            ))
+        }))
     }
 
     /// [`Work::try_exact_tangent`] at the failed attempt's last iterate;
@@ -1086,8 +982,14 @@ impl<'a> PathRun<'a> {
         solver: &mut dyn LinearSolver,
     ) -> Result<Option<(Convergence, f64)>, NonlinearError> {
         let base = self.base;
-        let (a1, p1, t1) = work_measures(self.model, &self.coupling, &self.w.u, &self.w.f_int);
-        let d_try = base.dissipation(a1, p1, t1, lambda_now(&self.w));
+        let d_try = balance_dissipation(
+            self.balance,
+            &self.w,
+            &self.pw,
+            &self.coupling,
+            &base,
+            lambda_now(&self.w),
+        );
         let stored = 0.5 * base.lambda * (base.a + base.p);
         if d_try.is_finite() && d_try > self.arc.switch_dissipation * stored.abs() {
             let tau = d_try.min(self.arc.max_arc_dissipation * stored.abs());
@@ -1141,6 +1043,7 @@ impl<'a> PathRun<'a> {
             r.fell_back = true;
             r.mode = PathMode::Arc;
             r.size = path.arc_last;
+            r.arc_start = path.arc_last;
             return Ok(true);
         }
         r.size *= settings.cutback;
@@ -1154,6 +1057,23 @@ impl<'a> PathRun<'a> {
             // no equilibrium carries a load any more
             if path.lambda_max > 0.0 && cur.lambda * end.signum() <= 1e-3 * path.lambda_max {
                 return Ok(false);
+            }
+            if r.mode == PathMode::Arc
+                && !r.linearised
+                && self.balance == Balance::Interface
+                && matches!(&reason, IncrementFailure::Element(m) if m == NO_REAL_ROOT)
+            {
+                // the arc could not be met at any length: once more from its
+                // first length, with the linearised constraint where the
+                // quadratic has no root, rather than stopping
+                tracing::warn!(
+                    lambda = cur.lambda,
+                    size = r.arc_start,
+                    "{NO_REAL_ROOT} down to the smallest arc: the linearised arc-length constraint from the first length"
+                );
+                r.linearised = true;
+                r.size = r.arc_start;
+                return Ok(true);
             }
             return Err(NonlinearError::IncrementTooSmall {
                 step: cur.step,
@@ -1192,11 +1112,21 @@ impl<'a> PathRun<'a> {
         path.previous_u.copy_from_slice(&w.u_conv);
         path.previous_lambda = cur.lambda;
         w.u_conv.copy_from_slice(&w.u);
+        if let Some(share) = &mut w.interface_share {
+            // the new base of the interface balance: f_I,0 and u_0
+            share.probe.copy_from_slice(&w.u);
+            pw.interface_base.copy_from_slice(&share.force);
+        }
         let delta_lambda = lambda_new - cur.lambda;
         let (a1, p1, t1) = work_measures(model, &self.coupling, &w.u, &w.f_int);
         let stored = (0.5 * lambda_new * (a1 + p1)).abs();
         path.stored_max = path.stored_max.max(stored);
-        let stored = stored.max(1e-9 * path.stored_max);
+        let stored = match self.balance {
+            Balance::Global => stored.max(1e-9 * path.stored_max),
+            // `½ lambda (a + p)` is no stored energy under large
+            // deformation: the switch weighs against the largest met
+            Balance::Interface => path.stored_max,
+        };
         let d_laws = model.dissipated_energy(&w.u, &self.state)?;
         let laws_dissipate = d_laws > self.dissipated_laws;
         self.dissipated_laws = d_laws;
@@ -1269,9 +1199,7 @@ impl<'a> PathRun<'a> {
                 }
             }
         }
-        let balance = self.balance;
         if control != PathMode::Dissipation
-            && balance
             && c.laws_dissipate
             && dissipation > arc.switch_dissipation * c.stored.abs()
         {
@@ -1286,8 +1214,7 @@ impl<'a> PathRun<'a> {
             // stay on the arc length until the laws dissipate again
             path.mode = PathMode::Arc;
             path.size = size;
-            if balance && c.laws_dissipate && dissipation > arc.switch_dissipation * c.stored.abs()
-            {
+            if c.laws_dissipate && dissipation > arc.switch_dissipation * c.stored.abs() {
                 path.mode = PathMode::Dissipation;
                 path.tau0 = dissipation;
                 path.size = dissipation;
@@ -1413,6 +1340,7 @@ impl<'a> PathRun<'a> {
             state: &mut self.state,
             cur: &self.cur,
             base: self.base,
+            balance: self.balance,
             constraint,
             lambda: 0.0,
             secant: false,
@@ -1425,6 +1353,25 @@ impl<'a> PathRun<'a> {
         match a.run(warm) {
             Ok(outcome) | Err(Abort::Failed(outcome)) => Ok(outcome),
             Err(Abort::Fatal(e)) => Err(e),
+        }
+    }
+}
+
+/// `ΔD` of `balance` from the converged state `base` to the trial point
+/// (`w.u`, `lambda`) whose assembly `w` holds.
+fn balance_dissipation(
+    balance: Balance,
+    w: &Work<'_>,
+    pw: &PathWork,
+    coupling: &Coupling,
+    base: &Base,
+    lambda: f64,
+) -> f64 {
+    match (balance, &w.interface_share) {
+        (Balance::Interface, Some(share)) => interface_dissipation(&pw.interface_base, &w.u, share),
+        _ => {
+            let (a, p, t) = work_measures(w.model, coupling, &w.u, &w.f_int);
+            base.dissipation(a, p, t, lambda)
         }
     }
 }
@@ -1450,6 +1397,7 @@ struct PathAttempt<'r, 'm> {
     /// The converged state the increment starts from.
     cur: &'r Cursor,
     base: Base,
+    balance: Balance,
     constraint: Constraint,
     /// Load factor of the trial point.
     lambda: f64,
@@ -1669,10 +1617,12 @@ impl PathAttempt<'_, '_> {
     /// `dlambda` of iteration `it` from the constraint: 0 under load
     /// control, else [`PathAttempt::arc_dlambda`] or
     /// [`PathAttempt::dissipation_dlambda`].
-    fn dlambda(&self, it: usize, h: f64) -> Result<f64, Abort<Attempt>> {
+    fn dlambda(&mut self, it: usize, h: f64) -> Result<f64, Abort<Attempt>> {
         match self.constraint {
             Constraint::Load(_) => Ok(0.0),
-            Constraint::Arc(len, forward) => self.arc_dlambda(it, len, forward),
+            Constraint::Arc(len, forward, linearised) => {
+                self.arc_dlambda(it, len, forward, linearised)
+            }
             Constraint::Dissipation(tau) => self.dissipation_dlambda(it, tau, h),
         }
     }
@@ -1683,12 +1633,17 @@ impl PathAttempt<'_, '_> {
     /// c)|`, the sign `forward` or else that of the previous increment's
     /// direction (that value itself without a real root). Later iterations:
     /// the root whose increment makes the smaller angle with the current
-    /// one; no real root fails the attempt.
+    /// one. No real root fails the attempt, or with `linearised` takes the
+    /// constraint linearised at the current increment `(Δ, Δlambda)`,
+    /// `|Δ|^2 + c Δlambda^2 + 2 (Δ . du + c Δlambda dlambda) = Δl^2`
+    /// (Newton on the constraint, which it meets as the iterations
+    /// converge), for this iteration.
     fn arc_dlambda(
         &self,
         it: usize,
         len: f64,
         forward: Option<f64>,
+        linearised: bool,
     ) -> Result<f64, Abort<Attempt>> {
         let (w, pw) = (&*self.w, &*self.pw);
         let c = self.coupling.c;
@@ -1730,33 +1685,60 @@ impl PathAttempt<'_, '_> {
                 };
                 Ok(if cos(r1) >= cos(r2) { r1 } else { r2 })
             }
-            None => Err(self.fail(
-                it,
-                IncrementFailure::Element("arc-length constraint has no real root".into()),
-            )),
+            None if linearised => {
+                let (d2, dd1, dd2) = (
+                    dot(&pw.delta, &pw.delta) + c * dlam0 * dlam0,
+                    dot(&pw.delta, &w.du),
+                    dot(&pw.delta, &pw.du2) + c * dlam0,
+                );
+                let dl = (0.5 * (len * len - d2) - dd1) / dd2;
+                if dl.is_finite() {
+                    Ok(dl)
+                } else {
+                    Err(self.fail(it, IncrementFailure::NonFinite))
+                }
+            }
+            None => Err(self.fail(it, IncrementFailure::Element(NO_REAL_ROOT.into()))),
         }
     }
 
     /// The dissipation constraint `phi = ΔD - tau = 0`, linearised: `phi +
-    /// w . du + c_l dlambda = 0` with `w = ½ lambda_0 (f_ext,f - g) + ½
-    /// f_th,f` and `c_l = ½ (p_0 - a_0 - lambda_0 h + f_th . ubar_c)`
-    /// (module doc; `f_th` = 0 without a temperature change). A non-finite or
+    /// w . du + c_l dlambda = 0`. Global balance: `w = ½ lambda_0 (f_ext,f -
+    /// g) + ½ f_th,f` and `c_l = ½ (p_0 - a_0 - lambda_0 h + f_th .
+    /// ubar_c)` (module doc; `f_th` = 0 without a temperature change).
+    /// Interface balance: `w = T^T ½ (f_I,0 - K_I^T u_0)`, `c_l = ½ (f_I,0
+    /// - K_I^T u_0) . ubar` (`nonlinear/balance.rs`). A non-finite or
     /// degenerate solution fails the attempt.
-    fn dissipation_dlambda(&self, it: usize, tau: f64, h: f64) -> Result<f64, Abort<Attempt>> {
-        let (w, pw, base) = (&*self.w, &*self.pw, self.base);
+    fn dissipation_dlambda(&mut self, it: usize, tau: f64, h: f64) -> Result<f64, Abort<Attempt>> {
         let phi = self.dissipation() - tau;
         // dphi = w . du + c_l dlambda
         let mut wdu1 = 0.0;
         let mut wdu2 = 0.0;
-        let thermal = self.coupling.thermal.as_ref();
-        for e in 0..w.free_dofs.len() {
-            let fth = thermal.map_or(0.0, |t| t.by_equation[e]);
-            let wv = 0.5 * (base.lambda * (w.fext_f[e] - pw.g[e]) + fth);
-            wdu1 += wv * w.du[e];
-            wdu2 += wv * pw.du2[e];
+        let c_l;
+        if let (Balance::Interface, Some(share)) = (self.balance, &self.w.interface_share) {
+            let pw = &mut *self.pw;
+            c_l = interface_gradient(
+                self.w.model,
+                &pw.interface_base,
+                share,
+                &self.coupling.ubar,
+                &mut pw.w_full,
+                &mut pw.w_eq,
+            );
+            wdu1 = dot(&pw.w_eq, &self.w.du);
+            wdu2 = dot(&pw.w_eq, &pw.du2);
+        } else {
+            let (w, pw, base) = (&*self.w, &*self.pw, self.base);
+            let thermal = self.coupling.thermal.as_ref();
+            for e in 0..w.free_dofs.len() {
+                let fth = thermal.map_or(0.0, |t| t.by_equation[e]);
+                let wv = 0.5 * (base.lambda * (w.fext_f[e] - pw.g[e]) + fth);
+                wdu1 += wv * w.du[e];
+                wdu2 += wv * pw.du2[e];
+            }
+            let fth_c = thermal.map_or(0.0, |t| t.prescribed);
+            c_l = 0.5 * (base.p - base.a - base.lambda * h + fth_c);
         }
-        let fth_c = thermal.map_or(0.0, |t| t.prescribed);
-        let c_l = 0.5 * (base.p - base.a - base.lambda * h + fth_c);
         let den = wdu2 + c_l;
         let dl = -(phi + wdu1) / den;
         if !dl.is_finite() || den.abs() <= 1e-14 * (wdu2.abs() + c_l.abs()) {
@@ -1767,8 +1749,14 @@ impl PathAttempt<'_, '_> {
 
     /// `ΔD` from the base state to the trial point.
     fn dissipation(&self) -> f64 {
-        let (a, p, t) = work_measures(self.w.model, self.coupling, &self.w.u, &self.w.f_int);
-        self.base.dissipation(a, p, t, self.lambda)
+        balance_dissipation(
+            self.balance,
+            self.w,
+            self.pw,
+            self.coupling,
+            &self.base,
+            self.lambda,
+        )
     }
 
     /// Backtracking line search on `|r_f|` along `(du, dlambda)`, from the

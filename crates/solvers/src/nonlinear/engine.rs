@@ -110,6 +110,9 @@ pub(crate) struct Work<'m> {
     /// the next one.
     pub(crate) contact_status: Vec<bool>,
     contact_next: Vec<bool>,
+    /// The interface elements' share of every assembly, when path
+    /// following asks for it ([`InterfaceShareBuffers`]).
+    pub(crate) interface_share: Option<InterfaceShareBuffers>,
 }
 
 /// The contact iterations an attempt of a model with `points` integration
@@ -126,6 +129,27 @@ fn contact_allowance(points: usize) -> usize {
         c.sum_in_place(&mut n);
     }
     2 * n[0] as usize
+}
+
+/// Buffers of the interface elements' share of an assembly
+/// ([`junta_core::assembly::InterfaceShare`]), full length (by dof): the
+/// probe `x` (set by the caller), and after each [`Work::evaluate`] the
+/// interface force `f_I` and `K_I^T x` at the evaluated point.
+pub(crate) struct InterfaceShareBuffers {
+    pub(crate) probe: Vec<f64>,
+    pub(crate) force: Vec<f64>,
+    pub(crate) tangent_probe: Vec<f64>,
+}
+
+impl InterfaceShareBuffers {
+    /// Zeroed buffers for `ndof` dofs.
+    pub(crate) fn new(ndof: usize) -> Self {
+        InterfaceShareBuffers {
+            probe: vec![0.0; ndof],
+            force: vec![0.0; ndof],
+            tangent_probe: vec![0.0; ndof],
+        }
+    }
 }
 
 /// Registry key of the back end of the exact (nonsymmetric) tangent
@@ -259,6 +283,7 @@ impl<'m> Work<'m> {
             contact_allowance: contact_allowance(contact_points),
             contact_status: Vec::with_capacity(contact_points),
             contact_next: Vec::with_capacity(contact_points),
+            interface_share: None,
         }
     }
 
@@ -296,7 +321,8 @@ impl<'m> Work<'m> {
         (w, timings)
     }
 
-    /// Assemble at `self.u` and fill the residual.
+    /// Assemble at `self.u` and fill the residual (and the interface
+    /// elements' share, when [`Work::interface_share`] is set).
     pub(crate) fn evaluate(
         &mut self,
         state: &mut StateStore,
@@ -311,7 +337,15 @@ impl<'m> Work<'m> {
             ..step
         };
         let t = Instant::now();
-        let r = self.asm.assemble_cached(
+        let share = self
+            .interface_share
+            .as_mut()
+            .map(|b| junta_core::assembly::InterfaceShare {
+                probe: &b.probe,
+                force: &mut b.force,
+                tangent_probe: &mut b.tangent_probe,
+            });
+        let r = self.asm.assemble_cached_sharing(
             &m.mesh,
             &m.elements,
             &m.dofs,
@@ -320,6 +354,7 @@ impl<'m> Work<'m> {
             step,
             Some(&mut self.k),
             &mut self.f_int,
+            share,
         );
         self.timings.assemble += t.elapsed().as_secs_f64();
         r?;

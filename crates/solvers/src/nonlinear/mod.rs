@@ -9,9 +9,11 @@
 //! | `engine.rs` | the Newton engine (`Work`): buffers, residual, one Newton attempt, line search, exact tangent |
 //! | `newton.rs` | load/displacement control |
 //! | `arc_length.rs` | path following through limit points and snap-backs |
+//! | `balance.rs` | the energy balances of path following's dissipation constraint (global under small kinematics, the interfaces' under any) |
 //! | `path_switch.rs` | switching between load control and arc length (calls both drivers; neither calls it) |
 
 pub mod arc_length;
+pub(crate) mod balance;
 pub(crate) mod engine;
 pub mod linear_static;
 pub mod newton;

@@ -65,8 +65,8 @@
 pub use super::vocabulary::{LoadTrack, PathSwitch};
 
 use super::vocabulary::{
-    energy_balance_holds, moves_away_from_zero, Checkpoint, Control, IncrementView, LoadReturn,
-    NewtonSettings, NonlinearError, NonlinearRun, NonlinearSummary, PathMode, PathState,
+    moves_away_from_zero, Checkpoint, Control, IncrementView, LoadReturn, NewtonSettings,
+    NonlinearError, NonlinearRun, NonlinearSummary, PathMode, PathState,
 };
 use crate::arc_length::{run_path, ArcLengthSettings, PathEnd};
 use crate::newton::{run_load, LoadOptions, LoadOutcome};
@@ -381,15 +381,14 @@ impl LoadTrack {
         // the dissipation constraint follows it where the arc may turn
         // back onto the loading branch (a snap-back at more than 90
         // degrees); its size a quarter of the largest increment's
-        // dissipation, the driver adapts it (not under large deformation,
-        // where its energy balance does not hold: `energy_balance_holds`)
-        let (mode, size, tau0) =
-            if self.dissipating && self.tau_max > 0.0 && energy_balance_holds(model) {
-                let tau = FIRST_ARC_OF_LARGEST * self.tau_max;
-                (PathMode::Dissipation, tau, tau)
-            } else {
-                (PathMode::Arc, arc, 0.0)
-            };
+        // dissipation, the driver adapts it (under large deformation on the
+        // interfaces' energy balance: `crate::nonlinear::balance`)
+        let (mode, size, tau0) = if self.dissipating && self.tau_max > 0.0 {
+            let tau = FIRST_ARC_OF_LARGEST * self.tau_max;
+            (PathMode::Dissipation, tau, tau)
+        } else {
+            (PathMode::Arc, arc, 0.0)
+        };
         c.path = Some(PathState {
             mode,
             size,

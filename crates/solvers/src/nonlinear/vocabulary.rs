@@ -617,16 +617,17 @@ impl LoadReturn {
     }
 }
 
-/// Whether the dissipation constraint's energy balance holds for `model`:
-/// the stored energy is `½ u . f_int` (Clapeyron) only where the solids
-/// are linear, i.e. every element under small kinematics. Under large
-/// deformation (`nlgeom`) it is not: on an elastic path that stiffens as
-/// it turns (a peeled arm swinging round to its load) the balance reads
+/// Whether the dissipation constraint's global energy balance holds for
+/// `model`: the stored energy is `½ u . f_int` (Clapeyron) only where the
+/// solids are linear, i.e. every element under small kinematics. Under
+/// large deformation (`nlgeom`) it is not: on an elastic path that stiffens
+/// as it turns (a peeled arm swinging round to its load) the balance reads
 /// unloading as dissipation, and a dissipation-controlled run unloads
-/// elastically while it believes a crack is running. Such a model is
-/// followed by the cylindrical arc length throughout (no switch to the
-/// dissipation constraint, no dissipation rescue, no `max_arc_dissipation`
-/// test, which reads the same balance).
+/// elastically while it believes a crack is running. Such a model's
+/// dissipation constraint (its switch and its rescue) reads the
+/// interfaces' energy balance instead (`crate::nonlinear::balance`), and
+/// the `max_arc_dissipation` test, which weighs against `½ lambda (a + p)`,
+/// is not made.
 pub(crate) fn energy_balance_holds(model: &Model) -> bool {
     model
         .elements
