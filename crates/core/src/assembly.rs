@@ -721,18 +721,7 @@ impl Assembler {
         f_int: &mut [f64],
         share: Option<ShareOut<'_>>,
     ) -> Result<(), CoreError> {
-        f_int.iter_mut().for_each(|v| *v = 0.0);
-        if let Some(k) = k.as_deref_mut() {
-            for part in [&mut k.values, &mut k.lower] {
-                match base {
-                    Some(b) if part.len() == b.len() => part
-                        .par_iter_mut()
-                        .zip(b.par_iter())
-                        .for_each(|(a, b)| *a = *b),
-                    _ => part.par_iter_mut().for_each(|v| *v = 0.0),
-                }
-            }
-        }
+        reset_to_base(k.as_deref_mut(), base, f_int);
         let max_nodes = mesh
             .blocks
             .iter()
@@ -864,6 +853,40 @@ impl Assembler {
             )?;
         }
         Ok(())
+    }
+}
+
+/// Zero `f_int`; set both triangles of `k` to `base` (symmetric) when it
+/// fits, else zero.
+fn reset_to_base(k: Option<&mut SymmetricCsc>, base: Option<&[f64]>, f_int: &mut [f64]) {
+    f_int.iter_mut().for_each(|v| *v = 0.0);
+    if let Some(k) = k {
+        for part in [&mut k.values, &mut k.lower] {
+            match base {
+                Some(b) if part.len() == b.len() => part
+                    .par_iter_mut()
+                    .zip(b.par_iter())
+                    .for_each(|(a, b)| *a = *b),
+                _ => part.par_iter_mut().for_each(|v| *v = 0.0),
+            }
+        }
+    }
+}
+
+/// The coordinates and displacements of the nodes `conn`, node by node,
+/// into `coords` and `disp` (cleared first).
+pub(crate) fn gather_nodes(
+    mesh: &Mesh,
+    conn: &[usize],
+    u: &[f64],
+    coords: &mut Vec<[f64; 3]>,
+    disp: &mut Vec<f64>,
+) {
+    coords.clear();
+    disp.clear();
+    for &node in conn {
+        coords.push(mesh.nodes[node]);
+        disp.extend_from_slice(&u[3 * node..3 * node + 3]);
     }
 }
 
@@ -1103,14 +1126,7 @@ pub fn block_law_responses(
     let mut coords = Vec::new();
     let mut disp = Vec::new();
     for e in 0..n {
-        let conn = block.element(e);
-        coords.clear();
-        disp.clear();
-        coords.extend(conn.iter().map(|&node| mesh.nodes[node]));
-        disp.extend(
-            conn.iter()
-                .flat_map(|&node| u[3 * node..3 * node + 3].iter().copied()),
-        );
+        gather_nodes(mesh, block.element(e), u, &mut coords, &mut disp);
         let ctx = ElementContext {
             coords: &coords,
             disp: &disp,

@@ -430,13 +430,13 @@ impl Model {
             }
             let np = el.num_points();
             for e in 0..block.len() {
-                let conn = block.element(e);
-                coords.clear();
-                disp.clear();
-                for &n in conn {
-                    coords.push(self.mesh.nodes[n]);
-                    disp.extend_from_slice(&u[3 * n..3 * n + 3]);
-                }
+                crate::assembly::gather_nodes(
+                    &self.mesh,
+                    block.element(e),
+                    u,
+                    &mut coords,
+                    &mut disp,
+                );
                 let ctx = crate::element::ElementContext {
                     coords: &coords,
                     disp: &disp,
@@ -476,13 +476,13 @@ impl Model {
             let responses = self.batched_block_responses(b, u, state)?;
             let np = el.num_points();
             for e in 0..block.len() {
-                let conn = block.element(e);
-                coords.clear();
-                disp.clear();
-                for &n in conn {
-                    coords.push(self.mesh.nodes[n]);
-                    disp.extend_from_slice(&u[3 * n..3 * n + 3]);
-                }
+                crate::assembly::gather_nodes(
+                    &self.mesh,
+                    block.element(e),
+                    u,
+                    &mut coords,
+                    &mut disp,
+                );
                 let ctx = crate::element::ElementContext {
                     coords: &coords,
                     disp: &disp,
