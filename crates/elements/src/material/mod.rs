@@ -8,6 +8,8 @@
 //!   vary with the point ([`Axes`]).
 //! * [`anisotropic`]: key `anisotropic`, the 21 stiffness constants `D` in
 //!   the Abaqus `TYPE=ANISO` order and the same optional orientation.
+//! * [`rotated`]: any of them turned into a ply's axes by a fixed rotation
+//!   (built by the lay-up builder, not registered).
 //!
 //! Voigt order everywhere: `[xx, yy, zz, xy, yz, zx]`, engineering shear
 //! strains `gamma_ij = 2 eps_ij`, so that `sigma = C eps` and the strain
@@ -38,10 +40,12 @@
 pub mod anisotropic;
 pub mod isotropic;
 pub mod orthotropic;
+pub mod rotated;
 
 pub use anisotropic::Anisotropic;
 pub use isotropic::Isotropic;
 pub use orthotropic::{Axes, EngineeringConstants, Orientation, Orthotropic, System};
+pub use rotated::Rotated;
 
 use junta_core::Voigt6;
 use nalgebra::Matrix3;

@@ -29,8 +29,11 @@ pub struct Scene {
     /// Named interface laws: `[laws.NAME] type = "linear_penalty", d = ..`.
     #[serde(default)]
     pub laws: BTreeMap<String, toml::Table>,
-    /// The mesh: built-in box generator or a file.
-    pub mesh: MeshSpec,
+    /// The mesh: built-in box generator or a file (or `[laminate]`).
+    pub mesh: Option<MeshSpec>,
+    /// A laminate built from its lay-up (instead of `[mesh]`):
+    /// [`crate::input::layup`].
+    pub laminate: Option<crate::input::layup::LaminateSpec>,
     /// Interface elements inserted between two element sets.
     #[serde(default)]
     pub interface: Vec<InterfaceSpec>,
@@ -766,20 +769,20 @@ fn build_laws(sf: &SceneFile) -> Result<BTreeMap<String, Arc<dyn InterfaceLaw>>>
 
 /// Geometry of one generated box (scene keys `size`, `divisions`, `origin`,
 /// `grading`).
-struct BoxGeometry {
-    size: [f64; 3],
-    divisions: [usize; 3],
-    origin: [f64; 3],
-    grading: [f64; 3],
+pub(crate) struct BoxGeometry {
+    pub(crate) size: [f64; 3],
+    pub(crate) divisions: [usize; 3],
+    pub(crate) origin: [f64; 3],
+    pub(crate) grading: [f64; 3],
 }
 
 /// Build one box of the generator, checking the element key.
-fn generate_box(
+pub(crate) fn generate_box(
     sf: &SceneFile,
     key: &str,
     geometry: BoxGeometry,
     element: &Spanned<String>,
-    material: &Spanned<String>,
+    material: &str,
 ) -> Result<Mesh> {
     let BoxGeometry {
         size,
@@ -828,7 +831,7 @@ fn generate_box(
         shape: entry.shape,
         grading,
     };
-    box_mesh(&spec, "solid", element.get_ref(), material.get_ref())
+    box_mesh(&spec, "solid", element.get_ref(), material)
         .map_err(|e| err!("{}: key `{key}`: {e}", sf.at(element.span())))
 }
 
@@ -859,7 +862,18 @@ pub fn build_mesh(sf: &SceneFile) -> Result<Mesh> {
 /// The `[mesh]` of a scene: generated (`box`, `boxes`) or read (`gmsh`,
 /// `inp`); keys that the type does not use are an error.
 fn load_mesh(sf: &SceneFile) -> Result<Mesh> {
-    let m = &sf.scene.mesh;
+    let m = match (&sf.scene.mesh, &sf.scene.laminate) {
+        (Some(m), None) => m,
+        (None, Some(l)) => return crate::input::layup::build_mesh(sf, l),
+        (Some(_), Some(_)) => bail!(
+            "{}: both `[mesh]` and `[laminate]` are given; a scene's solids come from one of them",
+            sf.path.display()
+        ),
+        (None, None) => bail!(
+            "{}: missing `[mesh]` (a box, boxes, a Gmsh or .inp file) or `[laminate]` (a lay-up)",
+            sf.path.display()
+        ),
+    };
     let kind = m.kind.get_ref().as_str();
     let at = sf.at(m.kind.span());
     let given: Vec<&str> = [
@@ -900,13 +914,16 @@ fn load_mesh(sf: &SceneFile) -> Result<Mesh> {
                 grading: m.grading.unwrap_or([1.0; 3]),
             },
             m.element.as_ref().ok_or_else(|| missing("element"))?,
-            m.material.as_ref().ok_or_else(|| missing("material"))?,
+            m.material
+                .as_ref()
+                .ok_or_else(|| missing("material"))?
+                .get_ref(),
         )?,
         "boxes" => {
             if m.boxes.is_empty() {
                 return Err(missing("boxes"));
             }
-            merged_boxes(sf, &at)?
+            merged_boxes(sf, m, &at)?
         }
         "gmsh" => {
             let p = sf.relative(m.file.as_ref().ok_or_else(|| missing("file"))?);
@@ -925,8 +942,7 @@ fn load_mesh(sf: &SceneFile) -> Result<Mesh> {
 /// coincident nodes (boxes sharing volume are an error: they would be
 /// bonded on many faces), each box an element set, a `group` the union of
 /// its boxes' sets.
-fn merged_boxes(sf: &SceneFile, at: &str) -> Result<Mesh> {
-    let m = &sf.scene.mesh;
+fn merged_boxes(sf: &SceneFile, m: &MeshSpec, at: &str) -> Result<Mesh> {
     for (j, b) in m.boxes.iter().enumerate() {
         for (i, a) in m.boxes.iter().enumerate().take(j) {
             let overlap = (0..3).all(|c| {
@@ -958,7 +974,7 @@ fn merged_boxes(sf: &SceneFile, at: &str) -> Result<Mesh> {
                 grading: b.grading,
             },
             &b.element,
-            &b.material,
+            b.material.get_ref(),
         )?;
         parts.push((b.name.clone(), part));
     }
@@ -1267,30 +1283,30 @@ pub fn build_elements(
             .blocks
             .iter()
             .position(|b| *b.name.get_ref() == block.name);
-        let part = sf
-            .scene
-            .mesh
-            .boxes
-            .iter()
-            .position(|b| b.name == block.name);
+        let boxes = sf.scene.mesh.as_ref().map_or(&[][..], |m| &m.boxes[..]);
+        let part = boxes.iter().position(|b| b.name == block.name);
         // an interface's blocks: `NAME`, and `NAME.tri` on a surface of
         // triangles and quadrilaterals
         let iface = sf.scene.interface.iter().position(|f| {
             block.name == f.name || block.name.strip_suffix(".tri") == Some(f.name.as_str())
         });
-        let where_ = match (override_, part, iface, &sf.scene.mesh.element) {
+        let mesh_element = sf.scene.mesh.as_ref().and_then(|m| m.element.as_ref());
+        let laminate_element = sf.scene.laminate.as_ref().map(|l| &l.element);
+        let where_ = match (override_, part, iface, mesh_element.or(laminate_element)) {
             (Some(i), _, _, _) => format!(
                 "{}: key `blocks[{i}]`",
                 sf.at(sf.scene.blocks[i].name.span())
             ),
-            (_, Some(i), _, _) => format!(
-                "{}: key `mesh.boxes[{i}]`",
-                sf.at(sf.scene.mesh.boxes[i].element.span())
-            ),
+            (_, Some(i), _, _) => {
+                format!("{}: key `mesh.boxes[{i}]`", sf.at(boxes[i].element.span()))
+            }
             (_, _, Some(i), _) => format!(
                 "{}: key `interface[{i}]`",
                 sf.at(sf.scene.interface[i].law.span())
             ),
+            (_, _, _, Some(el)) if laminate_element.is_some() => {
+                format!("{}: key `laminate`", sf.at(el.span()))
+            }
             (_, _, _, Some(el)) => format!("{}: key `mesh`", sf.at(el.span())),
             _ => format!(
                 "{}: block `{}` (give it a [[blocks]] entry)",
@@ -1318,7 +1334,14 @@ pub fn build_elements(
                     list_keys(laws)
                 )
             })?;
-            if let Some(r) = iface.and_then(|i| sf.scene.interface[i].integration.clone()) {
+            let laminate_rule = sf
+                .scene
+                .laminate
+                .as_ref()
+                .filter(|_| iface.is_none())
+                .and_then(|l| l.integration.clone());
+            let rule = iface.and_then(|i| sf.scene.interface[i].integration.clone());
+            if let Some(r) = rule.or(laminate_rule) {
                 options.insert("integration".into(), toml::Value::String(r));
             }
             (None, Some(law))
@@ -1357,10 +1380,13 @@ pub fn build_model(sf: &SceneFile) -> Result<Model> {
 /// `total_force` shared equally because its set spans no face or edge) go
 /// to `notes`.
 pub fn build_model_with_notes(sf: &SceneFile, notes: &mut Vec<String>) -> Result<Model> {
-    let materials =
+    let mut materials =
         build_plugins::<MaterialEntry, _>(sf, "materials", &sf.scene.materials, |e, t| {
             (e.build)(t)
         })?;
+    if let Some(l) = &sf.scene.laminate {
+        crate::input::layup::add_ply_materials(sf, l, &mut materials)?;
+    }
     let laws = build_laws(sf)?;
     let mut mesh = build_mesh(sf)?;
     let elements = build_elements(sf, &mut mesh, &materials, &laws)?;

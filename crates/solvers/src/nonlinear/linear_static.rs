@@ -58,7 +58,9 @@ pub struct LinearStaticResult {
     pub u: Vec<f64>,
     /// `f_int(u) - f_ext` (reactions on constrained dofs, ~0 elsewhere).
     pub residual: Vec<f64>,
-    /// Relative residual on the free dofs, `|r_f| / max(|f_ext,f|, |f_int|)`.
+    /// Relative residual on the free dofs, `|r_f| / max(|f_ext,f|, |f_int|, |r_0,f|)`
+    /// (`r_0 = f_ext - f_int(u_0)`: the load the solve balances, thermal
+    /// strains and prescribed displacements included).
     pub free_residual: f64,
     /// Final element state.
     pub state: StateStore,
@@ -182,6 +184,9 @@ pub fn solve_linear_static_cases(
         }
         let r: Vec<f64> = case.f_ext.iter().zip(&f_int).map(|(a, b)| a - b).collect();
         let mut rhs = model.dofs.reduce(&r);
+        // the load the solve balances: applied forces, prescribed
+        // displacements and thermal strains alike
+        let initial_residual = norm(rhs.iter().copied());
         let factor_before = solver.report().factor_seconds;
         let t = Instant::now();
         solver.solve_in_place(&k, &mut rhs)?;
@@ -212,6 +217,7 @@ pub fn solve_linear_static_cases(
         let residual: Vec<f64> = f_int.iter().zip(case.f_ext).map(|(a, b)| a - b).collect();
         let scale = free(case.f_ext)
             .max(norm(f_int.iter().copied()))
+            .max(initial_residual)
             .max(f64::MIN_POSITIVE);
         let free_residual = free(&residual) / scale;
         state.commit();

@@ -1,0 +1,619 @@
+//! The lay-up builder: a scene's `[laminate]` becomes plies, their
+//! material axes, ply blocks, interface elements and named sets, before
+//! anything else sees the model.
+//!
+//! ## What it builds
+//!
+//! * **Plies**, numbered 1 (bottom, lowest `z`) to `n` (top): each a box of
+//!   the base region's plan (`base.size`, `base.divisions`) with its own
+//!   thickness and elements through it, stacked along `+z` from
+//!   `base.origin`. The plies come from a compact code (`layup =
+//!   "[0/90/±45]s"`, [`code`]) with one material and ply thickness, or from
+//!   an explicit `[[laminate.plies]]` list.
+//! * **Material axes**: ply `k` of angle `theta` gets its material turned by
+//!   `theta` about the stacking direction `z` (positive from `x` towards
+//!   `y`), [`junta_elements::material::Rotated`]: an orthotropic material
+//!   without an orientation has its axis 1 (the fibre) along
+//!   `(cos theta, sin theta, 0)` and its axis 3 along `z`. The rotated
+//!   material is named `MATERIAL@ANGLE` (`im7@-45`), the name its blocks
+//!   and messages show.
+//! * **Ply blocks**: maximal runs of neighbouring plies of the same material
+//!   and angle (angles equal modulo 180 degrees), unless `merge_plies =
+//!   false` makes every ply its own block. A block behaves as one thick ply:
+//!   `interfaces = "blocks"` puts interfaces between blocks only.
+//! * **Interfaces** (`interfaces`): `"blocks"` (the default when an
+//!   `interface_law` is given), `"all"` (between every pair of neighbouring
+//!   plies), `"none"`, or a list of ply numbers `k`, each an interface
+//!   between ply `k` and ply `k + 1`. Each takes the law of the first
+//!   `[[laminate.interface_laws]]` rule that matches it (`angles = [a, b]`:
+//!   the angles of its two plies in either order; `at = k`: the interface
+//!   above ply `k`), else `interface_law`.
+//! * **Sets**: element sets `ply_K` and `block_J`; node and face sets
+//!   `bottom`, `top` (the laminate's faces at the lowest and highest `z`)
+//!   and `x0`, `x1`, `y0`, `y1` (its edges, every ply); the interfaces'
+//!   blocks and element sets `interface_K_L` (between plies `K` and `L =
+//!   K + 1`) with node sets `interface_K_L.bottom` and `.top`; and each
+//!   ply's own box sets `ply_K.x0` .. `ply_K.z1`.
+//!
+//! The edge and face sets hold both copies of the nodes an interface
+//! duplicates (the rule of [`junta_core::mesh::interface`]), so a condition
+//! on an edge holds every ply.
+
+pub mod code;
+
+use crate::error::{bail, err, Result};
+use crate::input::scene::{generate_box, BoxGeometry, SceneFile};
+use junta_core::mesh::{ElementRef, Mesh};
+use junta_core::Material;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::sync::Arc;
+use toml::Spanned;
+
+/// `[laminate]`: the lay-up of a scene (module docs).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LaminateSpec {
+    /// The region the plies are stacked on.
+    pub base: BaseSpec,
+    /// Solid element key of the plies (h8, h8i, h20, h27, h20r, h27r, wedge6, wedge15).
+    pub element: Spanned<String>,
+    /// Material of the plies of `layup` (and the default of `[[plies]]`).
+    pub material: Option<Spanned<String>>,
+    /// Thickness of the plies of `layup` (and the default of `[[plies]]`).
+    pub ply_thickness: Option<f64>,
+    /// Elements through each ply (default 1).
+    pub elements_per_ply: Option<usize>,
+    /// Compact lay-up code, bottom to top (`"[0/90/±45]s"`).
+    pub layup: Option<Spanned<String>>,
+    /// Explicit plies, bottom to top (instead of `layup`).
+    #[serde(default)]
+    pub plies: Vec<PlySpec>,
+    /// Merge neighbouring plies of the same material and angle into one
+    /// block (default true).
+    pub merge_plies: Option<bool>,
+    /// Where the interfaces go: `"blocks"`, `"all"`, `"none"` or a list of
+    /// ply numbers (an interface above each).
+    pub interfaces: Option<Spanned<Placement>>,
+    /// The law of every interface no rule of `interface_laws` matches.
+    pub interface_law: Option<Spanned<String>>,
+    /// Laws by position: the first matching rule wins.
+    #[serde(default)]
+    pub interface_laws: Vec<InterfaceLawRule>,
+    /// Integration rule of the interfaces: `"gauss"` (default) or `"lobatto"`.
+    pub integration: Option<String>,
+}
+
+/// `[laminate.base]`: the region the plies are stacked on.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BaseSpec {
+    /// `"rectangle"`: a rectangle in the x-y plane.
+    #[serde(rename = "type")]
+    pub kind: Spanned<String>,
+    /// Edge lengths along x and y.
+    pub size: [f64; 2],
+    /// Elements along x and y.
+    pub divisions: [usize; 2],
+    /// The laminate's lower corner (bottom of ply 1), default the origin.
+    #[serde(default)]
+    pub origin: [f64; 3],
+    /// Ratio of the last to the first element size along x and y (default 1).
+    pub grading: Option<[f64; 2]>,
+}
+
+/// One ply of `[[laminate.plies]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlySpec {
+    /// Fibre angle in degrees about z, from x towards y.
+    pub angle: f64,
+    /// Material (default `laminate.material`).
+    pub material: Option<Spanned<String>>,
+    /// Thickness (default `laminate.ply_thickness`).
+    pub thickness: Option<f64>,
+    /// Elements through the ply (default `laminate.elements_per_ply`, 1).
+    pub elements: Option<usize>,
+}
+
+/// `interfaces = "blocks" | "all" | "none" | [k, ...]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum Placement {
+    /// `"blocks"`, `"all"` or `"none"`.
+    Named(String),
+    /// Interfaces above the listed plies.
+    Above(Vec<usize>),
+}
+
+/// `[[laminate.interface_laws]]`: the law of the interfaces it matches.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InterfaceLawRule {
+    /// The angles of the two plies, in either order.
+    pub angles: Option<[f64; 2]>,
+    /// The interface above this ply.
+    pub at: Option<usize>,
+    /// Law name (a key of `[laws]`).
+    pub law: Spanned<String>,
+}
+
+/// One ply, resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ply {
+    /// Fibre angle in degrees.
+    pub angle: f64,
+    /// Name of the material before the rotation.
+    pub material: String,
+    /// Thickness.
+    pub thickness: f64,
+    /// Elements through the thickness.
+    pub elements: usize,
+}
+
+impl Ply {
+    /// The name of this ply's rotated material, `MATERIAL@ANGLE`.
+    pub fn material_name(&self) -> String {
+        format!("{}@{}", self.material, self.angle)
+    }
+}
+
+/// One interface of the lay-up, resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayupInterface {
+    /// Number of the ply below it (1-based): it lies between plies
+    /// `below` and `below + 1`.
+    pub below: usize,
+    /// Its law.
+    pub law: String,
+}
+
+impl LayupInterface {
+    /// Its block and element set name, `interface_K_L`.
+    pub fn name(&self) -> String {
+        format!("interface_{}_{}", self.below, self.below + 1)
+    }
+}
+
+/// A lay-up resolved from its scene table: plies bottom to top, blocks
+/// (ranges of 0-based ply indices) and interfaces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layup {
+    /// The plies, bottom to top.
+    pub plies: Vec<Ply>,
+    /// The ply blocks: 0-based ply index ranges, bottom to top.
+    pub blocks: Vec<std::ops::Range<usize>>,
+    /// The interfaces, bottom to top.
+    pub interfaces: Vec<LayupInterface>,
+}
+
+/// An angle in (-90, 90]: two plies whose angles differ by 180 degrees
+/// have the same fibre direction.
+fn fibre_direction(angle: f64) -> f64 {
+    let a = angle.rem_euclid(180.0);
+    if a > 90.0 {
+        a - 180.0
+    } else {
+        a
+    }
+}
+
+fn same_direction(a: f64, b: f64) -> bool {
+    let d = (fibre_direction(a) - fibre_direction(b)).abs();
+    d < 1e-9 || (d - 180.0).abs() < 1e-9
+}
+
+impl Layup {
+    /// Resolve the `[laminate]` of `sf` (checked: every error names the key).
+    pub fn resolve(sf: &SceneFile, spec: &LaminateSpec) -> Result<Layup> {
+        let plies = resolve_plies(sf, spec)?;
+        let merge = spec.merge_plies.unwrap_or(true);
+        let mut blocks: Vec<std::ops::Range<usize>> = Vec::new();
+        for (i, p) in plies.iter().enumerate() {
+            match blocks.last_mut() {
+                Some(b)
+                    if merge
+                        && plies[i - 1].material == p.material
+                        && same_direction(plies[i - 1].angle, p.angle) =>
+                {
+                    b.end = i + 1
+                }
+                _ => blocks.push(i..i + 1),
+            }
+        }
+        let interfaces = resolve_interfaces(sf, spec, &plies, &blocks)?;
+        Ok(Layup {
+            plies,
+            blocks,
+            interfaces,
+        })
+    }
+
+    /// `z` of the bottom of each ply and of the top of the last
+    /// (`plies.len() + 1` values), from the laminate's bottom `z0`.
+    pub fn ply_levels(&self, z0: f64) -> Vec<f64> {
+        let mut z = vec![z0];
+        for p in &self.plies {
+            z.push(z.last().copied().unwrap_or(z0) + p.thickness);
+        }
+        z
+    }
+}
+
+fn resolve_plies(sf: &SceneFile, spec: &LaminateSpec) -> Result<Vec<Ply>> {
+    let file = sf.path.display();
+    let default_elements = spec.elements_per_ply.unwrap_or(1);
+    if default_elements == 0 {
+        bail!("{file}: key `laminate.elements_per_ply`: must be at least 1");
+    }
+    let thickness = |t: Option<f64>, key: &str| -> Result<f64> {
+        let t = t.or(spec.ply_thickness).ok_or_else(|| {
+            err!("{file}: key `{key}` is required (or give `laminate.ply_thickness`)")
+        })?;
+        if !(t.is_finite() && t > 0.0) {
+            bail!("{file}: key `{key}`: {t} is not a positive thickness");
+        }
+        Ok(t)
+    };
+    let material = |m: Option<&Spanned<String>>, key: &str| -> Result<String> {
+        m.or(spec.material.as_ref())
+            .map(|m| m.get_ref().clone())
+            .ok_or_else(|| err!("{file}: key `{key}` is required (or give `laminate.material`)"))
+    };
+    let plies: Vec<Ply> = match (&spec.layup, spec.plies.is_empty()) {
+        (Some(_), false) => bail!(
+            "{file}: keys `laminate.layup` and `laminate.plies` both given; give the lay-up one way"
+        ),
+        (None, true) => bail!(
+            "{file}: key `laminate.layup` (a code such as \"[0/90/±45]s\") or `[[laminate.plies]]` is required"
+        ),
+        (Some(code), true) => {
+            let angles = code::parse_layup(code.get_ref()).map_err(|e| {
+                err!("{}: key `laminate.layup`: {e}", sf.at(code.span()))
+            })?;
+            let material = material(None, "laminate.material")?;
+            let thickness = thickness(None, "laminate.ply_thickness")?;
+            angles
+                .into_iter()
+                .map(|angle| Ply {
+                    angle,
+                    material: material.clone(),
+                    thickness,
+                    elements: default_elements,
+                })
+                .collect()
+        }
+        (None, false) => spec
+            .plies
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let key = format!("laminate.plies[{i}]");
+                if !p.angle.is_finite() {
+                    bail!("{file}: key `{key}.angle`: {} is not a finite angle", p.angle);
+                }
+                let elements = p.elements.unwrap_or(default_elements);
+                if elements == 0 {
+                    bail!("{file}: key `{key}.elements`: must be at least 1");
+                }
+                Ok(Ply {
+                    angle: p.angle,
+                    material: material(p.material.as_ref(), &format!("{key}.material"))?,
+                    thickness: thickness(p.thickness, &format!("{key}.thickness"))?,
+                    elements,
+                })
+            })
+            .collect::<Result<_>>()?,
+    };
+    for (name, known) in plies.iter().map(|p| (&p.material, &sf.scene.materials)) {
+        if !known.contains_key(name) {
+            bail!(
+                "{file}: key `laminate`: unknown ply material `{name}`; materials defined in [materials]: {}",
+                known.keys().cloned().collect::<Vec<_>>().join(", ")
+            );
+        }
+    }
+    Ok(plies)
+}
+
+/// The plies each interface sits above (0-based index of the ply below).
+fn interface_positions(
+    sf: &SceneFile,
+    spec: &LaminateSpec,
+    plies: &[Ply],
+    blocks: &[std::ops::Range<usize>],
+) -> Result<Vec<usize>> {
+    let n = plies.len();
+    let default = if spec.interface_law.is_some() || !spec.interface_laws.is_empty() {
+        Placement::Named("blocks".into())
+    } else {
+        Placement::Named("none".into())
+    };
+    let placement = spec
+        .interfaces
+        .as_ref()
+        .map(|p| p.get_ref())
+        .unwrap_or(&default);
+    let at = spec
+        .interfaces
+        .as_ref()
+        .map_or(sf.path.display().to_string(), |p| sf.at(p.span()));
+    Ok(match placement {
+        Placement::Named(s) if s == "none" => Vec::new(),
+        Placement::Named(s) if s == "all" => (0..n.saturating_sub(1)).collect(),
+        Placement::Named(s) if s == "blocks" => {
+            blocks.iter().skip(1).map(|b| b.start - 1).collect()
+        }
+        Placement::Named(s) => bail!(
+            "{at}: key `laminate.interfaces`: `{s}` is not valid; use \"blocks\", \"all\", \"none\" or a list of ply numbers (an interface above each)"
+        ),
+        Placement::Above(list) => {
+            let mut v = Vec::new();
+            for &k in list {
+                if k == 0 || k >= n {
+                    bail!(
+                        "{at}: key `laminate.interfaces`: ply {k} has no ply above it; an interface above ply k needs 1 <= k <= {}",
+                        n.saturating_sub(1)
+                    );
+                }
+                v.push(k - 1);
+            }
+            v.sort_unstable();
+            v.dedup();
+            v
+        }
+    })
+}
+
+fn resolve_interfaces(
+    sf: &SceneFile,
+    spec: &LaminateSpec,
+    plies: &[Ply],
+    blocks: &[std::ops::Range<usize>],
+) -> Result<Vec<LayupInterface>> {
+    let file = sf.path.display();
+    for (r, rule) in spec.interface_laws.iter().enumerate() {
+        if rule.angles.is_some() == rule.at.is_some() {
+            bail!(
+                "{}: key `laminate.interface_laws[{r}]`: give exactly one of `angles = [a, b]` and `at = k`",
+                sf.at(rule.law.span())
+            );
+        }
+        if !sf.scene.laws.contains_key(rule.law.get_ref()) {
+            bail!(
+                "{}: key `laminate.interface_laws[{r}].law`: unknown law `{}`; laws defined in [laws]: {}",
+                sf.at(rule.law.span()),
+                rule.law.get_ref(),
+                sf.scene.laws.keys().cloned().collect::<Vec<_>>().join(", ")
+            );
+        }
+    }
+    let positions = interface_positions(sf, spec, plies, blocks)?;
+    positions
+        .into_iter()
+        .map(|i| {
+            let (a, b) = (plies[i].angle, plies[i + 1].angle);
+            let rule = spec.interface_laws.iter().find(|r| match (r.angles, r.at) {
+                (Some([x, y]), _) => {
+                    (same_direction(x, a) && same_direction(y, b))
+                        || (same_direction(x, b) && same_direction(y, a))
+                }
+                (_, Some(k)) => k == i + 1,
+                _ => false,
+            });
+            let law = match (rule, &spec.interface_law) {
+                (Some(r), _) => r.law.get_ref().clone(),
+                (None, Some(l)) => l.get_ref().clone(),
+                (None, None) => bail!(
+                    "{file}: key `laminate.interface_law`: the interface between plies {} ({a}) and {} ({b}) has no law; give `interface_law` or a matching `[[laminate.interface_laws]]` rule",
+                    i + 1,
+                    i + 2
+                ),
+            };
+            if !sf.scene.laws.contains_key(&law) {
+                bail!(
+                    "{file}: key `laminate.interface_law`: unknown law `{law}`; laws defined in [laws]: {}",
+                    sf.scene.laws.keys().cloned().collect::<Vec<_>>().join(", ")
+                );
+            }
+            Ok(LayupInterface { below: i + 1, law })
+        })
+        .collect()
+}
+
+/// The mesh of a `[laminate]`: plies stacked and merged, the laminate's
+/// sets, then its interfaces inserted bottom to top (module docs).
+pub fn build_mesh(sf: &SceneFile, spec: &LaminateSpec) -> Result<Mesh> {
+    let layup = Layup::resolve(sf, spec)?;
+    let base = &spec.base;
+    let at = sf.at(base.kind.span());
+    if base.kind.get_ref() != "rectangle" {
+        bail!(
+            "{at}: key `laminate.base.type`: `{}` is not valid; use \"rectangle\"",
+            base.kind.get_ref()
+        );
+    }
+    let levels = layup.ply_levels(base.origin[2]);
+    let grading = base.grading.unwrap_or([1.0; 2]);
+    let mut parts = Vec::with_capacity(layup.plies.len());
+    for (k, ply) in layup.plies.iter().enumerate() {
+        let part = generate_box(
+            sf,
+            "laminate",
+            BoxGeometry {
+                size: [base.size[0], base.size[1], ply.thickness],
+                divisions: [base.divisions[0], base.divisions[1], ply.elements],
+                origin: [base.origin[0], base.origin[1], levels[k]],
+                grading: [grading[0], grading[1], 1.0],
+            },
+            &spec.element,
+            &ply.material_name(),
+        )?;
+        parts.push((ply_set(k), part));
+    }
+    let mut mesh = junta_core::mesh::merge::merge(parts, 1e-9)
+        .map_err(|e| err!("{at}: key `laminate`: {e}"))?;
+    add_laminate_sets(&mut mesh, &layup);
+    for f in &layup.interfaces {
+        let (below, above) = (ply_set(f.below - 1), ply_set(f.below));
+        junta_core::mesh::interface::insert_interface(&mut mesh, &below, &above, &f.name(), &f.law)
+            .map_err(|e| err!("{at}: key `laminate.interfaces`: {}: {e}", f.name()))?;
+    }
+    Ok(mesh)
+}
+
+/// The element set (and block) of ply `k` (0-based index): `ply_{k+1}`.
+fn ply_set(k: usize) -> String {
+    format!("ply_{}", k + 1)
+}
+
+/// `block_J`, `bottom`, `top`, `x0` .. `y1` (before the interfaces are
+/// inserted, so that they keep both copies of every duplicated node).
+fn add_laminate_sets(mesh: &mut Mesh, layup: &Layup) {
+    for (j, b) in layup.blocks.iter().enumerate() {
+        let mut set: Vec<ElementRef> = Vec::new();
+        for k in b.clone() {
+            set.extend_from_slice(mesh.element_sets.get(&ply_set(k)).map_or(&[][..], |s| s));
+        }
+        mesh.element_sets.insert(format!("block_{}", j + 1), set);
+    }
+    let last = layup.plies.len() - 1;
+    let mut sides: Vec<(&str, Vec<usize>)> = vec![("bottom", vec![0]), ("top", vec![last])];
+    for side in ["x0", "x1", "y0", "y1"] {
+        sides.push((side, (0..=last).collect()));
+    }
+    fn box_side(name: &str) -> &str {
+        match name {
+            "bottom" => "z0",
+            "top" => "z1",
+            s => s,
+        }
+    }
+    for (name, plies) in sides {
+        let (mut nodes, mut faces) = (Vec::new(), Vec::new());
+        for k in plies {
+            let key = format!("{}.{}", ply_set(k), box_side(name));
+            nodes.extend_from_slice(mesh.node_sets.get(&key).map_or(&[][..], |s| s));
+            faces.extend_from_slice(mesh.face_sets.get(&key).map_or(&[][..], |s| s));
+        }
+        nodes.sort_unstable();
+        nodes.dedup();
+        mesh.node_sets.insert(name.to_string(), nodes);
+        mesh.face_sets.insert(name.to_string(), faces);
+    }
+}
+
+/// Add the rotated material `MATERIAL@ANGLE` of every ply to `materials`
+/// (which holds the scene's `[materials]`).
+pub fn add_ply_materials(
+    sf: &SceneFile,
+    spec: &LaminateSpec,
+    materials: &mut BTreeMap<String, Arc<dyn Material>>,
+) -> Result<()> {
+    let layup = Layup::resolve(sf, spec)?;
+    for p in &layup.plies {
+        let name = p.material_name();
+        if materials.contains_key(&name) {
+            continue;
+        }
+        let inner = materials.get(&p.material).cloned().ok_or_else(|| {
+            err!(
+                "{}: key `laminate`: unknown ply material `{}`",
+                sf.path.display(),
+                p.material
+            )
+        })?;
+        let ply = junta_elements::material::Rotated::about_axis(inner, [0.0, 0.0, 1.0], p.angle);
+        materials.insert(name, Arc::new(ply));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn layup(laminate: &str) -> Result<Layup> {
+        let text = format!(
+            "[materials.cf]\ntype = \"isotropic\"\nE = 1.0\nnu = 0.3\n[laws.cz]\ntype = \"linear_penalty\"\nd = 1.0\n[laws.cz2]\ntype = \"linear_penalty\"\nd = 2.0\n[laminate]\nbase = {{ type = \"rectangle\", size = [1.0, 1.0], divisions = [1, 1] }}\nelement = \"h8\"\nmaterial = \"cf\"\nply_thickness = 0.1\n{laminate}"
+        );
+        let sf = SceneFile::parse(std::path::Path::new("lam.toml"), text).unwrap();
+        let spec = sf.scene.laminate.as_ref().unwrap();
+        Layup::resolve(&sf, spec)
+    }
+
+    #[test]
+    fn blocks_merge_same_angles_and_interfaces_follow_them() {
+        let l = layup("layup = \"[0/90_2/45]s\"\ninterface_law = \"cz\"").unwrap();
+        // 0 / 90 90 / 45 45 / 90 90 / 0
+        assert_eq!(l.plies.len(), 8);
+        assert_eq!(l.blocks, vec![0..1, 1..3, 3..5, 5..7, 7..8]);
+        let below: Vec<usize> = l.interfaces.iter().map(|f| f.below).collect();
+        assert_eq!(below, [1, 3, 5, 7]);
+        assert_eq!(l.interfaces[0].name(), "interface_1_2");
+        let all = layup("layup = \"[0/90_2/45]s\"\ninterface_law = \"cz\"\ninterfaces = \"all\"")
+            .unwrap();
+        assert_eq!(all.interfaces.len(), 7);
+        let unmerged =
+            layup("layup = \"[0/90_2/45]s\"\ninterface_law = \"cz\"\nmerge_plies = false").unwrap();
+        assert_eq!(unmerged.blocks.len(), 8);
+        assert_eq!(unmerged.interfaces.len(), 7);
+        let none = layup("layup = \"[0/90]s\"").unwrap();
+        assert!(none.interfaces.is_empty());
+    }
+
+    #[test]
+    fn laws_by_position_and_by_angles() {
+        let l = layup(
+            "layup = \"[0/90/45/-45]\"\ninterface_law = \"cz\"\n[[laminate.interface_laws]]\nangles = [-45, 45]\nlaw = \"cz2\"\n[[laminate.interface_laws]]\nat = 1\nlaw = \"cz2\"",
+        )
+        .unwrap();
+        let laws: Vec<&str> = l.interfaces.iter().map(|f| f.law.as_str()).collect();
+        assert_eq!(laws, ["cz2", "cz", "cz2"]);
+        let listed =
+            layup("layup = \"[0/90/45/-45]\"\ninterface_law = \"cz\"\ninterfaces = [3, 1]")
+                .unwrap();
+        let below: Vec<usize> = listed.interfaces.iter().map(|f| f.below).collect();
+        assert_eq!(below, [1, 3]);
+        // 180 degrees apart is the same fibre direction: one block
+        let same = layup("layup = \"[90/-90]\"\ninterface_law = \"cz\"").unwrap();
+        assert_eq!(same.blocks.len(), 1);
+    }
+
+    #[test]
+    fn mistakes_name_the_key() {
+        for (lam, says) in [
+            (
+                "layup = \"[0/90]\"\ninterfaces = [2]\ninterface_law = \"cz\"",
+                "ply 2 has no ply above",
+            ),
+            (
+                "layup = \"[0/90]\"\ninterfaces = \"every\"",
+                "`every` is not valid",
+            ),
+            ("layup = \"[0/90]\"\ninterfaces = \"all\"", "has no law"),
+            (
+                "layup = \"[0/90]\"\ninterface_law = \"glue\"",
+                "unknown law `glue`",
+            ),
+            ("layup = \"[0/9O]\"", "laminate.layup"),
+            ("", "is required"),
+            (
+                "layup = \"[0]\"\n[[laminate.plies]]\nangle = 0",
+                "both given",
+            ),
+            (
+                "[[laminate.plies]]\nangle = 0\nmaterial = \"steel\"",
+                "unknown ply material `steel`",
+            ),
+            (
+                "[[laminate.plies]]\nangle = 0\nthickness = -1",
+                "not a positive thickness",
+            ),
+        ] {
+            let e = layup(lam).unwrap_err().to_string();
+            assert!(e.contains(says), "{lam}: {e}");
+            assert!(e.contains("lam.toml"), "{e}");
+        }
+    }
+}

@@ -1,0 +1,375 @@
+//! The lay-up builder against classical lamination theory.
+//!
+//! Each built laminate (`[laminate]` in a scene, interfaces between its
+//! plies) is loaded by the displacement field of a mid-plane strain
+//! `eps0 = (eps_x, eps_y, gamma_xy)` and curvature `kappa = (k_x, k_y,
+//! k_xy)` prescribed on its four edges (in-plane components only; `w` is
+//! free but at one corner):
+//!
+//! ```text
+//! u = eps_x x + gamma_xy y / 2 + z' (k_x x + k_xy y / 2)
+//! v = gamma_xy x / 2 + eps_y y + z' (k_y y + k_xy x / 2)      z' = z - z_mid
+//! ```
+//!
+//! The 3D solution is then the CLT state itself (uniform in x and y,
+//! `sigma_zz = tau_xz = tau_yz = 0`, every ply in plane stress), which
+//! quadratic hexahedra represent exactly, so the model's generalised forces
+//! `F_i = sum f_int . phi_i` (the work-conjugates of the six unit fields
+//! `phi_i`) divided by the area are the columns of `[A B; B D]`.
+//!
+//! The reference is CLT written from its textbook formulas (Jones,
+//! Mechanics of Composite Materials, 2nd ed., 1999, eqs. 2.84-2.87 for
+//! `Q_ij`, 2.93-2.95 for `Q̄_ij` with `m = cos theta, n = sin theta`,
+//! 4.28 for `A, B, D`), independently of the builder's Voigt rotation:
+//! material T300/5208 (Tsai & Hahn 1980: E1 = 181 GPa, E2 = 10.3 GPa,
+//! G12 = 7.17 GPa, nu12 = 0.28), plies 0.125 mm, a 20 x 20 mm plate.
+
+use junta::input::scene::{build_model, AnalysisSpec, SceneFile};
+use junta::Simulation;
+use junta_core::{Model, StepInfo};
+
+const E1: f64 = 181.0e3;
+const E2: f64 = 10.3e3;
+const G12: f64 = 7.17e3;
+const NU12: f64 = 0.28;
+const T: f64 = 0.125;
+const L: f64 = 20.0;
+
+/// `Q̄` of a ply at `theta` degrees, `[[11, 12, 16], [12, 22, 26], [16, 26, 66]]`.
+fn q_bar(theta: f64) -> [[f64; 3]; 3] {
+    let nu21 = NU12 * E2 / E1;
+    let d = 1.0 - NU12 * nu21;
+    let (q11, q22, q12, q66) = (E1 / d, E2 / d, NU12 * E2 / d, G12);
+    let (n, m) = theta.to_radians().sin_cos();
+    let (m2, n2) = (m * m, n * n);
+    let b11 = q11 * m2 * m2 + 2.0 * (q12 + 2.0 * q66) * m2 * n2 + q22 * n2 * n2;
+    let b12 = (q11 + q22 - 4.0 * q66) * m2 * n2 + q12 * (m2 * m2 + n2 * n2);
+    let b22 = q11 * n2 * n2 + 2.0 * (q12 + 2.0 * q66) * m2 * n2 + q22 * m2 * m2;
+    let b16 = (q11 - q12 - 2.0 * q66) * m2 * m * n + (q12 - q22 + 2.0 * q66) * m * n2 * n;
+    let b26 = (q11 - q12 - 2.0 * q66) * m * n2 * n + (q12 - q22 + 2.0 * q66) * m2 * m * n;
+    let b66 = (q11 + q22 - 2.0 * q12 - 2.0 * q66) * m2 * n2 + q66 * (m2 * m2 + n2 * n2);
+    [[b11, b12, b16], [b12, b22, b26], [b16, b26, b66]]
+}
+
+/// CLT's `[A B; B D]` of plies `angles` (bottom to top, thickness `T`).
+fn clt_abd(angles: &[f64]) -> [[f64; 6]; 6] {
+    let h = T * angles.len() as f64;
+    let mut abd = [[0.0; 6]; 6];
+    for (k, &theta) in angles.iter().enumerate() {
+        let (z0, z1) = (-h / 2.0 + k as f64 * T, -h / 2.0 + (k + 1) as f64 * T);
+        let q = q_bar(theta);
+        for i in 0..3 {
+            for j in 0..3 {
+                let a = q[i][j] * (z1 - z0);
+                let b = q[i][j] * (z1 * z1 - z0 * z0) / 2.0;
+                let d = q[i][j] * (z1.powi(3) - z0.powi(3)) / 3.0;
+                abd[i][j] += a;
+                abd[i][j + 3] += b;
+                abd[i + 3][j] += b;
+                abd[i + 3][j + 3] += d;
+            }
+        }
+    }
+    abd
+}
+
+fn scene(layup: &str, element: &str, extra: &str) -> String {
+    format!(
+        r#"
+[materials.t300]
+type = "orthotropic"
+E1 = {E1}
+E2 = {E2}
+E3 = {E2}
+nu12 = {NU12}
+nu13 = {NU12}
+nu23 = 0.4
+G12 = {G12}
+G13 = {G12}
+G23 = 3.68e3
+
+[laws.glue]
+type = "linear_penalty"
+d = 1.0e6
+
+[laminate]
+base = {{ type = "rectangle", size = [{L}, {L}], divisions = [2, 2] }}
+element = "{element}"
+material = "t300"
+ply_thickness = {T}
+layup = "{layup}"
+interface_law = "glue"
+interfaces = "all"
+{extra}
+"#
+    )
+}
+
+/// The unit field `phi_i` at a point (`zm`: mid-plane), `[u, v, w]`.
+fn unit_field(i: usize, p: [f64; 3], zm: f64) -> [f64; 3] {
+    let (x, y, z) = (p[0], p[1], p[2] - zm);
+    match i {
+        0 => [x, 0.0, 0.0],
+        1 => [0.0, y, 0.0],
+        2 => [y / 2.0, x / 2.0, 0.0],
+        3 => [z * x, 0.0, 0.0],
+        4 => [0.0, z * y, 0.0],
+        _ => [z * y / 2.0, z * x / 2.0, 0.0],
+    }
+}
+
+/// The model's `[A B; B D]` (columns from six runs) and the laminate's
+/// plate model.
+fn measured_abd(text: &str) -> [[f64; 6]; 6] {
+    let sf = SceneFile::parse(std::path::Path::new("laminate.toml"), text.to_string()).unwrap();
+    let built = build_model(&sf).unwrap();
+    let zs = built.mesh.nodes.iter().map(|p| p[2]);
+    let (lo, hi) = zs.fold((f64::MAX, f64::MIN), |(a, b), z| (a.min(z), b.max(z)));
+    let zm = 0.5 * (lo + hi);
+    let edges: Vec<usize> = ["x0", "x1", "y0", "y1"]
+        .iter()
+        .flat_map(|s| built.mesh.node_sets[*s].clone())
+        .collect();
+    let corner = built.mesh.node_sets["x0"]
+        .iter()
+        .copied()
+        .find(|&n| built.mesh.node_sets["y0"].contains(&n))
+        .unwrap();
+    let mut abd = [[0.0; 6]; 6];
+    for j in 0..6 {
+        let mut constraints: Vec<(usize, f64)> = Vec::new();
+        let mut seen = std::collections::HashSet::new();
+        for &n in &edges {
+            if seen.insert(n) {
+                let f = unit_field(j, built.mesh.nodes[n], zm);
+                constraints.push((3 * n, f[0]));
+                constraints.push((3 * n + 1, f[1]));
+            }
+        }
+        constraints.push((3 * corner + 2, 0.0));
+        let mesh = built.mesh.clone();
+        let n3 = 3 * mesh.nodes.len();
+        let model = Model::new(
+            mesh,
+            built.elements.clone(),
+            &constraints,
+            vec![0.0; n3],
+            vec![],
+        )
+        .unwrap();
+        let sim = Simulation::from_model(model, AnalysisSpec::default(), "cholesky").unwrap();
+        let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
+        let u = r.frame.expect("a linear run keeps its frame").displacement;
+        // f_int does not depend on which dofs are prescribed: the unloaded model's
+        let m = &built;
+        let mut f = vec![0.0; n3];
+        let mut state = m.initial_state();
+        m.whole_assembler()
+            .assemble(
+                &m.mesh,
+                &m.elements,
+                &m.dofs,
+                &u,
+                &mut state,
+                StepInfo::default(),
+                None,
+                &mut f,
+            )
+            .unwrap();
+        for (i, row) in abd.iter_mut().enumerate() {
+            let work: f64 = (0..m.mesh.nodes.len())
+                .map(|n| {
+                    let phi = unit_field(i, m.mesh.nodes[n], zm);
+                    (0..3).map(|c| f[3 * n + c] * phi[c]).sum::<f64>()
+                })
+                .sum();
+            row[j] = work / (L * L);
+        }
+    }
+    abd
+}
+
+/// Largest difference of each of A, B, D over the largest entry of A,
+/// B's scale `A h`, D respectively (`h` thickness).
+fn compare(angles: &[f64], measured: &[[f64; 6]; 6], reference: &[[f64; 6]; 6]) -> [f64; 3] {
+    let h = T * angles.len() as f64;
+    let max_abs = |r: std::ops::Range<usize>, c: std::ops::Range<usize>, m: &[[f64; 6]; 6]| {
+        r.clone()
+            .flat_map(|i| c.clone().map(move |j| (i, j)))
+            .fold(0.0f64, |a, (i, j)| a.max(m[i][j].abs()))
+    };
+    let diff = |r: std::ops::Range<usize>, c: std::ops::Range<usize>| {
+        r.clone()
+            .flat_map(|i| c.clone().map(move |j| (i, j)))
+            .fold(0.0f64, |a, (i, j)| {
+                a.max((measured[i][j] - reference[i][j]).abs())
+            })
+    };
+    let a = max_abs(0..3, 0..3, reference);
+    let d = max_abs(3..6, 3..6, reference);
+    [
+        diff(0..3, 0..3) / a,
+        diff(0..3, 3..6) / (a * h),
+        diff(3..6, 3..6) / d,
+    ]
+}
+
+fn check(code: &str, angles: &[f64], element: &str, extra: &str) -> [[f64; 6]; 6] {
+    let measured = measured_abd(&scene(code, element, extra));
+    let reference = clt_abd(angles);
+    let [ea, eb, ed] = compare(angles, &measured, &reference);
+    eprintln!("{code} ({element}): A {ea:.2e}, B {eb:.2e}, D {ed:.2e}");
+    // the issue asks 1 %; the CLT field is exact in H20, so the test holds 1e-6
+    for (what, e) in [("A", ea), ("B", eb), ("D", ed)] {
+        assert!(e < 1e-6, "{code}: {what} differs from CLT by {e:.3e}");
+    }
+    measured
+}
+
+#[test]
+fn cross_ply_symmetric_has_no_coupling() {
+    let m = check("[0/90]s", &[0.0, 90.0, 90.0, 0.0], "h20", "");
+    // A16 = D16 = 0 and B = 0 to round-off, D11 > D22 (0 plies outside)
+    assert!(m[3][3] > 3.0 * m[4][4]);
+}
+
+#[test]
+fn angle_ply_has_bend_twist_coupling() {
+    let m = check("[±45]s", &[45.0, -45.0, -45.0, 45.0], "h20", "");
+    // D16 = D26 != 0 (the +45 plies are outside), A16 = 0
+    assert!(m[3][5] > 0.05 * m[3][3], "D16 {} D11 {}", m[3][5], m[3][3]);
+    assert!(m[0][2].abs() < 1e-8 * m[0][0]);
+}
+
+#[test]
+fn quasi_isotropic() {
+    let angles = [0.0, 45.0, -45.0, 90.0, 90.0, -45.0, 45.0, 0.0];
+    let m = check("[0/±45/90]s", &angles, "h20", "");
+    // quasi-isotropic in-plane: A11 = A22, A66 = (A11 - A12) / 2
+    assert!((m[0][0] - m[1][1]).abs() < 1e-6 * m[0][0]);
+    assert!((m[2][2] - 0.5 * (m[0][0] - m[0][1])).abs() < 1e-6 * m[0][0]);
+}
+
+#[test]
+fn unsymmetric_cross_ply_couples_stretching_and_bending() {
+    let m = check("[0/90]", &[0.0, 90.0], "h20", "");
+    // the 0 ply at the bottom: B11 = (Q22 - Q11) h^2 / 8 < 0, B22 = -B11
+    assert!(m[0][3] < 0.0 && (m[0][3] + m[1][4]).abs() < 1e-6 * m[0][3].abs());
+}
+
+/// `[0_2/90]s`: six plies in three blocks; `interfaces = "all"` puts one
+/// between every pair, the default (`"blocks"`) only between blocks; the
+/// documented sets exist.
+#[test]
+fn merged_blocks_equal_separate_plies_and_the_blocks_have_their_sets() {
+    let merged = scene("[0_2/90]s", "h20", "");
+    let sf = SceneFile::parse(std::path::Path::new("m.toml"), merged.clone()).unwrap();
+    let mesh = junta::input::scene::build_mesh(&sf).unwrap();
+    // 6 plies, blocks 0 0 | 90 90 | 0 0, interfaces between all 5 pairs
+    for s in ["ply_1", "ply_6", "block_1", "block_3", "interface_5_6"] {
+        assert!(mesh.element_sets.contains_key(s), "{s}");
+    }
+    assert!(!mesh.element_sets.contains_key("block_4"));
+    for s in ["top", "bottom", "x0", "y1", "interface_3_4.top"] {
+        assert!(mesh.node_sets.contains_key(s), "{s}");
+    }
+    let interfaces = mesh
+        .blocks
+        .iter()
+        .filter(|b| b.shape.is_interface())
+        .count();
+    assert_eq!(interfaces, 5);
+    let blocks_only = scene("[0_2/90]s", "h20", "").replace("interfaces = \"all\"", "");
+    let sf = SceneFile::parse(std::path::Path::new("b.toml"), blocks_only).unwrap();
+    let mesh = junta::input::scene::build_mesh(&sf).unwrap();
+    let names: Vec<&str> = mesh
+        .blocks
+        .iter()
+        .filter(|b| b.shape.is_interface())
+        .map(|b| b.name.as_str())
+        .collect();
+    assert_eq!(names, ["interface_2_3", "interface_4_5"]);
+}
+/// H8I (incompatible modes), H27 and the reduced H20R hold the bending
+/// field too; plain H8 locks in shear (D several times too stiff on plies
+/// 80 times thinner than wide: see docs/laminates.md).
+#[test]
+fn other_bending_elements() {
+    let angles = [0.0, 45.0, -45.0, 90.0, 90.0, -45.0, 45.0, 0.0];
+    for el in ["h8i", "h27", "h20r"] {
+        check("[0/±45/90]s", &angles, el, "");
+    }
+}
+
+/// T300/5208's expansion along and across the fibre (Tsai & Hahn 1980).
+const ALPHA: [f64; 2] = [0.02e-6, 22.5e-6];
+
+/// CLT's free thermal response `[eps0; kappa] = [A B; B D]^-1 [N_T; M_T]`
+/// of plies `angles` cooled by `dt` (Jones 1999, eqs. 4.94-4.96; the
+/// expansion of a ply at theta: `alpha_x = a1 m^2 + a2 n^2`, `alpha_y = a1
+/// n^2 + a2 m^2`, `alpha_xy = 2 (a1 - a2) m n`, engineering shear).
+fn clt_thermal(angles: &[f64], dt: f64) -> [f64; 6] {
+    let h = T * angles.len() as f64;
+    let mut load = [0.0; 6];
+    for (k, &theta) in angles.iter().enumerate() {
+        let (z0, z1) = (-h / 2.0 + k as f64 * T, -h / 2.0 + (k + 1) as f64 * T);
+        let (n, m) = theta.to_radians().sin_cos();
+        let [a1, a2] = ALPHA;
+        let alpha = [
+            a1 * m * m + a2 * n * n,
+            a1 * n * n + a2 * m * m,
+            2.0 * (a1 - a2) * m * n,
+        ];
+        let q = q_bar(theta);
+        for i in 0..3 {
+            let qa: f64 = (0..3).map(|j| q[i][j] * alpha[j] * dt).sum();
+            load[i] += qa * (z1 - z0);
+            load[i + 3] += qa * (z1 * z1 - z0 * z0) / 2.0;
+        }
+    }
+    let abd = clt_abd(angles);
+    let m = nalgebra::Matrix6::from_fn(|i, j| abd[i][j]);
+    let x = m.lu().solve(&nalgebra::Vector6::from(load)).unwrap();
+    [x[0], x[1], x[2], x[3], x[4], x[5]]
+}
+
+/// `examples/laminates/cross_ply_cure.toml`: the [0/90] plate cooled by
+/// 150 K warps into CLT's saddle, `kappa_x = -kappa_y`, measured from the
+/// three probes on the bottom face of its centre line (0.04 % on 8 x 8
+/// H20; the free edges' boundary layer is the rest).
+#[test]
+fn cross_ply_cure_saddle_matches_clt() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/laminates/cross_ply_cure.toml");
+    let sim = Simulation::from_file(&path).unwrap();
+    let mesh = sim.model().mesh.clone();
+    let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
+    assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+    let u = r.frame.unwrap().displacement;
+    let w = |x: f64, y: f64| {
+        let n = mesh
+            .nodes
+            .iter()
+            .position(|p| (p[0] - x).abs() < 1e-9 && (p[1] - y).abs() < 1e-9 && p[2].abs() < 1e-9)
+            .unwrap();
+        u[3 * n + 2]
+    };
+    let kx = -(w(2.5, 5.0) - 2.0 * w(5.0, 5.0) + w(7.5, 5.0)) / 2.5f64.powi(2);
+    let ky = -(w(5.0, 2.5) - 2.0 * w(5.0, 5.0) + w(5.0, 7.5)) / 2.5f64.powi(2);
+    let clt = clt_thermal(&[0.0, 90.0], -150.0);
+    eprintln!(
+        "kappa_x {kx:.6e} ky {ky:.6e}, CLT {:.6e} {:.6e}",
+        clt[3], clt[4]
+    );
+    assert!(clt[3] < 0.0 && (clt[3] + clt[4]).abs() < 1e-12);
+    assert!(
+        (kx - clt[3]).abs() < 2e-3 * clt[3].abs(),
+        "{kx} vs {}",
+        clt[3]
+    );
+    assert!(
+        (ky - clt[4]).abs() < 2e-3 * clt[4].abs(),
+        "{ky} vs {}",
+        clt[4]
+    );
+}
