@@ -448,6 +448,7 @@ fn frame_dict<'py>(py: Python<'py>, f: Frame) -> PyResult<Bound<'py, PyDict>> {
     d.set_item("solid_position", array(py, s.position, 3)?)?;
     d.set_item("solid_stress", array(py, s.stress, 6)?)?;
     d.set_item("solid_strain", array(py, s.strain, 6)?)?;
+    d.set_item("solid_material_stress", array(py, s.material_stress, 6)?)?;
     let i = f.interface;
     d.set_item("interface_block", int_array(py, ints(i.block), 0)?)?;
     d.set_item("interface_element", int_array(py, ints(i.element), 0)?)?;

@@ -30,6 +30,16 @@ pub trait Material: Send + Sync + std::fmt::Debug {
         let _ = x;
         self.elasticity()
     }
+    /// The material axes at the point `x` (reference coordinates): the
+    /// columns of `Q` are the axes 1, 2, 3 in global components, so that
+    /// the stress in the material axes is `Q^T sigma Q` (a ply: 1 along
+    /// the fibre, 3 through the thickness). `None` (the default) for a
+    /// material without axes of its own (isotropic). Called once per
+    /// output point: must not allocate.
+    fn axes_at(&self, x: [f64; 3]) -> Option<nalgebra::Matrix3<f64>> {
+        let _ = x;
+        None
+    }
     /// A representative Young's modulus (for diagnostics such as the penalty advisor).
     fn reference_modulus(&self) -> f64;
     /// Whether the material has a non-zero thermal expansion: elements then

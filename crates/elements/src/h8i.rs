@@ -129,7 +129,7 @@
 
 use crate::quadrature::gauss_legendre_3d;
 use crate::shape::hex_shape;
-use crate::solid::von_mises;
+use crate::solid::{material_stress, von_mises};
 use crate::total_lagrangian as tl;
 use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
 use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
@@ -572,16 +572,19 @@ impl IncompatibleHex8 {
             let e = tl::green_strain(&f);
             let s = pg.c * (e - th);
             let sigma = tl::cauchy_stress(&f, &s);
-            out.push(PointOutput {
-                position: position(p, ctx.coords),
-                values: vec![
-                    ("stress", sigma.to_vec()),
-                    ("strain", e.iter().copied().collect()),
-                    ("mises", vec![von_mises(&sigma)]),
-                    ("volume", vec![pg.dv]),
-                    ("pk2_stress", s.iter().copied().collect()),
-                ],
-            });
+            let position = position(p, ctx.coords);
+            let pk2: [f64; 6] = s.into();
+            let mut values = vec![
+                ("stress", sigma.to_vec()),
+                ("strain", e.iter().copied().collect()),
+                ("mises", vec![von_mises(&sigma)]),
+                ("volume", vec![pg.dv]),
+                ("pk2_stress", pk2.to_vec()),
+            ];
+            if let Some(m) = material_stress(self.material.as_ref(), position, &pk2) {
+                values.push(("material_stress", m.to_vec()));
+            }
+            out.push(PointOutput { position, values });
             if ctx.temperature.is_some() {
                 let v = &mut out.last_mut().expect("pushed").values;
                 v.push(("thermal_strain", th.iter().copied().collect()));
@@ -719,15 +722,16 @@ impl Element for IncompatibleHex8 {
             let eps: Vector6<f64> = pb.bu * u + pb.ba * alpha;
             let s: [f64; 6] = (pb.c * (eps - th)).into();
             let position = position(p, ctx.coords);
-            out.push(PointOutput {
-                position,
-                values: vec![
-                    ("stress", s.to_vec()),
-                    ("strain", eps.iter().copied().collect()),
-                    ("mises", vec![von_mises(&s)]),
-                    ("volume", vec![pb.dv]),
-                ],
-            });
+            let mut values = vec![
+                ("stress", s.to_vec()),
+                ("strain", eps.iter().copied().collect()),
+                ("mises", vec![von_mises(&s)]),
+                ("volume", vec![pb.dv]),
+            ];
+            if let Some(m) = material_stress(self.material.as_ref(), position, &s) {
+                values.push(("material_stress", m.to_vec()));
+            }
+            out.push(PointOutput { position, values });
             if ctx.temperature.is_some() {
                 let v = &mut out.last_mut().expect("pushed").values;
                 v.push(("thermal_strain", th.iter().copied().collect()));

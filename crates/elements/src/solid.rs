@@ -638,16 +638,35 @@ impl Element for SolidElement {
             if let Some(pk2) = ps.pk2 {
                 values.push(("pk2_stress", pk2.to_vec()));
             }
+            let position = self.position(p, ctx.coords);
+            // under nlgeom: the PK2 stress, whose axes are the reference ones
+            let objective = ps.pk2.as_ref().unwrap_or(&ps.stress);
+            if let Some(s) = material_stress(self.material.as_ref(), position, objective) {
+                values.push(("material_stress", s.to_vec()));
+            }
             if ctx.temperature.is_some() {
                 values.push(("thermal_strain", ps.thermal.iter().copied().collect()));
             }
-            out.push(PointOutput {
-                position: self.position(p, ctx.coords),
-                values,
-            });
+            out.push(PointOutput { position, values });
         }
         Ok(out)
     }
+}
+
+/// The stress in the material's own axes at `x` (output `material_stress`,
+/// Voigt `[11, 22, 33, 12, 23, 31]`): `sigma_l = Q^T sigma Q` with `Q` the
+/// axes of [`Material::axes_at`], i.e. `sigma_l = T(Q^T) sigma` in Voigt
+/// form ([`crate::material::stress_rotation`]). `None` for a material
+/// without axes. Under large deformation the elements pass the second
+/// Piola-Kirchhoff stress, whose axes are the reference material axes.
+pub fn material_stress(
+    material: &dyn Material,
+    x: [f64; 3],
+    stress: &[f64; 6],
+) -> Option<[f64; 6]> {
+    let q = material.axes_at(x)?;
+    let t = crate::material::stress_rotation(&q.transpose());
+    Some((t * Vector6::from(*stress)).into())
 }
 
 const SOLID_PARAMS: &[ParamDoc] = &[ParamDoc {

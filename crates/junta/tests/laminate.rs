@@ -118,51 +118,55 @@ fn unit_field(i: usize, p: [f64; 3], zm: f64) -> [f64; 3] {
     }
 }
 
-/// The model's `[A B; B D]` (columns from six runs) and the laminate's
-/// plate model.
-fn measured_abd(text: &str) -> [[f64; 6]; 6] {
+/// The built laminate of `text`, the `z` of its mid-plane, and the run of
+/// unit field `j` prescribed on its edges (`w` fixed at one corner only).
+fn unit_case(text: &str, j: usize) -> (Model, f64, junta::RunResults) {
     let sf = SceneFile::parse(std::path::Path::new("laminate.toml"), text.to_string()).unwrap();
     let built = build_model(&sf).unwrap();
     let zs = built.mesh.nodes.iter().map(|p| p[2]);
     let (lo, hi) = zs.fold((f64::MAX, f64::MIN), |(a, b), z| (a.min(z), b.max(z)));
     let zm = 0.5 * (lo + hi);
-    let edges: Vec<usize> = ["x0", "x1", "y0", "y1"]
+    let sets = &built.mesh.node_sets;
+    let mut edges: Vec<usize> = ["x0", "x1", "y0", "y1"]
         .iter()
-        .flat_map(|s| built.mesh.node_sets[*s].clone())
+        .flat_map(|s| sets[*s].clone())
         .collect();
-    let corner = built.mesh.node_sets["x0"]
+    edges.sort_unstable();
+    edges.dedup();
+    let corner = sets["x0"]
         .iter()
         .copied()
-        .find(|&n| built.mesh.node_sets["y0"].contains(&n))
+        .find(|n| sets["y0"].contains(n))
         .unwrap();
+    let mut constraints: Vec<(usize, f64)> = Vec::new();
+    for &n in &edges {
+        let f = unit_field(j, built.mesh.nodes[n], zm);
+        constraints.push((3 * n, f[0]));
+        constraints.push((3 * n + 1, f[1]));
+    }
+    constraints.push((3 * corner + 2, 0.0));
+    let n3 = 3 * built.mesh.nodes.len();
+    let model = Model::new(
+        built.mesh.clone(),
+        built.elements.clone(),
+        &constraints,
+        vec![0.0; n3],
+        vec![],
+    )
+    .unwrap();
+    let sim = Simulation::from_model(model, AnalysisSpec::default(), "cholesky").unwrap();
+    let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
+    (built, zm, r)
+}
+
+/// The model's `[A B; B D]`: column `j` from the run of unit field `j`.
+fn measured_abd(text: &str) -> [[f64; 6]; 6] {
     let mut abd = [[0.0; 6]; 6];
     for j in 0..6 {
-        let mut constraints: Vec<(usize, f64)> = Vec::new();
-        let mut seen = std::collections::HashSet::new();
-        for &n in &edges {
-            if seen.insert(n) {
-                let f = unit_field(j, built.mesh.nodes[n], zm);
-                constraints.push((3 * n, f[0]));
-                constraints.push((3 * n + 1, f[1]));
-            }
-        }
-        constraints.push((3 * corner + 2, 0.0));
-        let mesh = built.mesh.clone();
-        let n3 = 3 * mesh.nodes.len();
-        let model = Model::new(
-            mesh,
-            built.elements.clone(),
-            &constraints,
-            vec![0.0; n3],
-            vec![],
-        )
-        .unwrap();
-        let sim = Simulation::from_model(model, AnalysisSpec::default(), "cholesky").unwrap();
-        let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
+        let (m, zm, r) = unit_case(text, j);
         let u = r.frame.expect("a linear run keeps its frame").displacement;
         // f_int does not depend on which dofs are prescribed: the unloaded model's
-        let m = &built;
-        let mut f = vec![0.0; n3];
+        let mut f = vec![0.0; u.len()];
         let mut state = m.initial_state();
         m.whole_assembler()
             .assemble(
@@ -371,5 +375,43 @@ fn cross_ply_cure_saddle_matches_clt() {
         (ky - clt[4]).abs() < 2e-3 * clt[4].abs(),
         "{ky} vs {}",
         clt[4]
+    );
+}
+
+/// Ply stresses in the material axes: under the unit stretch `eps_x = 1`
+/// every ply of angle theta has the strain `eps_1 = m^2`, `eps_2 = n^2`,
+/// `gamma_12 = -2 m n` in its axes (the strain transformation, Jones 1999
+/// eq. 2.80), so `sigma_1 = Q11 m^2 + Q12 n^2`, `sigma_2 = Q12 m^2 + Q22
+/// n^2`, `tau_12 = -2 Q66 m n`, and no out-of-plane stress.
+#[test]
+fn ply_stresses_in_material_axes() {
+    let angles: [f64; 8] = [0.0, 45.0, -45.0, 90.0, 90.0, -45.0, 45.0, 0.0];
+    let (m, _, r) = unit_case(&scene("[0/±45/90]s", "h20", ""), 0);
+    let solid = r.frame.unwrap().solid;
+    let nu21 = NU12 * E2 / E1;
+    let d = 1.0 - NU12 * nu21;
+    let (q11, q22, q12) = (E1 / d, E2 / d, NU12 * E2 / d);
+    let z0 = m.mesh.nodes.iter().fold(f64::MAX, |a, p| a.min(p[2]));
+    let points = solid.block.len();
+    assert!(points > 0);
+    let mut worst = 0.0f64;
+    for p in 0..points {
+        let ply = ((solid.position[3 * p + 2] - z0) / T).floor() as usize;
+        let (n, mm) = angles[ply].to_radians().sin_cos();
+        let expected = [
+            q11 * mm * mm + q12 * n * n,
+            q12 * mm * mm + q22 * n * n,
+            0.0,
+            -2.0 * G12 * mm * n,
+            0.0,
+            0.0,
+        ];
+        for k in 0..6 {
+            worst = worst.max((solid.material_stress[6 * p + k] - expected[k]).abs() / q11);
+        }
+    }
+    assert!(
+        worst < 1e-8,
+        "ply stress differs from CLT by {worst:.3e} of Q11"
     );
 }

@@ -345,6 +345,9 @@ class Frame:
     ``displacement``            ``[nodes, 3]`` at the reference nodes
     ``solid_stress``            ``[points, 6]`` Voigt xx, yy, zz, xy, yz, zx
     ``solid_strain``            ``[points, 6]`` (engineering shear)
+    ``solid_material_stress``   ``[points, 6]`` in the material's axes
+                                (Voigt 11, 22, 33, 12, 23, 31; a ply: 1
+                                the fibre); NaN where it has none
     ``solid_position``          ``[points, 3]`` reference position
     ``solid_block``/``_element`` ``[points]`` int
     ``interface_traction``      ``[points, 3]`` local ``[s1, s2, n]``

@@ -64,6 +64,7 @@ class Frame:
     displacement: _F64
     solid_stress: _F64
     solid_strain: _F64
+    solid_material_stress: _F64
     solid_position: _F64
     solid_block: NDArray[np.int64]
     solid_element: NDArray[np.int64]

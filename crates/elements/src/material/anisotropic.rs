@@ -165,6 +165,9 @@ impl Material for Anisotropic {
         }
     }
     /// The largest normal stiffness `D1111, D2222, D3333`.
+    fn axes_at(&self, x: [f64; 3]) -> Option<nalgebra::Matrix3<f64>> {
+        Some(self.axes.at(x))
+    }
     fn reference_modulus(&self) -> f64 {
         self.reference
     }

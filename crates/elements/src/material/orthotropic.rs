@@ -520,6 +520,9 @@ impl Material for Orthotropic {
             _ => rotate_symmetric(&self.c_local, &self.axes.at(x)),
         }
     }
+    fn axes_at(&self, x: [f64; 3]) -> Option<Matrix3<f64>> {
+        Some(self.axes.at(x))
+    }
     /// The largest of `E1, E2, E3`.
     fn reference_modulus(&self) -> f64 {
         self.constants

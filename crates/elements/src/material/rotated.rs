@@ -101,6 +101,12 @@ impl Material for Rotated {
         let ci = self.inner.elasticity_at(self.inner_point(x));
         symmetric(self.t * ci * self.t.transpose())
     }
+    /// `Q Q_i(Q^T x)`: the inner material's axes carried along (the
+    /// rotation itself for an inner material without axes).
+    fn axes_at(&self, x: [f64; 3]) -> Option<Matrix3<f64>> {
+        let inner = self.inner.axes_at(self.inner_point(x));
+        Some(inner.map_or(self.q, |qi| self.q * qi))
+    }
     fn reference_modulus(&self) -> f64 {
         self.inner.reference_modulus()
     }

@@ -186,6 +186,14 @@ pub fn write_vtu(path: &Path, model: &Model, u: &[f64], cells: &CellResults) -> 
                 pk2.iter().flat_map(|s| s.iter().copied()),
             )?;
         }
+        if let Some(sl) = &cells.material_stress {
+            write_array(
+                &mut w,
+                "material_stress",
+                6,
+                sl.iter().flat_map(|s| s.iter().copied()),
+            )?;
+        }
         write_array(&mut w, "block", 1, block_ids)?;
         write_ints(&mut w, "element_id", "Int64", element_ids)?;
         writeln!(w, "      </CellData>")?;

@@ -22,6 +22,11 @@ pub struct CellResults {
     /// Average second Piola-Kirchhoff stress per cell, when an element
     /// reports it (large deformation: `stress` is then the Cauchy stress).
     pub pk2_stress: Option<Vec<[f64; 6]>>,
+    /// Average stress per cell in its material's own axes (a ply: 11 along
+    /// the fibre, 33 through the thickness; Voigt `[11, 22, 33, 12, 23,
+    /// 31]`), when some block's material has axes; NaN in the cells of the
+    /// others.
+    pub material_stress: Option<Vec<[f64; 6]>>,
 }
 
 /// Average integration-point outputs over each solid cell (a linear
@@ -42,6 +47,8 @@ pub fn cell_results_at(
     let mut mises = Vec::with_capacity(model.mesh.num_elements());
     let mut pk2 = Vec::with_capacity(model.mesh.num_elements());
     let mut any_pk2 = false;
+    let mut in_axes = Vec::with_capacity(model.mesh.num_elements());
+    let mut any_axes = false;
     let mut ranges = Vec::new();
     for (bi, b) in model.mesh.blocks.iter().enumerate() {
         if !b.shape.is_solid() {
@@ -61,6 +68,8 @@ pub fn cell_results_at(
             }
             let mut s = [0.0; 6];
             let mut s2 = [0.0; 6];
+            let mut sl = [0.0; 6];
+            let mut has_axes = false;
             let mut m = 0.0;
             let np = pts.len().max(1) as f64;
             for p in &pts {
@@ -78,9 +87,17 @@ pub fn cell_results_at(
                 if let Some(v) = p.get("mises") {
                     m += v[0] / np;
                 }
+                if let Some(v) = p.get("material_stress") {
+                    has_axes = true;
+                    for k in 0..6 {
+                        sl[k] += v[k] / np;
+                    }
+                }
             }
             stress.push(s);
             pk2.push(s2);
+            any_axes |= has_axes;
+            in_axes.push(if has_axes { sl } else { [f64::NAN; 6] });
             mises.push(m);
         }
         ranges.push((b.name.clone(), lo, hi));
@@ -90,6 +107,7 @@ pub fn cell_results_at(
         stress,
         mises,
         pk2_stress: any_pk2.then_some(pk2),
+        material_stress: any_axes.then_some(in_axes),
     })
 }
 

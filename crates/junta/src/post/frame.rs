@@ -29,6 +29,12 @@ pub struct SolidPoints {
     pub stress: Vec<f64>,
     /// Strain `[points, 6]` (engineering shear, same order).
     pub strain: Vec<f64>,
+    /// Stress in each point's material axes `[points, 6]` (Voigt `11, 22,
+    /// 33, 12, 23, 31`; a ply: 1 along the fibre, 3 through the
+    /// thickness); NaN at points whose material has no axes (isotropic).
+    /// Under large deformation: the second Piola-Kirchhoff stress in the
+    /// reference axes.
+    pub material_stress: Vec<f64>,
 }
 
 /// Integration-point values of the interface elements.
@@ -109,6 +115,7 @@ fn solid_points(
                 s.position.extend_from_slice(&p.position);
                 push_n(&mut s.stress, p.get("stress"), 6);
                 push_n(&mut s.strain, p.get("strain"), 6);
+                push_n(&mut s.material_stress, p.get("material_stress"), 6);
             }
         }
     }
