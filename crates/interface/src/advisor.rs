@@ -208,6 +208,64 @@ pub fn penalty_advice(
     block: usize,
     thickness: Option<f64>,
 ) -> Result<PenaltyAdvice, CoreError> {
+    let mut on_interface = vec![false; model.mesh.nodes.len()];
+    if let Some(b) = model.mesh.blocks.get(block) {
+        for &n in &b.connectivity {
+            on_interface[n] = true;
+        }
+    }
+    let solids = SolidDiagonal::near(model, &on_interface)?;
+    penalty_advice_with(model, block, thickness, &solids)
+}
+
+/// The diagonal stiffness of the solids at the nodes of some interfaces,
+/// computed once for all of them: at a node of an interface every element
+/// holding the node touches that interface, so the diagonal there is the
+/// same whichever interfaces were asked for (a laminate's 31 interfaces
+/// compute each ply's elements once, not once per neighbouring interface).
+#[derive(Debug, Clone)]
+pub struct SolidDiagonal {
+    /// Sum of the solid elements' diagonal stiffness per dof (0 off the nodes asked for).
+    diag: Vec<f64>,
+    /// Largest reference modulus of the solids holding each node.
+    node_modulus: Vec<f64>,
+}
+
+impl SolidDiagonal {
+    /// The solids' diagonal at the nodes of every interface block.
+    pub fn of_interfaces(model: &Model) -> Result<Self, CoreError> {
+        let mut on = vec![false; model.mesh.nodes.len()];
+        for b in model.mesh.blocks.iter().filter(|b| b.shape.is_interface()) {
+            for &n in &b.connectivity {
+                on[n] = true;
+            }
+        }
+        Self::near(model, &on)
+    }
+
+    /// The solids' diagonal at the nodes where `on` is true.
+    pub fn near(model: &Model, on: &[bool]) -> Result<Self, CoreError> {
+        let (diag, node_modulus) = solid_diagonal(model, on)?;
+        Ok(SolidDiagonal { diag, node_modulus })
+    }
+
+    /// The largest modulus of the solids holding a node where `on` is true.
+    fn modulus(&self, on: &[bool]) -> f64 {
+        on.iter()
+            .zip(&self.node_modulus)
+            .filter(|(o, _)| **o)
+            .fold(0.0, |m, (_, e)| m.max(*e))
+    }
+}
+
+/// [`penalty_advice`] with the solids' diagonal already computed (it must
+/// cover this interface's nodes).
+pub fn penalty_advice_with(
+    model: &Model,
+    block: usize,
+    thickness: Option<f64>,
+    solids: &SolidDiagonal,
+) -> Result<PenaltyAdvice, CoreError> {
     let mesh = &model.mesh;
     let ib = mesh
         .blocks
@@ -215,8 +273,8 @@ pub fn penalty_advice(
         .filter(|b| b.shape.is_interface())
         .ok_or_else(|| CoreError::Invalid(format!("block {block} is not an interface block")))?;
     let (on_interface, pairs, area) = interface_area(model, block)?;
-    let (diag, modulus) = solid_diagonal(model, &on_interface)?;
-    let (k_min, n) = smallest_free_stiffness(model, &on_interface, &diag);
+    let modulus = solids.modulus(&on_interface);
+    let (k_min, n) = smallest_free_stiffness(model, &on_interface, &solids.diag);
     if n == 0 || !k_min.is_finite() {
         return Err(CoreError::Invalid(format!(
             "interface `{}` has no free dof on a solid: nothing for the penalty to act on",
@@ -359,11 +417,13 @@ fn initial_block_states(
 /// The stiffness diagonal of the solid elements touching the interface
 /// nodes (`on_interface`), in the reference state, and the largest
 /// reference modulus of their materials.
-fn solid_diagonal(model: &Model, on_interface: &[bool]) -> Result<(Vec<f64>, f64), CoreError> {
+/// The diagonal of the solids touching the nodes where `on_interface` is
+/// true, per dof, and the largest modulus of the solids holding each node.
+fn solid_diagonal(model: &Model, on_interface: &[bool]) -> Result<(Vec<f64>, Vec<f64>), CoreError> {
     let mesh = &model.mesh;
     // diagonal of the solids touching the interface
     let mut diag = vec![0.0; 3 * mesh.nodes.len()];
-    let mut modulus: f64 = 0.0;
+    let mut node_modulus = vec![0.0f64; mesh.nodes.len()];
     for (bi, b) in mesh.blocks.iter().enumerate() {
         if !b.shape.is_solid() {
             continue;
@@ -407,11 +467,13 @@ fn solid_diagonal(model: &Model, on_interface: &[bool]) -> Result<(Vec<f64>, f64
                 }
             }
             if let Some(r) = material_modulus(model, bi) {
-                modulus = modulus.max(r);
+                for &n in nodes {
+                    node_modulus[n] = node_modulus[n].max(r);
+                }
             }
         }
     }
-    Ok((diag, modulus))
+    Ok((diag, node_modulus))
 }
 
 /// The smallest diagonal stiffness `k_min` of a free dof on the interface

@@ -28,7 +28,8 @@ pub mod element;
 pub mod law;
 
 pub use advisor::{
-    penalty_advice, CohesivePenalty, CohesiveVerdict, PenaltyAdvice, PenaltyVerdict,
+    penalty_advice, penalty_advice_with, CohesivePenalty, CohesiveVerdict, PenaltyAdvice,
+    PenaltyVerdict,
 };
 pub use cohesive_zone::{cohesive_zone_advice, CohesiveZoneAdvice, MeshVerdict};
 pub use element::{InterfaceElement, InterfaceRule};

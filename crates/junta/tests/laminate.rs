@@ -349,6 +349,11 @@ fn cross_ply_cure_saddle_matches_clt() {
     let mesh = sim.model().mesh.clone();
     let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
     assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+    // the build's cost is reported, inside the reading time
+    let t = r.summary.timings.expect("a run reports its timings");
+    let build = t.build.expect("a scene reports its build");
+    assert!(build > 0.0 && build <= t.read, "{t:?}");
+    assert!(t.build_peak_bytes.is_some_and(|b| b > 1_000_000), "{t:?}");
     let u = r.frame.unwrap().displacement;
     let w = |x: f64, y: f64| {
         let n = mesh

@@ -157,11 +157,12 @@ pub fn penalty_advice(
     let mut m = serde_json::Map::new();
     let mut lines = Vec::new();
     let mut warnings = Vec::new();
+    let solids = junta_interface::advisor::SolidDiagonal::of_interfaces(model)?;
     for (bi, b) in model.mesh.blocks.iter().enumerate() {
         if !b.shape.is_interface() {
             continue;
         }
-        let a = junta_interface::penalty_advice(model, bi, thickness(&b.name))?;
+        let a = junta_interface::penalty_advice_with(model, bi, thickness(&b.name), &solids)?;
         let turon_t = a
             .turon
             .map(|k| format!("; Turon K = 50 E/t = {k:.3e}"))

@@ -27,6 +27,15 @@ pub fn machine_memory() -> Option<f64> {
     field("MemAvailable:").or_else(|| field("MemTotal:"))
 }
 
+/// The process's peak resident memory so far (`VmHWM` of
+/// `/proc/self/status`), bytes; `None` where unknown.
+pub fn peak_resident_bytes() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = text.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
 fn gb(bytes: f64) -> String {
     format!("{:.3} GB", bytes / 1e9)
 }

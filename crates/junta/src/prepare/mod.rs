@@ -85,6 +85,21 @@ pub struct Prepared {
     /// Seconds spent choosing the linear solver (`auto`'s analysis,
     /// [`crate::prepare::auto::decide`]); not part of `read_seconds`.
     pub choose_solver_seconds: f64,
+    /// A scene's model build (mesh, lay-up, interfaces, elements): its
+    /// seconds and the process's peak memory after it (`summary.json`
+    /// `timings.build`, `timings.build_peak_bytes`); `None` for decks and
+    /// models built in code.
+    pub build: Option<BuildCost>,
+}
+
+/// What building a scene's model cost.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BuildCost {
+    /// Wall-clock seconds of the build.
+    pub seconds: f64,
+    /// Peak resident memory of the process after the build (`VmHWM` of
+    /// `/proc/self/status`), bytes; `None` where unknown.
+    pub peak_bytes: Option<u64>,
 }
 
 /// Build the linear back end registered as `key` from its parameter
@@ -320,6 +335,7 @@ pub fn prepare_model(model: Model, analysis: scene::AnalysisSpec, key: &str) -> 
         read_seconds: 0.0,
         choose_solver_seconds,
         temperature,
+        build: None,
     })
 }
 
@@ -510,6 +526,7 @@ fn prepare_unchecked(input: &Path, options: &crate::Options) -> Result<Prepared>
                 temperature: deck_temperature,
                 read_seconds: 0.0,
                 choose_solver_seconds,
+                build: None,
             })
         }
         _ => bail!(
@@ -535,7 +552,12 @@ fn prepare_scene(
                 .into(),
         );
     }
+    let t_build = std::time::Instant::now();
     let mut model = scene::build_model_with_notes(sf, &mut notes)?;
+    let build = BuildCost {
+        seconds: t_build.elapsed().as_secs_f64(),
+        peak_bytes: limits::peak_resident_bytes(),
+    };
     let temperature = thermal_program(input, sf, &mut analysis, &mut model, &mut notes)?;
     fatigue_program(input, sf, &mut analysis, &mut model, &mut notes)?;
     let (mut key, mut table) = scene::solver_table(sf);
@@ -590,6 +612,7 @@ fn prepare_scene(
         read_seconds: 0.0,
         choose_solver_seconds,
         temperature,
+        build: Some(build),
     })
 }
 

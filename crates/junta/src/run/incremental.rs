@@ -841,6 +841,8 @@ fn run_totals(
     let t = run.summary.timings;
     summary["timings"] = json!({
         "read": p.read_seconds, "choose_solver": p.choose_solver_seconds,
+        "build": p.build.map(|b| b.seconds),
+        "build_peak_bytes": p.build.and_then(|b| b.peak_bytes),
         "assemble": t.assemble, "analyze": t.analyze, "factor": t.factor, "solve": t.solve,
         "driver_total": t.total,
         "total": p.read_seconds + p.choose_solver_seconds + t0.elapsed().as_secs_f64(),

@@ -111,6 +111,8 @@ pub(crate) fn run_linear(
         "timings": {
             "read": read_seconds,
             "choose_solver": p.choose_solver_seconds,
+            "build": p.build.map(|b| b.seconds),
+            "build_peak_bytes": p.build.and_then(|b| b.peak_bytes),
             "pattern": res.timings.pattern,
             "assemble": res.timings.assemble,
             "analyze": res.timings.analyze,

@@ -227,6 +227,13 @@ pub struct DriverSummary {
 pub struct Timings {
     /// Reading and preparing the input.
     pub read: f64,
+    /// Building a scene's model (part of `read`): mesh, lay-up,
+    /// interfaces, elements.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub build: Option<f64>,
+    /// Peak resident memory of the process after the build, bytes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub build_peak_bytes: Option<u64>,
     /// Choosing the linear solver.
     pub choose_solver: f64,
     /// Building the matrix pattern (linear runs).
