@@ -265,7 +265,7 @@ impl Puck {
     }
 
     /// The fracture plane: the largest `f_E` over `theta` (a scan of
-    /// [`SCAN_PLANES`] planes, each local maximum refined by golden-section
+    /// 180 planes one degree apart, each local maximum refined by golden-section
     /// search on the scan's step either side).
     pub fn action_plane(&self, stress: &[f64; 6]) -> ActionPlane {
         let step = 2.0 * FRAC_PI_2 / SCAN_PLANES as f64;
