@@ -19,7 +19,7 @@ pub enum CoreError {
     #[error("unknown {kind} `{key}`; valid {kind} keys: {valid}")]
     UnknownKey {
         /// Kind of plugin ([`crate::registry::Entry::KIND`]: `"element"`,
-        /// `"material"`, `"law"`, `"criterion"`, `"solver"`).
+        /// `"material"`, `"law"`, `"criterion"`, `"ply criterion"`, `"solver"`).
         kind: &'static str,
         /// The key asked for.
         key: String,

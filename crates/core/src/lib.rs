@@ -3,7 +3,7 @@
 //! The shared vocabulary of Junta: the mesh ([`mesh`]), cell topologies and
 //! node orders ([`topology`]), the degree-of-freedom map with Dirichlet
 //! conditions by elimination ([`dof`]), the plugin traits ([`Element`],
-//! [`Material`], [`InterfaceLaw`], [`FailureCriterion`], [`LinearSolver`]),
+//! [`Material`], [`InterfaceLaw`], [`FailureCriterion`], [`PlyCriterion`], [`LinearSolver`]),
 //! the plugin [`registry`] on `inventory`, integration-point [`state`]
 //! storage, parallel [`assembly`] into a fixed sparsity pattern (with a
 //! cache of the linear elements for incremental runs), the tangent
@@ -30,6 +30,7 @@ pub mod law;
 pub mod material;
 pub mod mesh;
 pub mod model;
+pub mod ply_criterion;
 pub mod registry;
 pub mod solver;
 pub mod sparse;
@@ -46,6 +47,7 @@ pub use law::{
 };
 pub use material::{Material, Voigt6};
 pub use model::{FatigueProgram, Model};
+pub use ply_criterion::{PlyCriterion, PlyCriterionEntry, PlyFailure, PlyFailureMode};
 pub use solver::{
     EquationLayout, LinearSolver, MatrixKind, PrecomputedDissection, SolveReport, SolverError,
 };

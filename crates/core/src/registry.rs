@@ -1,7 +1,7 @@
 //! The plugin registry, on `inventory`.
 //!
-//! Every element, material, interface law, failure criterion and linear
-//! solver registers one entry with `inventory::submit!`: a snake_case key,
+//! Every element, material, interface law, failure criterion, ply failure
+//! criterion and linear solver registers one entry with `inventory::submit!`: a snake_case key,
 //! a one-line description, its parameter documentation and a constructor
 //! from a TOML table (unknown keys rejected with `deny_unknown_fields`).
 //! Adding a plugin is one new file plus one `submit!`; nothing central to edit.
@@ -21,6 +21,7 @@
 //! so that the linker keeps its registrations.
 
 use crate::error::CoreError;
+pub use crate::ply_criterion::PlyCriterionEntry;
 use crate::topology::CellShape;
 use crate::{Element, FailureCriterion, InterfaceLaw, LinearSolver, Material};
 use serde::de::DeserializeOwned;
@@ -191,8 +192,9 @@ inventory::collect!(MaterialEntry);
 inventory::collect!(LawEntry);
 inventory::collect!(CriterionEntry);
 inventory::collect!(SolverEntry);
+inventory::collect!(PlyCriterionEntry);
 
-/// Common view of the five entry types.
+/// Common view of the six entry types.
 pub trait Entry: 'static {
     /// Kind name used in messages ("element", "material", ...).
     const KIND: &'static str;
@@ -225,6 +227,7 @@ impl_entry!(MaterialEntry, "material");
 impl_entry!(LawEntry, "law");
 impl_entry!(CriterionEntry, "criterion");
 impl_entry!(SolverEntry, "solver");
+impl_entry!(PlyCriterionEntry, "ply criterion");
 
 /// All entries of one kind, sorted by key.
 pub fn entries<E: Entry>() -> Vec<&'static E>

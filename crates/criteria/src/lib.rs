@@ -23,6 +23,21 @@
 //! [`mode_of`]). The mode depends on the sign of the normal traction only,
 //! not on which term dominates the index.
 //!
+//! Ply failure criteria behind [`junta_core::PlyCriterion`], outputs
+//! evaluated on the stress of a ply in its material axes
+//! `[s11, s22, s33, t12, t23, t31]` (not progressive damage), each giving a
+//! failure index, the strength ratio (the factor on the stress state that
+//! fails it exactly) and a [`junta_core::PlyFailureMode`]; one file each,
+//! registered as [`junta_core::registry::PlyCriterionEntry`]
+//! (see `docs/ply_criteria.md`):
+//!
+//! - [`ply_max_stress`]: maximum stress, each component over its strength;
+//! - [`hashin`]: Hashin (1980) 3D, fibre and matrix tension/compression;
+//! - [`tsai_wu`]: Tsai-Wu (1971) 3D quadratic polynomial;
+//! - [`puck`]: Puck & Schürmann (1998/2002), fibre fracture by maximum
+//!   stress and inter-fibre fracture on the action plane (fracture-angle
+//!   search).
+//!
 //! An embedder that builds criteria by name must reference this crate
 //! (`use junta_criteria as _;`) so that the linker keeps the registrations.
 
@@ -32,12 +47,22 @@ use junta_core::{CoreError, FailureMode};
 use serde::Deserialize;
 
 pub mod bk;
+pub mod hashin;
 pub mod max_stress;
+mod ply_common;
+pub mod ply_max_stress;
+pub mod puck;
 pub mod quadratic;
+pub mod tsai_wu;
 
 pub use bk::Bk;
+pub use hashin::Hashin;
 pub use max_stress::MaxStress;
+pub use ply_common::PlyStrengths;
+pub use ply_max_stress::PlyMaxStress;
+pub use puck::{ActionPlane, Puck};
 pub use quadratic::Quadratic;
+pub use tsai_wu::TsaiWu;
 
 /// How a criterion treats a compressive normal traction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]

@@ -1,9 +1,10 @@
-//! The registry as data: every element, material, law, criterion and
-//! solver with its parameters (what `junta list` prints), as text and as the
+//! The registry as data: every element, material, law, criterion, ply
+//! criterion and solver with its parameters (what `junta list` prints), as text and as the
 //! Markdown page `docs/parameters.md`.
 
 use junta_core::registry::{
-    self, CriterionEntry, ElementEntry, Entry, LawEntry, MaterialEntry, SolverEntry,
+    self, CriterionEntry, ElementEntry, Entry, LawEntry, MaterialEntry, PlyCriterionEntry,
+    SolverEntry,
 };
 use serde::Serialize;
 use std::fmt::Write;
@@ -86,6 +87,7 @@ pub fn catalog() -> Vec<Section> {
         section::<MaterialEntry>("materials"),
         section::<LawEntry>("interface laws"),
         section::<CriterionEntry>("failure criteria"),
+        section::<PlyCriterionEntry>("ply failure criteria (outputs on ply stresses)"),
         section::<SolverEntry>("linear solvers"),
         controls,
     ]
@@ -114,7 +116,7 @@ pub fn text() -> String {
 /// `docs/parameters.md`: the same catalogue as Markdown tables.
 pub fn markdown() -> String {
     let mut s = String::from(
-        "# Parameters\n\nEvery registered element, material, interface law, failure criterion, linear solver and incremental control with its parameters. Generated from the registry by `junta list --markdown > docs/parameters.md`; a test fails when this page is stale.\n",
+        "# Parameters\n\nEvery registered element, material, interface law, failure criterion, ply failure criterion, linear solver and incremental control with its parameters. Generated from the registry by `junta list --markdown > docs/parameters.md`; a test fails when this page is stale.\n",
     );
     for sec in catalog() {
         let _ = write!(s, "\n## {}\n", sec.title);
@@ -139,4 +141,27 @@ pub fn markdown() -> String {
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `junta list` prints the ply criteria as their own section, each with
+    /// its parameters.
+    #[test]
+    fn catalog_lists_the_ply_criteria_with_parameters() {
+        let sections = catalog();
+        let ply = sections
+            .iter()
+            .find(|s| s.title.starts_with("ply failure criteria"))
+            .expect("a ply criteria section");
+        let keys: Vec<_> = ply.plugins.iter().map(|p| p.key).collect();
+        assert_eq!(keys, ["hashin", "ply_max_stress", "puck", "tsai_wu"]);
+        let puck = &ply.plugins[2];
+        assert!(puck.params.iter().any(|p| p.name == "p_perp_perp_minus"));
+        let listing = text();
+        assert!(listing.contains("ply failure criteria (outputs on ply stresses):\n  hashin"));
+        assert!(listing.contains("      f12_star"));
+    }
 }
