@@ -59,6 +59,7 @@ examples! {
     mmb50 => "delamination/mmb50.toml";
     block_friction => "interface_plasticity/block_friction.toml";
     cross_ply_cure => "laminates/cross_ply_cure.toml";
+    cross_ply_tension => "laminates/cross_ply_tension.toml";
     block_mohr_coulomb => "interface_plasticity/block_mohr_coulomb.toml";
     cyclic_shear => "interface_plasticity/cyclic_shear.toml";
     debond_friction => "interface_plasticity/debond_friction.toml";

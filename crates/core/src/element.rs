@@ -156,6 +156,11 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     fn reference_modulus(&self) -> Option<f64> {
         None
     }
+    /// The element's solid material, if it has one (post-processing reads
+    /// its axes, [`crate::Material::axes_at`]).
+    fn material(&self) -> Option<&dyn crate::Material> {
+        None
+    }
     /// Initial stiffness `[d1, d2, d3]` of the element's traction law
     /// (interfaces), for diagnostics.
     fn interface_stiffness(&self) -> Option<[f64; 3]> {

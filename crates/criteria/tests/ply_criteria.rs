@@ -211,7 +211,8 @@ fn hashin_matrix_compression_hand_value() {
 /// F12 = -0.5/sqrt(1.8e10) = -3.726780e-6, so b = F1 + F2 = 0.01483333 and
 /// a = F11 + F22 + 2 F12 = 9.310200e-5; the textbook roots
 /// s = (-b +- sqrt(b^2 + 4a)) / (2a) are 51.0551 MPa and -210.3786 MPa
-/// (computed by hand on a calculator, written here as literals).
+/// (the quadratic formula evaluated outside this code, in Python, and
+/// written here as literals).
 #[test]
 fn tsai_wu_equal_biaxial_by_hand() {
     let t = TsaiWu::from_table(&PLY.parse().unwrap()).unwrap();

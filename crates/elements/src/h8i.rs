@@ -630,6 +630,9 @@ impl Element for IncompatibleHex8 {
     fn reference_modulus(&self) -> Option<f64> {
         Some(self.material.reference_modulus())
     }
+    fn material(&self) -> Option<&dyn Material> {
+        Some(self.material.as_ref())
+    }
     fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
         self.material.directional_modulus(n)
     }

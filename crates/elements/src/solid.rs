@@ -575,6 +575,9 @@ impl Element for SolidElement {
     fn reference_modulus(&self) -> Option<f64> {
         Some(self.material.reference_modulus())
     }
+    fn material(&self) -> Option<&dyn Material> {
+        Some(self.material.as_ref())
+    }
     fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
         self.material.directional_modulus(n)
     }

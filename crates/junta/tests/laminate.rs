@@ -420,3 +420,144 @@ fn ply_stresses_in_material_axes() {
         "ply stress differs from CLT by {worst:.3e} of Q11"
     );
 }
+
+/// T300/5208's strengths (Tsai & Hahn 1980, MPa).
+const STRENGTHS: &str = "Xt = 1500.0\nXc = 1500.0\nYt = 40.0\nYc = 246.0\nS12 = 68.0\nS23 = 123.0";
+
+/// First-ply failure of `[0/90]s` stretched by `eps_x` (the CLT state, no
+/// free edge): the 90 plies fail first, in matrix tension, at `sigma_2 =
+/// Q22 eps_x = Yt` (their axis 2 is x), so the strength ratio of the unit
+/// field is `Yt / Q22` for maximum stress and Hashin alike (Hashin's
+/// matrix tension `(s22 / Yt)^2 = 1` with no shear); Tsai-Wu's is the
+/// positive root of its quadratic in the 90 ply's `(sigma_1, sigma_2) =
+/// (Q12, Q22) R`, written here from Tsai & Wu 1971 with `F12 = -1/2
+/// sqrt(F11 F22)`.
+#[test]
+fn first_ply_failure_of_a_cross_ply_matches_clt() {
+    let crit = format!(
+        "[[ply_failure]]\ntype = \"ply_max_stress\"\n{STRENGTHS}\n[[ply_failure]]\ntype = \"hashin\"\n{STRENGTHS}\n[[ply_failure]]\ntype = \"tsai_wu\"\n{STRENGTHS}"
+    );
+    let text = scene("[0/90]s", "h20", &crit);
+    let (m, _, r) = unit_case(&text, 0);
+    let u = r.frame.unwrap().displacement;
+    let sf = SceneFile::parse(std::path::Path::new("laminate.toml"), text).unwrap();
+    let uses = junta::post::ply_failure::from_scene(&sf, &m).unwrap();
+    let state = m.initial_state();
+    let res =
+        junta::post::ply_failure::evaluate(&m, &u, &state, StepInfo::default(), &uses).unwrap();
+    let nu21 = NU12 * E2 / E1;
+    let d = 1.0 - NU12 * nu21;
+    let (q22, q12) = (E2 / d, NU12 * E2 / d);
+    let (xt, xc, yt, yc) = (1500.0f64, 1500.0f64, 40.0f64, 246.0f64);
+    let (f1, f2) = (1.0 / xt - 1.0 / xc, 1.0 / yt - 1.0 / yc);
+    let (f11, f22) = (1.0 / (xt * xc), 1.0 / (yt * yc));
+    let f12 = -0.5 * (f11 * f22).sqrt();
+    let (s1, s2) = (q12, q22);
+    let a = f11 * s1 * s1 + f22 * s2 * s2 + 2.0 * f12 * s1 * s2;
+    let b = f1 * s1 + f2 * s2;
+    let tsai_wu = (-b + (b * b + 4.0 * a).sqrt()) / (2.0 * a);
+    for (name, expected) in [
+        ("ply_max_stress", yt / q22),
+        ("hashin", yt / q22),
+        ("tsai_wu", tsai_wu),
+    ] {
+        let r = res.iter().find(|r| r.name == name).unwrap();
+        let w = r.weakest.as_ref().unwrap();
+        eprintln!(
+            "{name}: R {:.6e} (CLT {expected:.6e}) in {} {}",
+            r.strength_ratio, w.block, w.mode
+        );
+        assert!(
+            (r.strength_ratio - expected).abs() < 1e-6 * expected,
+            "{name}: {} vs {expected}",
+            r.strength_ratio
+        );
+        assert!(
+            w.block == "ply_2" || w.block == "ply_3",
+            "{name}: {}",
+            w.block
+        );
+        if name != "tsai_wu" {
+            assert_eq!(w.mode, "matrix_tension");
+        }
+        // the unit field is far past failure: index > 1 everywhere it was evaluated
+        assert!(r.max_index > 1.0);
+        assert_eq!(
+            r.cell_index.len(),
+            m.mesh
+                .blocks
+                .iter()
+                .filter(|b| b.shape.is_solid())
+                .map(|b| b.len())
+                .sum::<usize>()
+        );
+    }
+}
+
+/// `examples/laminates/cross_ply_tension.toml`: the `[0/90]s` coupon
+/// stretched by 1e-3. Away from its edges the state is CLT's (`N_y = 0`:
+/// `eps_y = -2 Q12 / (Q11 + Q22) eps_x`), so the Hashin index of a 90 ply
+/// cell at the centre is `(sigma_2 / Yt)^2` with `sigma_2 = Q22 eps_x +
+/// Q12 eps_y`; the free edges only raise the stress, so the model's
+/// first-ply-failure factor is at most CLT's `Yt / sigma_2`.
+#[test]
+fn cross_ply_coupon_first_ply_failure() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/laminates/cross_ply_tension.toml");
+    let sf = SceneFile::read(&path).unwrap();
+    let built = build_model(&sf).unwrap();
+    let sim = Simulation::from_file(&path).unwrap();
+    let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
+    let u = r.frame.unwrap().displacement;
+    let uses = junta::post::ply_failure::from_scene(&sf, &built).unwrap();
+    let state = built.initial_state();
+    let res =
+        junta::post::ply_failure::evaluate(&built, &u, &state, StepInfo::default(), &uses).unwrap();
+    let nu21 = NU12 * E2 / E1;
+    let d = 1.0 - NU12 * nu21;
+    let (q11, q22, q12) = (E1 / d, E2 / d, NU12 * E2 / d);
+    let eps_x = 1e-3;
+    let eps_y = -2.0 * q12 / (q11 + q22) * eps_x;
+    let sigma_2 = q22 * eps_x + q12 * eps_y;
+    let hashin = res.iter().find(|r| r.name == "hashin").unwrap();
+    // the ply_2 cell whose centre is (11.25, 5.625): cells of a box run x fastest
+    let mesh = &built.mesh;
+    let solid: Vec<usize> = (0..mesh.blocks.len())
+        .filter(|&b| mesh.blocks[b].shape.is_solid())
+        .collect();
+    let ply2 = mesh.blocks.iter().position(|b| b.name == "ply_2").unwrap();
+    let offset: usize = solid
+        .iter()
+        .take_while(|&&b| b != ply2)
+        .map(|&b| mesh.blocks[b].len())
+        .sum();
+    let centre = (0..mesh.blocks[ply2].len())
+        .find(|&e| {
+            let c = mesh.blocks[ply2].element(e).iter().fold([0.0; 2], |a, &n| {
+                [
+                    a[0] + mesh.nodes[n][0] / 20.0,
+                    a[1] + mesh.nodes[n][1] / 20.0,
+                ]
+            });
+            (c[0] - 11.25).abs() < 1e-6 && (c[1] - 5.625).abs() < 1e-6
+        })
+        .unwrap();
+    let index = hashin.cell_index[offset + centre];
+    let clt = (sigma_2 / 40.0).powi(2);
+    eprintln!(
+        "centre 90 cell: Hashin {index:.6e}, CLT {clt:.6e}; FPF factor {:.4} (CLT {:.4})",
+        hashin.strength_ratio,
+        40.0 / sigma_2
+    );
+    assert!((index - clt).abs() < 0.01 * clt, "{index} vs {clt}");
+    assert!(hashin.strength_ratio <= 40.0 / sigma_2);
+    // the summary carries it
+    let s = r
+        .summary
+        .section("ply_failure")
+        .expect("summary.json ply_failure");
+    assert_eq!(
+        s["hashin"]["first_ply_failure_load_factor"].as_f64(),
+        Some(hashin.strength_ratio)
+    );
+}

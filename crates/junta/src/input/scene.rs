@@ -69,6 +69,11 @@ pub struct Scene {
     pub temperature: Option<TemperatureSpec>,
     /// High-cycle fatigue: a fatigue step after the load program.
     pub fatigue: Option<FatigueSpec>,
+    /// Ply failure criteria evaluated as outputs on the stress in the
+    /// material axes: `type` (a registered ply criterion), optional `name`
+    /// and `blocks`, and its strengths ([`crate::post::ply_failure`]).
+    #[serde(default)]
+    pub ply_failure: Vec<toml::Table>,
 }
 
 /// `[fatigue]`: a fatigue step after the load program of a `static` run.

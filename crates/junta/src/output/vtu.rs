@@ -186,6 +186,9 @@ pub fn write_vtu(path: &Path, model: &Model, u: &[f64], cells: &CellResults) -> 
                 pk2.iter().flat_map(|s| s.iter().copied()),
             )?;
         }
+        for (name, v) in &cells.extra {
+            write_array(&mut w, name, 1, v.iter().copied())?;
+        }
         if let Some(sl) = &cells.material_stress {
             write_array(
                 &mut w,

@@ -27,6 +27,9 @@ pub struct CellResults {
     /// 31]`), when some block's material has axes; NaN in the cells of the
     /// others.
     pub material_stress: Option<Vec<[f64; 6]>>,
+    /// Further scalars per cell by name (the ply failure indices,
+    /// `NAME_index`), written as cell data beside the stress.
+    pub extra: Vec<(String, Vec<f64>)>,
 }
 
 /// Average integration-point outputs over each solid cell (a linear
@@ -108,6 +111,7 @@ pub fn cell_results_at(
         mises,
         pk2_stress: any_pk2.then_some(pk2),
         material_stress: any_axes.then_some(in_axes),
+        extra: Vec::new(),
     })
 }
 

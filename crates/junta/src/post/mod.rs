@@ -1,8 +1,8 @@
 //! Post-processing: quantities of a converged state. The fields the
 //! writers and observers read ([`fields`]), the curve row (`curve`) and the table of its columns ([`curve_columns`]), the
 //! typed frame (`frame`), the crack front ([`crack`]), the generalized reactions under
-//! `*EQUATION`s (`constraint_force`) and the largest element
-//! rotation ([`rotation`]).
+//! `*EQUATION`s (`constraint_force`), the largest element
+//! rotation ([`rotation`]) and the ply failure indices ([`ply_failure`]).
 
 pub(crate) mod constraint_force;
 pub mod crack;
@@ -10,4 +10,5 @@ pub(crate) mod curve;
 pub mod curve_columns;
 pub mod fields;
 pub(crate) mod frame;
+pub mod ply_failure;
 pub mod rotation;

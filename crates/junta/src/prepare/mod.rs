@@ -90,6 +90,8 @@ pub struct Prepared {
     /// `timings.build`, `timings.build_peak_bytes`); `None` for decks and
     /// models built in code.
     pub build: Option<BuildCost>,
+    /// A scene's `[[ply_failure]]` criteria (empty otherwise).
+    pub ply_criteria: Vec<crate::post::ply_failure::PlyCriterionUse>,
 }
 
 /// What building a scene's model cost.
@@ -336,6 +338,7 @@ pub fn prepare_model(model: Model, analysis: scene::AnalysisSpec, key: &str) -> 
         choose_solver_seconds,
         temperature,
         build: None,
+        ply_criteria: Vec::new(),
     })
 }
 
@@ -527,6 +530,7 @@ fn prepare_unchecked(input: &Path, options: &crate::Options) -> Result<Prepared>
                 read_seconds: 0.0,
                 choose_solver_seconds,
                 build: None,
+                ply_criteria: Vec::new(),
             })
         }
         _ => bail!(
@@ -558,6 +562,10 @@ fn prepare_scene(
         seconds: t_build.elapsed().as_secs_f64(),
         peak_bytes: limits::peak_resident_bytes(),
     };
+    let ply_criteria = crate::post::ply_failure::from_scene(sf, &model)?;
+    if !ply_criteria.is_empty() && analysis.kind.is_incremental() {
+        notes.push("[[ply_failure]] is evaluated in linear runs only: this incremental run reports no ply failure index".into());
+    }
     let temperature = thermal_program(input, sf, &mut analysis, &mut model, &mut notes)?;
     fatigue_program(input, sf, &mut analysis, &mut model, &mut notes)?;
     let (mut key, mut table) = scene::solver_table(sf);
@@ -613,6 +621,7 @@ fn prepare_scene(
         choose_solver_seconds,
         temperature,
         build: Some(build),
+        ply_criteria,
     })
 }
 

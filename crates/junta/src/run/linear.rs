@@ -68,7 +68,19 @@ pub(crate) fn run_linear(
     }
     let t_out = Instant::now();
     let interfaces = crate::post::fields::interface_results(&p.model, &res.u, &res.state)?;
-    let cells = crate::post::fields::cell_results(&p.model, &res.u, &res.state)?;
+    let mut cells = crate::post::fields::cell_results(&p.model, &res.u, &res.state)?;
+    let ply = crate::post::ply_failure::evaluate(
+        &p.model,
+        &res.u,
+        &res.state,
+        junta_core::element::StepInfo::default(),
+        &p.ply_criteria,
+    )?;
+    for r in &ply {
+        cells
+            .extra
+            .push((format!("{}_index", r.name), r.cell_index.clone()));
+    }
     if let Some(dir) = dir {
         write_result_files(dir, p, &res, &cells, &interfaces)?;
         notes.extend(prints.write(dir)?);
@@ -136,6 +148,13 @@ pub(crate) fn run_linear(
         "notes": p.notes,
     });
     let mut summary = summary;
+    if !ply.is_empty() {
+        let m: serde_json::Map<String, serde_json::Value> = ply
+            .iter()
+            .map(|r| (r.name.clone(), r.to_json(true)))
+            .collect();
+        summary["ply_failure"] = serde_json::Value::Object(m);
+    }
     crate::post::constraint_force::add_generalized_reactions(
         &mut summary,
         &p.model,
