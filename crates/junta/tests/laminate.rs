@@ -561,3 +561,140 @@ fn cross_ply_coupon_first_ply_failure() {
         Some(hashin.strength_ratio)
     );
 }
+
+/// The Abaqus/CalculiX deck of a built laminate written out ply by ply:
+/// C3D8I layers with an `*ORIENTATION` each, COH3D8 between them with an
+/// `*ELASTIC, TYPE=TRACTION` material, the edge `x0` clamped and a force on
+/// every node of `x1`. `angles` are the plies' (bottom to top).
+fn ply_by_ply_deck(m: &Model, angles: &[f64], k: f64, force: f64) -> String {
+    let mut d = String::from("*HEADING\nthe built laminate, ply by ply\n*NODE\n");
+    for (i, p) in m.mesh.nodes.iter().enumerate() {
+        d += &format!("{}, {:.17e}, {:.17e}, {:.17e}\n", i + 1, p[0], p[1], p[2]);
+    }
+    let mut label = 1;
+    for b in &m.mesh.blocks {
+        let (kind, set) = if b.shape.is_interface() {
+            ("COH3D8", b.name.to_uppercase())
+        } else {
+            ("C3D8I", b.name.to_uppercase())
+        };
+        d += &format!("*ELEMENT, TYPE={kind}, ELSET={set}\n");
+        for e in 0..b.len() {
+            let nodes: Vec<String> = b.element(e).iter().map(|n| (n + 1).to_string()).collect();
+            d += &format!("{label}, {}\n", nodes.join(", "));
+            label += 1;
+        }
+    }
+    for (name, set) in [("X0", "x0"), ("X1", "x1")] {
+        d += &format!("*NSET, NSET={name}\n");
+        for n in &m.mesh.node_sets[set] {
+            d += &format!("{}\n", n + 1);
+        }
+    }
+    d += &format!(
+        "*MATERIAL, NAME=T300\n*ELASTIC, TYPE=ENGINEERING CONSTANTS\n{E1}, {E2}, {E2}, {NU12}, {NU12}, 0.4, {G12}, {G12}\n3.68e3\n*MATERIAL, NAME=GLUE\n*ELASTIC, TYPE=TRACTION\n{k}, {k}, {k}\n"
+    );
+    for (i, theta) in angles.iter().enumerate() {
+        let (s, c) = theta.to_radians().sin_cos();
+        d += &format!(
+            "*ORIENTATION, NAME=OR{n}\n{c:.17e}, {s:.17e}, 0.0, {:.17e}, {c:.17e}, 0.0\n*SOLID SECTION, ELSET=PLY_{n}, MATERIAL=T300, ORIENTATION=OR{n}\n",
+            -s,
+            n = i + 1
+        );
+    }
+    for b in m.mesh.blocks.iter().filter(|b| b.shape.is_interface()) {
+        d += &format!(
+            "*COHESIVE SECTION, ELSET={}, MATERIAL=GLUE, RESPONSE=TRACTION SEPARATION\n1.0\n",
+            b.name.to_uppercase()
+        );
+    }
+    d += &format!("*BOUNDARY\nX0, 1, 3\n*STEP\n*STATIC\n*CLOAD\nX1, 3, {force}\n*END STEP\n");
+    d
+}
+
+/// The same laminate two ways: `[laminate]` (the builder's plies, rotated
+/// materials and inserted INTER8) and the deck written ply by ply from its
+/// mesh (C3D8I with `*ORIENTATION`, COH3D8 with `*ELASTIC, TYPE=TRACTION`)
+/// give the same displacements to round-off: an unsymmetric
+/// `[0/45/-45/90]` plate clamped at x0 under an end load (bending, twist
+/// and the stretching coupling all loaded).
+#[test]
+fn the_laminate_as_a_scene_and_as_a_ply_by_ply_deck() {
+    let text = format!(
+        r#"
+[materials.t300]
+type = "orthotropic"
+E1 = {E1}
+E2 = {E2}
+E3 = {E2}
+nu12 = {NU12}
+nu13 = {NU12}
+nu23 = 0.4
+G12 = {G12}
+G13 = {G12}
+G23 = 3.68e3
+[laws.glue]
+type = "linear_penalty"
+d = 1.0e5
+[laminate]
+base = {{ type = "rectangle", size = [20.0, 5.0], divisions = [8, 2] }}
+element = "h8i"
+material = "t300"
+ply_thickness = {T}
+layup = "[0/45/-45/90]"
+interface_law = "glue"
+[[boundary]]
+set = "x0"
+fixed = "all"
+[[load]]
+set = "x1"
+force = [0.0, 0.0, -0.01]
+[solver]
+type = "cholesky"
+"#
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let scene_path = dir.path().join("plate.toml");
+    std::fs::write(&scene_path, &text).unwrap();
+    let sf = SceneFile::read(&scene_path).unwrap();
+    let built = build_model(&sf).unwrap();
+    assert_eq!(
+        built
+            .mesh
+            .blocks
+            .iter()
+            .filter(|b| b.shape.is_interface())
+            .count(),
+        3
+    );
+    let deck_path = dir.path().join("plate.inp");
+    std::fs::write(
+        &deck_path,
+        ply_by_ply_deck(&built, &[0.0, 45.0, -45.0, 90.0], 1.0e5, -0.01),
+    )
+    .unwrap();
+    let run = |p: &std::path::Path| {
+        let r = Simulation::from_file(p)
+            .unwrap()
+            .run(&junta::RunSettings::in_memory(), &mut [])
+            .unwrap();
+        r.frame.unwrap().displacement
+    };
+    let (us, ud) = (run(&scene_path), run(&deck_path));
+    assert_eq!(us.len(), ud.len());
+    let scale = us.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let diff = us
+        .iter()
+        .zip(&ud)
+        .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+    eprintln!(
+        "max |u| {scale:.6e}, scene - deck {:.3e} relative",
+        diff / scale
+    );
+    assert!(scale > 1e-3, "the plate bends: {scale}");
+    assert!(
+        diff < 1e-8 * scale,
+        "scene and deck differ by {:.3e} of max |u|",
+        diff / scale
+    );
+}
