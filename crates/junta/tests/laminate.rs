@@ -698,3 +698,242 @@ type = "cholesky"
         diff / scale
     );
 }
+
+/// A quarter of a ring of 0-degree plies (fibres around the hoop) under an
+/// internal pressure, axially held (plane strain): the cylindrically
+/// orthotropic thick tube (Lekhnitskii, Anisotropic Plates, 1968, sec. 30;
+/// derived here). With the stress function `F`, `sigma_r = F / r`,
+/// `sigma_theta = F'`, and the plane-strain compliances `b_ij = S_ij -
+/// S_iz S_jz / S_zz`, compatibility `d(r eps_theta)/dr = eps_r` gives `r^2
+/// F'' + r F' - k^2 F = 0`, `k = sqrt(b_rr / b_tt)`, so
+///
+/// ```text
+/// sigma_r = A r^(k-1) + B r^(-k-1),   sigma_theta = k (A r^(k-1) - B r^(-k-1)),
+/// ```
+///
+/// `A`, `B` from `sigma_r(a) = -p`, `sigma_r(b) = 0` (k = 1 is Lamé's
+/// tube). In the ply axes the hoop is 1, the axis 2 and the radius 3.
+#[test]
+fn ring_of_hoop_plies_matches_the_anisotropic_tube() {
+    let (a, t, n, p) = (10.0, 0.5, 8usize, 1.0);
+    let b = a + n as f64 * t;
+    let text = format!(
+        r#"
+[materials.t300]
+type = "orthotropic"
+E1 = {E1}
+E2 = {E2}
+E3 = {E2}
+nu12 = {NU12}
+nu13 = {NU12}
+nu23 = 0.4
+G12 = {G12}
+G13 = {G12}
+G23 = 3.68e3
+[laws.glue]
+type = "linear_penalty"
+d = 1.0e8
+[laminate]
+base = {{ type = "ring", inner_radius = {a}, width = 1.0, sweep = 90.0, divisions = [24, 1] }}
+element = "h20"
+material = "t300"
+ply_thickness = {t}
+layup = "[0_{n}]"
+interface_law = "glue"
+interfaces = "all"
+[[boundary]]
+set = "end0"
+fixed = ["y"]
+[[boundary]]
+set = "end1"
+fixed = ["x"]
+[[boundary]]
+set = "side0"
+fixed = ["z"]
+[[boundary]]
+set = "side1"
+fixed = ["z"]
+[[load]]
+face_set = "inner"
+pressure = {p}
+[solver]
+type = "cholesky"
+"#
+    );
+    let sim = Simulation::from_scene_text(&text, "ring.toml").unwrap();
+    assert_eq!(
+        sim.model()
+            .mesh
+            .blocks
+            .iter()
+            .filter(|b| b.shape.is_interface())
+            .count(),
+        n - 1
+    );
+    let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
+    let solid = r.frame.unwrap().solid;
+    // plane-strain compliances: 1 hoop, 2 axis, 3 radius
+    let (s11, s22, s33) = (1.0 / E1, 1.0 / E2, 1.0 / E2);
+    let (s12, s23) = (-NU12 / E1, -0.4 / E2);
+    let b_tt = s11 - s12 * s12 / s22;
+    let b_rr = s33 - s23 * s23 / s22;
+    let k = (b_rr / b_tt).sqrt();
+    // sigma_r(a) = -p, sigma_r(b) = 0
+    let m = nalgebra::Matrix2::new(
+        a.powf(k - 1.0),
+        a.powf(-k - 1.0),
+        b.powf(k - 1.0),
+        b.powf(-k - 1.0),
+    );
+    let c = m.lu().solve(&nalgebra::Vector2::new(-p, 0.0)).unwrap();
+    let sigma_r = |r: f64| c[0] * r.powf(k - 1.0) + c[1] * r.powf(-k - 1.0);
+    let sigma_t = |r: f64| k * (c[0] * r.powf(k - 1.0) - c[1] * r.powf(-k - 1.0));
+    let peak_t = sigma_t(a).abs().max(sigma_t(b).abs());
+    let (mut err_r, mut err_t) = (0.0f64, 0.0f64);
+    for q in 0..solid.block.len() {
+        let x = &solid.position[3 * q..3 * q + 3];
+        let rad = x[0].hypot(x[1]);
+        let s = &solid.material_stress[6 * q..6 * q + 6];
+        err_r = err_r.max((s[2] - sigma_r(rad)).abs() / p);
+        err_t = err_t.max((s[0] - sigma_t(rad)).abs() / peak_t);
+    }
+    eprintln!("k = {k:.4}; largest error: sigma_r {err_r:.3e} of p, sigma_theta {err_t:.3e} of its peak {peak_t:.4}");
+    assert!(k > 3.0, "strongly anisotropic: k = {k}");
+    assert!(
+        err_r < 1e-2 && err_t < 1e-2,
+        "sigma_r {err_r:.3e}, sigma_theta {err_t:.3e}"
+    );
+}
+
+/// An L-section of 0-degree plies (fibres around the bend) opened by a
+/// pure couple, held in plane strain across its width: the radial stress
+/// through the bend against Lekhnitskii's curved beam under pure bending
+/// (Anisotropic Plates, 1968, sec. 31; ASTM D6415's basis), derived here
+/// with `sigma_r = psi / r`, `sigma_theta = psi'`: compatibility with a
+/// rigid rotation of the sections gives `r^2 psi'' + r psi' - k^2 psi = C
+/// r / b_tt`, so
+///
+/// ```text
+/// sigma_r = A r^(k-1) + B r^(-k-1) + E,   sigma_theta = k A r^(k-1) - k B r^(-k-1) + E,
+/// ```
+///
+/// with `sigma_r(a) = sigma_r(b) = 0` and the section's moment about the
+/// bend's centre `int sigma_theta r dr = -int psi dr = M / w`.
+#[test]
+fn l_section_radial_stress_matches_lekhnitskii() {
+    let (a, t, n, w) = (6.0, 0.25, 8usize, 2.0);
+    let b = a + n as f64 * t;
+    let text = format!(
+        r#"
+[materials.t300]
+type = "orthotropic"
+E1 = {E1}
+E2 = {E2}
+E3 = {E2}
+nu12 = {NU12}
+nu13 = {NU12}
+nu23 = 0.4
+G12 = {G12}
+G13 = {G12}
+G23 = 3.68e3
+[laminate]
+base = {{ type = "l_section", inner_radius = {a}, arms = [20.0, 20.0], width = {w}, divisions = [20, 24, 20, 1] }}
+element = "h20"
+material = "t300"
+ply_thickness = {t}
+layup = "[0_{n}]"
+[[boundary]]
+set = "end0"
+fixed = "all"
+[[boundary]]
+set = "side0"
+fixed = ["y"]
+[[boundary]]
+set = "side1"
+fixed = ["y"]
+"#
+    );
+    let sf = SceneFile::parse(std::path::Path::new("l.toml"), text).unwrap();
+    let mut model = build_model(&sf).unwrap();
+    // a couple on arm b's end (x = -20): f_x = c (z - z_m), no net force
+    let zm = 0.5 * (a + b);
+    let c = 1.0;
+    let mut moment = 0.0;
+    for &i in &model.mesh.node_sets["end1"] {
+        let z = model.mesh.nodes[i][2];
+        model.f_ext[3 * i] = c * (z - zm);
+        moment += (z - zm) * c * (z - zm);
+    }
+    let sim = Simulation::from_model(model, AnalysisSpec::default(), "cholesky").unwrap();
+    let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
+    let solid = r.frame.unwrap().solid;
+    let (s11, s22, s33) = (1.0 / E1, 1.0 / E2, 1.0 / E2);
+    let (s12, s23) = (-NU12 / E1, -0.4 / E2);
+    let k = ((s33 - s23 * s23 / s22) / (s11 - s12 * s12 / s22)).sqrt();
+    // A, B, E from sigma_r(a) = 0, sigma_r(b) = 0, -int psi dr = m
+    let solve = |m: f64| {
+        let int = |p: f64| (b.powf(p) - a.powf(p)) / p;
+        let mat = nalgebra::Matrix3::new(
+            a.powf(k - 1.0),
+            a.powf(-k - 1.0),
+            1.0,
+            b.powf(k - 1.0),
+            b.powf(-k - 1.0),
+            1.0,
+            -int(k + 1.0),
+            -int(1.0 - k),
+            -0.5 * (b * b - a * a),
+        );
+        mat.lu()
+            .solve(&nalgebra::Vector3::new(0.0, 0.0, m))
+            .unwrap()
+    };
+    // points of the bend's mid-section (45 degrees, x = z)
+    let pts: Vec<usize> = (0..solid.block.len())
+        .filter(|&q| {
+            let x = &solid.position[3 * q..3 * q + 3];
+            (x[2].atan2(x[0]).to_degrees() - 45.0).abs() < 2.0 && x[0] > 0.0 && x[2] > 0.0
+        })
+        .collect();
+    assert!(pts.len() >= 2 * n, "{} points near 45 degrees", pts.len());
+    let hoop_inner = pts
+        .iter()
+        .min_by(|&&p, &&q| {
+            let r = |i: usize| solid.position[3 * i].hypot(solid.position[3 * i + 2]);
+            r(p).total_cmp(&r(q))
+        })
+        .map(|&q| solid.material_stress[6 * q])
+        .unwrap();
+    // the sign of the moment: the hoop stress at the inner radius says which way it bends
+    let mut coef = solve(moment / w);
+    let hoop_a = k * coef[0] * a.powf(k - 1.0) - k * coef[1] * a.powf(-k - 1.0) + coef[2];
+    if hoop_a.signum() != hoop_inner.signum() {
+        coef = solve(-moment / w);
+    }
+    let sigma_r = |r: f64| coef[0] * r.powf(k - 1.0) + coef[1] * r.powf(-k - 1.0) + coef[2];
+    let peak = (0..=200)
+        .map(|i| sigma_r(a + (b - a) * i as f64 / 200.0))
+        .fold(0.0f64, |m, s| if s.abs() > m.abs() { s } else { m });
+    let (mut err, mut fe_peak) = (0.0f64, 0.0f64);
+    for &q in &pts {
+        let x = &solid.position[3 * q..3 * q + 3];
+        let rad = x[0].hypot(x[2]);
+        let s = solid.material_stress[6 * q + 2];
+        err = err.max((s - sigma_r(rad)).abs());
+        if s.abs() > fe_peak.abs() {
+            fe_peak = s;
+        }
+    }
+    let astm = 3.0 * moment / (2.0 * w * (b - a) * (a * b).sqrt());
+    eprintln!(
+        "k = {k:.4}; Lekhnitskii peak sigma_r {peak:.5e}, model {fe_peak:.5e} ({:+.2} %); largest difference {:.2} % of the peak; ASTM D6415 3M/(2wt sqrt(r_i r_o)) = {astm:.5e} ({:+.2} %)",
+        100.0 * (fe_peak / peak - 1.0),
+        100.0 * err / peak.abs(),
+        100.0 * (astm / peak.abs() - 1.0)
+    );
+    assert!(
+        (fe_peak - peak).abs() < 0.02 * peak.abs(),
+        "peak {fe_peak} vs {peak}"
+    );
+    assert!(err < 0.03 * peak.abs());
+}

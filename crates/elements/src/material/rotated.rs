@@ -28,6 +28,21 @@
 //! `Q^T x` matters only for materials whose axes vary in space (a
 //! cylindrical system); the lay-up builder rotates about an axis through
 //! the origin, so such a material should be given in the ply's own frame.
+//!
+//! ## A ply on a curved part
+//!
+//! [`Rotated::in_cylinder`]: the ply's frame turns with the point. With
+//! `c` a point of the cylinder's axis and `a` its unit direction, at `x`
+//!
+//! ```text
+//! e3 = radial unit vector of x - c (normal to a),   e2 = a,   e1 = e2 x e3,
+//! Q(x) = [e1 e2 e3] R_3(theta)
+//! ```
+//!
+//! (`R_3(theta)` the ply angle about `e3`): on a bend of a laminate whose
+//! plies stack radially, `e1` is the tangent of the bend (the 0-degree
+//! fibre), `e2` the axis and `e3` the stacking direction. `C(x) = T(Q(x))
+//! C_i T(Q(x))^T` with `C_i` the inner material's (uniform) elasticity.
 
 use super::stress_rotation;
 use junta_core::{Material, Voigt6};
@@ -42,8 +57,39 @@ pub struct Rotated {
     q: Matrix3<f64>,
     /// `T(q)`.
     t: Voigt6,
-    /// `C` when the inner material is the same everywhere.
+    /// `C` when the inner material is the same everywhere and the frame fixed.
     c: Voigt6,
+    /// The frame of a curved ply, when it turns with the point.
+    cylinder: Option<Cylinder>,
+}
+
+/// The axis of a curved ply's frame and the ply angle about its radius.
+#[derive(Debug, Clone, Copy)]
+struct Cylinder {
+    centre: Vector3<f64>,
+    axis: Vector3<f64>,
+    /// `R_3(theta)`.
+    turn: Matrix3<f64>,
+}
+
+impl Cylinder {
+    /// `Q(x) = [e1 e2 e3] R_3(theta)` (module docs); on the axis the
+    /// radial direction is undefined and the frame at the centre's
+    /// perpendicular is used.
+    fn q_at(&self, x: [f64; 3]) -> Matrix3<f64> {
+        let d = Vector3::from(x) - self.centre;
+        let r = d - d.dot(&self.axis) * self.axis;
+        let e3 = if r.norm() > 1e-12 * d.norm().max(f64::MIN_POSITIVE) {
+            r.normalize()
+        } else {
+            self.axis
+                .cross(&Vector3::x())
+                .try_normalize(1e-12)
+                .unwrap_or(Vector3::z())
+        };
+        let e1 = self.axis.cross(&e3);
+        Matrix3::from_columns(&[e1, self.axis, e3]) * self.turn
+    }
 }
 
 impl Rotated {
@@ -52,7 +98,37 @@ impl Rotated {
     pub fn new(inner: Arc<dyn Material>, q: Matrix3<f64>) -> Self {
         let t = stress_rotation(&q);
         let c = symmetric(t * inner.elasticity() * t.transpose());
-        Rotated { inner, q, t, c }
+        Rotated {
+            inner,
+            q,
+            t,
+            c,
+            cylinder: None,
+        }
+    }
+
+    /// `inner` as a ply of angle `angle_deg` on a cylinder of axis through
+    /// `centre` along `axis` (module docs: the frame turns with the point;
+    /// the inner material's own axes, if any, are taken as uniform).
+    pub fn in_cylinder(
+        inner: Arc<dyn Material>,
+        centre: [f64; 3],
+        axis: [f64; 3],
+        angle_deg: f64,
+    ) -> Self {
+        let turn = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), angle_deg.to_radians())
+            .into_inner();
+        let cylinder = Cylinder {
+            centre: Vector3::from(centre),
+            axis: Vector3::from(axis).normalize(),
+            turn,
+        };
+        let mut r = Rotated::new(
+            inner,
+            cylinder.q_at([centre[0] + 1.0, centre[1], centre[2]]),
+        );
+        r.cylinder = Some(cylinder);
+        r
     }
 
     /// `inner` turned by `angle_deg` degrees about the unit axis `axis`
@@ -92,9 +168,13 @@ impl Material for Rotated {
         self.c
     }
     fn varies_in_space(&self) -> bool {
-        self.inner.varies_in_space()
+        self.cylinder.is_some() || self.inner.varies_in_space()
     }
     fn elasticity_at(&self, x: [f64; 3]) -> Voigt6 {
+        if let Some(cyl) = &self.cylinder {
+            let t = stress_rotation(&cyl.q_at(x));
+            return symmetric(t * self.inner.elasticity() * t.transpose());
+        }
         if !self.inner.varies_in_space() {
             return self.c;
         }
@@ -104,6 +184,11 @@ impl Material for Rotated {
     /// `Q Q_i(Q^T x)`: the inner material's axes carried along (the
     /// rotation itself for an inner material without axes).
     fn axes_at(&self, x: [f64; 3]) -> Option<Matrix3<f64>> {
+        if let Some(cyl) = &self.cylinder {
+            let inner = self.inner.axes_at(x);
+            let q = cyl.q_at(x);
+            return Some(inner.map_or(q, |qi| q * qi));
+        }
         let inner = self.inner.axes_at(self.inner_point(x));
         Some(inner.map_or(self.q, |qi| self.q * qi))
     }
@@ -114,7 +199,11 @@ impl Material for Rotated {
         self.inner.has_thermal_expansion()
     }
     fn thermal_expansion_at(&self, x: [f64; 3]) -> [f64; 6] {
-        let a = self.inner.thermal_expansion_at(self.inner_point(x));
+        let (q, at) = match &self.cylinder {
+            Some(cyl) => (cyl.q_at(x), x),
+            None => (self.q, self.inner_point(x)),
+        };
+        let a = self.inner.thermal_expansion_at(at);
         // engineering shear components back to the tensor, then rotated
         let g = Matrix3::new(
             a[0],
@@ -127,7 +216,7 @@ impl Material for Rotated {
             0.5 * a[4],
             a[2],
         );
-        crate::thermal::rotate_expansion(&g, &self.q)
+        crate::thermal::rotate_expansion(&g, &q)
     }
 }
 
@@ -167,6 +256,47 @@ mod tests {
             let o = ply(Some([c, s, 0.0]));
             let d = (r.elasticity() - o.elasticity()).abs().max();
             assert!(d < 1e-9 * 140e3, "theta {theta}: {d}");
+        }
+    }
+
+    /// A 0-degree ply on a cylinder about z has its fibre along the hoop:
+    /// at the point (0, 2, 0) the hoop is -x, so it is the ply turned by
+    /// 180 degrees (the same fibre direction) about z, i.e. an orthotropic
+    /// material with axis 1 along x in the x-y plane... and axis 3 along y.
+    #[test]
+    fn curved_ply_frame_turns_with_the_point() {
+        let m: Arc<dyn Material> = Arc::new(ply(None));
+        let r = Rotated::in_cylinder(m.clone(), [0.0; 3], [0.0, 0.0, 1.0], 0.0);
+        assert!(r.varies_in_space());
+        for (x, e1, e3) in [
+            ([3.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
+            ([0.0, 2.0, -4.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+        ] {
+            let q = r.axes_at(x).unwrap();
+            for k in 0..3 {
+                assert!(
+                    (q[(k, 0)] - e1[k]).abs() < 1e-14 && (q[(k, 2)] - e3[k]).abs() < 1e-14,
+                    "{q}"
+                );
+            }
+            // the same C as the rectangular orientation a = e1, b = e2 (= z)
+            let o = Orthotropic::new(
+                EngineeringConstants {
+                    e1: 140e3,
+                    e2: 10e3,
+                    e3: 10e3,
+                    nu12: 0.3,
+                    nu13: 0.3,
+                    nu23: 0.45,
+                    g12: 5e3,
+                    g13: 5e3,
+                    g23: 3.4e3,
+                },
+                Some(Orientation::rectangular(e1, [0.0, 0.0, 1.0])),
+            )
+            .unwrap();
+            let d = (r.elasticity_at(x) - o.elasticity()).abs().max();
+            assert!(d < 1e-9 * 140e3, "{d}");
         }
     }
 

@@ -4,19 +4,22 @@
 //!
 //! ## What it builds
 //!
-//! * **Plies**, numbered 1 (bottom, lowest `z`) to `n` (top): each a box of
-//!   the base region's plan (`base.size`, `base.divisions`) with its own
-//!   thickness and elements through it, stacked along `+z` from
-//!   `base.origin`. The plies come from a compact code (`layup =
+//! * **Plies**, numbered 1 (bottom, lowest `z`, or the inner surface of a
+//!   curved base) to `n` (top, outer): on each segment of the base
+//!   ([`base`]: a rectangle, an L-section's two arms and bend, a ring) a
+//!   box of the segment's plan with the ply's own thickness and elements
+//!   through it, mapped into space and stacked along the stacking
+//!   direction (`+z` on a rectangle, the radius on a bend or ring). The plies come from a compact code (`layup =
 //!   "[0/90/±45]s"`, [`code`]) with one material and ply thickness, or from
 //!   an explicit `[[laminate.plies]]` list.
-//! * **Material axes**: ply `k` of angle `theta` gets its material turned by
-//!   `theta` about the stacking direction `z` (positive from `x` towards
-//!   `y`), [`junta_elements::material::Rotated`]: an orthotropic material
-//!   without an orientation has its axis 1 (the fibre) along
-//!   `(cos theta, sin theta, 0)` and its axis 3 along `z`. The rotated
-//!   material is named `MATERIAL@ANGLE` (`im7@-45`), the name its blocks
-//!   and messages show.
+//! * **Material axes**: ply `k` of angle `theta` gets its material turned
+//!   into the segment's frame `[e1 e2 e3]` and by `theta` about the
+//!   stacking direction `e3` ([`junta_elements::material::Rotated`]; on a
+//!   rectangle `e1 = x`, `e3 = z`, so an orthotropic material without an
+//!   orientation has its fibre along `(cos theta, sin theta, 0)`; on a
+//!   bend or ring the frame turns with the point, `e1` the tangent). The
+//!   material is named `MATERIAL@ANGLE` (`im7@-45`), on a curved base
+//!   `MATERIAL@ANGLE.SEGMENT`, the name its blocks and messages show.
 //! * **Ply blocks**: maximal runs of neighbouring plies of the same material
 //!   and angle (angles equal modulo 180 degrees), unless `merge_plies =
 //!   false` makes every ply its own block. A block behaves as one thick ply:
@@ -30,7 +33,10 @@
 //!   above ply `k`), else `interface_law`.
 //! * **Sets**: element sets `ply_K` and `block_J`; node and face sets
 //!   `bottom`, `top` (the laminate's faces at the lowest and highest `z`)
-//!   and `x0`, `x1`, `y0`, `y1` (its edges, every ply); the interfaces'
+//!   and `x0`, `x1`, `y0`, `y1` (its edges, every ply) on a rectangle;
+//!   `inner` (= `bottom`), `outer` (= `top`), `side0`, `side1` (the `v`
+//!   sides) and `end0`, `end1` (the two ends, not on a full ring) on a
+//!   curved base, whose plies' parts are `ply_K.SEGMENT`; the interfaces'
 //!   blocks and element sets `interface_K_L` (between plies `K` and `L =
 //!   K + 1`) with node sets `interface_K_L.bottom` and `.top`; and each
 //!   ply's own box sets `ply_K.x0` .. `ply_K.z1`.
@@ -39,6 +45,7 @@
 //! duplicates (the rule of [`junta_core::mesh::interface`]), so a condition
 //! on an edge holds every ply.
 
+pub mod base;
 pub mod code;
 
 use crate::error::{bail, err, Result};
@@ -84,22 +91,32 @@ pub struct LaminateSpec {
     pub integration: Option<String>,
 }
 
-/// `[laminate.base]`: the region the plies are stacked on.
+/// `[laminate.base]`: the region the plies are stacked on ([`base`]:
+/// `rectangle`, `l_section`, `ring`).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BaseSpec {
-    /// `"rectangle"`: a rectangle in the x-y plane.
+    /// `"rectangle"`, `"l_section"` or `"ring"`.
     #[serde(rename = "type")]
     pub kind: Spanned<String>,
-    /// Edge lengths along x and y.
-    pub size: [f64; 2],
-    /// Elements along x and y.
-    pub divisions: [usize; 2],
-    /// The laminate's lower corner (bottom of ply 1), default the origin.
+    /// Rectangle: edge lengths along x and y.
+    pub size: Option<[f64; 2]>,
+    /// Elements: rectangle `[nx, ny]`; L-section `[arm a, bend, arm b,
+    /// width]`; ring `[around, along the axis]`.
+    pub divisions: Vec<usize>,
+    /// Rectangle: the laminate's lower corner (bottom of ply 1), default the origin.
     #[serde(default)]
     pub origin: [f64; 3],
-    /// Ratio of the last to the first element size along x and y (default 1).
+    /// Rectangle: ratio of the last to the first element size along x and y (default 1).
     pub grading: Option<[f64; 2]>,
+    /// L-section, ring: radius of the inner surface (ply 1's inner face).
+    pub inner_radius: Option<f64>,
+    /// L-section: lengths of arm a and arm b.
+    pub arms: Option<[f64; 2]>,
+    /// L-section: width (along y); ring: axial length (along z).
+    pub width: Option<f64>,
+    /// Ring: swept angle in degrees, default 360 (a full ring).
+    pub sweep: Option<f64>,
 }
 
 /// One ply of `[[laminate.plies]]`.
@@ -421,39 +438,72 @@ fn resolve_interfaces(
         .collect()
 }
 
-/// The mesh of a `[laminate]`: plies stacked and merged, the laminate's
-/// sets, then its interfaces inserted bottom to top (module docs).
+fn base_geometry<'a>(sf: &SceneFile, b: &'a BaseSpec) -> base::BaseGeometry<'a> {
+    base::BaseGeometry {
+        kind: b.kind.get_ref(),
+        at: sf.at(b.kind.span()),
+        size: b.size,
+        divisions: &b.divisions,
+        origin: b.origin,
+        inner_radius: b.inner_radius,
+        arms: b.arms,
+        width: b.width,
+        sweep: b.sweep,
+    }
+}
+
+/// The part (block and element set) of ply `k` on segment `s`: `ply_K`
+/// on a one-segment base, `ply_K.SEGMENT` on a curved one.
+fn part_name(k: usize, s: &base::Segment) -> String {
+    if s.name.is_empty() {
+        ply_set(k)
+    } else {
+        format!("{}.{}", ply_set(k), s.name)
+    }
+}
+
+/// The material of ply `p` on segment `s`: `MATERIAL@ANGLE[.SEGMENT]`.
+fn part_material(p: &Ply, s: &base::Segment) -> String {
+    if s.name.is_empty() {
+        p.material_name()
+    } else {
+        format!("{}.{}", p.material_name(), s.name)
+    }
+}
+
+/// The mesh of a `[laminate]`: plies stacked on each segment of the base,
+/// merged, the laminate's sets, then its interfaces inserted bottom to top
+/// (module docs).
 pub fn build_mesh(sf: &SceneFile, spec: &LaminateSpec) -> Result<Mesh> {
     let layup = Layup::resolve(sf, spec)?;
-    let base = &spec.base;
-    let at = sf.at(base.kind.span());
-    if base.kind.get_ref() != "rectangle" {
-        bail!(
-            "{at}: key `laminate.base.type`: `{}` is not valid; use \"rectangle\"",
-            base.kind.get_ref()
-        );
-    }
-    let levels = layup.ply_levels(base.origin[2]);
-    let grading = base.grading.unwrap_or([1.0; 2]);
-    let mut parts = Vec::with_capacity(layup.plies.len());
+    let at = sf.at(spec.base.kind.span());
+    let segments = base::segments(&base_geometry(sf, &spec.base))?;
+    let levels = layup.ply_levels(0.0);
+    let grading = spec.base.grading.unwrap_or([1.0; 2]);
+    let mut parts = Vec::with_capacity(layup.plies.len() * segments.len());
     for (k, ply) in layup.plies.iter().enumerate() {
-        let part = generate_box(
-            sf,
-            "laminate",
-            BoxGeometry {
-                size: [base.size[0], base.size[1], ply.thickness],
-                divisions: [base.divisions[0], base.divisions[1], ply.elements],
-                origin: [base.origin[0], base.origin[1], levels[k]],
-                grading: [grading[0], grading[1], 1.0],
-            },
-            &spec.element,
-            &ply.material_name(),
-        )?;
-        parts.push((ply_set(k), part));
+        for s in &segments {
+            let mut part = generate_box(
+                sf,
+                "laminate",
+                BoxGeometry {
+                    size: [s.length, s.width, ply.thickness],
+                    divisions: [s.divisions[0], s.divisions[1], ply.elements],
+                    origin: [0.0, 0.0, levels[k]],
+                    grading: [grading[0], grading[1], 1.0],
+                },
+                &spec.element,
+                &part_material(ply, s),
+            )?;
+            for p in part.nodes.iter_mut() {
+                *p = s.map.point(*p);
+            }
+            parts.push((part_name(k, s), part));
+        }
     }
     let mut mesh = junta_core::mesh::merge::merge(parts, 1e-9)
         .map_err(|e| err!("{at}: key `laminate`: {e}"))?;
-    add_laminate_sets(&mut mesh, &layup);
+    add_laminate_sets(&mut mesh, &layup, &segments);
     for f in &layup.interfaces {
         let (below, above) = (ply_set(f.below - 1), ply_set(f.below));
         junta_core::mesh::interface::insert_interface(&mut mesh, &below, &above, &f.name(), &f.law)
@@ -467,9 +517,25 @@ fn ply_set(k: usize) -> String {
     format!("ply_{}", k + 1)
 }
 
-/// `block_J`, `bottom`, `top`, `x0` .. `y1` (before the interfaces are
-/// inserted, so that they keep both copies of every duplicated node).
-fn add_laminate_sets(mesh: &mut Mesh, layup: &Layup) {
+/// `ply_K` (on a curved base: the union of its segments), `block_J`, and
+/// the laminate's faces and edges (module docs), before the interfaces are
+/// inserted, so that they keep both copies of every duplicated node.
+fn add_laminate_sets(mesh: &mut Mesh, layup: &Layup, segments: &[base::Segment]) {
+    let n = layup.plies.len();
+    let curved = !segments[0].name.is_empty();
+    if curved {
+        for k in 0..n {
+            let mut set: Vec<ElementRef> = Vec::new();
+            for s in segments {
+                set.extend_from_slice(
+                    mesh.element_sets
+                        .get(&part_name(k, s))
+                        .map_or(&[][..], |v| v),
+                );
+            }
+            mesh.element_sets.insert(ply_set(k), set);
+        }
+    }
     for (j, b) in layup.blocks.iter().enumerate() {
         let mut set: Vec<ElementRef> = Vec::new();
         for k in b.clone() {
@@ -477,24 +543,35 @@ fn add_laminate_sets(mesh: &mut Mesh, layup: &Layup) {
         }
         mesh.element_sets.insert(format!("block_{}", j + 1), set);
     }
-    let last = layup.plies.len() - 1;
-    let mut sides: Vec<(&str, Vec<usize>)> = vec![("bottom", vec![0]), ("top", vec![last])];
-    for side in ["x0", "x1", "y0", "y1"] {
-        sides.push((side, (0..=last).collect()));
-    }
-    fn box_side(name: &str) -> &str {
-        match name {
-            "bottom" => "z0",
-            "top" => "z1",
-            s => s,
+    let all: Vec<usize> = (0..segments.len()).collect();
+    let last = segments.len() - 1;
+    // (set, plies, segments, the box side of each part)
+    let mut sides: Vec<(&str, Vec<usize>, Vec<usize>, &str)> = vec![
+        ("bottom", vec![0], all.clone(), "z0"),
+        ("top", vec![n - 1], all.clone(), "z1"),
+    ];
+    if !curved {
+        for side in ["x0", "x1", "y0", "y1"] {
+            sides.push((side, (0..n).collect(), all.clone(), side));
+        }
+    } else {
+        sides.push(("inner", vec![0], all.clone(), "z0"));
+        sides.push(("outer", vec![n - 1], all.clone(), "z1"));
+        sides.push(("side0", (0..n).collect(), all.clone(), "y0"));
+        sides.push(("side1", (0..n).collect(), all.clone(), "y1"));
+        if segments[0].name != "half_1" {
+            sides.push(("end0", (0..n).collect(), vec![0], "x0"));
+            sides.push(("end1", (0..n).collect(), vec![last], "x1"));
         }
     }
-    for (name, plies) in sides {
+    for (name, plies, segs, side) in sides {
         let (mut nodes, mut faces) = (Vec::new(), Vec::new());
-        for k in plies {
-            let key = format!("{}.{}", ply_set(k), box_side(name));
-            nodes.extend_from_slice(mesh.node_sets.get(&key).map_or(&[][..], |s| s));
-            faces.extend_from_slice(mesh.face_sets.get(&key).map_or(&[][..], |s| s));
+        for &k in &plies {
+            for &s in &segs {
+                let key = format!("{}.{side}", part_name(k, &segments[s]));
+                nodes.extend_from_slice(mesh.node_sets.get(&key).map_or(&[][..], |v| v));
+                faces.extend_from_slice(mesh.face_sets.get(&key).map_or(&[][..], |v| v));
+            }
         }
         nodes.sort_unstable();
         nodes.dedup();
@@ -510,21 +587,37 @@ pub fn add_ply_materials(
     spec: &LaminateSpec,
     materials: &mut BTreeMap<String, Arc<dyn Material>>,
 ) -> Result<()> {
+    use junta_elements::material::Rotated;
     let layup = Layup::resolve(sf, spec)?;
+    let segments = base::segments(&base_geometry(sf, &spec.base))?;
     for p in &layup.plies {
-        let name = p.material_name();
-        if materials.contains_key(&name) {
-            continue;
+        for s in &segments {
+            let name = part_material(p, s);
+            if materials.contains_key(&name) {
+                continue;
+            }
+            let inner = materials.get(&p.material).cloned().ok_or_else(|| {
+                err!(
+                    "{}: key `laminate`: unknown ply material `{}`",
+                    sf.path.display(),
+                    p.material
+                )
+            })?;
+            let ply = match s.map {
+                base::SegmentMap::Straight { frame, .. } => {
+                    let f = nalgebra::Matrix3::from_columns(&frame);
+                    let turn = nalgebra::Rotation3::from_axis_angle(
+                        &nalgebra::Vector3::z_axis(),
+                        p.angle.to_radians(),
+                    );
+                    Rotated::new(inner, f * turn.into_inner())
+                }
+                base::SegmentMap::Arc { centre, axis, .. } => {
+                    Rotated::in_cylinder(inner, centre.into(), axis.into(), p.angle)
+                }
+            };
+            materials.insert(name, Arc::new(ply));
         }
-        let inner = materials.get(&p.material).cloned().ok_or_else(|| {
-            err!(
-                "{}: key `laminate`: unknown ply material `{}`",
-                sf.path.display(),
-                p.material
-            )
-        })?;
-        let ply = junta_elements::material::Rotated::about_axis(inner, [0.0, 0.0, 1.0], p.angle);
-        materials.insert(name, Arc::new(ply));
     }
     Ok(())
 }
