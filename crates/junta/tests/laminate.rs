@@ -560,6 +560,27 @@ fn cross_ply_coupon_first_ply_failure() {
         s["hashin"]["first_ply_failure_load_factor"].as_f64(),
         Some(hashin.strength_ratio)
     );
+    // the same coupon as an incremental run: the indices of its last state, no load factor
+    let text = std::fs::read_to_string(&path).unwrap().replacen(
+        "\n[[ply_failure]]\ntype = \"hashin\"",
+        "\n[analysis]\ntype = \"static\"\n\n[[ply_failure]]\ntype = \"hashin\"",
+        1,
+    );
+    let r = Simulation::from_scene_text(&text, &path)
+        .unwrap()
+        .run(&junta::RunSettings::in_memory(), &mut [])
+        .unwrap();
+    let s = r
+        .summary
+        .section("ply_failure")
+        .expect("an incremental run's ply_failure");
+    let max = s["hashin"]["max_index"].as_f64().unwrap();
+    assert!(
+        (max - hashin.max_index).abs() < 1e-9 * hashin.max_index,
+        "{max} vs {}",
+        hashin.max_index
+    );
+    assert!(s["hashin"].get("first_ply_failure_load_factor").is_none());
 }
 
 /// The Abaqus/CalculiX deck of a built laminate written out ply by ply:
@@ -983,7 +1004,10 @@ pressure = {p}
 "#
     );
     let sim = Simulation::from_scene_text(&text, "ring.toml").unwrap();
-    assert_eq!(sim.model().mesh.nodes.len(), 3 * (16 * 3 + 16 * 3 + 16 * 2) + 2 * 16 * 3);
+    assert_eq!(
+        sim.model().mesh.nodes.len(),
+        3 * (16 * 3 + 16 * 3 + 16 * 2) + 2 * 16 * 3
+    );
     assert!(!sim.model().mesh.node_sets.contains_key("end0"));
     let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
     let solid = r.frame.unwrap().solid;

@@ -643,6 +643,15 @@ fn finish(
     if let (Some(u), Some(state)) = (u, state) {
         interfaces = crate::post::fields::interface_results_at(model, u, state, step)?;
         summary["interfaces"] = crate::output::summary::interface_summary(model, &interfaces);
+        if !p.ply_criteria.is_empty() {
+            // at the state the run ends on (no proportional load: no factor)
+            let ply = crate::post::ply_failure::evaluate(model, u, state, step, &p.ply_criteria)?;
+            let m: serde_json::Map<String, serde_json::Value> = ply
+                .iter()
+                .map(|r| (r.name.clone(), r.to_json(false)))
+                .collect();
+            summary["ply_failure"] = serde_json::Value::Object(m);
+        }
     }
     if let Some(u) = u.filter(|_| !p.probes.is_empty()) {
         // `[output] probes` at the state the run ends on (a linear run's
