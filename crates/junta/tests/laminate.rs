@@ -888,3 +888,150 @@ pressure = {p}
     eprintln!("full ring: sigma_r within {err:.3e} of p");
     assert!(err < 0.02, "{err}");
 }
+
+/// A plane quadrilateral mesh of the rectangle `[0, lx] x [0, ly]`, `nx x
+/// ny` Quad4 (MSH 4.1 ASCII), with the physical curves `x0` and `x1` (its
+/// two short edges) and the physical surface `plate`; the cells alternate
+/// counter-clockwise and clockwise to exercise the reorientation.
+fn rectangle_msh(lx: f64, ly: f64, nx: usize, ny: usize) -> String {
+    let id = |i: usize, j: usize| j * (nx + 1) + i + 1;
+    let nn = (nx + 1) * (ny + 1);
+    let mut m = String::from("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n1 1 \"x0\"\n1 2 \"x1\"\n2 3 \"plate\"\n$EndPhysicalNames\n");
+    m += &format!("$Entities\n0 2 1 0\n1 0 0 0 0 {ly} 0 1 1 0\n2 {lx} 0 0 {lx} {ly} 0 1 2 0\n1 0 0 0 {lx} {ly} 0 1 3 0\n$EndEntities\n");
+    m += &format!("$Nodes\n1 {nn} 1 {nn}\n2 1 0 {nn}\n");
+    for k in 1..=nn {
+        m += &format!("{k}\n");
+    }
+    for j in 0..=ny {
+        for i in 0..=nx {
+            m += &format!(
+                "{} {} 0\n",
+                lx * i as f64 / nx as f64,
+                ly * j as f64 / ny as f64
+            );
+        }
+    }
+    let ne = nx * ny + 2 * ny;
+    m += &format!("$EndNodes\n$Elements\n3 {ne} 1 {ne}\n1 1 1 {ny}\n");
+    let mut tag = 1;
+    for j in 0..ny {
+        m += &format!("{tag} {} {}\n", id(0, j), id(0, j + 1));
+        tag += 1;
+    }
+    m += &format!("1 2 1 {ny}\n");
+    for j in 0..ny {
+        m += &format!("{tag} {} {}\n", id(nx, j), id(nx, j + 1));
+        tag += 1;
+    }
+    m += &format!("2 1 3 {}\n", nx * ny);
+    for j in 0..ny {
+        for i in 0..nx {
+            let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            let q = if (i + j) % 2 == 0 {
+                q
+            } else {
+                [q[0], q[3], q[2], q[1]]
+            };
+            m += &format!("{tag} {} {} {} {}\n", q[0], q[1], q[2], q[3]);
+            tag += 1;
+        }
+    }
+    m + "$EndElements\n"
+}
+
+/// The same laminate three ways: the box base, the Gmsh 2D mesh of the
+/// same rectangle extruded (and the ply-by-ply deck, the test above):
+/// displacements equal to 1e-10 at every node (matched by position; the
+/// two nodes an interface puts at one position matched as a pair, in the
+/// order that fits).
+#[test]
+fn the_laminate_on_a_box_and_on_an_extruded_gmsh_mesh() {
+    let scene = |base: &str| {
+        format!(
+            r#"
+[materials.t300]
+type = "orthotropic"
+E1 = {E1}
+E2 = {E2}
+E3 = {E2}
+nu12 = {NU12}
+nu13 = {NU12}
+nu23 = 0.4
+G12 = {G12}
+G13 = {G12}
+G23 = 3.68e3
+[laws.glue]
+type = "linear_penalty"
+d = 1.0e5
+[laminate]
+base = {base}
+element = "h8i"
+material = "t300"
+ply_thickness = {T}
+layup = "[0/45/-45/90]"
+interface_law = "glue"
+[[boundary]]
+set = "x0"
+fixed = "all"
+[[load]]
+set = "x1"
+force = [0.0, 0.0, -0.01]
+[solver]
+type = "cholesky"
+"#
+        )
+    };
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("plate.msh"), rectangle_msh(20.0, 5.0, 8, 2)).unwrap();
+    let box_scene = dir.path().join("box.toml");
+    std::fs::write(
+        &box_scene,
+        scene("{ type = \"rectangle\", size = [20.0, 5.0], divisions = [8, 2] }"),
+    )
+    .unwrap();
+    let gmsh_scene = dir.path().join("gmsh.toml");
+    std::fs::write(
+        &gmsh_scene,
+        scene("{ type = \"gmsh\", file = \"plate.msh\" }"),
+    )
+    .unwrap();
+    let run = |p: &std::path::Path| {
+        let sim = Simulation::from_file(p).unwrap();
+        let nodes = sim.model().mesh.nodes.clone();
+        let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
+        (nodes, r.frame.unwrap().displacement)
+    };
+    let (nb, ub) = run(&box_scene);
+    let (ng, ug) = run(&gmsh_scene);
+    assert_eq!(nb.len(), ng.len());
+    let key = |p: &[f64; 3]| [p[0], p[1], p[2]].map(|c| (c * 1e6).round() as i64);
+    let group = |nodes: &[[f64; 3]]| {
+        let mut by: std::collections::BTreeMap<[i64; 3], Vec<usize>> = Default::default();
+        for (i, p) in nodes.iter().enumerate() {
+            by.entry(key(p)).or_default().push(i);
+        }
+        by
+    };
+    let (gb, gg) = (group(&nb), group(&ng));
+    assert_eq!(gb.len(), gg.len());
+    let scale = ub.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let d = |i: usize, j: usize| {
+        (0..3).fold(0.0f64, |a, c| a.max((ub[3 * i + c] - ug[3 * j + c]).abs()))
+    };
+    let (mut diff, mut compared) = (0.0f64, 0);
+    for (k, a) in &gb {
+        let b = &gg[k];
+        let worst = match (a.as_slice(), b.as_slice()) {
+            ([i], [j]) => d(*i, *j),
+            ([i1, i2], [j1, j2]) => d(*i1, *j1)
+                .max(d(*i2, *j2))
+                .min(d(*i1, *j2).max(d(*i2, *j1))),
+            _ => panic!("position {k:?}: {a:?} against {b:?}"),
+        };
+        compared += a.len();
+        diff = diff.max(worst);
+    }
+    eprintln!("box and extruded Gmsh base: {compared} positions compared, largest difference {:.3e} of max |u| {scale:.4e}", diff / scale);
+    assert_eq!(compared, nb.len());
+    assert!(diff < 1e-10 * scale, "{:.3e}", diff / scale);
+}

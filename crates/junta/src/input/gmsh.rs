@@ -120,6 +120,87 @@ pub fn read_msh(path: impl AsRef<Path>) -> Result<Mesh, GmshError> {
     parse_msh(&text, &file)
 }
 
+/// A 2D mesh of quadrilaterals in a plane, the base a lay-up is stacked
+/// on ([`read_surface`]).
+#[derive(Debug, Clone)]
+pub struct SurfaceMesh {
+    /// Node coordinates (every node of the file).
+    pub nodes: Vec<[f64; 3]>,
+    /// `Quad4` or `Quad8` (one order per file).
+    pub shape: CellShape,
+    /// Flat connectivity, our quadrilateral order (Gmsh's).
+    pub cells: Vec<usize>,
+    /// Physical curves: name -> the corner node pairs of their line elements.
+    pub curves: BTreeMap<String, Vec<[usize; 2]>>,
+}
+
+/// Read the quadrilaterals (4 or 8 nodes) and the physical curves of a
+/// 2D MSH 4.1 ASCII file: the base of a lay-up. Triangles, a mix of
+/// orders, or a file with no quadrilateral are errors naming the line.
+pub fn read_surface(path: impl AsRef<Path>) -> Result<SurfaceMesh, GmshError> {
+    let path = path.as_ref();
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|source| GmshError::Io {
+        file: file.clone(),
+        source,
+    })?;
+    let mut c = Cursor {
+        lines: text.lines().collect(),
+        pos: 0,
+        file: &file,
+    };
+    let mut s = Sections::read(&mut c)?;
+    let mut out = SurfaceMesh {
+        nodes: std::mem::take(&mut s.nodes),
+        shape: CellShape::Quad4,
+        cells: Vec::new(),
+        curves: BTreeMap::new(),
+    };
+    let mut shape: Option<CellShape> = None;
+    for b in &s.blocks {
+        let (sh, npe) = shape_of(b.code).expect("read_elements keeps known codes");
+        match b.dim {
+            2 => {
+                if !matches!(sh, CellShape::Quad4 | CellShape::Quad8) {
+                    return Err(c.err(b.line, format!(
+                        "a lay-up base takes quadrilaterals of 4 or 8 nodes (Gmsh types 3, 16), not element type {}: recombine the surface (Mesh.RecombineAll = 1) and use Mesh.ElementOrder 1 or 2 with Mesh.SecondOrderIncomplete = 1",
+                        b.code
+                    )));
+                }
+                if shape.is_some_and(|x| x != sh) {
+                    return Err(c.err(b.line, "quadrilaterals of two orders in one base"));
+                }
+                shape = Some(sh);
+                for (_, conn) in &b.elements {
+                    for &tag in &conn[..npe] {
+                        out.cells.push(s.resolve(&c, b.line, tag)?);
+                    }
+                }
+            }
+            1 => {
+                for g in s.groups_of(1, b.entity) {
+                    let name = s.phys_name(1, g);
+                    for (_, conn) in &b.elements {
+                        let pair = [
+                            s.resolve(&c, b.line, conn[0])?,
+                            s.resolve(&c, b.line, conn[1])?,
+                        ];
+                        out.curves.entry(name.clone()).or_default().push(pair);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    out.shape = shape.ok_or_else(|| {
+        c.err(
+            0,
+            "no quadrilateral in the file: a lay-up base needs a 2D mesh of quadrilaterals",
+        )
+    })?;
+    Ok(out)
+}
+
 /// Line-oriented cursor over the file (1-based line numbers).
 struct Cursor<'a> {
     lines: Vec<&'a str>,

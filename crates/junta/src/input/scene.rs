@@ -684,7 +684,7 @@ impl SceneFile {
         format!("{}:{}", self.path.display(), line)
     }
 
-    fn relative(&self, file: &Path) -> PathBuf {
+    pub(crate) fn relative(&self, file: &Path) -> PathBuf {
         if file.is_absolute() {
             file.to_path_buf()
         } else {

@@ -10,13 +10,22 @@
 //! | `rectangle` | one, straight | `x = origin + u e_x + v e_y + w e_z` |
 //! | `l_section` | `arm_a`, `bend`, `arm_b` | arm a down `x = r_i + w`, `z` from `-L_a` to 0; the bend about the axis `y` through the origin, radius `r = r_i + w`, from angle 0 (`+x`) to 90 degrees (`+z`); arm b along `-x` at `z = r_i + w` |
 //! | `ring` | `sweep` in halves (`half_1`, `half_2`) or one `sector` | about the `z` axis, radius `r_i + w`, angle `u` from `+x` towards `+y`, `z = v` |
+//! | `gmsh` | one: a plane 2D mesh of quadrilaterals (holes included) | extruded along `+z` ([`super::extrude`]) |
 //!
 //! On a bend and a ring the plies stack radially: `e3` is the radius, `e2`
 //! the axis and `e1` the tangent, so a 0-degree ply runs around the bend
 //! (`junta_elements::material::Rotated::in_cylinder`).
 
 use crate::error::{bail, Result};
+use crate::input::gmsh::SurfaceMesh;
 use nalgebra::Vector3;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// The laminate's own set names, which a Gmsh base's curves may not take.
+const RESERVED: &[&str] = &[
+    "bottom", "top", "inner", "outer", "side0", "side1", "end0", "end1",
+];
 
 /// `[laminate.base]` keys read by [`segments`].
 pub struct BaseGeometry<'a> {
@@ -38,6 +47,20 @@ pub struct BaseGeometry<'a> {
     pub width: Option<f64>,
     /// Ring: swept angle in degrees (default 360).
     pub sweep: Option<f64>,
+    /// Gmsh: the 2D mesh file (already resolved next to the scene).
+    pub file: Option<PathBuf>,
+}
+
+/// A plane base mesh: its quadrilaterals counter-clockwise seen from `+z`
+/// and the plane's `z`.
+#[derive(Debug)]
+pub struct Surface {
+    /// The mesh as read.
+    pub mesh: SurfaceMesh,
+    /// Its cells, oriented ([`super::extrude::oriented_cells`]).
+    pub cells: Vec<usize>,
+    /// The plane's `z`: the bottom of ply 1.
+    pub z: f64,
 }
 
 /// How a segment maps `(u, v, w)` into space.
@@ -93,8 +116,10 @@ pub struct Segment {
     pub width: f64,
     /// Elements along `u` and `v`.
     pub divisions: [usize; 2],
-    /// The map into space.
+    /// The map into space (a Gmsh base: the identity, for the ply frame).
     pub map: SegmentMap,
+    /// A Gmsh base's mesh, extruded instead of a box.
+    pub surface: Option<Arc<Surface>>,
 }
 
 fn positive(at: &str, key: &str, v: Option<f64>) -> Result<f64> {
@@ -137,6 +162,7 @@ pub fn segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
                     p0: Vector3::from(g.origin),
                     frame: [x, y, z],
                 },
+                surface: None,
             }])
         }
         "l_section" => {
@@ -163,6 +189,7 @@ pub fn segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
                         p0: Vector3::new(r, w, -la),
                         frame: [z, e2, x],
                     },
+                    surface: None,
                 },
                 Segment {
                     name: "bend",
@@ -175,6 +202,7 @@ pub fn segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
                         start: x,
                         inner_radius: r,
                     },
+                    surface: None,
                 },
                 Segment {
                     name: "arm_b",
@@ -185,6 +213,7 @@ pub fn segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
                         p0: Vector3::new(0.0, w, r),
                         frame: [-x, e2, z],
                     },
+                    surface: None,
                 },
             ])
         }
@@ -207,6 +236,7 @@ pub fn segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
                     start: Vector3::new(from.to_radians().cos(), from.to_radians().sin(), 0.0),
                     inner_radius: r,
                 },
+                surface: None,
             };
             if sweep < 360.0 {
                 return Ok(vec![arc("sector", 0.0, sweep, nu)]);
@@ -219,8 +249,33 @@ pub fn segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
                 arc("half_2", 180.0, 180.0, nu / 2),
             ])
         }
+        "gmsh" => {
+            let Some(file) = &g.file else {
+                bail!("{at}: key `laminate.base.file` (a 2D Gmsh mesh) is required with type = \"gmsh\"")
+            };
+            let mesh = crate::input::gmsh::read_surface(file)
+                .map_err(|e| crate::error::err!("{at}: key `laminate.base.file`: {e}"))?;
+            let (cells, z_b) = super::extrude::oriented_cells(&mesh)
+                .map_err(|e| crate::error::err!("{at}: key `laminate.base.file`: {}: {e}", file.display()))?;
+            for name in mesh.curves.keys() {
+                if RESERVED.contains(&name.as_str()) || name.starts_with("ply_") || name.starts_with("interface_") || name.starts_with("block_") {
+                    bail!("{at}: key `laminate.base.file`: the physical curve `{name}` of {} has the name of one of the laminate's own sets; rename it", file.display());
+                }
+            }
+            Ok(vec![Segment {
+                name: "",
+                length: 0.0,
+                width: 0.0,
+                divisions: [0, 0],
+                map: SegmentMap::Straight {
+                    p0: Vector3::new(0.0, 0.0, z_b),
+                    frame: [x, y, z],
+                },
+                surface: Some(Arc::new(Surface { mesh, cells, z: z_b })),
+            }])
+        }
         other => bail!(
-            "{at}: key `laminate.base.type`: `{other}` is not valid; use \"rectangle\", \"l_section\" or \"ring\""
+            "{at}: key `laminate.base.type`: `{other}` is not valid; use \"rectangle\", \"l_section\", \"ring\" or \"gmsh\""
         ),
     }
 }

@@ -47,10 +47,12 @@
 
 pub mod base;
 pub mod code;
+pub mod extrude;
 
 use crate::error::{bail, err, Result};
 use crate::input::scene::{generate_box, BoxGeometry, SceneFile};
 use junta_core::mesh::{ElementRef, Mesh};
+use junta_core::topology::CellShape;
 use junta_core::Material;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -102,7 +104,8 @@ pub struct BaseSpec {
     /// Rectangle: edge lengths along x and y.
     pub size: Option<[f64; 2]>,
     /// Elements: rectangle `[nx, ny]`; L-section `[arm a, bend, arm b,
-    /// width]`; ring `[around, along the axis]`.
+    /// width]`; ring `[around, along the axis]`; none for a Gmsh base.
+    #[serde(default)]
     pub divisions: Vec<usize>,
     /// Rectangle: the laminate's lower corner (bottom of ply 1), default the origin.
     #[serde(default)]
@@ -117,6 +120,9 @@ pub struct BaseSpec {
     pub width: Option<f64>,
     /// Ring: swept angle in degrees, default 360 (a full ring).
     pub sweep: Option<f64>,
+    /// Gmsh: a plane 2D mesh of quadrilaterals (MSH 4.1, path relative to
+    /// the scene), extruded along `+z`.
+    pub file: Option<std::path::PathBuf>,
 }
 
 /// One ply of `[[laminate.plies]]`.
@@ -449,6 +455,7 @@ fn base_geometry<'a>(sf: &SceneFile, b: &'a BaseSpec) -> base::BaseGeometry<'a> 
         arms: b.arms,
         width: b.width,
         sweep: b.sweep,
+        file: b.file.as_ref().map(|f| sf.relative(f)),
     }
 }
 
@@ -483,6 +490,20 @@ pub fn build_mesh(sf: &SceneFile, spec: &LaminateSpec) -> Result<Mesh> {
     let mut parts = Vec::with_capacity(layup.plies.len() * segments.len());
     for (k, ply) in layup.plies.iter().enumerate() {
         for s in &segments {
+            if let Some(surf) = &s.surface {
+                check_extruded_element(sf, spec, surf.mesh.shape)?;
+                let part = extrude::extrude_ply(
+                    &surf.mesh,
+                    &surf.cells,
+                    surf.z + levels[k],
+                    ply.thickness,
+                    ply.elements,
+                    spec.element.get_ref(),
+                    &part_material(ply, s),
+                );
+                parts.push((part_name(k, s), part));
+                continue;
+            }
             let mut part = generate_box(
                 sf,
                 "laminate",
@@ -510,6 +531,33 @@ pub fn build_mesh(sf: &SceneFile, spec: &LaminateSpec) -> Result<Mesh> {
             .map_err(|e| err!("{at}: key `laminate.interfaces`: {}: {e}", f.name()))?;
     }
     Ok(mesh)
+}
+
+/// The solid element of a Gmsh base's plies must fit its quadrilaterals:
+/// Hex8 (h8, h8i) on Quad4, Hex20 (h20, h20r) on Quad8.
+fn check_extruded_element(sf: &SceneFile, spec: &LaminateSpec, quad: CellShape) -> Result<()> {
+    let at = sf.at(spec.element.span());
+    let entry =
+        junta_core::registry::find::<junta_core::registry::ElementEntry>(spec.element.get_ref())
+            .map_err(|e| err!("{at}: key `laminate.element`: {e}"))?;
+    let want = if quad == CellShape::Quad8 {
+        CellShape::Hex20
+    } else {
+        CellShape::Hex8
+    };
+    if entry.shape != want {
+        bail!(
+            "{at}: key `laminate.element`: `{}` does not fit the base's {} quadrilaterals; use {}",
+            entry.key,
+            quad.num_nodes(),
+            if want == CellShape::Hex20 {
+                "h20 or h20r"
+            } else {
+                "h8 or h8i"
+            }
+        );
+    }
+    Ok(())
 }
 
 /// The element set (and block) of ply `k` (0-based index): `ply_{k+1}`.
@@ -550,7 +598,11 @@ fn add_laminate_sets(mesh: &mut Mesh, layup: &Layup, segments: &[base::Segment])
         ("bottom", vec![0], all.clone(), "z0"),
         ("top", vec![n - 1], all.clone(), "z1"),
     ];
-    if !curved {
+    if let Some(surf) = &segments[0].surface {
+        for name in surf.mesh.curves.keys() {
+            sides.push((name.as_str(), (0..n).collect(), all.clone(), name.as_str()));
+        }
+    } else if !curved {
         for side in ["x0", "x1", "y0", "y1"] {
             sides.push((side, (0..n).collect(), all.clone(), side));
         }
