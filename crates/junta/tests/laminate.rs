@@ -53,17 +53,7 @@ fn measured_abd(text: &str) -> [[f64; 6]; 6] {
 fn scene(layup: &str, element: &str, extra: &str) -> String {
     format!(
         r#"
-[materials.t300]
-type = "orthotropic"
-E1 = {E1}
-E2 = {E2}
-E3 = {E2}
-nu12 = {NU12}
-nu13 = {NU12}
-nu23 = 0.4
-G12 = {G12}
-G13 = {G12}
-G23 = 3.68e3
+{T300}
 
 [laws.glue]
 type = "linear_penalty"
@@ -507,17 +497,7 @@ fn ply_by_ply_deck(m: &Model, angles: &[f64], k: f64, force: f64) -> String {
 fn the_laminate_as_a_scene_and_as_a_ply_by_ply_deck() {
     let text = format!(
         r#"
-[materials.t300]
-type = "orthotropic"
-E1 = {E1}
-E2 = {E2}
-E3 = {E2}
-nu12 = {NU12}
-nu13 = {NU12}
-nu23 = 0.4
-G12 = {G12}
-G13 = {G12}
-G23 = 3.68e3
+{T300}
 [laws.glue]
 type = "linear_penalty"
 d = 1.0e5
@@ -604,17 +584,7 @@ fn ring_of_hoop_plies_matches_the_anisotropic_tube() {
     let b = a + n as f64 * t;
     let text = format!(
         r#"
-[materials.t300]
-type = "orthotropic"
-E1 = {E1}
-E2 = {E2}
-E3 = {E2}
-nu12 = {NU12}
-nu13 = {NU12}
-nu23 = 0.4
-G12 = {G12}
-G13 = {G12}
-G23 = 3.68e3
+{T300}
 [laws.glue]
 type = "linear_penalty"
 d = 1.0e8
@@ -710,17 +680,7 @@ fn l_section_radial_stress_matches_lekhnitskii() {
     let b = a + n as f64 * t;
     let text = format!(
         r#"
-[materials.t300]
-type = "orthotropic"
-E1 = {E1}
-E2 = {E2}
-E3 = {E2}
-nu12 = {NU12}
-nu13 = {NU12}
-nu23 = 0.4
-G12 = {G12}
-G13 = {G12}
-G23 = 3.68e3
+{T300}
 [laminate]
 base = {{ type = "l_section", inner_radius = {a}, arms = [20.0, 20.0], width = {w}, divisions = [20, 24, 20, 1] }}
 element = "h20"
@@ -983,17 +943,7 @@ fn same_on_box_and_gmsh(element: &str, quadratic: bool) {
     let scene = |base: &str| {
         format!(
             r#"
-[materials.t300]
-type = "orthotropic"
-E1 = {E1}
-E2 = {E2}
-E3 = {E2}
-nu12 = {NU12}
-nu13 = {NU12}
-nu23 = 0.4
-G12 = {G12}
-G13 = {G12}
-G23 = 3.68e3
+{T300}
 [laws.glue]
 type = "linear_penalty"
 d = 1.0e5

@@ -226,6 +226,11 @@ mod tests {
     use crate::material::{EngineeringConstants, Orientation, Orthotropic};
 
     fn ply(a: Option<[f64; 3]>) -> Orthotropic {
+        ply_axes(a.map(|a| (a, [-a[1], a[0], 0.0])))
+    }
+
+    /// The test ply with the orientation `a`, `b` (none: global axes).
+    fn ply_axes(ab: Option<([f64; 3], [f64; 3])>) -> Orthotropic {
         let k = EngineeringConstants {
             e1: 140e3,
             e2: 10e3,
@@ -237,12 +242,7 @@ mod tests {
             g13: 5e3,
             g23: 3.4e3,
         };
-        match a {
-            None => Orthotropic::new(k, None).unwrap(),
-            Some(a) => {
-                Orthotropic::new(k, Some(Orientation::rectangular(a, [-a[1], a[0], 0.0]))).unwrap()
-            }
-        }
+        Orthotropic::new(k, ab.map(|(a, b)| Orientation::rectangular(a, b))).unwrap()
     }
 
     /// Turning an unoriented ply by theta about z is the ply whose axis 1
@@ -280,21 +280,7 @@ mod tests {
                 );
             }
             // the same C as the rectangular orientation a = e1, b = e2 (= z)
-            let o = Orthotropic::new(
-                EngineeringConstants {
-                    e1: 140e3,
-                    e2: 10e3,
-                    e3: 10e3,
-                    nu12: 0.3,
-                    nu13: 0.3,
-                    nu23: 0.45,
-                    g12: 5e3,
-                    g13: 5e3,
-                    g23: 3.4e3,
-                },
-                Some(Orientation::rectangular(e1, [0.0, 0.0, 1.0])),
-            )
-            .unwrap();
+            let o = ply_axes(Some((e1, [0.0, 0.0, 1.0])));
             let d = (r.elasticity_at(x) - o.elasticity()).abs().max();
             assert!(d < 1e-9 * 140e3, "{d}");
         }

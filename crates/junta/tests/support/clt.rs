@@ -18,6 +18,10 @@ pub const E2: f64 = 10.3e3;
 pub const G12: f64 = 7.17e3;
 pub const NU12: f64 = 0.28;
 pub const T: f64 = 0.125;
+/// T300/5208 as a scene's `[materials.t300]` (transversely isotropic:
+/// E3 = E2, nu13 = nu12, G13 = G12; nu23 = 0.4, G23 = 3.68e3), the
+/// constants above.
+pub const T300: &str = "[materials.t300]\ntype = \"orthotropic\"\nE1 = 181000\nE2 = 10300\nE3 = 10300\nnu12 = 0.28\nnu13 = 0.28\nnu23 = 0.4\nG12 = 7170\nG13 = 7170\nG23 = 3680";
 pub const L: f64 = 20.0;
 
 /// `Q̄` of a ply at `theta` degrees, `[[11, 12, 16], [12, 22, 26], [16, 26, 66]]`.
