@@ -437,6 +437,36 @@ fn cross_ply_coupon_first_ply_failure() {
     assert!(s["hashin"].get("first_ply_failure_load_factor").is_none());
 }
 
+/// The unsymmetric `[0/45/-45/90]` plate of the parity tests on `base`
+/// (a `[laminate.base]` inline table) with `element`: 20 x 5 mm, an
+/// interface between each pair of plies, clamped at `x0`, a force on every
+/// node of `x1`.
+fn plate_scene(base: &str, element: &str) -> String {
+    format!(
+        r#"
+{T300}
+[laws.glue]
+type = "linear_penalty"
+d = 1.0e5
+[laminate]
+base = {base}
+element = "{element}"
+material = "t300"
+ply_thickness = {T}
+layup = "[0/45/-45/90]"
+interface_law = "glue"
+[[boundary]]
+set = "x0"
+fixed = "all"
+[[load]]
+set = "x1"
+force = [0.0, 0.0, -0.01]
+[solver]
+type = "cholesky"
+"#
+    )
+}
+
 /// The Abaqus/CalculiX deck of a built laminate written out ply by ply:
 /// C3D8I layers with an `*ORIENTATION` each, COH3D8 between them with an
 /// `*ELASTIC, TYPE=TRACTION` material, the edge `x0` clamped and a force on
@@ -495,28 +525,9 @@ fn ply_by_ply_deck(m: &Model, angles: &[f64], k: f64, force: f64) -> String {
 /// and the stretching coupling all loaded).
 #[test]
 fn the_laminate_as_a_scene_and_as_a_ply_by_ply_deck() {
-    let text = format!(
-        r#"
-{T300}
-[laws.glue]
-type = "linear_penalty"
-d = 1.0e5
-[laminate]
-base = {{ type = "rectangle", size = [20.0, 5.0], divisions = [8, 2] }}
-element = "h8i"
-material = "t300"
-ply_thickness = {T}
-layup = "[0/45/-45/90]"
-interface_law = "glue"
-[[boundary]]
-set = "x0"
-fixed = "all"
-[[load]]
-set = "x1"
-force = [0.0, 0.0, -0.01]
-[solver]
-type = "cholesky"
-"#
+    let text = plate_scene(
+        "{ type = \"rectangle\", size = [20.0, 5.0], divisions = [8, 2] }",
+        "h8i",
     );
     let dir = tempfile::tempdir().unwrap();
     let scene_path = dir.path().join("plate.toml");
@@ -940,31 +951,7 @@ fn the_laminate_on_a_box_and_on_an_extruded_gmsh_mesh() {
 }
 
 fn same_on_box_and_gmsh(element: &str, quadratic: bool) {
-    let scene = |base: &str| {
-        format!(
-            r#"
-{T300}
-[laws.glue]
-type = "linear_penalty"
-d = 1.0e5
-[laminate]
-base = {base}
-element = "{element}"
-material = "t300"
-ply_thickness = {T}
-layup = "[0/45/-45/90]"
-interface_law = "glue"
-[[boundary]]
-set = "x0"
-fixed = "all"
-[[load]]
-set = "x1"
-force = [0.0, 0.0, -0.01]
-[solver]
-type = "cholesky"
-"#
-        )
-    };
+    let scene = |base: &str| plate_scene(base, element);
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(
         dir.path().join("plate.msh"),

@@ -111,13 +111,18 @@ pub enum GmshError {
 
 /// Read a MSH 4.1 ASCII file.
 pub fn read_msh(path: impl AsRef<Path>) -> Result<Mesh, GmshError> {
-    let path = path.as_ref();
+    let (file, text) = read_text(path.as_ref())?;
+    parse_msh(&text, &file)
+}
+
+/// The file's name as given and its text.
+fn read_text(path: &Path) -> Result<(String, String), GmshError> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|source| GmshError::Io {
         file: file.clone(),
         source,
     })?;
-    parse_msh(&text, &file)
+    Ok((file, text))
 }
 
 /// A 2D mesh of quadrilaterals in a plane, the base a lay-up is stacked
@@ -138,12 +143,7 @@ pub struct SurfaceMesh {
 /// 2D MSH 4.1 ASCII file: the base of a lay-up. Triangles, a mix of
 /// orders, or a file with no quadrilateral are errors naming the line.
 pub fn read_surface(path: impl AsRef<Path>) -> Result<SurfaceMesh, GmshError> {
-    let path = path.as_ref();
-    let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| GmshError::Io {
-        file: file.clone(),
-        source,
-    })?;
+    let (file, text) = read_text(path.as_ref())?;
     let mut c = Cursor {
         lines: text.lines().collect(),
         pos: 0,
