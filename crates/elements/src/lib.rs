@@ -18,6 +18,9 @@
 //! * [`solid`]: the small-strain hexahedral [`SolidElement`], registered as
 //!   `h8`, `h20`, `h27`, `h20r`, `h27r`, and the wedges `wedge6` (C3D6),
 //!   `wedge15` (C3D15).
+//! * [`layered`]: the hexahedra integrated ply by ply through the
+//!   thickness, each point with its ply's material
+//!   ([`SolidElement::layered`], Abaqus's `*SOLID SECTION, COMPOSITE`).
 //! * [`h8i`]: the 8-node hexahedron with incompatible modes
 //!   [`IncompatibleHex8`] (as C3D8I), registered as `h8i`: bends without
 //!   shear locking.
@@ -53,6 +56,7 @@
 pub mod body_load;
 pub mod face_load;
 pub mod h8i;
+pub mod layered;
 pub mod material;
 pub mod quadrature;
 pub mod rotation;
@@ -62,6 +66,7 @@ pub mod thermal;
 pub mod total_lagrangian;
 
 pub use h8i::IncompatibleHex8;
+pub use layered::Ply;
 pub use material::{EngineeringConstants, Isotropic, Orientation, Orthotropic};
 pub use quadrature::{gauss_legendre, gauss_lobatto, tensor_2d, tensor_3d, Rule, Rule1D};
 pub use shape::{hex_shape, quad_shape, solid_shape, wedge_shape};

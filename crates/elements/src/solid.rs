@@ -128,19 +128,48 @@ pub struct SolidOptions {
 
 /// Shape-function data at one point of the reference cell, computed once.
 #[derive(Clone)]
-struct PointData {
-    xi: [f64; 3],
-    w: f64,
+pub(crate) struct PointData {
+    pub(crate) xi: [f64; 3],
+    pub(crate) w: f64,
     n: [f64; MAX_NODES],
     dn: [[f64; 3]; MAX_NODES],
+    /// Index of the point's material in [`SolidElement::plies`] (0 for an
+    /// ordinary element, which has one).
+    pub(crate) ply: usize,
 }
 
 impl PointData {
-    fn new(shape: CellShape, xi: [f64; 3], w: f64) -> Self {
+    pub(crate) fn new(shape: CellShape, xi: [f64; 3], w: f64) -> Self {
         let mut n = [0.0; MAX_NODES];
         let mut dn = [[0.0; 3]; MAX_NODES];
         solid_shape(shape, xi, &mut n, &mut dn);
-        PointData { xi, w, n, dn }
+        PointData {
+            xi,
+            w,
+            n,
+            dn,
+            ply: 0,
+        }
+    }
+}
+
+/// A material of the element's points, with what is precomputed of it.
+#[derive(Clone)]
+pub(crate) struct PointMaterial {
+    pub(crate) material: Arc<dyn Material>,
+    /// `C` of a material uniform in space.
+    c: Voigt6,
+    /// The material's `C` varies in space: [`Material::elasticity_at`] per point.
+    varies: bool,
+}
+
+impl PointMaterial {
+    pub(crate) fn new(material: Arc<dyn Material>) -> Self {
+        PointMaterial {
+            c: material.elasticity(),
+            varies: material.varies_in_space(),
+            material,
+        }
     }
 }
 
@@ -153,12 +182,12 @@ pub struct SolidElement {
     key: &'static str,
     shape: CellShape,
     integration: Integration,
-    material: Arc<dyn Material>,
-    /// `C` of a material uniform in space.
-    c: Voigt6,
-    /// The material's `C` varies in space: [`Material::elasticity_at`] per point.
-    varies: bool,
-    points: Vec<PointData>,
+    /// The materials of the points: one for an ordinary element, one per
+    /// ply for a layered one ([`crate::layered`]); each point names its own.
+    pub(crate) plies: Vec<PointMaterial>,
+    /// Integrated ply by ply ([`crate::layered`]): outputs carry `ply`.
+    pub(crate) layered: bool,
+    pub(crate) points: Vec<PointData>,
     corners: Vec<PointData>,
     kinematics: Kinematics,
 }
@@ -170,7 +199,8 @@ impl std::fmt::Debug for SolidElement {
             .field("shape", &self.shape)
             .field("integration", &self.integration)
             .field("num_points", &self.points.len())
-            .field("material", &self.material)
+            .field("plies", &self.plies.len())
+            .field("material", &self.plies[0].material)
             .finish()
     }
 }
@@ -239,15 +269,12 @@ impl SolidElement {
             .iter()
             .map(|&xi| PointData::new(shape, xi, 0.0))
             .collect();
-        let c = material.elasticity();
-        let varies = material.varies_in_space();
         Ok(SolidElement {
             key,
             shape,
             integration,
-            material,
-            c,
-            varies,
+            plies: vec![PointMaterial::new(material)],
+            layered: false,
             points,
             corners,
             kinematics: Kinematics::Small,
@@ -307,9 +334,15 @@ impl SolidElement {
         self.integration
     }
 
-    /// The material.
+    /// The material (of the first ply for a layered element).
     pub fn material(&self) -> &Arc<dyn Material> {
-        &self.material
+        &self.plies[0].material
+    }
+
+    /// The material of point data `p`.
+    #[inline]
+    fn material_of(&self, p: &PointData) -> &dyn Material {
+        &*self.plies[p.ply].material
     }
 
     /// Natural coordinates and weights of the integration points.
@@ -369,10 +402,11 @@ impl SolidElement {
     /// at each integration point as CalculiX does), else the stored one.
     #[inline]
     fn elasticity(&self, p: &PointData, coords: &[[f64; 3]]) -> Voigt6 {
-        if self.varies {
-            self.material.elasticity_at(self.position(p, coords))
+        let m = &self.plies[p.ply];
+        if m.varies {
+            m.material.elasticity_at(self.position(p, coords))
         } else {
-            self.c
+            m.c
         }
     }
 
@@ -444,7 +478,7 @@ impl SolidElement {
             let dv = p.w * det;
             let c = &self.elasticity(p, ctx.coords);
             let eps_th =
-                point_thermal_strain(&*self.material, &p.n[..nn], ctx.coords, ctx.temperature);
+                point_thermal_strain(self.material_of(p), &p.n[..nn], ctx.coords, ctx.temperature);
             let eps = self.strain(&g, ctx.disp) - eps_th;
             let sig = c * eps;
             let s: [f64; 6] = sig.into();
@@ -513,7 +547,7 @@ impl SolidElement {
             let dv = p.w * self.gradients(p, ctx.coords, q, &mut g)?;
             let c = self.elasticity(p, ctx.coords);
             let eps_th =
-                point_thermal_strain(&*self.material, &p.n[..nn], ctx.coords, ctx.temperature);
+                point_thermal_strain(self.material_of(p), &p.n[..nn], ctx.coords, ctx.temperature);
             let f = tl::deformation_gradient(&g[..nn], ctx.disp);
             let s = c * (tl::green_strain(&f) - eps_th);
             tl::add_internal_force(&g[..nn], &f, &s, dv, f_int);
@@ -536,7 +570,7 @@ impl SolidElement {
         let nn = self.shape.num_nodes();
         let c = self.elasticity(p, ctx.coords);
         let thermal =
-            point_thermal_strain(&*self.material, &p.n[..nn], ctx.coords, ctx.temperature);
+            point_thermal_strain(self.material_of(p), &p.n[..nn], ctx.coords, ctx.temperature);
         match self.kinematics {
             Kinematics::Small => {
                 let strain = self.strain(g, ctx.disp);
@@ -572,17 +606,28 @@ impl Element for SolidElement {
     fn num_points(&self) -> usize {
         self.points.len()
     }
+    /// The largest of the plies' (one material for an ordinary element).
     fn reference_modulus(&self) -> Option<f64> {
-        Some(self.material.reference_modulus())
+        self.plies
+            .iter()
+            .map(|m| m.material.reference_modulus())
+            .reduce(f64::max)
     }
+    /// The material of the first ply for a layered element.
     fn material(&self) -> Option<&dyn Material> {
-        Some(self.material.as_ref())
+        Some(self.plies[0].material.as_ref())
     }
+    /// The largest of the plies' (one material for an ordinary element).
     fn directional_modulus(&self, n: [f64; 3]) -> Option<f64> {
-        self.material.directional_modulus(n)
+        self.plies
+            .iter()
+            .filter_map(|m| m.material.directional_modulus(n))
+            .reduce(f64::max)
     }
     fn has_thermal_expansion(&self) -> bool {
-        self.material.has_thermal_expansion()
+        self.plies
+            .iter()
+            .any(|m| m.material.has_thermal_expansion())
     }
     /// Small strains and a linear elastic material: `f = K u`; not so
     /// under `nlgeom`.
@@ -644,8 +689,11 @@ impl Element for SolidElement {
             let position = self.position(p, ctx.coords);
             // under nlgeom: the PK2 stress, whose axes are the reference ones
             let objective = ps.pk2.as_ref().unwrap_or(&ps.stress);
-            if let Some(s) = material_stress(self.material.as_ref(), position, objective) {
+            if let Some(s) = material_stress(self.material_of(p), position, objective) {
                 values.push(("material_stress", s.to_vec()));
+            }
+            if self.layered {
+                values.push(("ply", vec![(p.ply + 1) as f64]));
             }
             if ctx.temperature.is_some() {
                 values.push(("thermal_strain", ps.thermal.iter().copied().collect()));
