@@ -468,17 +468,7 @@ fn note_nlgeom_pressures(deck: &InpDeck, file: &str, notes: &mut Vec<String>) {
 /// at each integration point.
 fn orientation_axes(deck: &InpDeck, bi: usize) -> Vec<(&'static str, toml::Value)> {
     match deck.block_orientations.get(bi).copied().flatten() {
-        Some(o) => {
-            let o = &deck.orientations[o];
-            let arr = |v: [f64; 3]| {
-                toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
-            };
-            let mut axes = vec![("a", arr(o.a)), ("b", arr(o.b))];
-            if o.cylindrical {
-                axes.push(("system", toml::Value::String("cylindrical".into())));
-            }
-            axes
-        }
+        Some(o) => axes_of(&deck.orientations[o]),
         None => Vec::new(),
     }
 }
@@ -494,13 +484,10 @@ fn block_element(
     notes: &mut Vec<String>,
 ) -> Result<(Arc<dyn Element>, bool)> {
     let b = &deck.mesh.blocks[bi];
+    if let Some(si) = deck.block_composites.get(bi).copied().flatten() {
+        return Ok((composite_element(deck, bi, si, file)?, false));
+    }
     let axes = orientation_axes(deck, bi);
-    let with_axes = |mut t: toml::Table| {
-        for (k, v) in &axes {
-            t.insert((*k).into(), v.clone());
-        }
-        t
-    };
     let mat = deck.material(&b.material).ok_or_else(|| {
         err!(
             "{file}: elements of block `{}` have no material: add a *SOLID SECTION (or *COHESIVE SECTION) for their ELSET",
@@ -516,8 +503,54 @@ fn block_element(
         kinematics: deck_kinematics(deck),
     };
     let at = format!("{file}:{}: *MATERIAL, NAME={}", mat.line, mat.name);
-    match (&mat.kind, b.shape.is_interface()) {
-        (InpMaterialKind::Isotropic { e, nu }, false) => match &mat.expansion {
+    if b.shape.is_interface() {
+        match &mat.kind {
+            InpMaterialKind::Traction(_) => {
+                if mat.expansion.is_some() {
+                    notes.push(format!(
+                        "{at}: *EXPANSION of a cohesive material ignored: interfaces carry no thermal strain (they see the jump the solids' expansion makes)"
+                    ));
+                }
+                let thickness = section_thickness(deck, mat, file)?;
+                let (key, t) = cohesive_law_table(mat, thickness, period(deck, 0), file, notes)?;
+                softening = key != "linear_penalty";
+                let l = registry::find::<LawEntry>(key)?;
+                let law = (l.build)(&t).map_err(|e| err!("{at}: law `{key}`: {e}"))?;
+                notes.extend(law.warnings().into_iter().map(|w| format!("{at}: {w}")));
+                build.law = Some(law);
+            }
+            _ => {
+                return Err(err!(
+                    "{at}: cohesive elements of block `{}` need *ELASTIC, TYPE=TRACTION",
+                    b.name
+                ))
+            }
+        }
+    } else {
+        build.material = Some(solid_material(mat, &axes, &at, &b.name)?);
+    }
+    let element = (entry.build)(&build).map_err(|e| err!("{file}: block `{}`: {e}", b.name))?;
+    Ok((element, softening))
+}
+
+/// The solid material of `mat` (isotropic, orthotropic or anisotropic)
+/// with the material axes `axes` (`a`, `b`, `system` of
+/// [`orientation_axes`]; none: the global axes); `at` names the material
+/// in errors, `block` the block.
+fn solid_material(
+    mat: &InpMaterial,
+    axes: &[(&'static str, toml::Value)],
+    at: &str,
+    block: &str,
+) -> Result<Arc<dyn junta_core::Material>> {
+    let with_axes = |mut t: toml::Table| {
+        for (k, v) in axes {
+            t.insert((*k).into(), v.clone());
+        }
+        t
+    };
+    let material = match &mat.kind {
+        InpMaterialKind::Isotropic { e, nu } => match &mat.expansion {
             // orthotropic expansion: an orthotropic material with
             // isotropic constants, in the section's axes
             Some(InpExpansion::Orthotropic(a)) => {
@@ -537,7 +570,7 @@ fn block_element(
                     ("alpha3", a[2]),
                 ]);
                 let m = registry::find::<MaterialEntry>("orthotropic")?;
-                build.material = Some((m.build)(&with_axes(t)).map_err(|e| err!("{at}: {e}"))?);
+                (m.build)(&with_axes(t)).map_err(|e| err!("{at}: {e}"))?
             }
             Some(InpExpansion::Anisotropic(_)) => {
                 return Err(err!(
@@ -550,10 +583,10 @@ fn block_element(
                     pairs.push(("alpha", *a));
                 }
                 let m = registry::find::<MaterialEntry>("isotropic")?;
-                build.material = Some((m.build)(&table(&pairs)).map_err(|e| err!("{at}: {e}"))?);
+                (m.build)(&table(&pairs)).map_err(|e| err!("{at}: {e}"))?
             }
         },
-        (InpMaterialKind::EngineeringConstants(c), false) => {
+        InpMaterialKind::EngineeringConstants(c) => {
             let names = ["E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23"];
             let mut pairs: Vec<(&str, f64)> =
                 names.iter().copied().zip(c.iter().copied()).collect();
@@ -571,10 +604,9 @@ fn block_element(
                 pairs.extend([("alpha1", a[0]), ("alpha2", a[1]), ("alpha3", a[2])]);
             }
             let m = registry::find::<MaterialEntry>("orthotropic")?;
-            build.material =
-                Some((m.build)(&with_axes(table(&pairs))).map_err(|e| err!("{at}: {e}"))?);
+            (m.build)(&with_axes(table(&pairs))).map_err(|e| err!("{at}: {e}"))?
         }
-        (InpMaterialKind::Anisotropic(d), false) => {
+        InpMaterialKind::Anisotropic(d) => {
             let mut t = toml::Table::new();
             let floats = |v: &[f64]| toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect());
             t.insert("D".into(), floats(&d[..]));
@@ -588,37 +620,107 @@ fn block_element(
                 t.insert("alpha".into(), floats(&a));
             }
             let m = registry::find::<MaterialEntry>("anisotropic")?;
-            build.material = Some((m.build)(&with_axes(t)).map_err(|e| err!("{at}: {e}"))?);
+            (m.build)(&with_axes(t)).map_err(|e| err!("{at}: {e}"))?
         }
-        (InpMaterialKind::Traction(_), true) => {
-            if mat.expansion.is_some() {
-                notes.push(format!(
-                    "{at}: *EXPANSION of a cohesive material ignored: interfaces carry no thermal strain (they see the jump the solids' expansion makes)"
-                ));
-            }
-            let thickness = section_thickness(deck, mat, file)?;
-            let (key, t) = cohesive_law_table(mat, thickness, period(deck, 0), file, notes)?;
-            softening = key != "linear_penalty";
-            let l = registry::find::<LawEntry>(key)?;
-            let law = (l.build)(&t).map_err(|e| err!("{at}: law `{key}`: {e}"))?;
-            notes.extend(law.warnings().into_iter().map(|w| format!("{at}: {w}")));
-            build.law = Some(law);
-        }
-        (_, true) => {
+        _ => {
             return Err(err!(
-                "{at}: cohesive elements of block `{}` need *ELASTIC, TYPE=TRACTION",
-                b.name
+                "{at}: solid elements of block `{block}` need *ELASTIC (ISOTROPIC, ENGINEERING CONSTANTS, ORTHO or ANISO)"
             ))
         }
-        (_, false) => {
-            return Err(err!(
-                "{at}: solid elements of block `{}` need *ELASTIC (ISOTROPIC, ENGINEERING CONSTANTS, ORTHO or ANISO)",
-                b.name
-            ))
-        }
+    };
+    Ok(material)
+}
+
+/// The material axes of an `*ORIENTATION` as the table keys of a
+/// material (`a`, `b`, and `system = "cylindrical"` for a cylindrical one).
+fn axes_of(o: &crate::input::inp::InpOrientation) -> Vec<(&'static str, toml::Value)> {
+    let arr = |v: [f64; 3]| toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect());
+    let mut axes = vec![("a", arr(o.a)), ("b", arr(o.b))];
+    if o.cylindrical {
+        axes.push(("system", toml::Value::String("cylindrical".into())));
     }
-    let element = (entry.build)(&build).map_err(|e| err!("{file}: block `{}`: {e}", b.name))?;
-    Ok((element, softening))
+    axes
+}
+
+/// The layered element of block `bi`, whose `*SOLID SECTION, COMPOSITE`
+/// is `deck.solid_sections[si]`: each ply's material ([`solid_material`])
+/// in its axes — its `*ORIENTATION`; or an angle `theta` about axis 3 of
+/// the section's orientation (`a' = cos theta e1 + sin theta e2`, `b' =
+/// -sin theta e1 + cos theta e2`, with `e1`, `e2` the section's axes 1, 2,
+/// the global x, y without one); or the section's orientation; or the
+/// global axes — integrated ply by ply ([`junta_elements::layered`]).
+fn composite_element(deck: &InpDeck, bi: usize, si: usize, file: &str) -> Result<Arc<dyn Element>> {
+    use crate::input::inp::InpPlyAxes;
+    use junta_elements::{Integration, Ply, SolidElement};
+    let b = &deck.mesh.blocks[bi];
+    let s = &deck.solid_sections[si];
+    let c = s.composite.as_ref().expect("a composite section");
+    let integration = match b.element_type.as_str() {
+        "h20r" => Integration::Reduced,
+        _ => Integration::Full,
+    };
+    let section_axes = |o: Option<usize>| -> Result<[[f64; 3]; 2]> {
+        let Some(o) = o else {
+            return Ok([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
+        };
+        let o = &deck.orientations[o];
+        let q = Orientation::rectangular(o.a, o.b)
+            .axes()
+            .map_err(|e| err!("{file}:{}: *ORIENTATION, NAME={}: {e}", o.line, o.name))?
+            .reference();
+        Ok([
+            [q[(0, 0)], q[(1, 0)], q[(2, 0)]],
+            [q[(0, 1)], q[(1, 1)], q[(2, 1)]],
+        ])
+    };
+    let mut plies = Vec::with_capacity(c.plies.len());
+    for (k, ply) in c.plies.iter().enumerate() {
+        let mat = deck.material(&ply.material).ok_or_else(|| {
+            err!(
+                "{file}:{}: *SOLID SECTION: material `{}` is not defined",
+                ply.line,
+                ply.material
+            )
+        })?;
+        let axes = match ply.axes {
+            InpPlyAxes::Named { index, .. } => axes_of(&deck.orientations[index]),
+            InpPlyAxes::Section => match c.orientation {
+                Some(o) => axes_of(&deck.orientations[o]),
+                None => Vec::new(),
+            },
+            InpPlyAxes::Angle(theta) => {
+                let [e1, e2] = section_axes(c.orientation)?;
+                let (sn, cs) = theta.to_radians().sin_cos();
+                let a: [f64; 3] = std::array::from_fn(|i| cs * e1[i] + sn * e2[i]);
+                let bb: [f64; 3] = std::array::from_fn(|i| -sn * e1[i] + cs * e2[i]);
+                let arr = |v: [f64; 3]| {
+                    toml::Value::Array(v.iter().map(|&x| toml::Value::Float(x)).collect())
+                };
+                vec![("a", arr(a)), ("b", arr(bb))]
+            }
+        };
+        let at = format!(
+            "{file}:{}: *SOLID SECTION, COMPOSITE: ply {} (*MATERIAL, NAME={})",
+            ply.line,
+            k + 1,
+            mat.name
+        );
+        plies.push(Ply {
+            material: solid_material(mat, &axes, &at, &b.name)?,
+            thickness: ply.thickness,
+            points: ply.points,
+        });
+    }
+    let el = SolidElement::layered(b.shape, integration, c.stack_direction - 1, &plies)
+        .map_err(|e| {
+            err!(
+                "{file}:{}: *SOLID SECTION, COMPOSITE: block `{}`: {e}",
+                s.line,
+                b.name
+            )
+        })?
+        .with_kinematics(deck_kinematics(deck));
+    Ok(Arc::new(el))
 }
 
 /// The back end the steps' `*STATIC, SOLVER=` ask for ([`solver_of_deck`]),

@@ -324,12 +324,81 @@ pub struct InpCurve {
 pub struct InpSolidSection {
     /// Element set as written.
     pub elset: String,
-    /// Material name as written in `*MATERIAL`.
+    /// Material name as written in `*MATERIAL` (empty for a composite
+    /// section, whose plies name theirs).
     pub material: String,
     /// `ORIENTATION=` name as written.
     pub orientation: Option<String>,
+    /// `COMPOSITE`: the plies.
+    pub composite: Option<InpComposite>,
     /// Line of the keyword.
     pub line: usize,
+}
+
+impl InpSolidSection {
+    /// The material name its elements' block carries: the material's, or
+    /// `composite_<ELSET>` for a composite section.
+    pub fn block_material(&self) -> String {
+        match self.composite {
+            Some(_) => format!("composite_{}", self.elset),
+            None => self.material.clone(),
+        }
+    }
+}
+
+/// `*SOLID SECTION, COMPOSITE [, ORIENTATION=] [, STACK DIRECTION=1|2|3]
+/// [, LAYUP=]`: the plies, bottom (negative stack direction) to top, one
+/// data line each.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpComposite {
+    /// `STACK DIRECTION=` (1, 2 or 3: the element's natural direction
+    /// the plies stack along; default 3).
+    pub stack_direction: usize,
+    /// `LAYUP=`, as written (a name, unused).
+    pub layup: Option<String>,
+    /// The section's `ORIENTATION=`: its index in [`InpDeck::orientations`]
+    /// (resolved when the deck is read).
+    pub orientation: Option<usize>,
+    /// The plies, bottom to top.
+    pub plies: Vec<InpPly>,
+}
+
+/// A ply of a composite solid section: `thickness, number of integration
+/// points, material, orientation, ply name`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InpPly {
+    /// Relative thickness (> 0; normalised over the plies).
+    pub thickness: f64,
+    /// Integration points through the ply (default 3; 1 to 5).
+    pub points: usize,
+    /// Material name, as spelt in its `*MATERIAL` (resolved when the deck
+    /// is read).
+    pub material: String,
+    /// The ply's axes.
+    pub axes: InpPlyAxes,
+    /// Ply name, if given.
+    pub name: Option<String>,
+    /// Line of the data line.
+    pub line: usize,
+}
+
+/// The axes of a ply of a composite section.
+#[derive(Debug, Clone, PartialEq)]
+pub enum InpPlyAxes {
+    /// No orientation field: the section's `ORIENTATION=`, else the global
+    /// axes.
+    Section,
+    /// An `*ORIENTATION`.
+    Named {
+        /// As spelt in the `*ORIENTATION` (once the deck is read).
+        name: String,
+        /// Its index in [`InpDeck::orientations`] (resolved when the deck
+        /// is read).
+        index: usize,
+    },
+    /// An angle in degrees about axis 3 of the section's orientation (the
+    /// global z without one), positive from its axis 1 towards its axis 2.
+    Angle(f64),
 }
 
 /// A `*COHESIVE SECTION`.
@@ -498,8 +567,12 @@ pub struct InpDeck {
     /// `*ORIENTATION`s (rectangular and cylindrical systems).
     pub orientations: Vec<InpOrientation>,
     /// Orientation of each mesh block (index-aligned with `mesh.blocks`):
-    /// its index in `orientations`, from `*SOLID SECTION, ORIENTATION=`.
+    /// its index in `orientations`, from `*SOLID SECTION, ORIENTATION=`
+    /// (`None` for a composite section's block, whose plies carry theirs).
     pub block_orientations: Vec<Option<usize>>,
+    /// Composite section of each mesh block (index-aligned with
+    /// `mesh.blocks`): its index in `solid_sections`.
+    pub block_composites: Vec<Option<usize>>,
     /// `*AMPLITUDE`s, in input order.
     pub amplitudes: Vec<InpAmplitude>,
     /// `*INITIAL CONDITIONS, TYPE=TEMPERATURE` and `*TEMPERATURE` data

@@ -153,8 +153,8 @@ pub const KEYWORDS: &[Keyword] = &[
     },
     Keyword {
         names: &["SOLID SECTION"],
-        parameters: r#"`ELSET=`, `MATERIAL=`, `ORIENTATION=`"#,
-        notes: r#"a damage material in a `*SOLID SECTION` is an error"#,
+        parameters: r#"`ELSET=`, `MATERIAL=`, `ORIENTATION=`; `COMPOSITE` with `STACK DIRECTION=1|2|3` (default 3), `LAYUP=` (kept, unused) and a data line per ply, bottom to top: `thickness, points (default 3, 1-5), material, orientation name or angle, ply name`"#,
+        notes: r#"a damage material in a `*SOLID SECTION` is an error. [Composite sections](#composite-solid-sections): C3D8, C3D20, C3D20R, C3D27 only, integrated ply by ply with Gauss-Legendre points (Abaqus: Simpson); `tests/composite_section.rs`: [A B; B D] of a 2 x 2 C3D20 plate with one element through all plies within 1e-5 of CLT"#,
         reader: Reader::SolidSection,
     },
     Keyword {

@@ -216,7 +216,9 @@ impl Parser<'_> {
         Ok(())
     }
 
-    /// `*SOLID SECTION, ELSET=, MATERIAL= [, ORIENTATION=]` (resolved in
+    /// `*SOLID SECTION, ELSET=, MATERIAL= [, ORIENTATION=]`, or `*SOLID
+    /// SECTION, COMPOSITE, ELSET= [, ORIENTATION=] [, STACK DIRECTION=] [,
+    /// LAYUP=]` with a data line per ply (resolved in
     /// [`Parser::assign_sections`]).
     pub(super) fn solid_section(
         &mut self,
@@ -226,13 +228,45 @@ impl Parser<'_> {
     ) -> Result<(), InpError> {
         let kw = "SOLID SECTION";
         self.model_data_only(line, kw)?;
-        self.check_params(line, kw, params, &["ELSET", "MATERIAL", "ORIENTATION"])?;
+        self.check_params(
+            line,
+            kw,
+            params,
+            &[
+                "ELSET",
+                "MATERIAL",
+                "ORIENTATION",
+                "COMPOSITE",
+                "STACK DIRECTION",
+                "LAYUP",
+            ],
+        )?;
         let elset = self.required(line, kw, params, "ELSET")?;
-        let material = self.required(line, kw, params, "MATERIAL")?;
         let orientation = match Self::param(params, "ORIENTATION") {
             None => None,
             Some(_) => Some(self.required(line, kw, params, "ORIENTATION")?),
         };
+        if Self::param(params, "COMPOSITE").is_some() {
+            let composite = self.composite_section(line, params, data)?;
+            self.deck.solid_sections.push(InpSolidSection {
+                elset,
+                material: String::new(),
+                orientation,
+                composite: Some(composite),
+                line,
+            });
+            return Ok(());
+        }
+        for p in ["STACK DIRECTION", "LAYUP"] {
+            if Self::param(params, p).is_some() {
+                return Err(self.invalid(
+                    line,
+                    kw,
+                    format!("{p}= is a parameter of a composite section: add COMPOSITE (and a data line per ply), or remove it"),
+                ));
+            }
+        }
+        let material = self.required(line, kw, params, "MATERIAL")?;
         if data.len() > 1 {
             return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
         }
@@ -240,9 +274,127 @@ impl Parser<'_> {
             elset,
             material,
             orientation,
+            composite: None,
             line,
         });
         Ok(())
+    }
+
+    /// The parameters and ply lines of `*SOLID SECTION, COMPOSITE`: each
+    /// line `thickness, points (default 3), material, orientation name or
+    /// angle (optional), ply name (optional)`.
+    fn composite_section(
+        &self,
+        line: usize,
+        params: &Params,
+        data: &[(usize, &[&str], bool)],
+    ) -> Result<InpComposite, InpError> {
+        let kw = "SOLID SECTION";
+        if let Some((_, Some(v))) = Self::param(params, "COMPOSITE") {
+            return Err(self.bad_param(line, kw, format!("COMPOSITE={v}"), "COMPOSITE (no value)"));
+        }
+        if Self::param(params, "MATERIAL").is_some() {
+            return Err(self.invalid(
+                line,
+                kw,
+                "a composite section takes no MATERIAL=: each ply's data line names its material (`thickness, points, material, orientation, ply name`)",
+            ));
+        }
+        let stack_direction = match Self::param(params, "STACK DIRECTION") {
+            None => 3,
+            Some((_, v)) => match v.as_deref().map(str::trim) {
+                Some("1") => 1,
+                Some("2") => 2,
+                Some("3") => 3,
+                v => {
+                    return Err(self.bad_param(
+                        line,
+                        kw,
+                        format!("STACK DIRECTION={}", v.unwrap_or("")),
+                        "STACK DIRECTION=1, 2 or 3 (the element's natural direction the plies stack along; default 3); ORIENTATION is not supported",
+                    ))
+                }
+            },
+        };
+        let layup = Self::param(params, "LAYUP").and_then(|(_, v)| v.clone());
+        if data.is_empty() {
+            return Err(self.invalid(
+                line,
+                kw,
+                "a composite section needs a data line per ply, bottom to top: `thickness, number of integration points, material, orientation, ply name`",
+            ));
+        }
+        let mut plies = Vec::with_capacity(data.len());
+        for &(dl, f, _) in data {
+            let field = |i: usize| f.get(i).map(|s| s.trim()).filter(|s| !s.is_empty());
+            if f.len() > 5 {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    format!("a ply line has at most 5 fields (`thickness, number of integration points, material, orientation, ply name`), not {}", f.len()),
+                ));
+            }
+            let t = field(0)
+                .ok_or_else(|| self.invalid(dl, kw, "the ply's thickness (field 1) is missing"))?;
+            let thickness = self.float(dl, kw, "ply thickness", t)?;
+            if thickness <= 0.0 {
+                return Err(self.invalid(
+                    dl,
+                    kw,
+                    format!("ply thickness {thickness} must be positive (thicknesses are relative: they are normalised to the element's thickness)"),
+                ));
+            }
+            let points = match field(1) {
+                None => 3,
+                Some(n) => match n.parse::<usize>() {
+                    Ok(n) if (1..=5).contains(&n) => n,
+                    _ => {
+                        return Err(InpError::BadNumber {
+                            file: self.file.into(),
+                            line: dl,
+                            keyword: kw.into(),
+                            what: "number of integration points through the ply".into(),
+                            text: n.into(),
+                            expected: "integer from 1 to 5 (default 3)",
+                        })
+                    }
+                },
+            };
+            let material = field(2)
+                .ok_or_else(|| {
+                    self.invalid(
+                        dl,
+                        kw,
+                        "the ply's material (field 3) is missing: `thickness, number of integration points, material, orientation, ply name`",
+                    )
+                })?
+                .to_string();
+            let axes = match field(3) {
+                None => InpPlyAxes::Section,
+                Some(o) => match o.replace(['d', 'D'], "e").parse::<f64>() {
+                    Ok(a) if a.is_finite() => InpPlyAxes::Angle(a),
+                    // a name: resolved with the other names
+                    _ => InpPlyAxes::Named {
+                        name: o.to_string(),
+                        index: usize::MAX,
+                    },
+                },
+            };
+            plies.push(InpPly {
+                thickness,
+                points,
+                material,
+                axes,
+                name: field(4).map(str::to_string),
+                line: dl,
+            });
+        }
+        Ok(InpComposite {
+            stack_direction,
+            layup,
+            orientation: None,
+            plies,
+        })
     }
 
     /// `*COHESIVE SECTION, ELSET=, MATERIAL=, RESPONSE=TRACTION SEPARATION

@@ -16,7 +16,8 @@
 //! `*MATERIAL, NAME=`, `*ELASTIC [, TYPE=ISOTROPIC | ENGINEERING CONSTANTS |
 //! ORTHO | TRACTION]`, `*DENSITY` (kept, noted as unused), `*DAMAGE INITIATION`,
 //! `*DAMAGE EVOLUTION`, `*DAMAGE STABILIZATION` (cohesive damage, below),
-//! `*SOLID SECTION, ELSET=, MATERIAL=`, `*COHESIVE SECTION, ELSET=,
+//! `*SOLID SECTION, ELSET=, MATERIAL=` (or `COMPOSITE` with a data line per
+//! ply, [`InpComposite`]), `*COHESIVE SECTION, ELSET=,
 //! MATERIAL=, RESPONSE=TRACTION SEPARATION [, THICKNESS=SPECIFIED]` (data
 //! line: the constitutive thickness, default 1), `*BOUNDARY [,
 //! OP=MOD|NEW] [, AMPLITUDE=]`, `*CLOAD [, OP=MOD|NEW] [, AMPLITUDE=]`

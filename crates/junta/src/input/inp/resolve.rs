@@ -186,6 +186,15 @@ impl Parser<'_> {
         }
         self.resolve_curve()?;
         let (refs, blocks, block_orientations) = self.build_blocks();
+        self.deck.block_composites = blocks
+            .iter()
+            .map(|b| {
+                self.deck
+                    .solid_sections
+                    .iter()
+                    .position(|s| s.composite.is_some() && s.block_material() == b.material)
+            })
+            .collect();
         self.into_deck(refs, blocks, block_orientations, dload_ids)
     }
 
@@ -236,28 +245,39 @@ impl Parser<'_> {
     /// orientation ([`Parser::assign_section`]). Solid sections first, then
     /// cohesive ones, each in input order.
     pub(super) fn assign_sections(&mut self) -> Result<(), InpError> {
+        for i in 0..self.deck.solid_sections.len() {
+            if self.deck.solid_sections[i].composite.is_some() {
+                self.resolve_composite(i)?;
+            }
+        }
         #[allow(clippy::type_complexity)]
-        let mut sections: Vec<(String, String, usize, bool, Option<String>)> = self
+        let mut sections: Vec<(String, String, usize, bool, Option<String>, bool)> = self
             .deck
             .solid_sections
             .iter()
             .map(|s| {
                 (
                     s.elset.clone(),
-                    s.material.clone(),
+                    s.block_material(),
                     s.line,
                     false,
-                    s.orientation.clone(),
+                    // a composite section's plies carry their axes
+                    s.orientation.clone().filter(|_| s.composite.is_none()),
+                    s.composite.is_some(),
                 )
             })
             .collect();
-        sections.extend(
-            self.deck
-                .cohesive_sections
-                .iter()
-                .map(|s| (s.elset.clone(), s.material.clone(), s.line, true, None)),
-        );
-        for (elset, material, line, cohesive, orientation) in sections {
+        sections.extend(self.deck.cohesive_sections.iter().map(|s| {
+            (
+                s.elset.clone(),
+                s.material.clone(),
+                s.line,
+                true,
+                None,
+                false,
+            )
+        }));
+        for (elset, material, line, cohesive, orientation, composite) in sections {
             let orientation = match orientation {
                 None => None,
                 Some(o) => Some(self.section_orientation(line, o)?),
@@ -271,6 +291,11 @@ impl Parser<'_> {
                 Some(&s) => s,
                 None => return Err(self.unknown_set(line, kw, "element set", &elset)),
             };
+            if composite {
+                self.check_composite_elements(set, line)?;
+                self.assign_section(set, &material, line, kw, &None)?;
+                continue;
+            }
             let m = self.section_material(line, kw, material)?;
             let mname = self.deck.materials[m].name.clone();
             if !cohesive && self.deck.materials[m].has_damage() {
@@ -281,6 +306,90 @@ impl Parser<'_> {
                 ));
             }
             self.assign_section(set, &mname, line, kw, &orientation)?;
+        }
+        Ok(())
+    }
+
+    /// A composite section's names: its orientation, each ply's material
+    /// (elastic, no damage) and orientation; an angle needs a rectangular
+    /// section orientation (or none).
+    fn resolve_composite(&mut self, i: usize) -> Result<(), InpError> {
+        let kw = "SOLID SECTION";
+        let s = self.deck.solid_sections[i].clone();
+        let mut c = s.composite.clone().expect("a composite section");
+        let index_of = |name: &str| {
+            self.deck
+                .orientations
+                .iter()
+                .position(|o| o.name == name)
+                .expect("resolved")
+        };
+        c.orientation = match &s.orientation {
+            None => None,
+            Some(o) => Some(index_of(&self.section_orientation(s.line, o.clone())?)),
+        };
+        for ply in &mut c.plies {
+            let m = self.section_material(ply.line, kw, ply.material.clone())?;
+            let mat = &self.deck.materials[m];
+            ply.material = mat.name.clone();
+            if mat.has_damage() {
+                return Err(self.invalid(
+                    ply.line,
+                    kw,
+                    format!("ply material `{}` has damage options (a cohesive material): a ply needs an elastic material (*ELASTIC, TYPE=ISOTROPIC, ENGINEERING CONSTANTS, ORTHO or ANISO)", mat.name),
+                ));
+            }
+            if matches!(mat.kind, InpMaterialKind::Traction(_)) {
+                return Err(self.invalid(
+                    ply.line,
+                    kw,
+                    format!("ply material `{}` is a cohesive (*ELASTIC, TYPE=TRACTION) material: a ply needs *ELASTIC, TYPE=ISOTROPIC, ENGINEERING CONSTANTS, ORTHO or ANISO", mat.name),
+                ));
+            }
+            match &mut ply.axes {
+                InpPlyAxes::Named { name, index } => {
+                    *name = self.section_orientation(ply.line, name.clone())?;
+                    *index = index_of(name);
+                }
+                InpPlyAxes::Angle(a) => {
+                    if let Some(o) = c
+                        .orientation
+                        .filter(|&o| self.deck.orientations[o].cylindrical)
+                    {
+                        return Err(self.invalid(
+                            ply.line,
+                            kw,
+                            format!("ply angle {a}: an angle is taken about axis 3 of the section's orientation, which must then be rectangular; `{}` is cylindrical: give the ply an *ORIENTATION name instead", self.deck.orientations[o].name),
+                        ));
+                    }
+                }
+                InpPlyAxes::Section => {}
+            }
+        }
+        self.deck.solid_sections[i].composite = Some(c);
+        Ok(())
+    }
+
+    /// A composite section holds the hexahedra C3D8, C3D20, C3D20R, C3D27.
+    fn check_composite_elements(&self, set: usize, line: usize) -> Result<(), InpError> {
+        for &e in &self.elsets[set].members {
+            let el = &self.elems[e];
+            let t = self.pre_blocks[el.pre_block].element_type;
+            if !matches!(t, "h8" | "h20" | "h20r" | "h27") {
+                let abaqus = match t {
+                    "h8i" => "C3D8I",
+                    "wedge6r" => "C3D6",
+                    "wedge15" => "C3D15",
+                    "inter8" => "COH3D8",
+                    "inter6" => "COH3D6",
+                    other => other,
+                };
+                return Err(self.invalid(
+                    line,
+                    "SOLID SECTION",
+                    format!("COMPOSITE: element {} is a {abaqus} element; a composite section is integrated ply by ply in hexahedra C3D8, C3D20, C3D20R or C3D27 only (not C3D8I, whose incompatible modes are not layered, nor wedges)", el.label),
+                ));
+            }
         }
         Ok(())
     }
