@@ -169,6 +169,16 @@ impl PlyFailureResult {
     }
 }
 
+/// `summary.json` `ply_failure`: each criterion by name (`linear`: with
+/// its first-ply-failure load factor).
+pub fn summary(results: &[PlyFailureResult], linear: bool) -> serde_json::Value {
+    let m: serde_json::Map<String, serde_json::Value> = results
+        .iter()
+        .map(|r| (r.name.clone(), r.to_json(linear)))
+        .collect();
+    serde_json::Value::Object(m)
+}
+
 fn mode_name(m: PlyFailureMode) -> &'static str {
     match m {
         PlyFailureMode::FibreTension => "fibre_tension",

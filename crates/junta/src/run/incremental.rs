@@ -646,11 +646,7 @@ fn finish(
         if !p.ply_criteria.is_empty() {
             // at the state the run ends on (no proportional load: no factor)
             let ply = crate::post::ply_failure::evaluate(model, u, state, step, &p.ply_criteria)?;
-            let m: serde_json::Map<String, serde_json::Value> = ply
-                .iter()
-                .map(|r| (r.name.clone(), r.to_json(false)))
-                .collect();
-            summary["ply_failure"] = serde_json::Value::Object(m);
+            summary["ply_failure"] = crate::post::ply_failure::summary(&ply, false);
         }
     }
     if let Some(u) = u.filter(|_| !p.probes.is_empty()) {

@@ -51,12 +51,8 @@ pub(crate) fn run_linear(
         }
         (res, None)
     };
-    for w in &res.report.warnings {
-        warnings.push(w.clone());
-    }
-    for n in &res.report.notes {
-        notes.push(n.clone());
-    }
+    warnings.extend(res.report.warnings.iter().cloned());
+    notes.extend(res.report.notes.iter().cloned());
     if res.free_residual > 1e-6 {
         warnings.push(format!(
             "equilibrium residual after the solve is {:.3e} (relative); the result has lost digits",
@@ -69,18 +65,7 @@ pub(crate) fn run_linear(
     let t_out = Instant::now();
     let interfaces = crate::post::fields::interface_results(&p.model, &res.u, &res.state)?;
     let mut cells = crate::post::fields::cell_results(&p.model, &res.u, &res.state)?;
-    let ply = crate::post::ply_failure::evaluate(
-        &p.model,
-        &res.u,
-        &res.state,
-        junta_core::element::StepInfo::default(),
-        &p.ply_criteria,
-    )?;
-    for r in &ply {
-        cells
-            .extra
-            .push((format!("{}_index", r.name), r.cell_index.clone()));
-    }
+    let ply = ply_failure_cells(p, &res, &mut cells)?;
     if let Some(dir) = dir {
         write_result_files(dir, p, &res, &cells, &interfaces)?;
         notes.extend(prints.write(dir)?);
@@ -149,11 +134,7 @@ pub(crate) fn run_linear(
     });
     let mut summary = summary;
     if !ply.is_empty() {
-        let m: serde_json::Map<String, serde_json::Value> = ply
-            .iter()
-            .map(|r| (r.name.clone(), r.to_json(true)))
-            .collect();
-        summary["ply_failure"] = serde_json::Value::Object(m);
+        summary["ply_failure"] = crate::post::ply_failure::summary(&ply, true);
     }
     crate::post::constraint_force::add_generalized_reactions(
         &mut summary,
@@ -204,6 +185,24 @@ fn reference_entry(p: &Prepared, residual: &[f64]) -> Result<serde_json::Value> 
 }
 
 /// `results.vtu`, the interface files and the fractions of a linear run.
+/// The `[[ply_failure]]` criteria at the solution, their indices added to
+/// the cell data.
+fn ply_failure_cells(
+    p: &Prepared,
+    res: &junta_solvers::linear_static::LinearStaticResult,
+    cells: &mut crate::post::fields::CellResults,
+) -> Result<Vec<crate::post::ply_failure::PlyFailureResult>> {
+    let step = junta_core::element::StepInfo::default();
+    let ply =
+        crate::post::ply_failure::evaluate(&p.model, &res.u, &res.state, step, &p.ply_criteria)?;
+    for r in &ply {
+        cells
+            .extra
+            .push((format!("{}_index", r.name), r.cell_index.clone()));
+    }
+    Ok(ply)
+}
+
 fn write_result_files(
     dir: &Path,
     p: &Prepared,
