@@ -575,6 +575,15 @@ fn the_laminate_as_a_scene_and_as_a_ply_by_ply_deck() {
     );
 }
 
+/// `k = sqrt(b_rr / b_tt)` of a 0-degree ply curved about its axis 2 (1
+/// the hoop, 3 the radius) in plane strain along 2: the compliances `b_ij
+/// = S_ij - S_i2 S_j2 / S_22` of T300/5208 (nu23 = 0.4).
+fn hoop_ply_k() -> f64 {
+    let (s11, s22, s33) = (1.0 / E1, 1.0 / E2, 1.0 / E2);
+    let (s12, s23) = (-NU12 / E1, -0.4 / E2);
+    ((s33 - s23 * s23 / s22) / (s11 - s12 * s12 / s22)).sqrt()
+}
+
 /// A quarter of a ring of 0-degree plies (fibres around the hoop) under an
 /// internal pressure, axially held (plane strain): the cylindrically
 /// orthotropic thick tube (Lekhnitskii, Anisotropic Plates, 1968, sec. 30;
@@ -639,11 +648,7 @@ type = "cholesky"
     let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
     let solid = r.frame.unwrap().solid;
     // plane-strain compliances: 1 hoop, 2 axis, 3 radius
-    let (s11, s22, s33) = (1.0 / E1, 1.0 / E2, 1.0 / E2);
-    let (s12, s23) = (-NU12 / E1, -0.4 / E2);
-    let b_tt = s11 - s12 * s12 / s22;
-    let b_rr = s33 - s23 * s23 / s22;
-    let k = (b_rr / b_tt).sqrt();
+    let k = hoop_ply_k();
     // sigma_r(a) = -p, sigma_r(b) = 0
     let m = nalgebra::Matrix2::new(
         a.powf(k - 1.0),
@@ -723,9 +728,7 @@ fixed = ["y"]
     let sim = Simulation::from_model(model, AnalysisSpec::default(), "cholesky").unwrap();
     let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
     let solid = r.frame.unwrap().solid;
-    let (s11, s22, s33) = (1.0 / E1, 1.0 / E2, 1.0 / E2);
-    let (s12, s23) = (-NU12 / E1, -0.4 / E2);
-    let k = ((s33 - s23 * s23 / s22) / (s11 - s12 * s12 / s22)).sqrt();
+    let k = hoop_ply_k();
     // A, B, E from sigma_r(a) = 0, sigma_r(b) = 0, -int psi dr = m
     let solve = |m: f64| {
         let int = |p: f64| (b.powf(p) - a.powf(p)) / p;
