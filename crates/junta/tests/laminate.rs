@@ -1013,3 +1013,137 @@ fn same_on_box_and_gmsh(element: &str, quadratic: bool) {
     assert_eq!(compared, nb.len());
     assert!(diff < 1e-9 * scale, "{:.3e}", diff / scale);
 }
+
+/// Ply failure through an incremental run. A `[0/90]s` plate stretched
+/// along `x` with its `y` sides held (sliding) is in a uniform state that
+/// CLT gives exactly, free edges nowhere: every ply has `eps_x = eps`,
+/// `eps_y = gamma_xy = 0` and is in plane stress. The 90 plies then carry
+/// `(sigma_1, sigma_2) = (Q12, Q22) eps` and fail by maximum stress at
+/// `eps = Yt / Q22`, by Tsai-Wu at the root of its quadratic (as in
+/// `first_ply_failure_of_a_cross_ply_matches_clt`). The run takes 7
+/// increments to twice the maximum-stress failure; the first failure's load
+/// factor, interpolated in the inverse strength ratio (exact for a linear
+/// response), must be CLT's, and `ply_failure.csv` and the frames carry
+/// the indices of every increment, across a restart after the third.
+#[test]
+fn first_ply_failure_of_an_incremental_run_matches_clt() {
+    let nu21 = NU12 * E2 / E1;
+    let d = 1.0 - NU12 * nu21;
+    let (q22, q12) = (E2 / d, NU12 * E2 / d);
+    let (xt, xc, yt, yc) = (1500.0f64, 1500.0f64, 40.0f64, 246.0f64);
+    let max_stress = yt / q22;
+    let (f1, f2) = (1.0 / xt - 1.0 / xc, 1.0 / yt - 1.0 / yc);
+    let (f11, f22) = (1.0 / (xt * xc), 1.0 / (yt * yc));
+    let f12 = -0.5 * (f11 * f22).sqrt();
+    let a = f11 * q12 * q12 + f22 * q22 * q22 + 2.0 * f12 * q12 * q22;
+    let b = f1 * q12 + f2 * q22;
+    let tsai_wu = (-b + (b * b + 4.0 * a).sqrt()) / (2.0 * a);
+    let length = 4.0;
+    let stretch = 1e-3; // the load factor's unit: eps = 1e-3 lambda
+    let end = 2.0 * max_stress / stretch;
+    let text = format!(
+        r#"
+{T300}
+[laminate]
+base = {{ type = "rectangle", size = [{length}, {length}], divisions = [2, 2] }}
+element = "h20"
+material = "t300"
+ply_thickness = {T}
+layup = "[0/90]s"
+[[boundary]]
+set = "x0"
+fixed = ["x"]
+[[boundary]]
+set = "x1"
+displacement = {{ x = {dx} }}
+[[boundary]]
+set = "y0"
+fixed = ["y"]
+[[boundary]]
+set = "y1"
+fixed = ["y"]
+[[boundary]]
+set = "bottom"
+fixed = ["z"]
+[analysis]
+type = "static"
+steps = [{end}]
+[analysis.newton]
+initial_increment = {inc}
+max_increment = {inc}
+[[ply_failure]]
+type = "ply_max_stress"
+{STRENGTHS}
+[[ply_failure]]
+type = "tsai_wu"
+{STRENGTHS}
+"#,
+        dx = stretch * length,
+        inc = 1.0 / 7.0,
+    );
+    let dir = std::env::temp_dir().join(format!("junta_ply_history_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = dir.join("plate.toml");
+    std::fs::write(&input, &text).unwrap();
+    // three increments (before the failure), then a restart to the end:
+    // the course of the criteria crosses the restart
+    let first = junta::RunSettings {
+        max_increments: Some(3),
+        ..junta::RunSettings::into_dir(&dir)
+    };
+    Simulation::from_file(&input)
+        .unwrap()
+        .run(&first, &mut [])
+        .unwrap();
+    let restart = junta::run::simulation::read_checkpoint(&dir, false)
+        .unwrap()
+        .unwrap();
+    let r = junta::run::simulation::restart(
+        &dir,
+        restart,
+        &junta::RunSettings::into_dir(&dir),
+        &mut [],
+    )
+    .unwrap();
+    let s = r.summary.section("ply_failure").expect("ply_failure");
+    for (name, expected) in [("ply_max_stress", max_stress), ("tsai_wu", tsai_wu)] {
+        let f = &s[name]["first_failure"];
+        let strain = f["load_factor"].as_f64().unwrap() * stretch;
+        eprintln!(
+            "{name}: first failure at eps {strain:.6e} (CLT {expected:.6e}), increment {}",
+            f["increment"]
+        );
+        assert!(
+            (strain - expected).abs() < 1e-6 * expected,
+            "{name}: {strain} vs {expected}"
+        );
+        assert_eq!(f["interpolated"].as_bool(), Some(true));
+        let block = f["weakest"]["block"].as_str().unwrap();
+        assert!(block == "ply_2" || block == "ply_3", "{block}");
+        // 7 increments to twice the failure: it fails in the 4th
+        assert_eq!(f["increment"].as_u64(), Some(4));
+    }
+    // one line per increment; the maximum-stress index grows with the load
+    let csv = std::fs::read_to_string(dir.join("ply_failure.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        "increment,step,load_factor,ply_max_stress_max_index,ply_max_stress_strength_ratio,tsai_wu_max_index,tsai_wu_strength_ratio"
+    );
+    assert_eq!(lines.len(), 8);
+    let last: Vec<f64> = lines[7].split(',').map(|v| v.parse().unwrap()).collect();
+    assert!(
+        (last[3] - 2.0).abs() < 1e-6,
+        "index at twice the failure: {}",
+        last[3]
+    );
+    let frame = std::fs::read_dir(dir.join("frames"))
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .find(|e| e.file_name().to_string_lossy().starts_with("results_"))
+        .unwrap();
+    let vtu = std::fs::read_to_string(frame.path()).unwrap();
+    assert!(vtu.contains("Name=\"tsai_wu_index\""));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -7,6 +7,8 @@
 //!   negative pivots of the tangent, sign of the load-factor increment, the
 //!   constraint of the increment and the displacement conjugate to the
 //!   applied forces, frictional dissipation);
+//! - [`PlyFailureCsv`]: `ply_failure.csv`, the `[[ply_failure]]` criteria's
+//!   largest index and smallest strength ratio per converged increment;
 //! - [`VtuFrames`]: `frames/results_NNNN.vtu`, `frames/interfaces_NNNN.vtu`,
 //!   `frames/interface_points_NNNN.vtu` and `results.pvd` (ParaView plays
 //!   the crack growing), every `[output] every` increments, at separation,
@@ -28,6 +30,7 @@ use crate::output::deck_print;
 use crate::post::curve::{read_reference_curve, CurveRow};
 use crate::post::curve_columns::curve_header;
 use crate::post::fields::InterfaceResults;
+use crate::post::ply_failure::{PlyCriterionUse, PlyFailureResult};
 use crate::prepare::Prepared;
 use crate::run::checkpoint::{read_restart, write_atomic, InputHash, RestartFile};
 use crate::run::observer::{Flow, Increment, RunEnd, RunInfo, RunLog, Writer};
@@ -79,6 +82,70 @@ impl Writer for CurveCsv {
     }
 }
 
+/// `ply_failure.csv`: per converged increment, each `[[ply_failure]]`
+/// criterion's largest index and smallest strength ratio (no file without
+/// criteria).
+pub struct PlyFailureCsv {
+    path: PathBuf,
+    names: Vec<String>,
+    file: Option<std::fs::File>,
+}
+
+impl PlyFailureCsv {
+    /// Write `dir/ply_failure.csv` for the criteria `criteria`.
+    pub fn new(dir: &Path, criteria: &[PlyCriterionUse]) -> Self {
+        PlyFailureCsv {
+            path: dir.join("ply_failure.csv"),
+            names: criteria.iter().map(|c| c.name.clone()).collect(),
+            file: None,
+        }
+    }
+
+    /// The lines of an earlier run's file up to `increment` (a restart
+    /// keeps the rows up to its checkpoint).
+    fn kept_lines(&self, increment: usize) -> String {
+        let old = std::fs::read_to_string(&self.path).unwrap_or_default();
+        old.lines()
+            .skip(1)
+            .filter(|l| {
+                l.split(',')
+                    .next()
+                    .and_then(|i| i.parse::<usize>().ok())
+                    .is_some_and(|i| i <= increment)
+            })
+            .map(|l| format!("{l}\n"))
+            .collect()
+    }
+}
+
+impl Writer for PlyFailureCsv {
+    fn on_start(&mut self, _run: &RunInfo<'_>, log: &RunLog) -> Result<()> {
+        if self.names.is_empty() {
+            return Ok(());
+        }
+        let mut text = crate::post::ply_failure_history::csv_header(&self.names);
+        if !log.rows.is_empty() {
+            text += &self.kept_lines(log.start_increment);
+        }
+        let path = &self.path;
+        std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))?;
+        let file = std::fs::OpenOptions::new()
+            .append(true)
+            .open(path)
+            .with_context(|| format!("cannot open {}", path.display()))?;
+        self.file = Some(file);
+        Ok(())
+    }
+    fn on_increment(&mut self, inc: &Increment<'_>, _log: &mut RunLog) -> Result<Flow> {
+        if let Some(f) = &mut self.file {
+            let line = crate::post::ply_failure_history::csv_line(inc.row, inc.ply_failure);
+            f.write_all(line.as_bytes())?;
+            f.flush()?;
+        }
+        Ok(Flow::Continue)
+    }
+}
+
 /// `frames/results_NNNN.vtu` of increment `increment`.
 fn frame_name(increment: usize) -> String {
     format!("frames/results_{increment:04}.vtu")
@@ -89,6 +156,8 @@ pub struct VtuFrames {
     dir: PathBuf,
     every: usize,
     enabled: bool,
+    /// The `[[ply_failure]]` criteria (their `NAME_index` cell data).
+    ply_criteria: Vec<PlyCriterionUse>,
 }
 
 impl VtuFrames {
@@ -98,7 +167,14 @@ impl VtuFrames {
             dir: dir.to_path_buf(),
             every: every.max(1),
             enabled: true,
+            ply_criteria: Vec::new(),
         }
+    }
+
+    /// With the ply failure indices of `criteria` as cell data.
+    pub fn with_ply_criteria(mut self, criteria: &[PlyCriterionUse]) -> Self {
+        self.ply_criteria = criteria.to_vec();
+        self
     }
 
     /// No frame at all (`[output] vtu = false`).
@@ -119,9 +195,11 @@ impl VtuFrames {
         u: &[f64],
         state: &StateStore,
         ifs: &[InterfaceResults],
+        ply: &[PlyFailureResult],
     ) -> Result<()> {
         let name = frame_name(step.increment);
-        let cells = crate::post::fields::cell_results_at(model, u, state, step)?;
+        let mut cells = crate::post::fields::cell_results_at(model, u, state, step)?;
+        crate::post::ply_failure::add_cell_data(ply, &mut cells);
         crate::output::vtu::write_vtu(&self.dir.join(&name), model, u, &cells)?;
         let tag = format!("_{:04}", step.increment);
         crate::output::vtu::write_interface_vtu_named(
@@ -157,6 +235,7 @@ impl Writer for VtuFrames {
                 inc.u,
                 inc.state,
                 inc.interfaces,
+                inc.ply_failure,
             )?;
         }
         Ok(Flow::Continue)
@@ -175,6 +254,8 @@ impl Writer for VtuFrames {
         if !end.converged_here || log.frames.last().map(|f| &f.1) == Some(&frame_name(last)) {
             return Ok(());
         }
+        let ply =
+            crate::post::ply_failure::evaluate(end.model, u, state, end.step, &self.ply_criteria)?;
         self.write(
             end.model,
             end.step,
@@ -182,6 +263,7 @@ impl Writer for VtuFrames {
             u,
             state,
             end.interfaces,
+            &ply,
         )
     }
 }
@@ -227,6 +309,7 @@ impl Writer for Checkpoints {
             scene_text: self.scene_text.clone(),
             finished: None,
             external_force: log.external_force.clone(),
+            ply_failure: log.ply_failure.clone(),
         };
         write_atomic(
             &self.dir.join("checkpoint.json"),
@@ -508,6 +591,8 @@ fn write_curve_svg(
 pub struct Standard {
     /// `curve.csv`.
     pub curve: CurveCsv,
+    /// `ply_failure.csv`.
+    pub ply_failure: PlyFailureCsv,
     /// Print tables (decks).
     pub prints: PrintTables,
     /// VTU frames.
@@ -527,9 +612,10 @@ pub fn standard(
 ) -> Standard {
     Standard {
         curve: CurveCsv::new(dir),
+        ply_failure: PlyFailureCsv::new(dir, &p.ply_criteria),
         prints: PrintTables::new(dir, p, checkpoint),
         frames: if p.vtu {
-            VtuFrames::new(dir, p.every)
+            VtuFrames::new(dir, p.every).with_ply_criteria(&p.ply_criteria)
         } else {
             VtuFrames::disabled(dir)
         },
@@ -540,9 +626,10 @@ pub fn standard(
 
 impl Standard {
     /// The writers, in order.
-    pub(crate) fn writers(&mut self) -> [&mut dyn Writer; 5] {
+    pub(crate) fn writers(&mut self) -> [&mut dyn Writer; 6] {
         [
             &mut self.curve,
+            &mut self.ply_failure,
             &mut self.prints,
             &mut self.frames,
             &mut self.checkpoints,

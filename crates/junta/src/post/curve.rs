@@ -8,7 +8,7 @@ use std::path::Path;
 
 /// One row of `curve.csv`: one converged increment (its columns, and how
 /// a row is written: [`crate::post::curve_columns`]).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct CurveRow {
     /// Global index of the increment (1-based, converged increments only,
     /// counted across restarts).

@@ -169,6 +169,15 @@ impl PlyFailureResult {
     }
 }
 
+/// Each result's largest index per cell as the cell data `NAME_index`.
+pub fn add_cell_data(results: &[PlyFailureResult], cells: &mut crate::post::fields::CellResults) {
+    for r in results {
+        cells
+            .extra
+            .push((format!("{}_index", r.name), r.cell_index.clone()));
+    }
+}
+
 /// `summary.json` `ply_failure`: each criterion by name (`linear`: with
 /// its first-ply-failure load factor).
 pub fn summary(results: &[PlyFailureResult], linear: bool) -> serde_json::Value {
@@ -189,7 +198,8 @@ fn mode_name(m: PlyFailureMode) -> &'static str {
     }
 }
 
-/// Every criterion of `uses` at the state `u`, `state` of `step`.
+/// Every criterion of `uses` at the state `u`, `state` of `step` (none
+/// when `uses` is empty).
 pub fn evaluate(
     model: &Model,
     u: &[f64],
@@ -197,6 +207,9 @@ pub fn evaluate(
     step: StepInfo,
     uses: &[PlyCriterionUse],
 ) -> Result<Vec<PlyFailureResult>> {
+    if uses.is_empty() {
+        return Ok(Vec::new());
+    }
     let mut out: Vec<PlyFailureResult> = uses
         .iter()
         .map(|c| PlyFailureResult {

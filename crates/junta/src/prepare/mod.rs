@@ -563,9 +563,6 @@ fn prepare_scene(
         peak_bytes: limits::peak_resident_bytes(),
     };
     let ply_criteria = crate::post::ply_failure::from_scene(sf, &model)?;
-    if !ply_criteria.is_empty() && analysis.kind.is_incremental() {
-        notes.push("[[ply_failure]] in an incremental run: summary.json ply_failure holds the indices of the state the run ends on (no first-ply-failure load factor, which only a linear run's proportional load gives)".into());
-    }
     let temperature = thermal_program(input, sf, &mut analysis, &mut model, &mut notes)?;
     fatigue_program(input, sf, &mut analysis, &mut model, &mut notes)?;
     let (mut key, mut table) = scene::solver_table(sf);

@@ -42,6 +42,10 @@ pub struct RestartFile {
     /// older runs.
     #[serde(default)]
     pub external_force: Vec<f64>,
+    /// The ply failure criteria's course so far (empty in files of older
+    /// runs).
+    #[serde(default)]
+    pub ply_failure: crate::post::ply_failure_history::PlyFailureHistory,
 }
 
 /// When the first interface point failed.

@@ -137,6 +137,9 @@ struct Engine<'a> {
     stop: Option<Stop>,
     /// How the crack front is measured (`None` without interfaces).
     crack: Option<CrackProbe>,
+    /// The scene's `[[ply_failure]]` criteria, evaluated after every
+    /// increment.
+    ply_criteria: &'a [crate::post::ply_failure::PlyCriterionUse],
     /// `u` of the last converged increment (the left end of the external
     /// work's trapezoid; `self.log.external_force` holds its forces).
     prev_u: Vec<f64>,
@@ -206,6 +209,8 @@ impl Engine<'_> {
         };
         let ifs = crate::post::fields::interface_results_at(model, v.u, v.state, step)?;
         let row = self.row_of(v, &ifs)?;
+        let ply = crate::post::ply_failure::evaluate(model, v.u, v.state, step, self.ply_criteria)?;
+        self.log.ply_failure.record(&row, &ply);
         self.log.rows.push(row.clone());
         self.last_u.clear();
         self.last_u.extend_from_slice(v.u);
@@ -222,6 +227,7 @@ impl Engine<'_> {
             state: v.state,
             interfaces: &ifs,
             step,
+            ply_failure: &ply,
             view: v,
         };
         let mut flow = Flow::Continue;
@@ -462,6 +468,7 @@ pub(crate) fn run_incremental(
                 start_increment: start,
                 last_increment: start,
                 external_force: r.external_force,
+                ply_failure: r.ply_failure,
                 ..RunLog::default()
             };
             (Some(r.checkpoint), log)
@@ -493,6 +500,7 @@ pub(crate) fn run_incremental(
         inc_reached: None,
         stop: None,
         crack,
+        ply_criteria: &p.ply_criteria,
         prev_u,
     };
     let result = drive(
@@ -644,9 +652,13 @@ fn finish(
         interfaces = crate::post::fields::interface_results_at(model, u, state, step)?;
         summary["interfaces"] = crate::output::summary::interface_summary(model, &interfaces);
         if !p.ply_criteria.is_empty() {
-            // at the state the run ends on (no proportional load: no factor)
+            // at the state the run ends on, with each criterion's first failure
             let ply = crate::post::ply_failure::evaluate(model, u, state, step, &p.ply_criteria)?;
             summary["ply_failure"] = crate::post::ply_failure::summary(&ply, false);
+            for r in &ply {
+                summary["ply_failure"][&r.name]["first_failure"] =
+                    json!(log.ply_failure.first_failure(&r.name));
+            }
         }
     }
     if let Some(u) = u.filter(|_| !p.probes.is_empty()) {

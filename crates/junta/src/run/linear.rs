@@ -195,11 +195,7 @@ fn ply_failure_cells(
     let step = junta_core::element::StepInfo::default();
     let ply =
         crate::post::ply_failure::evaluate(&p.model, &res.u, &res.state, step, &p.ply_criteria)?;
-    for r in &ply {
-        cells
-            .extra
-            .push((format!("{}_index", r.name), r.cell_index.clone()));
-    }
+    crate::post::ply_failure::add_cell_data(&ply, cells);
     Ok(ply)
 }
 

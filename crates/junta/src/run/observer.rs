@@ -154,6 +154,8 @@ pub struct RunLog {
     /// of the next increment's trapezoid for `external_work`, kept in
     /// `checkpoint.json` for a restart.
     pub external_force: Vec<f64>,
+    /// The `[[ply_failure]]` criteria's last increment and first failure.
+    pub ply_failure: crate::post::ply_failure_history::PlyFailureHistory,
 }
 
 /// A converged increment, as the observers see it.
@@ -174,6 +176,9 @@ pub struct Increment<'a> {
     pub interfaces: &'a [InterfaceResults],
     /// The increment as the elements saw it.
     pub step: StepInfo,
+    /// The `[[ply_failure]]` criteria at this increment (empty without
+    /// them).
+    pub ply_failure: &'a [crate::post::ply_failure::PlyFailureResult],
     pub(crate) view: &'a IncrementView<'a>,
 }
 
