@@ -43,6 +43,29 @@ pub struct Model {
     /// The cycle program of a high-cycle fatigue run, or `None` (no
     /// cycles: every increment has `delta_cycles = 0`).
     pub fatigue: Option<FatigueProgram>,
+    /// An assembler built before the run (the solver choice needs its
+    /// pattern), handed to the first [`Model::assembler`] call.
+    kept_assembler: KeptAssembler,
+}
+
+/// An assembler kept for the run's first [`Model::assembler`] call, with
+/// the fingerprint of the dof map and connectivity it was built from (a
+/// model changed since gets a new one). A clone of the model starts
+/// without it.
+#[derive(Default)]
+struct KeptAssembler(std::sync::Mutex<Option<(u64, Assembler)>>);
+
+impl Clone for KeptAssembler {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl std::fmt::Debug for KeptAssembler {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let kept = self.0.lock().map(|k| k.is_some()).unwrap_or(false);
+        write!(f, "KeptAssembler({kept})")
+    }
 }
 
 /// High-cycle fatigue as a program quantity, like the temperature: the
@@ -141,6 +164,7 @@ impl Model {
             temperature: None,
             temperature_steps: Vec::new(),
             fatigue: None,
+            kept_assembler: KeptAssembler::default(),
         })
     }
 
@@ -274,6 +298,10 @@ impl Model {
     /// [`crate::distributed::partition_elements`]): every rank must then
     /// call each of its assemblies.
     pub fn assembler(&self) -> Assembler {
+        if let Some(mut asm) = self.take_kept_assembler() {
+            asm.set_temperature(self.temperature.clone());
+            return asm;
+        }
         let mut asm = match crate::distributed::collective() {
             Some(c) => Assembler::for_rank(
                 &self.mesh,
@@ -285,6 +313,52 @@ impl Model {
         };
         asm.set_temperature(self.temperature.clone());
         asm
+    }
+
+    /// Keep `asm` (built by [`Model::assembler`] for a look at its
+    /// pattern) for the next [`Model::assembler`] call, so that the pattern
+    /// and colouring are built once: the automatic solver choice analyses
+    /// the pattern before the run assembles into it. The next call takes
+    /// it if the dof map and the connectivity are still those it was built
+    /// from, else builds a new one.
+    pub fn keep_assembler(&self, asm: Assembler) {
+        let fingerprint = self.pattern_fingerprint();
+        if let Ok(mut k) = self.kept_assembler.0.lock() {
+            *k = Some((fingerprint, asm));
+        }
+    }
+
+    /// Whether an assembler is kept for the next [`Model::assembler`] call.
+    pub fn has_kept_assembler(&self) -> bool {
+        self.kept_assembler
+            .0
+            .lock()
+            .map(|k| k.is_some())
+            .unwrap_or(false)
+    }
+
+    /// The kept assembler, if any and still valid (taken: one use).
+    fn take_kept_assembler(&self) -> Option<Assembler> {
+        let (fingerprint, asm) = self.kept_assembler.0.lock().ok()?.take()?;
+        (fingerprint == self.pattern_fingerprint()).then_some(asm)
+    }
+
+    /// A hash of what the pattern and colouring depend on: the equation of
+    /// every dof, the dependents of linear equations and every block's
+    /// connectivity, and the ranks the run is spread over.
+    fn pattern_fingerprint(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        self.dofs.eq.hash(&mut h);
+        self.dofs.dependents.dofs.hash(&mut h);
+        for b in &self.mesh.blocks {
+            b.shape.num_nodes().hash(&mut h);
+            b.connectivity.hash(&mut h);
+        }
+        crate::distributed::collective()
+            .map(|c| (c.size(), c.rank()))
+            .hash(&mut h);
+        h.finish()
     }
 
     /// The assembler of every element in this process, even in a run over

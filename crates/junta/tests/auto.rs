@@ -87,3 +87,37 @@ fn auto_keeps_the_direct_solver_on_a_plate_and_orders_it_once() {
     let t = r.summary.timings.unwrap();
     assert!(t.choose_solver > 0.0, "{t:?}");
 }
+
+/// The pattern the choice analysed is the one the run assembles into:
+/// `decide` keeps its assembler in the model, the next `Model::assembler`
+/// takes it (the same pattern and colouring a fresh build gives, once),
+/// and a model whose dof map changed in between gets a new one of its own
+/// size.
+#[test]
+fn the_choice_hands_its_pattern_to_the_run() {
+    let sim = Simulation::from_scene_text(&cube("h8", 4), "cube.toml").unwrap();
+    let model = sim.model().clone();
+    assert!(!model.has_kept_assembler(), "a clone starts without one");
+    junta::prepare::auto::decide_above(&model, true, 0);
+    assert!(model.has_kept_assembler());
+    let kept = model.assembler();
+    assert!(!model.has_kept_assembler(), "taken once");
+    let fresh = junta::core::assembly::Assembler::new(&model.mesh, &model.dofs);
+    assert_eq!(kept.pattern.col_ptr, fresh.pattern.col_ptr);
+    assert_eq!(kept.pattern.row_idx, fresh.pattern.row_idx);
+    assert_eq!(kept.colors, fresh.colors);
+    // the dof map changes after the choice: the kept pattern is not used
+    let mut changed = model.clone();
+    junta::prepare::auto::decide_above(&changed, true, 0);
+    let dofs = 3 * changed.mesh.nodes.len();
+    let fixed: Vec<(usize, f64)> = (0..dofs)
+        .filter(|&d| changed.dofs.eq[d] == junta::core::dof::CONSTRAINED || d + 30 >= dofs)
+        .map(|d| (d, 0.0))
+        .collect();
+    changed.dofs =
+        junta::core::dof::DofMap::new(changed.mesh.nodes.len(), &fixed, &changed.mesh.used_nodes())
+            .unwrap();
+    let n = changed.dofs.num_free;
+    assert!(n < model.dofs.num_free);
+    assert_eq!(changed.assembler().pattern.n, n);
+}

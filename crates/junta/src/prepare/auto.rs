@@ -96,11 +96,13 @@ pub fn decide_above(model: &Model, positive_definite: bool, direct_always: usize
     if n <= direct_always {
         return Decision::default();
     }
-    let pattern = model.assembler().pattern;
+    let asm = model.assembler();
     let coords = model.dofs.equation_coords(&model.mesh.nodes);
-    let choice = ordering::choose(OrderingKind::NestedDissection, &pattern, Some(&coords));
+    let choice = ordering::choose(OrderingKind::NestedDissection, &asm.pattern, Some(&coords));
     let estimate = choice.estimate();
-    let amg_reason = amg_reason(n, &estimate, pattern.nnz(), positive_definite);
+    let amg_reason = amg_reason(n, &estimate, asm.pattern.nnz(), positive_definite);
+    // the run assembles into this pattern: built once
+    model.keep_assembler(asm);
     let dissection = match amg_reason {
         Some(_) => None,
         None => Some(PrecomputedDissection {
