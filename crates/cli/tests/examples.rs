@@ -60,6 +60,9 @@ examples! {
     block_friction => "interface_plasticity/block_friction.toml";
     cross_ply_cure => "laminates/cross_ply_cure.toml";
     cross_ply_tension => "laminates/cross_ply_tension.toml";
+    /// [14 s; run in the suite by edge_delamination.rs]
+    #[ignore]
+    edge_delamination => "laminates/edge_delamination.toml";
     block_mohr_coulomb => "interface_plasticity/block_mohr_coulomb.toml";
     cyclic_shear => "interface_plasticity/cyclic_shear.toml";
     debond_friction => "interface_plasticity/debond_friction.toml";

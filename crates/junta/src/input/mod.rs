@@ -10,4 +10,5 @@ pub mod gmsh;
 pub mod inp;
 pub mod layup;
 pub mod scene;
+pub mod tie;
 pub(crate) mod validate;

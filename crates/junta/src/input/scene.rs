@@ -74,6 +74,10 @@ pub struct Scene {
     /// and `blocks`, and its strengths ([`crate::post::ply_failure`]).
     #[serde(default)]
     pub ply_failure: Vec<toml::Table>,
+    /// Node-to-node equations between two node sets (periodic cells,
+    /// generalized plane strain slices): [`crate::input::tie`].
+    #[serde(default)]
+    pub tie: Vec<crate::input::tie::TieSpec>,
 }
 
 /// `[fatigue]`: a fatigue step after the load program of a `static` run.
@@ -1406,8 +1410,14 @@ pub fn build_model_with_notes(sf: &SceneFile, notes: &mut Vec<String>) -> Result
         ),
         crate::prepare::limits::model_bytes(&mesh),
     )?;
+    let constrained: std::collections::HashSet<usize> =
+        constraints.iter().map(|&(d, _)| d).collect();
+    let ties = crate::input::tie::equations(sf, &mesh, &constrained, notes)?;
     let mut model = Model::new(mesh, elements, &constraints, f_ext, reaction_sets)
         .map_err(|e| err!("{}: {e}", sf.path.display()))?;
+    model
+        .add_equations(&ties)
+        .map_err(|e| err!("{}: key `tie`: {e}", sf.path.display()))?;
     if let Some(t) = &sf.scene.temperature {
         let delta = temperature_change(sf, t, &model, notes)?;
         model

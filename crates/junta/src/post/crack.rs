@@ -17,12 +17,16 @@
 //!   `w` (`width`, default the interface's area over its extent along `d`);
 //! - crack front: the largest `s` of a failed point (none before the
 //!   first point fails);
-//! - process zone: the process-zone points with `s` larger than
-//!   the front (all of them before there is a front); its length is the
-//!   largest `s` among them less the front (less their smallest `s`
-//!   before there is a front), and its point count the number of distinct
-//!   coordinates `s` among them (on a mesh structured along `d`, the points
-//!   of one row along the direction).
+//! - process zone: the distinct coordinates `s` of the points (on a mesh
+//!   structured along `d`, the rows across it) are classed failed (a
+//!   failed point there), process zone (else a process-zone point there)
+//!   or intact; a process zone is a run of consecutive process-zone
+//!   coordinates, and the one reported is the run with the most of them:
+//!   its point count, and its length from the failed coordinate next to
+//!   it (on either side; from its own first coordinate before anything
+//!   has failed) to its far end. A crack that grows from both ends of the
+//!   direction (a coupon's two free edges) has two such runs, one ahead
+//!   of each front.
 
 use crate::error::{bail, Result};
 use crate::input::scene::CrackFrontSpec;
@@ -144,7 +148,7 @@ impl CrackProbe {
         let mut total_area = 0.0;
         let mut damaged_area = 0.0;
         let mut front: Option<f64> = None;
-        let mut zone: Vec<f64> = Vec::new();
+        let mut stages: Vec<(f64, PointStage)> = Vec::new();
         for r in ifs.iter().filter(|r| self.blocks.contains(&r.block)) {
             for p in &r.points {
                 let area = p
@@ -152,19 +156,18 @@ impl CrackProbe {
                     .or_else(|| p.get("area"))
                     .map_or(0.0, |a| a[0]);
                 total_area += area;
+                let s = dot(p.position, self.direction) - s0;
                 if p.get(output::DAMAGE).is_none() {
+                    stages.push((s, PointStage::Intact));
                     continue;
                 }
                 has_damage = true;
-                let s = dot(p.position, self.direction) - s0;
-                match point_stage(p) {
-                    PointStage::Failed => {
-                        damaged_area += area;
-                        front = Some(front.map_or(s, |f| f.max(s)));
-                    }
-                    PointStage::ProcessZone => zone.push(s),
-                    PointStage::Intact => {}
+                let stage = point_stage(p);
+                if stage == PointStage::Failed {
+                    damaged_area += area;
+                    front = Some(front.map_or(s, |f| f.max(s)));
                 }
+                stages.push((s, stage));
             }
         }
         if !has_damage {
@@ -179,28 +182,13 @@ impl CrackProbe {
                 1.0
             }
         });
-        if let Some(f) = front {
-            zone.retain(|&s| s > f);
-        }
-        zone.sort_by(f64::total_cmp);
         let tol = 1e-6 * self.extent.max(f64::MIN_POSITIVE);
-        let mut count = 0;
-        let mut last = f64::NEG_INFINITY;
-        for &s in &zone {
-            if s - last > tol {
-                count += 1;
-                last = s;
-            }
-        }
-        let process_zone_length = match (zone.first(), zone.last()) {
-            (Some(&first), Some(&end)) => end - front.unwrap_or(first),
-            _ => 0.0,
-        };
+        let (process_zone_points, process_zone_length) = widest_process_zone(stages, tol);
         Some(CrackFront {
             length: damaged_area / width,
             front,
             process_zone_length,
-            process_zone_points: count,
+            process_zone_points,
             width,
         })
     }
@@ -360,6 +348,60 @@ pub(crate) fn steady_zone_warning(rows: &[crate::post::curve::CurveRow]) -> Opti
     ))
 }
 
+/// The stage of each distinct coordinate of `stages` (`(s, stage)` of
+/// every point; coordinates within `tol` are one): failed if a point
+/// there failed, else process zone if one is there, else intact.
+fn stage_per_coordinate(mut stages: Vec<(f64, PointStage)>, tol: f64) -> Vec<(f64, PointStage)> {
+    stages.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let rank = |st: PointStage| match st {
+        PointStage::Failed => 2,
+        PointStage::ProcessZone => 1,
+        PointStage::Intact => 0,
+    };
+    let mut rows: Vec<(f64, PointStage)> = Vec::new();
+    for (s, st) in stages {
+        match rows.last_mut() {
+            Some(last) if s - last.0 <= tol => {
+                if rank(st) > rank(last.1) {
+                    last.1 = st;
+                }
+            }
+            _ => rows.push((s, st)),
+        }
+    }
+    rows
+}
+
+/// The process zone with the most coordinates (module doc): its number
+/// of distinct coordinates and its length, `(0, 0.0)` without one.
+fn widest_process_zone(stages: Vec<(f64, PointStage)>, tol: f64) -> (usize, f64) {
+    let rows = stage_per_coordinate(stages, tol);
+    let mut best = (0usize, 0.0f64);
+    let mut k = 0;
+    while k < rows.len() {
+        if rows[k].1 != PointStage::ProcessZone {
+            k += 1;
+            continue;
+        }
+        let first = k;
+        while k < rows.len() && rows[k].1 == PointStage::ProcessZone {
+            k += 1;
+        }
+        let failed_at = |i: Option<usize>| {
+            i.and_then(|i| rows.get(i))
+                .filter(|r| r.1 == PointStage::Failed)
+                .map(|r| r.0)
+        };
+        let start = failed_at(first.checked_sub(1)).unwrap_or(rows[first].0);
+        let end = failed_at(Some(k)).unwrap_or(rows[k - 1].0);
+        let run = (k - first, end - start);
+        if run.0 > best.0 || (run.0 == best.0 && run.1 > best.1) {
+            best = run;
+        }
+    }
+    best
+}
+
 /// The process-zone warning: in most of the rows where the crack grew
 /// (its length larger than the row before), fewer than
 /// [`MIN_PROCESS_ZONE_POINTS`] points lay in the process zone along the
@@ -467,12 +509,9 @@ mod tests {
         }
     }
 
-    #[test]
-    fn front_length_and_process_zone_of_a_row_of_points() {
-        // a row of points 0.5 apart, each of area 0.5: the bond 4.5 long, 1
-        // wide; failed (damage 1, traction-free) up to x = 0.75, softening
-        // up to x = 3.25 (damage 0.995 still carries traction: process zone)
-        let damages = [1.0, 1.0, 0.995, 0.5, 0.3, 0.1, 0.01, 0.0, 0.0];
+    /// The crack of a row of points 0.5 apart along x (from 0.25), each
+    /// of area 0.5, with these damages: the bond `0.5 n` long, 1 wide.
+    fn measure_row(damages: &[f64]) -> CrackFront {
         let points: Vec<PointOutput> = damages
             .iter()
             .enumerate()
@@ -488,13 +527,34 @@ mod tests {
             origin: [0.0; 3],
             width: None,
             blocks: vec![0],
-            extent: 4.5,
+            extent: 0.5 * damages.len() as f64,
         };
-        let c = probe.measure(&ifs).unwrap();
+        probe.measure(&ifs).unwrap()
+    }
+
+    #[test]
+    fn front_length_and_process_zone_of_a_row_of_points() {
+        // a row of points 0.5 apart, each of area 0.5: the bond 4.5 long, 1
+        // wide; failed (damage 1, traction-free) up to x = 0.75, softening
+        // up to x = 3.25 (damage 0.995 still carries traction: process zone)
+        let c = measure_row(&[1.0, 1.0, 0.995, 0.5, 0.3, 0.1, 0.01, 0.0, 0.0]);
         assert!((c.width - 1.0).abs() < 1e-12);
         assert!((c.length - 1.0).abs() < 1e-12);
         assert_eq!(c.front, Some(0.75));
         assert_eq!(c.process_zone_points, 5);
         assert!((c.process_zone_length - (3.25 - 0.75)).abs() < 1e-12);
+    }
+
+    /// A crack from both ends of a row (a coupon's two free edges): the
+    /// process zone ahead of each front is a run of its own, and the
+    /// reported one is the longer run, not the points beyond the far
+    /// front (none).
+    #[test]
+    fn two_fronts_each_have_their_process_zone() {
+        let c = measure_row(&[1.0, 1.0, 0.6, 0.3, 0.0, 0.0, 0.2, 0.4, 0.7, 1.0]);
+        // the right front's run: 3.25, 3.75, 4.25, up to the failed 4.75
+        assert_eq!(c.process_zone_points, 3);
+        assert!((c.process_zone_length - (4.75 - 3.25)).abs() < 1e-12);
+        assert!((c.length - 1.5).abs() < 1e-12);
     }
 }

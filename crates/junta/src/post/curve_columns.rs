@@ -97,7 +97,7 @@ pub const CURVE_COLUMNS: &[CurveColumn] = &[
     CurveColumn {
         name: "reaction",
         unit: "force",
-        meaning: "total force of the curve's reaction set in its component (the load factor with `conjugate`); empty without a curve",
+        meaning: "total force of the curve's reaction set in its component (the load factor with `conjugate`); with equations (`*EQUATION`, `[[tie]]`) the generalized reaction, so a node that drives a tied face reports the face's force (`summary.json` `generalized_reactions`); empty without a curve",
         value: |r| Cell::MaybeReal(r.reaction),
     },
     CurveColumn {

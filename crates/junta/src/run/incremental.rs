@@ -99,7 +99,16 @@ impl CurveProbe {
         };
         let rc = self.reaction_component;
         // internal force on the set = reaction on supports, applied load on
-        // a loaded free set
+        // a loaded free set; with equations the reduced system's reaction
+        // (the dependents' constraint forces carried onto the dofs they
+        // follow: a tied face's force on the node that drives it)
+        let generalized;
+        let residual = if model.dofs.has_equations() {
+            generalized = model.dofs.generalized_reactions(residual);
+            &generalized[..]
+        } else {
+            residual
+        };
         let reaction = model.set_total(&self.reaction_set, residual)?[rc]
             + lambda * model.set_total(&self.reaction_set, &model.f_ext)?[rc];
         Ok((
