@@ -51,7 +51,7 @@ pub mod study;
 pub use input::scene::AnalysisKind;
 pub use post::curve::{Curve, CurveRow};
 pub use post::curve_columns::{curve_header, Cell, CurveColumn, CURVE_COLUMNS};
-pub use post::frame::Frame;
+pub use post::frame::{Frame, SolidPoints};
 pub use prepare::check::{BlockReport, CheckReport, StepReport};
 pub use run::checkpoint::FirstFailure;
 pub use run::observer::{

@@ -45,7 +45,7 @@ pub mod rotated;
 pub use anisotropic::Anisotropic;
 pub use isotropic::Isotropic;
 pub use orthotropic::{Axes, EngineeringConstants, Orientation, Orthotropic, System};
-pub use rotated::Rotated;
+pub use rotated::{InPlaneReference, Rotated, StackingNormal};
 
 use junta_core::Voigt6;
 use nalgebra::Matrix3;

@@ -43,6 +43,25 @@
 //! plies stack radially, `e1` is the tangent of the bend (the 0-degree
 //! fibre), `e2` the axis and `e3` the stacking direction. `C(x) = T(Q(x))
 //! C_i T(Q(x))^T` with `C_i` the inner material's (uniform) elasticity.
+//!
+//! ## A ply on any surface
+//!
+//! [`Rotated::on_surface`]: `e3 = n(x)`, the stacking direction at the
+//! point from a [`StackingNormal`] field (the lay-up builder's extrusion
+//! of a Gmsh surface), and the in-plane axes from a fixed reference
+//! direction `r` projected onto the plane normal to `e3`
+//! ([`InPlaneReference`]):
+//!
+//! ```text
+//! Fibre(r):       e1 = (r - (r.e3) e3) / |.|,   e2 = e3 x e1,
+//! Transverse(r):  e2 = (r - (r.e3) e3) / |.|,   e1 = e2 x e3,
+//! Q(x) = [e1 e2 e3] R_3(theta)
+//! ```
+//!
+//! (Abaqus' composite lay-up projects a reference axis 1 the same way).
+//! On a cylinder about `a`, `Transverse(a)` is the frame of
+//! [`Rotated::in_cylinder`]; on a plane `z = const` facing `+z`,
+//! `Fibre(e_x)` is `R_3(theta)`.
 
 use super::stress_rotation;
 use junta_core::{Material, Voigt6};
@@ -60,7 +79,75 @@ pub struct Rotated {
     /// `C` when the inner material is the same everywhere and the frame fixed.
     c: Voigt6,
     /// The frame of a curved ply, when it turns with the point.
-    cylinder: Option<Cylinder>,
+    frame: Option<Frame>,
+}
+
+/// The stacking direction of a curved ply at a point (module docs).
+pub trait StackingNormal: Send + Sync + std::fmt::Debug {
+    /// The unit normal `e3` at `x`.
+    fn normal_at(&self, x: [f64; 3]) -> [f64; 3];
+}
+
+/// How the in-plane axes of a ply on a surface are fixed (module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum InPlaneReference {
+    /// The 0-degree fibre `e1` is this direction projected on the surface.
+    Fibre([f64; 3]),
+    /// The in-plane transverse axis `e2` is this direction projected on
+    /// the surface (a cylinder's axis).
+    Transverse([f64; 3]),
+}
+
+impl InPlaneReference {
+    /// `[e1 e2 e3]` about the unit normal `e3`; `None` when the reference
+    /// is (nearly) along `e3`: its projection shorter than `min_length`.
+    pub fn frame(&self, e3: Vector3<f64>, min_length: f64) -> Option<Matrix3<f64>> {
+        let (r, fibre) = match *self {
+            InPlaneReference::Fibre(r) => (Vector3::from(r), true),
+            InPlaneReference::Transverse(r) => (Vector3::from(r), false),
+        };
+        let r = r.try_normalize(f64::MIN_POSITIVE)?;
+        let p = (r - r.dot(&e3) * e3).try_normalize(min_length)?;
+        let (e1, e2) = if fibre {
+            (p, e3.cross(&p))
+        } else {
+            (p.cross(&e3), p)
+        };
+        Some(Matrix3::from_columns(&[e1, e2, e3]))
+    }
+}
+
+/// A frame that turns with the point.
+#[derive(Debug, Clone)]
+enum Frame {
+    Cylinder(Cylinder),
+    Surface {
+        normals: Arc<dyn StackingNormal>,
+        reference: InPlaneReference,
+        turn: Matrix3<f64>,
+    },
+}
+
+impl Frame {
+    fn q_at(&self, x: [f64; 3]) -> Matrix3<f64> {
+        match self {
+            Frame::Cylinder(c) => c.q_at(x),
+            Frame::Surface {
+                normals,
+                reference,
+                turn,
+            } => {
+                let e3 = Vector3::from(normals.normal_at(x));
+                // a reference along the normal: any frame about it
+                let q = reference
+                    .frame(e3, 1e-9)
+                    .or_else(|| InPlaneReference::Fibre([1.0, 0.0, 0.0]).frame(e3, 1e-3))
+                    .or_else(|| InPlaneReference::Fibre([0.0, 1.0, 0.0]).frame(e3, 1e-3))
+                    .unwrap_or_else(Matrix3::identity);
+                q * turn
+            }
+        }
+    }
 }
 
 /// The axis of a curved ply's frame and the ply angle about its radius.
@@ -103,7 +190,7 @@ impl Rotated {
             q,
             t,
             c,
-            cylinder: None,
+            frame: None,
         }
     }
 
@@ -127,7 +214,31 @@ impl Rotated {
             inner,
             cylinder.q_at([centre[0] + 1.0, centre[1], centre[2]]),
         );
-        r.cylinder = Some(cylinder);
+        r.frame = Some(Frame::Cylinder(cylinder));
+        r
+    }
+
+    /// `inner` as a ply of angle `angle_deg` on a surface whose stacking
+    /// direction at a point is `normals`' (module docs: the frame turns
+    /// with the point; the inner material's own axes, if any, are taken as
+    /// uniform). `at` is a point of the ply, where [`Material::elasticity`]
+    /// is evaluated.
+    pub fn on_surface(
+        inner: Arc<dyn Material>,
+        normals: Arc<dyn StackingNormal>,
+        reference: InPlaneReference,
+        angle_deg: f64,
+        at: [f64; 3],
+    ) -> Self {
+        let turn = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), angle_deg.to_radians())
+            .into_inner();
+        let frame = Frame::Surface {
+            normals,
+            reference,
+            turn,
+        };
+        let mut r = Rotated::new(inner, frame.q_at(at));
+        r.frame = Some(frame);
         r
     }
 
@@ -168,10 +279,10 @@ impl Material for Rotated {
         self.c
     }
     fn varies_in_space(&self) -> bool {
-        self.cylinder.is_some() || self.inner.varies_in_space()
+        self.frame.is_some() || self.inner.varies_in_space()
     }
     fn elasticity_at(&self, x: [f64; 3]) -> Voigt6 {
-        if let Some(cyl) = &self.cylinder {
+        if let Some(cyl) = &self.frame {
             let t = stress_rotation(&cyl.q_at(x));
             return symmetric(t * self.inner.elasticity() * t.transpose());
         }
@@ -184,7 +295,7 @@ impl Material for Rotated {
     /// `Q Q_i(Q^T x)`: the inner material's axes carried along (the
     /// rotation itself for an inner material without axes).
     fn axes_at(&self, x: [f64; 3]) -> Option<Matrix3<f64>> {
-        if let Some(cyl) = &self.cylinder {
+        if let Some(cyl) = &self.frame {
             let inner = self.inner.axes_at(x);
             let q = cyl.q_at(x);
             return Some(inner.map_or(q, |qi| q * qi));
@@ -199,7 +310,7 @@ impl Material for Rotated {
         self.inner.has_thermal_expansion()
     }
     fn thermal_expansion_at(&self, x: [f64; 3]) -> [f64; 6] {
-        let (q, at) = match &self.cylinder {
+        let (q, at) = match &self.frame {
             Some(cyl) => (cyl.q_at(x), x),
             None => (self.q, self.inner_point(x)),
         };
@@ -284,6 +395,64 @@ mod tests {
             let d = (r.elasticity_at(x) - o.elasticity()).abs().max();
             assert!(d < 1e-9 * 140e3, "{d}");
         }
+    }
+
+    /// The radius of a cylinder about z, as a stacking-normal field.
+    #[derive(Debug)]
+    struct Radial;
+    impl StackingNormal for Radial {
+        fn normal_at(&self, x: [f64; 3]) -> [f64; 3] {
+            let r = x[0].hypot(x[1]);
+            [x[0] / r, x[1] / r, 0.0]
+        }
+    }
+
+    /// On the radial field of a cylinder, `Transverse(axis)` is the
+    /// cylinder's own frame (`in_cylinder`), at every angle; `Fibre(e_x)`
+    /// on a plane facing `+z` is the ply turned about `z`.
+    #[test]
+    fn surface_frame_is_the_cylinders_and_the_planes() {
+        let m: Arc<dyn Material> = Arc::new(ply(None));
+        for theta in [0.0, 30.0, -45.0, 90.0] {
+            let cyl = Rotated::in_cylinder(m.clone(), [0.0; 3], [0.0, 0.0, 1.0], theta);
+            let surf = Rotated::on_surface(
+                m.clone(),
+                Arc::new(Radial),
+                InPlaneReference::Transverse([0.0, 0.0, 2.0]),
+                theta,
+                [1.0, 0.0, 0.0],
+            );
+            assert!(surf.varies_in_space());
+            for x in [[3.0, 0.0, 1.0], [0.0, 2.0, -4.0], [-1.0, -2.5, 0.3]] {
+                let d = (cyl.axes_at(x).unwrap() - surf.axes_at(x).unwrap())
+                    .abs()
+                    .max();
+                assert!(d < 1e-14, "theta {theta} at {x:?}: {d}");
+            }
+        }
+        #[derive(Debug)]
+        struct Up;
+        impl StackingNormal for Up {
+            fn normal_at(&self, _: [f64; 3]) -> [f64; 3] {
+                [0.0, 0.0, 1.0]
+            }
+        }
+        let plane = Rotated::on_surface(
+            m.clone(),
+            Arc::new(Up),
+            InPlaneReference::Fibre([1.0, 0.0, 0.0]),
+            30.0,
+            [0.0; 3],
+        );
+        let turned = Rotated::about_axis(m, [0.0, 0.0, 1.0], 30.0);
+        let d = (plane.elasticity_at([5.0, 1.0, 2.0]) - turned.elasticity())
+            .abs()
+            .max();
+        assert!(d < 1e-9 * 140e3, "{d}");
+        // a reference along the normal has no projection
+        assert!(InPlaneReference::Fibre([0.0, 0.0, 1.0])
+            .frame(nalgebra::Vector3::z(), 1e-3)
+            .is_none());
     }
 
     #[test]

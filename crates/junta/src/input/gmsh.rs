@@ -125,23 +125,48 @@ fn read_text(path: &Path) -> Result<(String, String), GmshError> {
     Ok((file, text))
 }
 
-/// A 2D mesh of quadrilaterals in a plane, the base a lay-up is stacked
-/// on ([`read_surface`]).
+/// A 2D mesh of quadrilaterals and triangles, the base a lay-up is
+/// stacked on ([`read_surface`]).
 #[derive(Debug, Clone)]
 pub struct SurfaceMesh {
     /// Node coordinates (every node of the file).
     pub nodes: Vec<[f64; 3]>,
-    /// `Quad4` or `Quad8` (one order per file).
-    pub shape: CellShape,
-    /// Flat connectivity, our quadrilateral order (Gmsh's).
-    pub cells: Vec<usize>,
+    /// Second order: Quad8 and Tri6 cells; else Quad4 and Tri3 (one order
+    /// per file).
+    pub quadratic: bool,
+    /// Flat connectivity of the quadrilaterals, our order (Gmsh's): 4 or 8
+    /// nodes each.
+    pub quads: Vec<usize>,
+    /// Flat connectivity of the triangles, our order (Gmsh's): 3 or 6
+    /// nodes each.
+    pub tris: Vec<usize>,
     /// Physical curves: name -> the corner node pairs of their line elements.
     pub curves: BTreeMap<String, Vec<[usize; 2]>>,
 }
 
-/// Read the quadrilaterals (4 or 8 nodes) and the physical curves of a
-/// 2D MSH 4.1 ASCII file: the base of a lay-up. Triangles, a mix of
-/// orders, or a file with no quadrilateral are errors naming the line.
+impl SurfaceMesh {
+    /// `Quad4` or `Quad8`.
+    pub fn quad_shape(&self) -> CellShape {
+        if self.quadratic {
+            CellShape::Quad8
+        } else {
+            CellShape::Quad4
+        }
+    }
+    /// `Tri3` or `Tri6`.
+    pub fn tri_shape(&self) -> CellShape {
+        if self.quadratic {
+            CellShape::Tri6
+        } else {
+            CellShape::Tri3
+        }
+    }
+}
+
+/// Read the quadrilaterals (4 or 8 nodes), the triangles (3 or 6 nodes)
+/// and the physical curves of a 2D MSH 4.1 ASCII file: the base of a
+/// lay-up. Other 2D cells (Quad9), a mix of orders, or a file with no 2D
+/// cell are errors naming the line.
 pub fn read_surface(path: impl AsRef<Path>) -> Result<SurfaceMesh, GmshError> {
     let (file, text) = read_text(path.as_ref())?;
     let mut c = Cursor {
@@ -152,28 +177,36 @@ pub fn read_surface(path: impl AsRef<Path>) -> Result<SurfaceMesh, GmshError> {
     let mut s = Sections::read(&mut c)?;
     let mut out = SurfaceMesh {
         nodes: std::mem::take(&mut s.nodes),
-        shape: CellShape::Quad4,
-        cells: Vec::new(),
+        quadratic: false,
+        quads: Vec::new(),
+        tris: Vec::new(),
         curves: BTreeMap::new(),
     };
-    let mut shape: Option<CellShape> = None;
+    let mut order: Option<bool> = None;
     for b in &s.blocks {
         let (sh, npe) = shape_of(b.code).expect("read_elements keeps known codes");
         match b.dim {
             2 => {
-                if !matches!(sh, CellShape::Quad4 | CellShape::Quad8) {
-                    return Err(c.err(b.line, format!(
-                        "a lay-up base takes quadrilaterals of 4 or 8 nodes (Gmsh types 3, 16), not element type {}: recombine the surface (Mesh.RecombineAll = 1) and use Mesh.ElementOrder 1 or 2 with Mesh.SecondOrderIncomplete = 1",
+                let quadratic = match sh {
+                    CellShape::Quad4 | CellShape::Tri3 => false,
+                    CellShape::Quad8 | CellShape::Tri6 => true,
+                    _ => return Err(c.err(b.line, format!(
+                        "a lay-up base takes quadrilaterals of 4 or 8 nodes and triangles of 3 or 6 nodes (Gmsh types 3, 16, 2, 9), not element type {}: use Mesh.ElementOrder 1 or 2 with Mesh.SecondOrderIncomplete = 1",
                         b.code
-                    )));
+                    ))),
+                };
+                if order.is_some_and(|x| x != quadratic) {
+                    return Err(c.err(b.line, "cells of two orders in one base (first and second order); mesh it with one Mesh.ElementOrder"));
                 }
-                if shape.is_some_and(|x| x != sh) {
-                    return Err(c.err(b.line, "quadrilaterals of two orders in one base"));
-                }
-                shape = Some(sh);
+                order = Some(quadratic);
+                let into = if matches!(sh, CellShape::Quad4 | CellShape::Quad8) {
+                    &mut out.quads
+                } else {
+                    &mut out.tris
+                };
                 for (_, conn) in &b.elements {
                     for &tag in &conn[..npe] {
-                        out.cells.push(s.resolve(&c, b.line, tag)?);
+                        into.push(s.resolve(&c, b.line, tag)?);
                     }
                 }
             }
@@ -192,10 +225,10 @@ pub fn read_surface(path: impl AsRef<Path>) -> Result<SurfaceMesh, GmshError> {
             _ => {}
         }
     }
-    out.shape = shape.ok_or_else(|| {
+    out.quadratic = order.ok_or_else(|| {
         c.err(
             0,
-            "no quadrilateral in the file: a lay-up base needs a 2D mesh of quadrilaterals",
+            "no quadrilateral or triangle in the file: a lay-up base needs a 2D mesh",
         )
     })?;
     Ok(out)

@@ -10,7 +10,7 @@
 //! | `rectangle` | one, straight | `x = origin + u e_x + v e_y + w e_z` |
 //! | `l_section` | `arm_a`, `bend`, `arm_b` | arm a down `x = r_i + w`, `z` from `-L_a` to 0; the bend about the axis `y` through the origin, radius `r = r_i + w`, from angle 0 (`+x`) to 90 degrees (`+z`); arm b along `-x` at `z = r_i + w` |
 //! | `ring` | `sweep` in halves (`half_1`, `half_2`) or one `sector` | about the `z` axis, radius `r_i + w`, angle `u` from `+x` towards `+y`, `z = v` |
-//! | `gmsh` | one: a plane 2D mesh of quadrilaterals (holes included) | extruded along `+z` ([`super::extrude`]) |
+//! | `gmsh` | one: a 2D mesh of quadrilaterals and triangles (holes included) | extruded along its nodal normals ([`super::normals`], [`super::extrude`]) |
 //!
 //! On a bend and a ring the plies stack radially: `e3` is the radius, `e2`
 //! the axis and `e1` the tangent, so a 0-degree ply runs around the bend
@@ -49,18 +49,18 @@ pub struct BaseGeometry<'a> {
     pub sweep: Option<f64>,
     /// Gmsh: the 2D mesh file (already resolved next to the scene).
     pub file: Option<PathBuf>,
+    /// Gmsh: the side of the surface the plies go.
+    pub side: super::normals::StackSide,
 }
 
-/// A plane base mesh: its quadrilaterals counter-clockwise seen from `+z`
-/// and the plane's `z`.
+/// A Gmsh base mesh: its cells oriented and its nodal normals
+/// ([`super::normals`]); ply 1's bottom is the surface itself.
 #[derive(Debug)]
 pub struct Surface {
     /// The mesh as read.
     pub mesh: SurfaceMesh,
-    /// Its cells, oriented ([`super::extrude::oriented_cells`]).
-    pub cells: Vec<usize>,
-    /// The plane's `z`: the bottom of ply 1.
-    pub z: f64,
+    /// Its cells, oriented, and the stacking direction at each node.
+    pub base: super::extrude::OrientedBase,
 }
 
 /// How a segment maps `(u, v, w)` into space.
@@ -255,7 +255,7 @@ pub fn segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
             };
             let mesh = crate::input::gmsh::read_surface(file)
                 .map_err(|e| crate::error::err!("{at}: key `laminate.base.file`: {e}"))?;
-            let (cells, z_b) = super::extrude::oriented_cells(&mesh)
+            let base = super::normals::orient(&mesh, g.side)
                 .map_err(|e| crate::error::err!("{at}: key `laminate.base.file`: {}: {e}", file.display()))?;
             for name in mesh.curves.keys() {
                 if RESERVED.contains(&name.as_str()) || name.starts_with("ply_") || name.starts_with("interface_") || name.starts_with("block_") {
@@ -268,10 +268,10 @@ pub fn segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
                 width: 0.0,
                 divisions: [0, 0],
                 map: SegmentMap::Straight {
-                    p0: Vector3::new(0.0, 0.0, z_b),
+                    p0: Vector3::zeros(),
                     frame: [x, y, z],
                 },
-                surface: Some(Arc::new(Surface { mesh, cells, z: z_b })),
+                surface: Some(Arc::new(Surface { mesh, base })),
             }])
         }
         other => bail!(

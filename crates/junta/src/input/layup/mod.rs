@@ -48,6 +48,8 @@
 pub mod base;
 pub mod code;
 pub mod extrude;
+pub mod normal_field;
+pub mod normals;
 
 use crate::error::{bail, err, Result};
 use crate::input::scene::{generate_box, BoxGeometry, SceneFile};
@@ -120,9 +122,22 @@ pub struct BaseSpec {
     pub width: Option<f64>,
     /// Ring: swept angle in degrees, default 360 (a full ring).
     pub sweep: Option<f64>,
-    /// Gmsh: a plane 2D mesh of quadrilaterals (MSH 4.1, path relative to
-    /// the scene), extruded along `+z`.
+    /// Gmsh: a 2D mesh of quadrilaterals and triangles (MSH 4.1, path
+    /// relative to the scene), extruded along its nodal normals.
     pub file: Option<std::path::PathBuf>,
+    /// Gmsh: the plies go on the side of the surface facing this point.
+    pub normal_towards: Option<[f64; 3]>,
+    /// Gmsh: the plies go on the side of the surface away from this point.
+    pub normal_away_from: Option<[f64; 3]>,
+    /// Gmsh: the plies go on the other side (default false).
+    pub flip: Option<bool>,
+    /// Gmsh: the 0-degree fibre is this direction projected on the
+    /// surface at each point (default `[1, 0, 0]`).
+    pub fibre_direction: Option<Spanned<[f64; 3]>>,
+    /// Gmsh: instead, the in-plane transverse axis `e2` is this direction
+    /// projected on the surface (a cylinder's axis: 0-degree fibres run
+    /// around it).
+    pub transverse_direction: Option<Spanned<[f64; 3]>>,
 }
 
 /// One ply of `[[laminate.plies]]`.
@@ -456,6 +471,11 @@ fn base_geometry<'a>(sf: &SceneFile, b: &'a BaseSpec) -> base::BaseGeometry<'a> 
         width: b.width,
         sweep: b.sweep,
         file: b.file.as_ref().map(|f| sf.relative(f)),
+        side: normals::StackSide {
+            towards: b.normal_towards,
+            away_from: b.normal_away_from,
+            flip: b.flip.unwrap_or(false),
+        },
     }
 }
 
@@ -491,14 +511,14 @@ pub fn build_mesh(sf: &SceneFile, spec: &LaminateSpec) -> Result<Mesh> {
     for (k, ply) in layup.plies.iter().enumerate() {
         for s in &segments {
             if let Some(surf) = &s.surface {
-                check_extruded_element(sf, spec, surf.mesh.shape)?;
+                let elements = extruded_elements(sf, spec, &surf.mesh)?;
                 let part = extrude::extrude_ply(
                     &surf.mesh,
-                    &surf.cells,
-                    surf.z + levels[k],
+                    &surf.base,
+                    levels[k],
                     ply.thickness,
                     ply.elements,
-                    spec.element.get_ref(),
+                    elements,
                     &part_material(ply, s),
                 );
                 parts.push((part_name(k, s), part));
@@ -533,31 +553,59 @@ pub fn build_mesh(sf: &SceneFile, spec: &LaminateSpec) -> Result<Mesh> {
     Ok(mesh)
 }
 
-/// The solid element of a Gmsh base's plies must fit its quadrilaterals:
-/// Hex8 (h8, h8i) on Quad4, Hex20 (h20, h20r) on Quad8.
-fn check_extruded_element(sf: &SceneFile, spec: &LaminateSpec, quad: CellShape) -> Result<()> {
+/// The solid elements of a Gmsh base's plies: `laminate.element` on the
+/// quadrilaterals (Hex8: h8, h8i on Quad4; Hex20: h20, h20r on Quad8),
+/// the wedge of the same order on the triangles (wedge6 on Tri3, wedge15
+/// on Tri6); on a base of triangles only, `element` may name the wedge.
+fn extruded_elements<'a>(
+    sf: &SceneFile,
+    spec: &'a LaminateSpec,
+    s: &crate::input::gmsh::SurfaceMesh,
+) -> Result<extrude::PlyElements<'a>> {
     let at = sf.at(spec.element.span());
-    let entry =
-        junta_core::registry::find::<junta_core::registry::ElementEntry>(spec.element.get_ref())
-            .map_err(|e| err!("{at}: key `laminate.element`: {e}"))?;
-    let want = if quad == CellShape::Quad8 {
-        CellShape::Hex20
+    let key = spec.element.get_ref().as_str();
+    let entry = junta_core::registry::find::<junta_core::registry::ElementEntry>(key)
+        .map_err(|e| err!("{at}: key `laminate.element`: {e}"))?;
+    let (hex, wedge, wedge_key, fits) = if s.quadratic {
+        (
+            CellShape::Hex20,
+            CellShape::Wedge15,
+            "wedge15",
+            "h20 or h20r",
+        )
     } else {
-        CellShape::Hex8
+        (CellShape::Hex8, CellShape::Wedge6, "wedge6", "h8 or h8i")
     };
-    if entry.shape != want {
+    let cells = match (s.quads.is_empty(), s.tris.is_empty()) {
+        (false, true) => "quadrilaterals",
+        (true, false) => "triangles",
+        _ => "quadrilaterals and triangles",
+    };
+    let n = s.quad_shape().num_nodes();
+    if entry.shape == hex {
+        Ok(extrude::PlyElements {
+            hex: key,
+            wedge: wedge_key,
+        })
+    } else if entry.shape == wedge && s.quads.is_empty() {
+        Ok(extrude::PlyElements {
+            hex: key,
+            wedge: key,
+        })
+    } else {
         bail!(
-            "{at}: key `laminate.element`: `{}` does not fit the base's {} quadrilaterals; use {}",
+            "{at}: key `laminate.element`: `{}` does not fit the base's {cells} (order {}); use {fits}{}",
             entry.key,
-            quad.num_nodes(),
-            if want == CellShape::Hex20 {
-                "h20 or h20r"
+            if s.quadratic { 2 } else { 1 },
+            if s.quads.is_empty() {
+                format!(" (or {wedge_key}); the triangles get {wedge_key}")
+            } else if s.tris.is_empty() {
+                String::new()
             } else {
-                "h8 or h8i"
+                format!(" on the {n}-node quadrilaterals; the triangles get {wedge_key}")
             }
         );
     }
-    Ok(())
 }
 
 /// The element set (and block) of ply `k` (0-based index): `ply_{k+1}`.
@@ -642,8 +690,18 @@ pub fn add_ply_materials(
     use junta_elements::material::Rotated;
     let layup = Layup::resolve(sf, spec)?;
     let segments = base::segments(&base_geometry(sf, &spec.base))?;
+    let thickness = layup.plies.iter().map(|p| p.thickness).sum::<f64>();
+    let frames: Vec<Option<SurfaceFrame>> = segments
+        .iter()
+        .map(|s| {
+            s.surface
+                .as_ref()
+                .map(|surf| surface_frame(sf, &spec.base, surf, thickness))
+                .transpose()
+        })
+        .collect::<Result<_>>()?;
     for p in &layup.plies {
-        for s in &segments {
+        for (s, frame) in segments.iter().zip(&frames) {
             let name = part_material(p, s);
             if materials.contains_key(&name) {
                 continue;
@@ -655,8 +713,9 @@ pub fn add_ply_materials(
                     p.material
                 )
             })?;
-            let ply = match s.map {
-                base::SegmentMap::Straight { frame, .. } => {
+            let ply = match (frame, s.map) {
+                (Some(f), _) => f.ply(inner, p.angle),
+                (None, base::SegmentMap::Straight { frame, .. }) => {
                     let f = nalgebra::Matrix3::from_columns(&frame);
                     let turn = nalgebra::Rotation3::from_axis_angle(
                         &nalgebra::Vector3::z_axis(),
@@ -664,7 +723,7 @@ pub fn add_ply_materials(
                     );
                     Rotated::new(inner, f * turn.into_inner())
                 }
-                base::SegmentMap::Arc { centre, axis, .. } => {
+                (None, base::SegmentMap::Arc { centre, axis, .. }) => {
                     Rotated::in_cylinder(inner, centre.into(), axis.into(), p.angle)
                 }
             };
@@ -672,6 +731,93 @@ pub fn add_ply_materials(
         }
     }
     Ok(())
+}
+
+/// The ply frame of a Gmsh base: one fixed frame on a plane, else the
+/// normal field of the curved surface, with the in-plane reference.
+struct SurfaceFrame {
+    reference: junta_elements::material::InPlaneReference,
+    /// On a plane: `[e1 e2 e3]`.
+    plane: Option<nalgebra::Matrix3<f64>>,
+    /// On a curved surface: its normal field.
+    field: Option<Arc<normal_field::SurfaceNormals>>,
+    /// A point of the base, where the ply's nominal `C` is evaluated.
+    at: [f64; 3],
+}
+
+impl SurfaceFrame {
+    fn ply(&self, inner: Arc<dyn Material>, angle: f64) -> junta_elements::material::Rotated {
+        use junta_elements::material::Rotated;
+        match (&self.field, self.plane) {
+            (Some(field), _) => {
+                Rotated::on_surface(inner, field.clone(), self.reference, angle, self.at)
+            }
+            (None, q) => {
+                let q = q.unwrap_or_else(nalgebra::Matrix3::identity);
+                let turn = nalgebra::Rotation3::from_axis_angle(
+                    &nalgebra::Vector3::z_axis(),
+                    angle.to_radians(),
+                );
+                Rotated::new(inner, q * turn.into_inner())
+            }
+        }
+    }
+}
+
+/// The frame of a Gmsh base's plies (`fibre_direction` or
+/// `transverse_direction`, [`junta_elements::material::Rotated::on_surface`]);
+/// a reference that is (nearly) normal to the surface at a node is an
+/// error naming it.
+fn surface_frame(
+    sf: &SceneFile,
+    b: &BaseSpec,
+    surf: &base::Surface,
+    thickness: f64,
+) -> Result<SurfaceFrame> {
+    use junta_elements::material::InPlaneReference;
+    let (reference, key, span) = match (&b.fibre_direction, &b.transverse_direction) {
+        (Some(_), Some(t)) => bail!(
+            "{}: key `laminate.base.transverse_direction`: give `fibre_direction` or `transverse_direction`, not both",
+            sf.at(t.span())
+        ),
+        (Some(f), None) => (InPlaneReference::Fibre(*f.get_ref()), "fibre_direction", Some(f.span())),
+        (None, Some(t)) => (InPlaneReference::Transverse(*t.get_ref()), "transverse_direction", Some(t.span())),
+        (None, None) => (InPlaneReference::Fibre([1.0, 0.0, 0.0]), "fibre_direction", None),
+    };
+    let at = span.map_or_else(|| sf.at(b.kind.span()), |s| sf.at(s));
+    let used: Vec<usize> = surf
+        .base
+        .quads
+        .iter()
+        .chain(&surf.base.tris)
+        .copied()
+        .collect();
+    let first = nalgebra::Vector3::from(surf.base.normals[used[0]]);
+    let mut plane = true;
+    for &i in &used {
+        let n = nalgebra::Vector3::from(surf.base.normals[i]);
+        plane &= (n - first).norm() < 1e-12;
+        // within about 6 degrees of the normal: no direction along the surface
+        if reference.frame(n, 0.1).is_none() {
+            bail!(
+                "{at}: key `laminate.base.{key}`: {:?} is (nearly) normal to the base surface at its node {} (normal {:?}), so it gives no fibre direction there; give a direction along the surface{}",
+                match reference { InPlaneReference::Fibre(r) | InPlaneReference::Transverse(r) => r },
+                i + 1,
+                surf.base.normals[i],
+                if key == "fibre_direction" { ", or `transverse_direction` (a cylinder's axis)" } else { "" }
+            );
+        }
+    }
+    Ok(SurfaceFrame {
+        reference,
+        plane: reference.frame(first, 0.1),
+        field: (!plane).then(|| {
+            Arc::new(normal_field::SurfaceNormals::new(
+                &surf.mesh, &surf.base, thickness,
+            ))
+        }),
+        at: surf.mesh.nodes[used[0]],
+    })
 }
 
 #[cfg(test)]
