@@ -63,6 +63,9 @@ examples! {
     /// [14 s; run in the suite by edge_delamination.rs]
     #[ignore]
     edge_delamination => "laminates/edge_delamination.toml";
+    /// [35 s; run in the suite by curved_beam.rs]
+    #[ignore]
+    curved_beam => "laminates/curved_beam.toml";
     block_mohr_coulomb => "interface_plasticity/block_mohr_coulomb.toml";
     cyclic_shear => "interface_plasticity/cyclic_shear.toml";
     debond_friction => "interface_plasticity/debond_friction.toml";

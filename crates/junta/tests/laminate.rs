@@ -26,6 +26,8 @@
 
 #[path = "support/clt.rs"]
 mod clt;
+#[path = "support/lekhnitskii.rs"]
+mod lekhnitskii;
 use clt::*;
 use junta::input::scene::{build_model, AnalysisSpec, SceneFile};
 use junta::Simulation;
@@ -579,9 +581,7 @@ fn the_laminate_as_a_scene_and_as_a_ply_by_ply_deck() {
 /// the hoop, 3 the radius) in plane strain along 2: the compliances `b_ij
 /// = S_ij - S_i2 S_j2 / S_22` of T300/5208 (nu23 = 0.4).
 fn hoop_ply_k() -> f64 {
-    let (s11, s22, s33) = (1.0 / E1, 1.0 / E2, 1.0 / E2);
-    let (s12, s23) = (-NU12 / E1, -0.4 / E2);
-    ((s33 - s23 * s23 / s22) / (s11 - s12 * s12 / s22)).sqrt()
+    lekhnitskii::hoop_ply_k(E1, E2, NU12, 0.4)
 }
 
 /// A quarter of a ring of 0-degree plies (fibres around the hoop) under an
@@ -913,24 +913,7 @@ fixed = ["y"]
     let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
     let solid = r.frame.unwrap().solid;
     let k = hoop_ply_k();
-    // A, B, E from sigma_r(a) = 0, sigma_r(b) = 0, -int psi dr = m
-    let solve = |m: f64| {
-        let int = |p: f64| (b.powf(p) - a.powf(p)) / p;
-        let mat = nalgebra::Matrix3::new(
-            a.powf(k - 1.0),
-            a.powf(-k - 1.0),
-            1.0,
-            b.powf(k - 1.0),
-            b.powf(-k - 1.0),
-            1.0,
-            -int(k + 1.0),
-            -int(1.0 - k),
-            -0.5 * (b * b - a * a),
-        );
-        mat.lu()
-            .solve(&nalgebra::Vector3::new(0.0, 0.0, m))
-            .unwrap()
-    };
+    let solve = |m: f64| lekhnitskii::CurvedBeam::new(a, b, k, m);
     // points of the bend's mid-section (45 degrees, x = z)
     let pts: Vec<usize> = (0..solid.block.len())
         .filter(|&q| {
@@ -948,12 +931,11 @@ fixed = ["y"]
         .map(|&q| solid.material_stress[6 * q])
         .unwrap();
     // the sign of the moment: the hoop stress at the inner radius says which way it bends
-    let mut coef = solve(moment / w);
-    let hoop_a = k * coef[0] * a.powf(k - 1.0) - k * coef[1] * a.powf(-k - 1.0) + coef[2];
-    if hoop_a.signum() != hoop_inner.signum() {
-        coef = solve(-moment / w);
+    let mut beam = solve(moment / w);
+    if beam.sigma_theta(a).signum() != hoop_inner.signum() {
+        beam = solve(-moment / w);
     }
-    let sigma_r = |r: f64| coef[0] * r.powf(k - 1.0) + coef[1] * r.powf(-k - 1.0) + coef[2];
+    let sigma_r = |r: f64| beam.sigma_r(r);
     let peak = (0..=200)
         .map(|i| sigma_r(a + (b - a) * i as f64 / 200.0))
         .fold(0.0f64, |m, s| if s.abs() > m.abs() { s } else { m });
