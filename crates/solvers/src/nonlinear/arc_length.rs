@@ -320,10 +320,8 @@ impl ArcLengthSettings {
 /// The failure of an arc-length iteration whose quadratic has no real root.
 const NO_REAL_ROOT: &str = "arc-length constraint has no real root";
 
-/// Dissipation constraints a rescue tries from the failed arc's last
-/// iterate ([`PathRun::rescue`]), each `RESCUE_SHORTER` times the last.
+/// [`PathRun::rescue`]: tries, each a quarter of the last's `tau`.
 const RESCUE_TRIES: usize = 3;
-const RESCUE_SHORTER: f64 = 0.25;
 
 /// Why a path-following run ended without error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -974,15 +972,11 @@ impl<'a> PathRun<'a> {
         Ok(true)
     }
 
-    /// An arc that failed at a sharp turn of the path (a snap-back right
-    /// at damage onset: the loading and the softening branches meet at an
-    /// angle above 90 degrees, so the arc's root selection keeps pointing
-    /// forward) but whose last iterate is damaging: from there the
-    /// dissipation constraint is well posed (the tangent is no longer the
-    /// secant), so it is tried warm with `tau` = the iterate's dissipation
-    /// (at most `max_arc_dissipation` times the stored energy), then from
-    /// the same iterate with `tau` a quarter and a sixteenth of that (where
-    /// a long front starts to soften at once, the first can overshoot).
+    /// An arc that failed at a sharp turn (module docs, *Sharp turns*) with
+    /// a damaging last iterate: from there the dissipation constraint is
+    /// tried warm with `tau` = the iterate's dissipation (at most
+    /// `max_arc_dissipation` times the stored energy), then a quarter and a
+    /// sixteenth of it (a whole front softening at once can overshoot).
     /// Returns the converged increment and `tau`.
     fn rescue(
         &mut self,
@@ -1001,9 +995,6 @@ impl<'a> PathRun<'a> {
         if !(d_try.is_finite() && d_try > self.arc.switch_dissipation * stored.abs()) {
             return Ok(None);
         }
-        // the iterate's dissipation, then shorter: at a corner where every
-        // point of a long front starts to soften at once (a curved beam's
-        // bend) the first one can overshoot the branch
         let mut tau = d_try.min(self.arc.max_arc_dissipation * stored.abs());
         let (u_iterate, lambda_iterate) = (self.w.u.clone(), self.w.lambda_trial);
         for k in 0..RESCUE_TRIES {
@@ -1020,7 +1011,7 @@ impl<'a> PathRun<'a> {
                 );
                 return Ok(Some((conv, tau)));
             }
-            tau *= RESCUE_SHORTER;
+            tau *= 0.25;
         }
         Ok(None)
     }
