@@ -44,6 +44,33 @@ fn load_at(rows: &[(f64, f64, String)], d: f64) -> f64 {
     panic!("the curve never reaches {d}");
 }
 
+/// The cut-backs curve.csv records on the load-controlled increments
+/// before the first path-following one: the failed attempts before the
+/// switch (the one that showed the limit point is not a converged row).
+fn cutbacks_before_switch(dir: &Path) -> usize {
+    let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |n: &str| head.iter().position(|h| *h == n).unwrap();
+    let (c, k) = (col("control"), col("cutbacks"));
+    lines
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .take_while(|f| f[c] == "load")
+        .map(|f| f[k].parse::<usize>().unwrap())
+        .sum()
+}
+
+/// The mean of `|P_a(delta) / P_b(delta) - 1|` over the propagation
+/// branch (delta from 5.5 to 10 mm in 0.25 mm steps) of two DCB curves.
+fn mean_deviation(a: &[(f64, f64, String)], b: &[(f64, f64, String)]) -> f64 {
+    let grid: Vec<f64> = (0..=18).map(|i| 5.5 + 0.25 * i as f64).collect();
+    let sum: f64 = grid
+        .iter()
+        .map(|&d| (load_at(a, d) / load_at(b, d) - 1.0).abs())
+        .sum();
+    sum / grid.len() as f64
+}
+
 fn peak(rows: &[(f64, f64, String)]) -> f64 {
     rows.iter().map(|r| r.1).fold(0.0, f64::max)
 }
@@ -72,16 +99,17 @@ fn dcb_h8_with(dir: &Path, name: &str, arc: &str, control: Option<&str>) -> std:
 }
 
 /// The repository's Abaqus DCB deck as it is (no stabilisation, no Riks)
-/// runs to its end opening: the peak is the one path following finds with
-/// short arcs on the twin scene (within 1 %), and the propagation branch
-/// follows corrected beam theory (the mean of the saw-tooth within 3 %,
-/// and the end point within 3 %).
-/// Measured: switch at increment 49 (lambda 0.44465, six cut-backs in a
-/// row at the peak), peak 142.51 N against 141.88 N (+0.44 %), 77
-/// increments; propagation points +2.8 % above CBT on average (-0.9 % to
-/// +5.5 %: the element-by-element saw-tooth of 2 mm elements and the
-/// fully integrated H8's shear locking, which `junta check` now warns
-/// about), +2.7 % at 10 mm.
+/// runs to its end opening: the switch comes at the first failed attempt
+/// (no cut-back before it), the peak is the one path following finds with
+/// short arcs on the twin scene (within 1 %), the propagation branch is
+/// path following's throughout (`--solver control=arc_length`, within 1 %
+/// on average) and follows corrected beam theory (the mean of the
+/// saw-tooth within 3 %, and the end point within 3 %).
+/// Measured: switch at increment 42 (lambda 0.42, the first attempt past
+/// it stopped after 3 iterations without descent), peak 141.79 N against
+/// 141.88 N (-0.06 %), 70 increments; propagation points +2.8 % above CBT
+/// on average (the element-by-element saw-tooth of 2 mm elements and the
+/// fully integrated H8's shear locking, which `junta check` warns about).
 #[test]
 fn abaqus_dcb_deck_runs_past_its_peak_to_the_end() {
     let dir = tempfile::tempdir().unwrap();
@@ -98,6 +126,7 @@ fn abaqus_dcb_deck_runs_past_its_peak_to_the_end() {
     assert_eq!(switches[0]["to"], "arc_length", "{switches:?}");
     let lambda = switches[0]["lambda"].as_f64().unwrap();
     assert!(lambda > 0.4 && lambda < 0.5, "switch at {lambda}");
+    assert_eq!(cutbacks_before_switch(&dir.path().join("deck")), 0);
     let rows = curve(&dir.path().join("deck"));
     let last = rows.last().unwrap();
     assert!((last.0 - 10.0).abs() < 1e-9, "ends at {}", last.0);
@@ -129,6 +158,21 @@ fn abaqus_dcb_deck_runs_past_its_peak_to_the_end() {
         "P(10) = {}",
         last.1
     );
+    // path following throughout on the same deck
+    let out = junta()
+        .arg("run")
+        .arg(repo().join("examples/delamination/dcb_abaqus.inp"))
+        .args(["--solver", "control=arc_length", "-q", "-o"])
+        .arg(dir.path().join("deck_arc"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mean = mean_deviation(&rows, &curve(&dir.path().join("deck_arc")));
+    assert!(mean < 0.01, "mean deviation {mean} from path following");
 }
 
 /// The 0.5 mm H8 DCB scene without `control`: the whole curve, and after
@@ -155,6 +199,7 @@ fn dcb_without_control_follows_the_arc_length_path() {
     );
     assert!(a.iter().any(|r| r.2 == "load") && a.iter().any(|r| r.2 == "dissipation"));
     assert!((a.last().unwrap().0 - 10.0).abs() < 1e-9);
+    assert_eq!(cutbacks_before_switch(&dir.path().join("auto")), 0);
     for d in [6.0, 8.0, 10.0] {
         let (pa, pb) = (load_at(&a, d), load_at(&b, d));
         assert!(
@@ -212,7 +257,7 @@ fn explicit_displacement_control_keeps_the_stop() {
 /// its `control` line removed): the snap-back of the unstable crack is
 /// traced, and the run ends at the prescribed deflection. Beam theory
 /// (LEFM; enf_snapback.toml's header): the deflection falls from 3.80 to
-/// 3.46 mm after the peak; the crack then reaches mid-span. Measured: peak
+/// 3.46 mm after the peak; the crack then reaches mid-span. Measured: the switch at increment 3 (the first failed attempt), peak
 /// 1086.6 N at 3.68 mm, minimum deflection 3.53 mm after it, end at 4.3 mm
 /// with the crack at the load point.
 #[test]
@@ -241,6 +286,7 @@ fn enf_snap_back_under_displacement_control() {
         switches.iter().any(|w| w["to"] == "arc_length"),
         "{switches:?}"
     );
+    assert_eq!(cutbacks_before_switch(&dir.path().join("out")), 0);
     let rows = curve(&dir.path().join("out"));
     let ipk = (0..rows.len())
         .max_by(|&i, &j| rows[i].1.total_cmp(&rows[j].1))

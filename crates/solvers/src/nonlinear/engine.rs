@@ -466,7 +466,9 @@ impl<'m> Work<'m> {
     ) -> Result<bool, CoreError> {
         let stalled = matches!(
             reason,
-            IncrementFailure::IterationLimit | IncrementFailure::Stagnated { .. }
+            IncrementFailure::IterationLimit
+                | IncrementFailure::Stagnated { .. }
+                | IncrementFailure::NoDescent { .. }
         );
         if self.exact || !stalled || !self.model.tangent_symmetrised() {
             return Ok(false);
@@ -574,6 +576,7 @@ impl<'m> Work<'m> {
             e_ref: 0.0,
             best_rel: 0.0,
             best_at: 0,
+            no_descent: 0,
         };
         match self.iterate(solver, state, &mut a) {
             Ok(outcome) | Err(Abort::Failed(outcome)) => Ok(outcome),
@@ -765,6 +768,11 @@ impl<'m> Work<'m> {
     ) -> Result<f64, Abort<Attempt>> {
         self.u_base.copy_from_slice(&self.u);
         let ls = self.line_search(state, a, it)?;
+        a.no_descent = if a.step.secant && !ls.decreased {
+            a.no_descent + 1
+        } else {
+            0
+        };
         // (Only while the force residual is above its tolerance: a
         // residual already at round-off level need not decrease.)
         let switch_to_secant = !ls.decreased
@@ -918,7 +926,17 @@ impl<'m> Work<'m> {
             a.best_rel = ev.rel;
             a.best_at = it;
             a.rho0 = a.rho0.max(ev.abs);
+            a.no_descent = 0;
             return None;
+        }
+        if a.no_descent >= NO_DESCENT_ITERATIONS && ev.rel > st.tol_force {
+            return Some(failed(
+                it,
+                ev.rel,
+                IncrementFailure::NoDescent {
+                    iterations: a.no_descent,
+                },
+            ));
         }
         // (stagnation of the force residual only: once it meets
         // tol_force, the energy criterion needs a step or two more)
@@ -1008,6 +1026,9 @@ struct NewtonAttempt {
     /// (stagnation test).
     best_rel: f64,
     best_at: usize,
+    /// Iterations in a row on the secant tangent whose line search found
+    /// no decrease (the no-descent test).
+    no_descent: usize,
 }
 
 /// Outcome of a line search: step length `s` and its residual, the last
@@ -1092,3 +1113,13 @@ pub(crate) const EXACT_TANGENT_SKEW: f64 = 1e-4;
 /// Newton gains far more per iteration; the secant fallback, which
 /// converges linearly, gets four times as many).
 const STAGNATION_ITERATIONS: usize = 12;
+
+/// Iterations in a row on the secant tangent whose line search finds no
+/// decrease of the residual at any step length after which an attempt
+/// stops ([`IncrementFailure::NoDescent`]). The secant tangent of a
+/// softening law is the fallback that converges monotonically where an
+/// equilibrium lies within reach; when even it finds no descent three
+/// times in a row, none does (a snap-back under displacement control: the
+/// iterations of `examples/delamination/dcb_plain.toml` past its peak sat
+/// at the shortest step for 15 iterations, up to the iteration limit).
+const NO_DESCENT_ITERATIONS: usize = 3;

@@ -106,8 +106,13 @@
 //! An attempt fails on: the iteration limit, a non-finite residual or
 //! correction, a residual growing past `divergence_ratio` times the first
 //! one of the attempt, a linear-solver error (e.g. a tangent that is not
-//! positive definite past a limit point), or an element error (e.g. a law
-//! failure). The driver then restores the trial state
+//! positive definite past a limit point), an element error (e.g. a law
+//! failure), stagnation (no 1 % decrease of the best residual over 12
+//! iterations, 48 on the secant tangent), or no descent: three in a row on the secant
+//! tangent whose line search finds no lower residual at any step
+//! ([`IncrementFailure::NoDescent`]; past a snap-back under displacement
+//! control no equilibrium lies within the increment, and the attempt need
+//! not run to the iteration limit). The driver then restores the trial state
 //! ([`StateStore::restore`]), `u` and `lambda` to the last converged
 //! increment, multiplies the increment by `cutback` and retries. Below
 //! `min_increment` it stops with [`NonlinearError::IncrementTooSmall`];
@@ -170,6 +175,7 @@ use super::vocabulary::{
 };
 use crate::linear_static::Timings;
 use junta_core::element::StepInfo;
+use junta_core::law::output::VISCOUS_ENERGY;
 use junta_core::state::StateStore;
 use junta_core::{CoreError, LinearSolver, Model};
 use std::time::Instant;
@@ -217,7 +223,8 @@ pub(crate) struct LoadOptions {
     pub(crate) analyzed: bool,
     /// In a step loading away from zero, stop at a limit point
     /// ([`LoadOutcome::Limit`]) as soon as a failed attempt's tangent has
-    /// more negative pivots than the last converged increment's, or after
+    /// more negative pivots than the last converged increment's, as soon
+    /// as an attempt fails after an increment that dissipated, or after
     /// [`LIMIT_CUTBACKS`] cut-backs in a row, instead of cutting back to
     /// `min_increment` first.
     pub(crate) stop_at_limit: bool,
@@ -282,11 +289,15 @@ where
         small_size: settings.small_increment(),
         initial_size: settings.initial_increment.min(settings.max_increment),
         stop_at_limit: options.stop_at_limit,
+        dissipation: Dissipation::default(),
     };
     // residual of the starting point, so that a run with nothing to do
     // still returns a consistent residual
-    if restart.is_some() {
+    if let Some(c) = restart {
         run.w.evaluate_at_rest(&mut run.state, &run.cur)?;
+        if run.stop_at_limit {
+            run.dissipation = run.dissipation_at_restart(c);
+        }
     }
     let mut limit = None;
     while run.advance_step() {
@@ -410,6 +421,43 @@ struct LoadRun<'a> {
     initial_size: f64,
     /// See [`LoadOptions::stop_at_limit`].
     stop_at_limit: bool,
+    /// What the laws dissipated up to the last converged increment, and
+    /// whether that increment added to it (kept with `stop_at_limit`).
+    dissipation: Dissipation,
+}
+
+/// The energy the laws report dissipated at the last converged increment
+/// ([`Model::dissipated_energy`]; a law that cannot report it counts as
+/// not dissipating), and whether that increment added to it: the sign
+/// that a failed attempt under `control = "auto"` meets a crack starting
+/// to run ([`LoadRun::limit_reason`]).
+///
+/// A viscous regularisation (a law's `viscosity`) is there to carry load
+/// control past the snap-back: where its points report viscous energy,
+/// failed attempts are cut back as before, and the other signs apply
+/// (measured: the viscous `examples/delamination/dcb.toml`, switched at
+/// its first failure at 4.2 mm, found no path ahead, its first
+/// dissipation step converging to lambda = -1.67).
+#[derive(Debug, Clone, Copy, Default)]
+struct Dissipation {
+    energy: f64,
+    growing: bool,
+}
+
+impl Dissipation {
+    /// The dissipation at the converged `u` (committed `state`), after the
+    /// increment from `self`.
+    fn after(&self, model: &Model, u: &[f64], state: &StateStore) -> Dissipation {
+        let energy = model.dissipated_energy(u, state).unwrap_or(0.0);
+        let viscous = model
+            .max_point_output(u, state, VISCOUS_ENERGY)
+            .unwrap_or(0.0)
+            > 0.0;
+        Dissipation {
+            energy,
+            growing: energy > self.energy && !viscous,
+        }
+    }
 }
 
 /// Why a failed increment is taken for a limit point, and whether on an
@@ -496,7 +544,8 @@ impl LoadRun<'_> {
     /// for a limit point ([`LimitSign`]): the increment fell below
     /// `min_increment`, or (with `stop_at_limit`) an early sign, the failed
     /// attempt's tangent having more negative pivots than the last
-    /// converged one's or [`LIMIT_CUTBACKS`] cut-backs in a row.
+    /// converged one's, a failure after an increment that dissipated, or
+    /// [`LIMIT_CUTBACKS`] cut-backs in a row.
     fn converge_increment(
         &mut self,
         solver: &mut dyn LinearSolver,
@@ -615,13 +664,30 @@ impl LoadRun<'_> {
         }
     }
 
+    /// The dissipation at a restart from `c` (its residual at rest
+    /// evaluated): the energy recomputed from its `u` and state, whether
+    /// its increment dissipated from the switch's track in it.
+    fn dissipation_at_restart(&self, c: &Checkpoint) -> Dissipation {
+        let (model, u) = (self.w.model, &self.w.u);
+        let viscous = model
+            .max_point_output(u, &self.state, VISCOUS_ENERGY)
+            .unwrap_or(0.0)
+            > 0.0;
+        Dissipation {
+            energy: model.dissipated_energy(u, &self.state).unwrap_or(0.0),
+            growing: c.load_track.as_ref().is_some_and(|t| t.dissipating) && !viscous,
+        }
+    }
+
     /// Why a failed attempt (its tangent's negative `pivots`, when
     /// reported; `below_min`: the next size would fall below
     /// `min_increment`) is taken for a limit point ([`LimitSign`]), or
     /// `None` to cut back and go on. Besides `below_min`, the early signs
     /// (with `stop_at_limit`, in a step loading away from zero, where path
     /// following can take over): the tangent has more negative pivots than
-    /// the last converged one's, or [`LIMIT_CUTBACKS`] cut-backs in a row.
+    /// the last converged one's, the last converged increment dissipated
+    /// ([`Dissipation`]: a crack starting to run), or [`LIMIT_CUTBACKS`]
+    /// cut-backs in a row.
     fn limit_reason(
         &self,
         below_min: bool,
@@ -643,6 +709,10 @@ impl LoadRun<'_> {
             (true, Some(before), Some(now)) if now > before => Some(format!(
                 "the tangent's inertia changed: {now} negative pivots in a \
                  failed attempt against {before} at the last converged increment"
+            )),
+            _ if early && self.dissipation.growing => Some(format!(
+                "an attempt failed ({reason}) while the interfaces dissipate: \
+                 a crack starting to run"
             )),
             _ if early && cur.cutbacks_in_a_row >= LIMIT_CUTBACKS => Some(format!(
                 "{} cut-backs in a row without an increment converging at its \
@@ -668,6 +738,9 @@ impl LoadRun<'_> {
         let settings = self.settings;
         self.state.commit();
         self.w.u_conv.copy_from_slice(&self.w.u);
+        if self.stop_at_limit {
+            self.dissipation = self.dissipation.after(self.w.model, &self.w.u, &self.state);
+        }
         self.w.stalled_attempts = 0;
         let cur = &mut self.cur;
         let delta_lambda = inc.lambda_new - cur.lambda;

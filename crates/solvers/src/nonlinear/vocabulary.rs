@@ -166,6 +166,13 @@ pub enum IncrementFailure {
         /// Iterations without a decrease of the best residual by 1 %.
         iterations: usize,
     },
+    /// On the secant tangent (the fallback of a softening law) the line
+    /// search found no decrease of the residual at any step length, this
+    /// many iterations in a row: no equilibrium within the increment.
+    NoDescent {
+        /// Iterations in a row without a decrease.
+        iterations: usize,
+    },
     /// The residual norm grew past `divergence_ratio` times the first one.
     Diverging {
         /// Residual norm reached.
@@ -195,6 +202,10 @@ impl std::fmt::Display for IncrementFailure {
             IncrementFailure::Diverging { residual, initial } => write!(
                 f,
                 "diverging: residual norm {residual:.3e} against {initial:.3e} at the start"
+            ),
+            IncrementFailure::NoDescent { iterations } => write!(
+                f,
+                "no descent: the line search found no lower residual on the secant tangent for {iterations} iterations in a row"
             ),
             IncrementFailure::Solver(e) => write!(f, "linear solver: {e}"),
             IncrementFailure::Element(m) => write!(f, "element: {m}"),
