@@ -159,17 +159,10 @@ fn abaqus_dcb_deck_runs_past_its_peak_to_the_end() {
         last.1
     );
     // path following throughout on the same deck
-    let out = junta()
-        .arg("run")
-        .arg(repo().join("examples/delamination/dcb_abaqus.inp"))
-        .args(["--solver", "control=arc_length", "-q", "-o"])
-        .arg(dir.path().join("deck_arc"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    run_ok_with(
+        &repo().join("examples/delamination/dcb_abaqus.inp"),
+        &dir.path().join("deck_arc"),
+        &["--solver", "control=arc_length"],
     );
     let mean = mean_deviation(&rows, &curve(&dir.path().join("deck_arc")));
     assert!(mean < 0.01, "mean deviation {mean} from path following");
