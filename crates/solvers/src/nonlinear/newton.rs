@@ -448,6 +448,18 @@ impl Dissipation {
     /// The dissipation at the converged `u` (committed `state`), after the
     /// increment from `self`.
     fn after(&self, model: &Model, u: &[f64], state: &StateStore) -> Dissipation {
+        Dissipation::at(model, u, state, |energy| energy > self.energy)
+    }
+
+    /// The dissipation at `u` (committed `state`); `dissipated(energy)`:
+    /// whether the increment to it added to the energy (read as not
+    /// growing where viscous points report energy).
+    fn at(
+        model: &Model,
+        u: &[f64],
+        state: &StateStore,
+        dissipated: impl FnOnce(f64) -> bool,
+    ) -> Dissipation {
         let energy = model.dissipated_energy(u, state).unwrap_or(0.0);
         let viscous = model
             .max_point_output(u, state, VISCOUS_ENERGY)
@@ -455,7 +467,7 @@ impl Dissipation {
             > 0.0;
         Dissipation {
             energy,
-            growing: energy > self.energy && !viscous,
+            growing: !viscous && dissipated(energy),
         }
     }
 }
@@ -668,15 +680,8 @@ impl LoadRun<'_> {
     /// evaluated): the energy recomputed from its `u` and state, whether
     /// its increment dissipated from the switch's track in it.
     fn dissipation_at_restart(&self, c: &Checkpoint) -> Dissipation {
-        let (model, u) = (self.w.model, &self.w.u);
-        let viscous = model
-            .max_point_output(u, &self.state, VISCOUS_ENERGY)
-            .unwrap_or(0.0)
-            > 0.0;
-        Dissipation {
-            energy: model.dissipated_energy(u, &self.state).unwrap_or(0.0),
-            growing: c.load_track.as_ref().is_some_and(|t| t.dissipating) && !viscous,
-        }
+        let dissipating = c.load_track.as_ref().is_some_and(|t| t.dissipating);
+        Dissipation::at(self.w.model, &self.w.u, &self.state, |_| dissipating)
     }
 
     /// Why a failed attempt (its tangent's negative `pivots`, when
