@@ -929,7 +929,10 @@ impl<'m> Work<'m> {
             a.no_descent = 0;
             return None;
         }
-        if a.no_descent >= NO_DESCENT_ITERATIONS && ev.rel > st.tol_force {
+        // (far from equilibrium only: near round-off a line search that
+        // finds nothing lower is the arithmetic, which the stagnation
+        // test below reports with the tolerance that cannot be met)
+        if a.no_descent >= NO_DESCENT_ITERATIONS && ev.rel > st.tol_force.max(f64::EPSILON.sqrt()) {
             return Some(failed(
                 it,
                 ev.rel,
