@@ -236,6 +236,14 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     fn symmetrises_tangent(&self) -> bool {
         false
     }
+    /// The largest scaled skew `max |k_ij - k_ji| / sqrt(|k_ii k_jj|)` of
+    /// the element tangents this element stored as their symmetric part
+    /// since the last call (an interface under finite kinematics), which
+    /// the call resets; 0 for an element that stores its tangent as it is.
+    /// Default: 0.
+    fn take_symmetrised_skew(&self) -> f64 {
+        0.0
+    }
     /// Whether the element's material expands with temperature (solids;
     /// [`crate::Material::has_thermal_expansion`]). Default: false.
     fn has_thermal_expansion(&self) -> bool {

@@ -244,6 +244,22 @@ impl Model {
             && self.elements.iter().any(|e| e.symmetrises_tangent())
     }
 
+    /// The largest scaled skew of the element tangents stored as their
+    /// symmetric part since the last call, over the blocks
+    /// ([`crate::Element::take_symmetrised_skew`], which it resets); over
+    /// several ranks the largest of the ranks' (the same on every rank).
+    pub fn take_symmetrised_skew(&self) -> f64 {
+        let mut largest = [self
+            .elements
+            .iter()
+            .map(|e| e.take_symmetrised_skew())
+            .fold(0.0, f64::max)];
+        if let Some(c) = crate::distributed::collective() {
+            c.max_in_place(&mut largest);
+        }
+        largest[0]
+    }
+
     /// Set the nodal temperature changes ([`Model::temperature`]); an
     /// error unless there is one finite value per node.
     pub fn set_temperature(&mut self, delta: Option<Vec<f64>>) -> Result<(), CoreError> {

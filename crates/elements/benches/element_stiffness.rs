@@ -1,10 +1,11 @@
 //! Element stiffness (tangent + internal force) of H8, H20 and H27 on a
-//! distorted element: `cargo bench -p junta-elements --bench element_stiffness`.
+//! distorted element, small strain and total-Lagrangian (`_nlgeom`):
+//! `cargo bench -p junta-elements --bench element_stiffness`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use junta_core::element::{ElementContext, StepInfo};
 use junta_core::topology::{CellShape, HEX27_NODES};
-use junta_core::Element;
+use junta_core::{Element, Kinematics};
 use junta_elements::{Integration, Isotropic, SolidElement};
 use std::sync::Arc;
 
@@ -22,13 +23,42 @@ fn coords(shape: CellShape) -> Vec<[f64; 3]> {
 fn bench(c: &mut Criterion) {
     let steel = Arc::new(Isotropic::new(210e9, 0.3).unwrap());
     let mut group = c.benchmark_group("element_stiffness");
-    for (name, shape, integration) in [
-        ("h8", CellShape::Hex8, Integration::Full),
-        ("h20", CellShape::Hex20, Integration::Full),
-        ("h20r", CellShape::Hex20, Integration::Reduced),
-        ("h27", CellShape::Hex27, Integration::Full),
+    for (name, shape, integration, kinematics) in [
+        ("h8", CellShape::Hex8, Integration::Full, Kinematics::Small),
+        (
+            "h20",
+            CellShape::Hex20,
+            Integration::Full,
+            Kinematics::Small,
+        ),
+        (
+            "h20r",
+            CellShape::Hex20,
+            Integration::Reduced,
+            Kinematics::Small,
+        ),
+        (
+            "h27",
+            CellShape::Hex27,
+            Integration::Full,
+            Kinematics::Small,
+        ),
+        (
+            "h8_nlgeom",
+            CellShape::Hex8,
+            Integration::Full,
+            Kinematics::Finite,
+        ),
+        (
+            "h20_nlgeom",
+            CellShape::Hex20,
+            Integration::Full,
+            Kinematics::Finite,
+        ),
     ] {
-        let el = SolidElement::new(shape, integration, steel.clone()).unwrap();
+        let el = SolidElement::new(shape, integration, steel.clone())
+            .unwrap()
+            .with_kinematics(kinematics);
         let x = coords(shape);
         let n = 3 * x.len();
         let u: Vec<f64> = (0..n).map(|i| 1e-4 * (i as f64).cos()).collect();

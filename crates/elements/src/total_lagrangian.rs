@@ -53,7 +53,7 @@
 //! that `h8i` can pass its incompatible modes as extra gradients.
 
 use junta_core::Voigt6;
-use nalgebra::{Matrix3, Vector6};
+use nalgebra::{Matrix3, SMatrix, Vector6};
 
 /// `F = I + Σ_a u_a ⊗ g_a` for the gradients `g` and the displacements
 /// `disp` (node-major, 3 per gradient).
@@ -141,6 +141,11 @@ pub const MAX_GRADIENTS: usize = 27;
 
 /// Add `dv (B_a^T C B_b + (g_a · S g_b) I)` to the row-major `k` of
 /// leading dimension `ld` (at least `3 g.len()`), full (both triangles).
+///
+/// The element sizes in use (8, 11 = h8i's 8 + 3 modes, 20 and 27
+/// gradients) go through fixed-size matrix products, `K = B^T (dv C B)`
+/// with `B` the `6 x 3n` matrix of the columns `B_a[:, i]`; any other
+/// count through the same sums written out ([`add_tangent_any`]).
 pub fn add_tangent(
     g: &[[f64; 3]],
     f: &Matrix3<f64>,
@@ -150,32 +155,90 @@ pub fn add_tangent(
     k: &mut [f64],
     ld: usize,
 ) {
-    let n = g.len();
-    debug_assert!(n <= MAX_GRADIENTS && ld >= 3 * n);
-    // B_a columns and C B_b columns, each a Voigt 6-vector
-    let mut bcol = [[[0.0; 6]; 3]; MAX_GRADIENTS];
-    let mut cbcol = [[[0.0; 6]; 3]; MAX_GRADIENTS];
+    debug_assert!(g.len() <= MAX_GRADIENTS && ld >= 3 * g.len());
+    match g.len() {
+        8 => add_tangent_fixed::<24>(g, f, s, c, dv, k, ld),
+        11 => add_tangent_fixed::<33>(g, f, s, c, dv, k, ld),
+        20 => add_tangent_fixed::<60>(g, f, s, c, dv, k, ld),
+        27 => add_tangent_fixed::<81>(g, f, s, c, dv, k, ld),
+        _ => add_tangent_any(g, f, s, c, dv, k, ld),
+    }
+}
+
+/// [`add_tangent`] for `D = 3 g.len()` dofs with fixed-size products.
+fn add_tangent_fixed<const D: usize>(
+    g: &[[f64; 3]],
+    f: &Matrix3<f64>,
+    s: &Vector6<f64>,
+    c: &Voigt6,
+    dv: f64,
+    k: &mut [f64],
+    ld: usize,
+) {
+    let mut b = SMatrix::<f64, 6, D>::zeros();
+    for (a, ga) in g.iter().enumerate() {
+        for i in 0..3 {
+            b.set_column(3 * a + i, &Vector6::from(b_column(f, ga, i)));
+        }
+    }
+    let cb = (c * dv) * b;
+    let kmat: SMatrix<f64, D, D> = b.transpose() * cb;
+    let st = tensor(s) * dv;
+    for (a, ga) in g.iter().enumerate() {
+        let sga = st * nalgebra::Vector3::from(*ga);
+        for (bn, gb) in g.iter().enumerate() {
+            let geo = sga[0] * gb[0] + sga[1] * gb[1] + sga[2] * gb[2];
+            for i in 0..3 {
+                let row = &mut k[(3 * a + i) * ld + 3 * bn..(3 * a + i) * ld + 3 * bn + 3];
+                for (j, kij) in row.iter_mut().enumerate() {
+                    *kij += kmat[(3 * a + i, 3 * bn + j)] + if i == j { geo } else { 0.0 };
+                }
+            }
+        }
+    }
+}
+
+/// [`add_tangent`] for any number of gradients: the upper triangle
+/// (dof `r = 3a + i` against `c = 3b + j`, `c >= r`) computed once as `B_r
+/// · (dv C B_c)` plus the geometric `dv g_a · S g_b` where `i = j`, and
+/// written to both triangles.
+fn add_tangent_any(
+    g: &[[f64; 3]],
+    f: &Matrix3<f64>,
+    s: &Vector6<f64>,
+    c: &Voigt6,
+    dv: f64,
+    k: &mut [f64],
+    ld: usize,
+) {
+    let nd = 3 * g.len();
+    // by dof r = 3a + i: the column B_r and dv C B_r (Voigt 6-vectors)
+    let mut bcol = [[0.0; 6]; 3 * MAX_GRADIENTS];
+    let mut cbcol = [[0.0; 6]; 3 * MAX_GRADIENTS];
+    // by gradient: dv S g_a
+    let mut sg = [[0.0; 3]; MAX_GRADIENTS];
+    let st = tensor(s);
     for (a, ga) in g.iter().enumerate() {
         for i in 0..3 {
             let col = b_column(f, ga, i);
-            bcol[a][i] = col;
-            let cb = c * Vector6::from(col);
-            cbcol[a][i] = cb.into();
+            bcol[3 * a + i] = col;
+            cbcol[3 * a + i] = (c * Vector6::from(col) * dv).into();
         }
+        sg[a] = (st * nalgebra::Vector3::from(*ga) * dv).into();
     }
-    let st = tensor(s);
-    for (a, ga) in g.iter().enumerate() {
-        let sga = st * nalgebra::Vector3::from(*ga);
-        for (b, gb) in g.iter().enumerate() {
-            let geo = dv * (sga[0] * gb[0] + sga[1] * gb[1] + sga[2] * gb[2]);
-            for i in 0..3 {
-                let row = &mut k[(3 * a + i) * ld + 3 * b..(3 * a + i) * ld + 3 * b + 3];
-                let ba = &bcol[a][i];
-                for (j, kij) in row.iter_mut().enumerate() {
-                    let cb = &cbcol[b][j];
-                    let mat: f64 = (0..6).map(|v| ba[v] * cb[v]).sum();
-                    *kij += dv * mat + if i == j { geo } else { 0.0 };
-                }
+    for r in 0..nd {
+        let (a, i) = (r / 3, r % 3);
+        let br = &bcol[r];
+        for col in r..nd {
+            let cb = &cbcol[col];
+            let mut v: f64 = (0..6).map(|x| br[x] * cb[x]).sum();
+            if col % 3 == i {
+                let gb = &g[col / 3];
+                v += sg[a][0] * gb[0] + sg[a][1] * gb[1] + sg[a][2] * gb[2];
+            }
+            k[r * ld + col] += v;
+            if col != r {
+                k[col * ld + r] += v;
             }
         }
     }

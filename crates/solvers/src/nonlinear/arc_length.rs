@@ -527,6 +527,7 @@ where
             cursor: run.cur,
             path: Some(&run.path),
             track: None,
+            predictor: None,
         };
         if observer(&view) == Control::Stop {
             run.summary.stopped_by_observer = true;
@@ -1105,8 +1106,8 @@ impl<'a> PathRun<'a> {
         let (model, end) = (self.model, self.end);
         let (w, pw, path, cur) = (&mut self.w, &mut self.pw, &mut self.path, &mut self.cur);
         self.state.commit();
-        w.stalled_attempts = 0;
         let lambda_new = lambda_now(w);
+        w.committed(cur.increment_index + 1, cur.step, lambda_new)?;
         for (e, &d) in w.free_dofs.iter().enumerate() {
             pw.delta_prev[e] = w.u[d] - w.u_conv[d];
         }
@@ -1720,8 +1721,7 @@ impl PathAttempt<'_, '_> {
     /// - K_I^T u_0) . ubar` (`nonlinear/balance.rs`). A non-finite or
     /// degenerate solution fails the attempt.
     fn dissipation_dlambda(&mut self, it: usize, tau: f64, h: f64) -> Result<f64, Abort<Attempt>> {
-        let phi = self.dissipation() - tau;
-        // dphi = w . du + c_l dlambda
+        let phi = self.dissipation() - tau; // dphi = w . du + c_l dlambda
         let mut wdu1 = 0.0;
         let mut wdu2 = 0.0;
         let c_l;

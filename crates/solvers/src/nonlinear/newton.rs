@@ -276,6 +276,9 @@ where
     if cur.exact {
         w.use_exact_tangent()?;
     }
+    if let Some(p) = restart.and_then(|c| c.predictor.as_ref()) {
+        w.predictor = p.clone();
+    }
     let mut run = LoadRun {
         w,
         state,
@@ -311,7 +314,7 @@ where
             }
             Err((error, None)) => return Err(error),
         };
-        let report = run.commit(solver, &inc, before);
+        let report = run.commit(solver, &inc, before)?;
         let view = IncrementView {
             report: &report,
             u: &run.w.u,
@@ -321,6 +324,7 @@ where
             cursor: run.cur,
             path: None,
             track: None,
+            predictor: run.w.finite_kinematics.then_some(&run.w.predictor),
         };
         if observer(&view) == Control::Stop {
             run.summary.stopped_by_observer = true;
@@ -732,21 +736,32 @@ impl LoadRun<'_> {
     /// The next size: `small_increment` while an element wants small
     /// increments, `growth` times larger (at most `max_increment`) after an
     /// increment without cut-back in at most `growth_iterations`
-    /// iterations, else unchanged. Returns the increment's report
-    /// (`before`: the timings when it started).
+    /// iterations, else unchanged. Under finite kinematics, the interface
+    /// tangents' skew decides the tangent of the next increments
+    /// ([`Work::committed`]), and the increment is kept for the next one's
+    /// start ([`crate::nonlinear::engine::Predictor`]). Returns the
+    /// increment's report (`before`: the timings when it started).
     fn commit(
         &mut self,
         solver: &dyn LinearSolver,
         inc: &LoadIncrement,
         before: Timings,
-    ) -> IncrementReport {
+    ) -> Result<IncrementReport, NonlinearError> {
         let settings = self.settings;
         self.state.commit();
+        let cur = self.cur;
+        self.w
+            .committed(cur.increment_index + 1, cur.step, inc.lambda_new)?;
+        if self.w.finite_kinematics {
+            let delta_lambda = inc.lambda_new - self.cur.lambda;
+            let w = &mut self.w;
+            w.predictor
+                .record(&w.u_conv, &w.u, delta_lambda, inc.t_new < 1.0);
+        }
         self.w.u_conv.copy_from_slice(&self.w.u);
         if self.stop_at_limit {
             self.dissipation = self.dissipation.after(self.w.model, &self.w.u, &self.state);
         }
-        self.w.stalled_attempts = 0;
         let cur = &mut self.cur;
         let delta_lambda = inc.lambda_new - cur.lambda;
         let was_small = cur.small;
@@ -807,6 +822,6 @@ impl LoadRun<'_> {
             small = was_small,
             "increment converged"
         );
-        report
+        Ok(report)
     }
 }

@@ -22,6 +22,7 @@
 //! `junta_solvers::path_switch::PathSwitch`, ...).
 
 use crate::linear_static::Timings;
+pub(crate) use crate::nonlinear::engine::Predictor;
 use junta_core::element::Kinematics;
 use junta_core::state::StateStore;
 use junta_core::{CoreError, Model, SolverError};
@@ -356,6 +357,10 @@ pub struct Checkpoint {
     /// to path following ([`crate::path_switch`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub load_track: Option<LoadTrack>,
+    /// The last increment, which the next one's start extrapolates
+    /// (finite kinematics under load control only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) predictor: Option<Predictor>,
 }
 
 impl Checkpoint {
@@ -380,6 +385,7 @@ impl Checkpoint {
         state: &StateStore,
         path: Option<&PathState>,
         track: Option<&LoadTrack>,
+        predictor: Option<&Predictor>,
     ) -> Self {
         Checkpoint {
             step: c.step,
@@ -396,6 +402,7 @@ impl Checkpoint {
             cutbacks_in_a_row: c.cutbacks_in_a_row,
             negative_pivots: c.pivots,
             load_track: track.cloned(),
+            predictor: predictor.cloned(),
         }
     }
 }
@@ -417,12 +424,20 @@ pub struct IncrementView<'a> {
     pub(crate) cursor: Cursor,
     pub(crate) path: Option<&'a PathState>,
     pub(crate) track: Option<&'a LoadTrack>,
+    pub(crate) predictor: Option<&'a Predictor>,
 }
 
 impl IncrementView<'_> {
     /// A restart point after this increment.
     pub fn checkpoint(&self) -> Checkpoint {
-        Checkpoint::new(&self.cursor, self.u, self.state, self.path, self.track)
+        Checkpoint::new(
+            &self.cursor,
+            self.u,
+            self.state,
+            self.path,
+            self.track,
+            self.predictor,
+        )
     }
 }
 
@@ -472,7 +487,14 @@ pub struct NonlinearRun {
 impl NonlinearRun {
     /// A restart point at the end of this run.
     pub fn checkpoint(&self) -> Checkpoint {
-        Checkpoint::new(&self.cursor, &self.u, &self.state, self.path.as_ref(), None)
+        Checkpoint::new(
+            &self.cursor,
+            &self.u,
+            &self.state,
+            self.path.as_ref(),
+            None,
+            None,
+        )
     }
 }
 
