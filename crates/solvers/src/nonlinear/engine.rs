@@ -83,6 +83,9 @@ pub(crate) struct Work<'m> {
     /// The last converged increment under finite kinematics, which the
     /// next attempt's start extrapolates ([`Predictor`]).
     pub(crate) predictor: Predictor,
+    /// The evaluations of the current attempt leave the tangent out and
+    /// its corrections reuse the factorisation ([`Work::chord_next`]).
+    chord: bool,
     pub(crate) history: Vec<f64>,
     pub(crate) timings: Timings,
     pub(crate) analyzed: bool,
@@ -144,6 +147,11 @@ pub struct Predictor {
     pub(crate) delta_u: Vec<f64>,
     /// Its load-factor change (0: nothing to extrapolate).
     pub(crate) delta_lambda: f64,
+    /// It converged without cut-back in at most
+    /// [`CHORD_AFTER_ITERATIONS`] iterations: the next one may take chord
+    /// steps ([`Work::chord_next`]).
+    #[serde(default)]
+    pub(crate) chord: bool,
 }
 
 impl Predictor {
@@ -155,7 +163,15 @@ impl Predictor {
 
     /// Keep the increment from `u_conv` to `u` of `delta_lambda` (with
     /// `same_step`: the next increment continues this step).
-    pub(crate) fn record(&mut self, u_conv: &[f64], u: &[f64], delta_lambda: f64, same_step: bool) {
+    pub(crate) fn record(
+        &mut self,
+        u_conv: &[f64],
+        u: &[f64],
+        delta_lambda: f64,
+        same_step: bool,
+        (iterations, cutbacks): (usize, usize),
+    ) {
+        self.chord = cutbacks == 0 && iterations <= CHORD_AFTER_ITERATIONS;
         if !same_step {
             self.delta_lambda = 0.0;
             return;
@@ -321,6 +337,7 @@ impl<'m> Work<'m> {
                 .iter()
                 .any(|e| e.kinematics() == junta_core::Kinematics::Finite),
             predictor: Predictor::default(),
+            chord: false,
             history: Vec::with_capacity(settings.max_iterations + 1),
             timings: Timings::default(),
             analyzed: false,
@@ -406,7 +423,7 @@ impl<'m> Work<'m> {
             &self.u,
             state,
             step,
-            Some(&mut self.k),
+            (!self.chord).then_some(&mut self.k),
             &mut self.f_int,
             share,
         );
@@ -699,15 +716,23 @@ impl<'m> Work<'m> {
         while counted < max_iterations && it < max_iterations + self.contact_allowance {
             it += 1;
             self.newton_correction(solver, a, it)?;
+            self.chord = self.chord_next(a, it);
             let s = self.newton_update(state, a, it)?;
             let switched = self.contact_switches(state)?;
             if switched == 0 {
                 counted += 1;
             }
             if let Some(done) = self.newton_checks(a, it, s, switched) {
+                self.chord = false;
                 return Ok(done);
             }
+            if self.chord && (switched > 0 || !self.chord_contracted()) {
+                // back to Newton: the tangent at this iterate
+                self.chord = false;
+                a.ev = self.attempt_evaluate(state, a, it)?;
+            }
         }
+        self.chord = false;
         Ok(failed(it, a.ev.rel, IncrementFailure::IterationLimit))
     }
 
@@ -818,7 +843,11 @@ impl<'m> Work<'m> {
     ) -> Result<(), Abort<Attempt>> {
         self.iterations += 1;
         self.analyze_once(solver)?;
-        if let Err(e) = self.factorize(solver) {
+        // (a chord step: the last evaluation left the tangent out, and the
+        // factorisation of the attempt's first tangent serves again)
+        if self.chord {
+            // nothing to factorise
+        } else if let Err(e) = self.factorize(solver) {
             return Err(Abort::Failed(failed(
                 it,
                 a.ev.rel,
@@ -850,6 +879,36 @@ impl<'m> Work<'m> {
         Ok(())
     }
 
+    /// Whether the evaluations after correction `it` leave the tangent out
+    /// (a chord step: the next correction reuses the factorisation of the
+    /// attempt's first tangent). Only under finite kinematics, on the
+    /// consistent tangent, after an increment that converged fast
+    /// ([`Predictor::chord`]), from the first correction on and for as
+    /// long as the chord steps contract ([`Work::chord_contracted`]).
+    ///
+    /// Why: under nlgeom an elastic increment needs two Newton corrections
+    /// where small strain needs one (the energy test asks for the second),
+    /// and each tangent costs a total-Lagrangian assembly and a full
+    /// refactorisation. Within one short increment the tangent hardly
+    /// changes: on `dcb_h8.toml` the first correction leaves a relative
+    /// residual of about 1e-6, and the chord step from the same factor
+    /// converges as the second Newton step did. Code_Aster's
+    /// `STAT_NON_LINE` reassembles once per increment by default
+    /// (`REAC_ITER = 0`); here the tangent comes back as soon as a chord
+    /// step fails.
+    fn chord_next(&self, a: &NewtonAttempt, it: usize) -> bool {
+        self.finite_kinematics && self.predictor.chord && !a.step.secant && (it == 1 || self.chord)
+    }
+
+    /// The last chord step reduced the relative residual at least
+    /// [`CHORD_CONTRACTION`] times.
+    fn chord_contracted(&self) -> bool {
+        match self.history.as_slice() {
+            [.., before, last] => *last <= CHORD_CONTRACTION * before,
+            _ => false,
+        }
+    }
+
     /// The update of iteration `it`: `u = u_i + s du` with the step length
     /// `s` of the line search ([`Work::line_search`]), and its residual in
     /// `a.ev`. When the consistent tangent did not reduce the residual
@@ -869,9 +928,16 @@ impl<'m> Work<'m> {
         } else {
             0
         };
+        // a chord step that does not descend: Newton from here, with the
+        // tangent at the iterate evaluated below
+        let chord_failed = self.chord && !ls.decreased;
+        if chord_failed {
+            self.chord = false;
+        }
         // (Only while the force residual is above its tolerance: a
         // residual already at round-off level need not decrease.)
-        let switch_to_secant = !ls.decreased
+        let switch_to_secant = !chord_failed
+            && !ls.decreased
             && !a.step.secant
             && self.settings.secant_fallback
             && a.ev.rel > self.settings.tol_force;
@@ -883,7 +949,7 @@ impl<'m> Work<'m> {
                 "no decrease with the consistent tangent: secant tangent from here"
             );
         }
-        if ls.s != ls.last_s || switch_to_secant {
+        if ls.s != ls.last_s || switch_to_secant || chord_failed {
             self.set_trial(ls.s);
             a.ev = self.attempt_evaluate(state, a, it)?;
         } else {
@@ -1217,6 +1283,16 @@ pub(crate) const EXACT_TANGENT_SKEW: f64 = 1e-4;
 /// elastic, 1e-3 at damage onset, 2e-2 with a process zone, all converging
 /// in 2 iterations per increment like the exact tangent.
 pub(crate) const SYMMETRISED_SKEW_LIMIT: f64 = 0.1;
+
+/// Least reduction of the relative residual by a chord step
+/// ([`Work::chord_next`]) for the next one to reuse the factorisation
+/// again; Newton's own steps gain three digits or more on these
+/// increments.
+const CHORD_CONTRACTION: f64 = 0.1;
+
+/// Iterations of a converged increment (without cut-back) up to which the
+/// next one may take chord steps ([`Predictor::chord`]).
+const CHORD_AFTER_ITERATIONS: usize = 3;
 
 /// Newton iterations without a 1 % decrease of the best relative residual
 /// after which an attempt stops as stagnated (a quadratically converging

@@ -755,8 +755,10 @@ impl LoadRun<'_> {
         if self.w.finite_kinematics {
             let delta_lambda = inc.lambda_new - self.cur.lambda;
             let w = &mut self.w;
+            let same_step = inc.t_new < 1.0;
+            let effort = (inc.iterations, inc.cutbacks);
             w.predictor
-                .record(&w.u_conv, &w.u, delta_lambda, inc.t_new < 1.0);
+                .record(&w.u_conv, &w.u, delta_lambda, same_step, effort);
         }
         self.w.u_conv.copy_from_slice(&self.w.u);
         if self.stop_at_limit {
