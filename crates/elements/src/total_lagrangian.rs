@@ -156,25 +156,28 @@ pub fn add_tangent(
     ld: usize,
 ) {
     debug_assert!(g.len() <= MAX_GRADIENTS && ld >= 3 * g.len());
+    let p = PointTangent { g, f, s, c, dv };
     match g.len() {
-        8 => add_tangent_fixed::<24>(g, f, s, c, dv, k, ld),
-        11 => add_tangent_fixed::<33>(g, f, s, c, dv, k, ld),
-        20 => add_tangent_fixed::<60>(g, f, s, c, dv, k, ld),
-        27 => add_tangent_fixed::<81>(g, f, s, c, dv, k, ld),
-        _ => add_tangent_any(g, f, s, c, dv, k, ld),
+        8 => add_tangent_fixed::<24>(&p, k, ld),
+        11 => add_tangent_fixed::<33>(&p, k, ld),
+        20 => add_tangent_fixed::<60>(&p, k, ld),
+        27 => add_tangent_fixed::<81>(&p, k, ld),
+        _ => add_tangent_any(&p, k, ld),
     }
 }
 
-/// [`add_tangent`] for `D = 3 g.len()` dofs with fixed-size products.
-fn add_tangent_fixed<const D: usize>(
-    g: &[[f64; 3]],
-    f: &Matrix3<f64>,
-    s: &Vector6<f64>,
-    c: &Voigt6,
+/// What one point's tangent is built from ([`add_tangent`]).
+struct PointTangent<'a> {
+    g: &'a [[f64; 3]],
+    f: &'a Matrix3<f64>,
+    s: &'a Vector6<f64>,
+    c: &'a Voigt6,
     dv: f64,
-    k: &mut [f64],
-    ld: usize,
-) {
+}
+
+/// [`add_tangent`] for `D = 3 g.len()` dofs with fixed-size products.
+fn add_tangent_fixed<const D: usize>(p: &PointTangent<'_>, k: &mut [f64], ld: usize) {
+    let PointTangent { g, f, s, c, dv } = *p;
     let mut b = SMatrix::<f64, 6, D>::zeros();
     for (a, ga) in g.iter().enumerate() {
         for i in 0..3 {
@@ -202,15 +205,8 @@ fn add_tangent_fixed<const D: usize>(
 /// (dof `r = 3a + i` against `c = 3b + j`, `c >= r`) computed once as `B_r
 /// · (dv C B_c)` plus the geometric `dv g_a · S g_b` where `i = j`, and
 /// written to both triangles.
-fn add_tangent_any(
-    g: &[[f64; 3]],
-    f: &Matrix3<f64>,
-    s: &Vector6<f64>,
-    c: &Voigt6,
-    dv: f64,
-    k: &mut [f64],
-    ld: usize,
-) {
+fn add_tangent_any(p: &PointTangent<'_>, k: &mut [f64], ld: usize) {
+    let PointTangent { g, f, s, c, dv } = *p;
     let nd = 3 * g.len();
     // by dof r = 3a + i: the column B_r and dv C B_r (Voigt 6-vectors)
     let mut bcol = [[0.0; 6]; 3 * MAX_GRADIENTS];

@@ -159,6 +159,14 @@ fn cohesive() -> Arc<dyn InterfaceLaw> {
     (find::<LawEntry>("bilinear").unwrap().build)(&t).unwrap()
 }
 
+/// Every interface shape with every rule it has.
+fn shapes_and_rules() -> impl Iterator<Item = (CellShape, InterfaceRule)> {
+    SHAPES
+        .into_iter()
+        .flat_map(|shape| RULES.into_iter().map(move |rule| (shape, rule)))
+        .filter(|&(shape, rule)| exists(shape, rule))
+}
+
 fn finite(shape: CellShape, rule: InterfaceRule, law: Arc<dyn InterfaceLaw>) -> InterfaceElement {
     InterfaceElement::new(shape, rule, law)
         .unwrap()
@@ -379,35 +387,30 @@ fn finite_tangent_matches_finite_differences_linear_penalty() {
 fn finite_tangent_matches_finite_differences_softening_cohesive() {
     let mut rng = Rng(0x5eed_1234_abcd_0002);
     let mut worst = 0.0f64;
-    for shape in SHAPES {
-        for rule in RULES {
-            if !exists(shape, rule) {
-                continue;
+    for (shape, rule) in shapes_and_rules() {
+        let el = finite(shape, rule, cohesive());
+        let coords = curved_interface(shape);
+        let sl = el.law().state_len();
+        for st in states(&coords, 0.2, &mut rng) {
+            let what = format!("{} {} bilinear", label(shape, rule), st.name);
+            let s0 = initial_state(&el);
+            let committed = compute(&el, &coords, &st.disp(&coords, 0.6), &s0, false).2;
+            let u = st.disp(&coords, 1.0);
+            let trial = compute(&el, &coords, &u, &committed, false).2;
+            for q in 0..el.num_points() {
+                let (dc, dt) = (
+                    committed[q * sl + slot::DAMAGE_HISTORY],
+                    trial[q * sl + slot::DAMAGE_HISTORY],
+                );
+                assert!(
+                    dc > 0.05 && dt > dc + 1e-3 && dt < 0.999,
+                    "{what}: point {q} is not softening and loading: damage {dc} -> {dt}"
+                );
             }
-            let el = finite(shape, rule, cohesive());
-            let coords = curved_interface(shape);
-            let sl = el.law().state_len();
-            for st in states(&coords, 0.2, &mut rng) {
-                let what = format!("{} {} bilinear", label(shape, rule), st.name);
-                let s0 = initial_state(&el);
-                let committed = compute(&el, &coords, &st.disp(&coords, 0.6), &s0, false).2;
-                let u = st.disp(&coords, 1.0);
-                let trial = compute(&el, &coords, &u, &committed, false).2;
-                for q in 0..el.num_points() {
-                    let (dc, dt) = (
-                        committed[q * sl + slot::DAMAGE_HISTORY],
-                        trial[q * sl + slot::DAMAGE_HISTORY],
-                    );
-                    assert!(
-                        dc > 0.05 && dt > dc + 1e-3 && dt < 0.999,
-                        "{what}: point {q} is not softening and loading: damage {dc} -> {dt}"
-                    );
-                }
-                let (err, _) = tangent_error(&el, &coords, &u, &committed, 1e-7);
-                println!("{what}: |K - FD| / |K| = {err:.2e}");
-                assert!(err < 1e-6, "{what}: |K - FD| / |K| = {err:e}");
-                worst = worst.max(err);
-            }
+            let (err, _) = tangent_error(&el, &coords, &u, &committed, 1e-7);
+            println!("{what}: |K - FD| / |K| = {err:.2e}");
+            assert!(err < 1e-6, "{what}: |K - FD| / |K| = {err:e}");
+            worst = worst.max(err);
         }
     }
     println!("bilinear (softening): worst |K - FD| / |K| = {worst:.2e}");
@@ -544,51 +547,46 @@ fn kinematics_and_tangent_kind_are_reported() {
 #[test]
 fn finite_tangent_stored_as_its_symmetric_part_with_the_skew_measured() {
     let mut rng = Rng(0x5eed_1234_abcd_0006);
-    for shape in SHAPES {
-        for rule in RULES {
-            if !exists(shape, rule) {
-                continue;
-            }
-            let el = finite(shape, rule, cohesive());
-            let coords = curved_interface(shape);
-            let s0 = initial_state(&el);
-            for st in states(&coords, 0.2, &mut rng) {
-                let what = format!("{} {}", label(shape, rule), st.name);
-                let u = st.disp(&coords, 1.0);
-                let nd = u.len();
-                let mut k = vec![f64::NAN; nd * nd];
-                let mut trial = vec![f64::NAN; el.state_len()];
-                let mut f = vec![f64::NAN; nd];
-                let c = ElementContext {
-                    step: step(),
-                    ..ctx(&coords, &u, &s0)
-                };
-                el.compute(&c, &mut trial, &mut f, Some(&mut k)).unwrap();
-                let reported = el.take_symmetrised_skew();
-                let exact = compute(&el, &coords, &u, &s0, true).1;
-                assert_eq!(el.take_symmetrised_skew(), 0.0, "{what}: exact recorded");
-                let big = max_abs(&exact);
-                let mut largest: f64 = 0.0;
-                for i in 0..nd {
-                    for j in 0..nd {
-                        let sym = 0.5 * (exact[i * nd + j] + exact[j * nd + i]);
-                        assert!(
-                            (k[i * nd + j] - sym).abs() <= 1e-14 * big,
-                            "{what}: stored {} against the symmetric part {sym}",
-                            k[i * nd + j]
-                        );
-                        let scale = (exact[i * nd + i] * exact[j * nd + j]).abs().sqrt();
-                        if scale > 0.0 {
-                            let skew = (exact[i * nd + j] - exact[j * nd + i]).abs() / scale;
-                            largest = largest.max(skew);
-                        }
+    for (shape, rule) in shapes_and_rules() {
+        let el = finite(shape, rule, cohesive());
+        let coords = curved_interface(shape);
+        let s0 = initial_state(&el);
+        for st in states(&coords, 0.2, &mut rng) {
+            let what = format!("{} {}", label(shape, rule), st.name);
+            let u = st.disp(&coords, 1.0);
+            let nd = u.len();
+            let mut k = vec![f64::NAN; nd * nd];
+            let mut trial = vec![f64::NAN; el.state_len()];
+            let mut f = vec![f64::NAN; nd];
+            let c = ElementContext {
+                step: step(),
+                ..ctx(&coords, &u, &s0)
+            };
+            el.compute(&c, &mut trial, &mut f, Some(&mut k)).unwrap();
+            let reported = el.take_symmetrised_skew();
+            let exact = compute(&el, &coords, &u, &s0, true).1;
+            assert_eq!(el.take_symmetrised_skew(), 0.0, "{what}: exact recorded");
+            let big = max_abs(&exact);
+            let mut largest: f64 = 0.0;
+            for i in 0..nd {
+                for j in 0..nd {
+                    let sym = 0.5 * (exact[i * nd + j] + exact[j * nd + i]);
+                    assert!(
+                        (k[i * nd + j] - sym).abs() <= 1e-14 * big,
+                        "{what}: stored {} against the symmetric part {sym}",
+                        k[i * nd + j]
+                    );
+                    let scale = (exact[i * nd + i] * exact[j * nd + j]).abs().sqrt();
+                    if scale > 0.0 {
+                        let skew = (exact[i * nd + j] - exact[j * nd + i]).abs() / scale;
+                        largest = largest.max(skew);
                     }
                 }
-                assert!(
-                    largest > 1e-3 && (reported - largest).abs() <= 1e-12 * largest,
-                    "{what}: reported skew {reported:e} against {largest:e}"
-                );
             }
+            assert!(
+                largest > 1e-3 && (reported - largest).abs() <= 1e-12 * largest,
+                "{what}: reported skew {reported:e} against {largest:e}"
+            );
         }
     }
 }

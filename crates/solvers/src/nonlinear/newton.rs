@@ -47,9 +47,14 @@
 //! Each increment `lambda_n -> lambda_{n+1}` starts from the converged
 //! free displacements of the previous increment with the constrained dofs
 //! moved to `lambda_{n+1} * prescribed` (the prescribed jump enters the first
-//! residual through `f_int`, exactly as in [`crate::linear_static`]). Full
-//! Newton then iterates with the consistent tangent `K = d f_int / d u`
-//! assembled by the elements:
+//! residual through `f_int`, exactly as in [`crate::linear_static`]).
+//! Under finite kinematics (nlgeom) the free displacements are
+//! extrapolated from the last increment of the same step instead
+//! ([`crate::nonlinear::engine::Predictor`]), and after an increment that
+//! converged in at most three iterations the next one's corrections reuse
+//! its first factorisation for as long as each gains a digit (chord steps,
+//! `Work::chord_next` of the engine). Full Newton then iterates with the
+//! consistent tangent `K = d f_int / d u` assembled by the elements:
 //!
 //! ```text
 //! K_ff(u_i) du = -r_f(u_i),    u_{i+1} = u_i + s du
