@@ -871,10 +871,8 @@ impl Element for InterfaceElement {
     }
 
     fn tangent_kind(&self) -> MatrixKind {
-        match self.kinematics {
-            Kinematics::Small => self.law.tangent_kind(),
-            Kinematics::Finite => self.law.tangent_kind(),
-        }
+        // under finite kinematics too: the symmetric part is stored
+        self.law.tangent_kind()
     }
 
     fn symmetrises_tangent(&self) -> bool {

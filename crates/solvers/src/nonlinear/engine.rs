@@ -845,14 +845,14 @@ impl<'m> Work<'m> {
         self.analyze_once(solver)?;
         // (a chord step: the last evaluation left the tangent out, and the
         // factorisation of the attempt's first tangent serves again)
-        if self.chord {
-            // nothing to factorise
-        } else if let Err(e) = self.factorize(solver) {
-            return Err(Abort::Failed(failed(
-                it,
-                a.ev.rel,
-                IncrementFailure::Solver(e),
-            )));
+        if !self.chord {
+            if let Err(e) = self.factorize(solver) {
+                return Err(Abort::Failed(failed(
+                    it,
+                    a.ev.rel,
+                    IncrementFailure::Solver(e),
+                )));
+            }
         }
         for (e, &r) in self.res_f.iter().enumerate() {
             self.r_prev[e] = r;
