@@ -36,8 +36,9 @@
 //!    whose eigenvalue is below `1e-10 · max(1, λ_max)`. A mode of the
 //!    canonical six is named free when its projection onto that null space
 //!    is at least 0.99 of its length; null directions that are no canonical
-//!    mode are counted as "combined" modes. Models with two dofs per node
-//!    (2D) use the modes `t_x, t_y, r_z` only.
+//!    mode are counted as "combined" modes. Plane models (two dofs per
+//!    node, or plane elements only) use the modes `t_x, t_y, r_z` only,
+//!    axisymmetric ones `t_y` (along the axis) only.
 //!
 //! The cost is one pass over the connectivity (near-linear union-find) and
 //! one pass over the constrained dofs.
@@ -211,9 +212,25 @@ fn free_modes(g: &SMatrix<f64, 6, 6>, active: &[usize]) -> (Vec<&'static str>, u
             named.push(MODE_NAMES[m]);
         }
     }
-    // inactive modes (2D) are in the null space by construction
-    let dim = null.len() - (6 - active.len());
-    (named.clone(), dim.saturating_sub(named.len()))
+    // inactive modes (2D) are pinned by the caller: not in the null space
+    (named.clone(), null.len().saturating_sub(named.len()))
+}
+
+/// The rigid-body modes of the model's kinematics: all six in 3D; `t_x,
+/// t_y, r_z` for a plane model (two dofs per node, or only plane
+/// elements); `t_y` alone for an axisymmetric one (a radial motion strains
+/// the ring).
+fn active_modes(model: &Model, dpn: usize) -> &'static [usize] {
+    let plane = dpn == 2 || model.mesh.blocks.iter().all(|b| b.shape.dimension() == 2);
+    let axisymmetric = model
+        .elements
+        .iter()
+        .any(|e| e.plane_width() == Some(crate::element::PlaneWidth::Axisymmetric));
+    match (plane, axisymmetric) {
+        (true, true) => &[1],
+        (true, false) => &[0, 1, 5],
+        _ => &[0, 1, 2, 3, 4, 5],
+    }
 }
 
 /// The connected parts of `model` that its prescribed dofs do not hold
@@ -269,15 +286,11 @@ pub fn floating_parts(model: &Model) -> Vec<FloatingPart> {
         let row = SMatrix::<f64, 1, 6>::from_row_slice(&mode_row(c, r));
         gram[k] += row.transpose() * row;
     }
-    let active: &[usize] = if dpn == 2 {
-        &[0, 1, 5]
-    } else {
-        &[0, 1, 2, 3, 4, 5]
-    };
-    if dpn == 2 {
+    let active = active_modes(model, dpn);
+    if active.len() < 6 {
         // modes a 2D model does not have: pin them so that they are not free
         for g in &mut gram {
-            for m in [2, 3, 4] {
+            for m in (0..6).filter(|m| !active.contains(m)) {
                 g[(m, m)] += 1.0;
             }
         }

@@ -110,6 +110,21 @@ impl DofMap {
         constraints: &[(usize, f64)],
         used: &[bool],
     ) -> Result<Self, CoreError> {
+        let used_dofs: Vec<bool> = (0..3 * num_nodes)
+            .map(|d| used.get(d / 3).copied().unwrap_or(true))
+            .collect();
+        Self::with_used_dofs(num_nodes, constraints, &used_dofs)
+    }
+
+    /// As [`DofMap::new`], with the use of each dof (`used_dofs[3 node +
+    /// component]`): a dof that no element uses (a node of no element, or
+    /// the `z` component of a node of plane elements only) is fixed at
+    /// zero silently.
+    pub fn with_used_dofs(
+        num_nodes: usize,
+        constraints: &[(usize, f64)],
+        used_dofs: &[bool],
+    ) -> Result<Self, CoreError> {
         let ndof = 3 * num_nodes;
         let mut fixed: Vec<Option<f64>> = vec![None; ndof];
         for &(d, v) in constraints {
@@ -135,7 +150,7 @@ impl DofMap {
         let mut orphan = vec![false; ndof];
         let mut n = 0;
         for d in 0..ndof {
-            if !used.get(d / 3).copied().unwrap_or(true) {
+            if !used_dofs.get(d).copied().unwrap_or(true) {
                 orphan[d] = true;
                 continue;
             }

@@ -54,6 +54,29 @@ pub enum Kinematics {
 
 pub use crate::step::StepInfo;
 
+/// The out-of-plane width a plane cell or a line interface stands for
+/// (forces, reactions and energies of a plane model are those of this
+/// width).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PlaneWidth {
+    /// Plane strain or plane stress: a slice of constant thickness `t`.
+    Thickness(f64),
+    /// Axisymmetric about the y axis (x is the radius): the full ring,
+    /// width `2 pi r`.
+    Axisymmetric,
+}
+
+impl PlaneWidth {
+    /// The width at a point `x`: `t`, or `2 pi x[0]`.
+    pub fn at(self, x: [f64; 3]) -> f64 {
+        match self {
+            PlaneWidth::Thickness(t) => t,
+            PlaneWidth::Axisymmetric => 2.0 * std::f64::consts::PI * x[0],
+        }
+    }
+}
+
 /// Everything an element kernel reads. Buffers are owned by the caller.
 #[derive(Debug, Clone, Copy)]
 pub struct ElementContext<'a> {
@@ -114,6 +137,17 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     /// Degrees of freedom per node (3 for every element so far).
     fn dofs_per_node(&self) -> usize {
         3
+    }
+    /// The displacement components `[x, y, z]` the element uses at its
+    /// nodes: all three for 3D elements, `[true, true, false]` for plane
+    /// ones. A node's component that no element uses gets no equation
+    /// ([`crate::Model::new`]), so a plane model solves two per node.
+    fn active_components(&self) -> [bool; 3] {
+        [true; 3]
+    }
+    /// The width a plane element stands for (`None` for 3D elements).
+    fn plane_width(&self) -> Option<PlaneWidth> {
+        None
     }
     /// Number of integration points.
     fn num_points(&self) -> usize;

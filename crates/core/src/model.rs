@@ -117,6 +117,21 @@ fn program_ramp(ends: &[f64], step: usize, t: f64) -> Option<f64> {
     })
 }
 
+/// The use of each dof (`3 node + component`): the components
+/// ([`Element::active_components`]) of the elements at each node.
+fn used_dofs(mesh: &Mesh, elements: &[Arc<dyn Element>]) -> Vec<bool> {
+    let mut used = vec![false; 3 * mesh.nodes.len()];
+    for (b, el) in mesh.blocks.iter().zip(elements) {
+        let active = el.active_components();
+        for &i in &b.connectivity {
+            for (c, &on) in active.iter().enumerate() {
+                used[3 * i + c] |= on;
+            }
+        }
+    }
+    used
+}
+
 impl Model {
     /// Assemble a model: validates the mesh, checks that every block has an
     /// element of the right shape, checks every element's geometry, and
@@ -153,7 +168,8 @@ impl Model {
             ));
         }
         check_geometry(&mesh, &elements)?;
-        let dofs = DofMap::new(mesh.nodes.len(), constraints, &mesh.used_nodes())?;
+        let dofs =
+            DofMap::with_used_dofs(mesh.nodes.len(), constraints, &used_dofs(&mesh, &elements))?;
         Ok(Model {
             mesh,
             elements,

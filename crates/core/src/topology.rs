@@ -51,6 +51,29 @@
 //! face, each in the face's order (quadrilateral for INTER8 / INTER16 /
 //! INTER18, triangle for INTER6 / INTER12); the normal points from bottom
 //! to top.
+//!
+//! ## Plane cells (2D: plane strain, plane stress, axisymmetric)
+//!
+//! The plane solids lie in the x-y plane (for axisymmetric ones x is the
+//! radius r and y the axis z): [`CellShape::PlaneQuad4`], `PlaneQuad8`,
+//! `PlaneQuad9` in the quadrilateral order above, [`CellShape::PlaneTri3`],
+//! `PlaneTri6` in the triangle order above (Abaqus CPE4 / CPE8 / CPE3 /
+//! CPE6 orders), counter-clockwise. Their faces are their edges, in Abaqus
+//! order S1..S4 (S1..S3 for triangles): edge `k` runs from corner `k` to
+//! corner `k + 1`, with its mid-side node last ([`QUAD_EDGES`],
+//! [`TRI_EDGES`]); in a counter-clockwise cell the outward normal of an
+//! edge with tangent `t` is `(t_y, -t_x)`.
+//!
+//! Lines ([`CellShape::Line2`], [`CellShape::Line3`]): natural coordinate
+//! xi in [-1, 1], end nodes 0 (xi = -1) and 1 (xi = 1), then the middle
+//! node 2 (xi = 0), as VTK's quadratic edge.
+//!
+//! Line interfaces ([`CellShape::LineInter4`], [`CellShape::LineInter6`]):
+//! the nodes of the bottom line then those of the top line, each in the
+//! line's order; the normal points from bottom to top: with `t` the bottom
+//! line's tangent from node 0 to node 1, `n = e_z x t = (-t_y, t_x)` (the
+//! left of the line). Abaqus's COH2D4 lists the top line reversed (1-2-3-4
+//! counter-clockwise, node 4 above node 1): the deck reader swaps it.
 
 /// Every cell shape Junta knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -90,7 +113,35 @@ pub enum CellShape {
     Wedge6,
     /// 15-node serendipity wedge, Abaqus / CalculiX C3D15 order.
     Wedge15,
+    /// 2-node line (an edge of a linear plane cell, a side of LINE_INTER4).
+    Line2,
+    /// 3-node line (an edge of a quadratic plane cell, a side of LINE_INTER6).
+    Line3,
+    /// 4-node plane quadrilateral (CPE4 / CPS4 / CAX4), Quad4 order.
+    PlaneQuad4,
+    /// 8-node plane serendipity quadrilateral (CPE8 / CPS8 / CAX8).
+    PlaneQuad8,
+    /// 9-node plane Lagrange quadrilateral (Quad9 order).
+    PlaneQuad9,
+    /// 3-node plane triangle (CPE3 / CPS3 / CAX3), Tri3 order.
+    PlaneTri3,
+    /// 6-node plane triangle (CPE6 / CPS6 / CAX6), Tri6 order.
+    PlaneTri6,
+    /// 4-node line interface (two Line2 sides: bottom 0-1, top copies 2-3),
+    /// between the edges of linear plane cells (Abaqus COH2D4 / COHAX4).
+    LineInter4,
+    /// 6-node line interface (two Line3 sides: bottom 0-2, top copies 3-5),
+    /// between the edges of quadratic plane cells.
+    LineInter6,
 }
+
+/// Edges of the plane quadrilaterals (Abaqus S1..S4), each as its two
+/// corners then its mid-side node (take the first 2 for PlaneQuad4): the
+/// outward normal of a counter-clockwise cell is on the right of each.
+pub const QUAD_EDGES: [[usize; 3]; 4] = [[0, 1, 4], [1, 2, 5], [2, 3, 6], [3, 0, 7]];
+
+/// Edges of the plane triangles (Abaqus S1..S3), as [`QUAD_EDGES`].
+pub const TRI_EDGES: [[usize; 3]; 3] = [[0, 1, 3], [1, 2, 4], [2, 0, 5]];
 
 /// Natural coordinates `(r, s, zeta)` of the 15 wedge nodes (the first 6
 /// serve Wedge6), Abaqus / CalculiX order: the triangle `r, s >= 0,
@@ -232,10 +283,20 @@ impl CellShape {
             CellShape::Inter12 => 12,
             CellShape::Wedge6 => 6,
             CellShape::Wedge15 => 15,
+            CellShape::Line2 => 2,
+            CellShape::Line3 => 3,
+            CellShape::PlaneQuad4 => 4,
+            CellShape::PlaneQuad8 => 8,
+            CellShape::PlaneQuad9 => 9,
+            CellShape::PlaneTri3 => 3,
+            CellShape::PlaneTri6 => 6,
+            CellShape::LineInter4 => 4,
+            CellShape::LineInter6 => 6,
         }
     }
 
-    /// True for the 3D solid shapes.
+    /// True for the continuum shapes: the 3D solids and the plane cells
+    /// (whose faces are their edges).
     pub fn is_solid(self) -> bool {
         matches!(
             self,
@@ -244,7 +305,45 @@ impl CellShape {
                 | CellShape::Hex27
                 | CellShape::Wedge6
                 | CellShape::Wedge15
+        ) || self.is_plane()
+    }
+
+    /// True for the plane (2D) continuum cells.
+    pub fn is_plane(self) -> bool {
+        matches!(
+            self,
+            CellShape::PlaneQuad4
+                | CellShape::PlaneQuad8
+                | CellShape::PlaneQuad9
+                | CellShape::PlaneTri3
+                | CellShape::PlaneTri6
         )
+    }
+
+    /// The dimension of the space the cell's model lives in: 2 for plane
+    /// cells, line interfaces and lines, 3 otherwise.
+    pub fn dimension(self) -> usize {
+        match self {
+            CellShape::Line2 | CellShape::Line3 | CellShape::LineInter4 | CellShape::LineInter6 => {
+                2
+            }
+            s if s.is_plane() => 2,
+            _ => 3,
+        }
+    }
+
+    /// The surface shape with the same node order and natural coordinates
+    /// as a plane cell (its shape functions): `PlaneQuad4` -> `Quad4`, ...,
+    /// `PlaneTri6` -> `Tri6`; `None` for other shapes.
+    pub fn plane_reference(self) -> Option<CellShape> {
+        match self {
+            CellShape::PlaneQuad4 => Some(CellShape::Quad4),
+            CellShape::PlaneQuad8 => Some(CellShape::Quad8),
+            CellShape::PlaneQuad9 => Some(CellShape::Quad9),
+            CellShape::PlaneTri3 => Some(CellShape::Tri3),
+            CellShape::PlaneTri6 => Some(CellShape::Tri6),
+            _ => None,
+        }
     }
 
     /// True for the zero-thickness interface shapes.
@@ -281,6 +380,13 @@ impl CellShape {
             CellShape::Hex27 | CellShape::Inter18 => Some(CellShape::Quad9),
             CellShape::Inter6 => Some(CellShape::Tri3),
             CellShape::Inter12 => Some(CellShape::Tri6),
+            CellShape::PlaneQuad4 | CellShape::PlaneTri3 | CellShape::LineInter4 => {
+                Some(CellShape::Line2)
+            }
+            CellShape::PlaneQuad8
+            | CellShape::PlaneQuad9
+            | CellShape::PlaneTri6
+            | CellShape::LineInter6 => Some(CellShape::Line3),
             _ => None,
         }
     }
@@ -301,12 +407,14 @@ impl CellShape {
         }
     }
 
-    /// Number of faces of a solid: 6 for hexahedra, 5 for wedges, 0 for
-    /// other shapes.
+    /// Number of faces of a solid: 6 for hexahedra, 5 for wedges, the
+    /// edges of a plane cell (4 or 3), 0 for other shapes.
     pub fn num_faces(self) -> usize {
         match self {
             CellShape::Hex8 | CellShape::Hex20 | CellShape::Hex27 => 6,
             CellShape::Wedge6 | CellShape::Wedge15 => 5,
+            CellShape::PlaneQuad4 | CellShape::PlaneQuad8 | CellShape::PlaneQuad9 => 4,
+            CellShape::PlaneTri3 | CellShape::PlaneTri6 => 3,
             _ => 0,
         }
     }
@@ -317,17 +425,22 @@ impl CellShape {
     pub fn face_nodes(self, f: usize) -> &'static [usize] {
         match (self, self.face_shape_of(f)) {
             (CellShape::Wedge6 | CellShape::Wedge15, Some(q)) => &WEDGE_FACES[f][..q.num_nodes()],
+            (CellShape::PlaneTri3 | CellShape::PlaneTri6, Some(q)) => {
+                &TRI_EDGES[f][..q.num_nodes()]
+            }
+            (s, Some(q)) if s.is_plane() => &QUAD_EDGES[f][..q.num_nodes()],
             (_, Some(q)) => &HEX_FACES[f][..q.num_nodes()],
             _ => &[],
         }
     }
 
-    /// Number of corner nodes of a surface shape (3 or 4; 0 otherwise).
-    /// Corners come first in every node order.
+    /// Number of corner nodes of a surface shape (3 or 4) or a line (2; 0
+    /// otherwise). Corners come first in every node order.
     pub fn num_corners(self) -> usize {
         match self {
             CellShape::Tri3 | CellShape::Tri6 => 3,
             CellShape::Quad4 | CellShape::Quad8 | CellShape::Quad9 => 4,
+            CellShape::Line2 | CellShape::Line3 => 2,
             _ => 0,
         }
     }
@@ -346,6 +459,8 @@ impl CellShape {
             CellShape::Hex27 | CellShape::Quad9 => Some(CellShape::Inter18),
             CellShape::Wedge6 | CellShape::Tri3 => Some(CellShape::Inter6),
             CellShape::Wedge15 | CellShape::Tri6 => Some(CellShape::Inter12),
+            CellShape::Line2 => Some(CellShape::LineInter4),
+            CellShape::Line3 => Some(CellShape::LineInter6),
             _ => None,
         }
     }
@@ -355,7 +470,9 @@ impl CellShape {
     /// mid-surface (one point per node pair), so their type is that of
     /// their side: VTK_QUAD (9), VTK_QUADRATIC_QUAD (23),
     /// VTK_BIQUADRATIC_QUAD (28), VTK_TRIANGLE (5), VTK_QUADRATIC_TRIANGLE
-    /// (22; corners then mid-edges 0-1, 1-2, 2-0, as ours).
+    /// (22; corners then mid-edges 0-1, 1-2, 2-0, as ours), VTK_LINE (3),
+    /// VTK_QUADRATIC_EDGE (21; ends then middle, as ours). Plane cells are
+    /// the quadrilaterals and triangles of the same orders.
     pub fn vtk_type(self) -> u8 {
         match self {
             CellShape::Quad4 | CellShape::Inter8 => 9,
@@ -368,6 +485,13 @@ impl CellShape {
             CellShape::Hex27 => 29,
             CellShape::Wedge6 => 13,
             CellShape::Wedge15 => 26,
+            CellShape::Line2 | CellShape::LineInter4 => 3,
+            CellShape::Line3 | CellShape::LineInter6 => 21,
+            CellShape::PlaneQuad4 => 9,
+            CellShape::PlaneQuad8 => 23,
+            CellShape::PlaneQuad9 => 28,
+            CellShape::PlaneTri3 => 5,
+            CellShape::PlaneTri6 => 22,
         }
     }
 
@@ -389,6 +513,15 @@ impl CellShape {
             CellShape::Inter12 => "inter12",
             CellShape::Wedge6 => "wedge6",
             CellShape::Wedge15 => "wedge15",
+            CellShape::Line2 => "line2",
+            CellShape::Line3 => "line3",
+            CellShape::PlaneQuad4 => "plane_quad4",
+            CellShape::PlaneQuad8 => "plane_quad8",
+            CellShape::PlaneQuad9 => "plane_quad9",
+            CellShape::PlaneTri3 => "plane_tri3",
+            CellShape::PlaneTri6 => "plane_tri6",
+            CellShape::LineInter4 => "line_inter4",
+            CellShape::LineInter6 => "line_inter6",
         }
     }
 }

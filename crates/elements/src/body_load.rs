@@ -18,10 +18,14 @@
 //!
 //! Quadrature: 3x3x3 Gauss points on hexahedra (exact for a constant or
 //! linear density on parallelepipeds of every order), a 3-point triangle
-//! times 3-point line rule on wedges.
+//! times 3-point line rule on wedges. Plane cells: 3x3 Gauss points on
+//! quadrilaterals, the 6-point rule on triangles, with `dV = s(x) det J
+//! dxi deta` for the width `s` the cell stands for (a thickness, or `2 pi
+//! r` for an axisymmetric ring: [`add_body_load_with`]).
 
-use crate::quadrature::{gauss_legendre_3d, wedge_rule, Rule};
-use crate::shape::solid_shape;
+use crate::quadrature::{gauss_legendre_2d, gauss_legendre_3d, triangle_rule, wedge_rule, Rule};
+use crate::shape::{solid_shape, surface_shape};
+use junta_core::element::PlaneWidth;
 use junta_core::mesh::{ElementRef, Mesh};
 use junta_core::topology::CellShape;
 use junta_core::CoreError;
@@ -62,12 +66,58 @@ impl BodyLoad {
 }
 
 /// Add the consistent nodal forces of `load` times `density` on the
-/// elements `elements` (solids) to `f` (length 3 x nodes).
+/// elements `elements` (solids) to `f` (length 3 x nodes); plane cells
+/// stand for a unit thickness (see [`add_body_load_with`]).
 pub fn add_body_load(
     mesh: &Mesh,
     elements: &[ElementRef],
     density: f64,
     load: BodyLoad,
+    f: &mut [f64],
+) -> Result<(), CoreError> {
+    add_body_load_with(mesh, elements, density, load, &|_| None, f)
+}
+
+/// Position, shape functions and volume factor `det J` (times the width
+/// for plane cells) at the points of a rule, for one element.
+fn plane_points(
+    mesh: &Mesh,
+    conn: &[usize],
+    shape: CellShape,
+    width: PlaneWidth,
+    rule: &Rule<2>,
+    mut each: impl FnMut([f64; 3], &[f64], f64) -> Result<(), CoreError>,
+) -> Result<(), CoreError> {
+    let nn = conn.len();
+    let (mut n, mut dn) = ([0.0; 9], [[0.0; 2]; 9]);
+    for (xi, w) in rule.iter() {
+        surface_shape(shape, *xi, &mut n[..nn], &mut dn[..nn]);
+        let (mut jac, mut x) = ([[0.0; 2]; 2], [0.0; 3]);
+        for a in 0..nn {
+            let p = mesh.nodes[conn[a]];
+            for i in 0..3 {
+                x[i] += n[a] * p[i];
+            }
+            for i in 0..2 {
+                for j in 0..2 {
+                    jac[i][j] += p[i] * dn[a][j];
+                }
+            }
+        }
+        let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        each(x, &n[..nn], w * det * width.at(x))?;
+    }
+    Ok(())
+}
+
+/// As [`add_body_load`], with the width `width(block)` of the plane cells
+/// of each block (`None`: a unit thickness).
+pub fn add_body_load_with(
+    mesh: &Mesh,
+    elements: &[ElementRef],
+    density: f64,
+    load: BodyLoad,
+    width: &dyn Fn(usize) -> Option<PlaneWidth>,
     f: &mut [f64],
 ) -> Result<(), CoreError> {
     let unit_axis = match load {
@@ -84,6 +134,8 @@ pub fn add_body_load(
     };
     let hex = gauss_legendre_3d(3).map_err(|e| CoreError::Invalid(e.to_string()))?;
     let wedge = wedge_rule(3, 3).map_err(|e| CoreError::Invalid(e.to_string()))?;
+    let quad = gauss_legendre_2d(3).map_err(|e| CoreError::Invalid(e.to_string()))?;
+    let tri = triangle_rule(6).map_err(|e| CoreError::Invalid(e.to_string()))?;
     let mut n = [0.0; 27];
     let mut dn = [[0.0; 3]; 27];
     for er in elements {
@@ -96,11 +148,38 @@ pub fn add_body_load(
                 shape.name()
             )));
         }
+        let conn = block.element(er.element);
+        let bad_jacobian = |det: f64| {
+            CoreError::Invalid(format!(
+                "body load: element {} of block `{}` has a non-positive Jacobian ({det:e})",
+                mesh.element_label(er.block, er.element),
+                block.name
+            ))
+        };
+        if shape.is_plane() {
+            let rule = match shape {
+                CellShape::PlaneTri3 | CellShape::PlaneTri6 => &tri,
+                _ => &quad,
+            };
+            let pw = width(er.block).unwrap_or(PlaneWidth::Thickness(1.0));
+            plane_points(mesh, conn, shape, pw, rule, |x, n, dv| {
+                if !(dv > 0.0) {
+                    return Err(bad_jacobian(dv));
+                }
+                let b = load.at(x, unit_axis);
+                for (a, na) in n.iter().enumerate() {
+                    for c in 0..3 {
+                        f[3 * conn[a] + c] += density * dv * na * b[c];
+                    }
+                }
+                Ok(())
+            })?;
+            continue;
+        }
         let rule: &Rule<3> = match shape {
             CellShape::Wedge6 | CellShape::Wedge15 => &wedge,
             _ => &hex,
         };
-        let conn = block.element(er.element);
         let nn = conn.len();
         for (xi, w) in rule.iter() {
             solid_shape(shape, *xi, &mut n[..nn], &mut dn[..nn]);
@@ -119,11 +198,7 @@ pub fn add_body_load(
                 - jac[0][1] * (jac[1][0] * jac[2][2] - jac[1][2] * jac[2][0])
                 + jac[0][2] * (jac[1][0] * jac[2][1] - jac[1][1] * jac[2][0]);
             if !(det > 0.0) {
-                return Err(CoreError::Invalid(format!(
-                    "body load: element {} of block `{}` has a non-positive Jacobian ({det:e})",
-                    mesh.element_label(er.block, er.element),
-                    block.name
-                )));
+                return Err(bad_jacobian(det));
             }
             let b = load.at(x, unit_axis);
             let s = density * det * w;

@@ -39,6 +39,7 @@
 
 use crate::quadrature::{gauss_legendre, triangle_rule};
 use crate::shape::surface_shape;
+use junta_core::element::PlaneWidth;
 use junta_core::mesh::{FaceRef, Mesh};
 use junta_core::topology::CellShape;
 use junta_core::CoreError;
@@ -58,14 +59,33 @@ const G3: [(f64, f64); 3] = [
     (0.774_596_669_241_483_4, 5.0 / 9.0),
 ];
 
-/// Add the consistent nodal forces of `load` on `faces` to `f` (length 3 x nodes).
+/// Add the consistent nodal forces of `load` on `faces` to `f` (length 3 x
+/// nodes); the edges of plane cells stand for a unit width (see
+/// [`add_face_load_with`]).
 ///
 /// Errors: a face of a non-solid element, or a face index the element's
-/// shape does not have (6 faces for hexahedra, 5 for wedges).
+/// shape does not have (6 faces for hexahedra, 5 for wedges, the edges of
+/// plane cells).
 pub fn add_face_load(
     mesh: &Mesh,
     faces: &[FaceRef],
     load: FaceLoad,
+    f: &mut [f64],
+) -> Result<(), CoreError> {
+    add_face_load_with(mesh, faces, load, &|_| None, f)
+}
+
+/// As [`add_face_load`], with the width `width(block)` of the plane cells
+/// of each block (`None`: a unit thickness). An edge of a plane cell, the
+/// line `x(xi)`, is the face of the width `s(x)` it stands for: `V_eta =
+/// s e_z`, so that `n dA = V_xi x V_eta dxi` is the outward normal of a
+/// counter-clockwise cell times `s |V_xi| dxi` (`s = t`, or `2 pi r` for an
+/// axisymmetric ring), integrated with 3 Gauss points.
+pub fn add_face_load_with(
+    mesh: &Mesh,
+    faces: &[FaceRef],
+    load: FaceLoad,
+    width: &dyn Fn(usize) -> Option<PlaneWidth>,
     f: &mut [f64],
 ) -> Result<(), CoreError> {
     let mut n = [0.0; 9];
@@ -77,6 +97,7 @@ pub fn add_face_load(
             quad[3 * j + i] = ([xi, eta], wx * wy);
         }
     }
+    let line = G3.map(|(xi, w)| ([xi, 0.0], w));
     let tri_rule = triangle_rule(6).map_err(|e| CoreError::Invalid(e.to_string()))?;
     let mut tri = [([0.0; 2], 0.0); 6];
     for (t, (p, w)) in tri.iter_mut().zip(tri_rule.iter()) {
@@ -105,18 +126,28 @@ pub fn add_face_load(
         let nn = nodes.len();
         let points: &[([f64; 2], f64)] = match fshape {
             CellShape::Tri3 | CellShape::Tri6 => &tri,
+            CellShape::Line2 | CellShape::Line3 => &line,
             _ => &quad,
         };
+        let plane = block
+            .shape
+            .is_plane()
+            .then(|| width(face.block).unwrap_or(PlaneWidth::Thickness(1.0)));
         for &(xi, w) in points {
             surface_shape(fshape, xi, &mut n[..nn], &mut dn[..nn]);
             let mut vxi = [0.0; 3];
             let mut veta = [0.0; 3];
+            let mut pos = [0.0; 3];
             for a in 0..nn {
                 let x = mesh.nodes[nodes[a]];
                 for c in 0..3 {
                     vxi[c] += dn[a][0] * x[c];
                     veta[c] += dn[a][1] * x[c];
+                    pos[c] += n[a] * x[c];
                 }
+            }
+            if let Some(pw) = plane {
+                veta = [0.0, 0.0, pw.at(pos)];
             }
             let area = [
                 vxi[1] * veta[2] - vxi[2] * veta[1],

@@ -18,6 +18,9 @@
 //! * [`solid`]: the small-strain hexahedral [`SolidElement`], registered as
 //!   `h8`, `h20`, `h27`, `h20r`, `h27r`, and the wedges `wedge6` (C3D6),
 //!   `wedge15` (C3D15).
+//! * [`plane`]: plane strain, plane stress and axisymmetric
+//!   quadrilaterals and triangles ([`plane::PlaneElement`]), registered
+//!   under the Abaqus names `cpe3`..`cpe9`, `cps3`..`cps9`, `cax3`..`cax9`.
 //! * [`layered`]: the hexahedra integrated ply by ply through the
 //!   thickness, each point with its ply's material
 //!   ([`SolidElement::layered`], Abaqus's `*SOLID SECTION, COMPOSITE`).
@@ -58,6 +61,7 @@ pub mod face_load;
 pub mod h8i;
 pub mod layered;
 pub mod material;
+pub mod plane;
 pub mod quadrature;
 pub mod rotation;
 pub mod shape;

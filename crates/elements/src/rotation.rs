@@ -91,7 +91,9 @@ pub fn deformation_rotation(f: &Matrix3<f64>) -> Option<f64> {
 /// The natural coordinates of a solid's centre.
 fn centre(shape: CellShape) -> [f64; 3] {
     match shape {
-        CellShape::Wedge6 | CellShape::Wedge15 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
+        CellShape::Wedge6 | CellShape::Wedge15 | CellShape::PlaneTri3 | CellShape::PlaneTri6 => {
+            [1.0 / 3.0, 1.0 / 3.0, 0.0]
+        }
         _ => [0.0; 3],
     }
 }
@@ -115,8 +117,19 @@ pub fn centre_deformation_gradient(
     }
     let mut n = [0.0; MAX_NODES];
     let mut dn = [[0.0; 3]; MAX_NODES];
-    solid_shape(shape, centre(shape), &mut n[..nn], &mut dn[..nn]);
     let mut j = Matrix3::zeros();
+    if shape.is_plane() {
+        // a plane cell: the z column of J is e_z, F_zz = 1 (u_z is 0)
+        let mut d2 = [[0.0; 2]; MAX_NODES];
+        let c = centre(shape);
+        crate::shape::surface_shape(shape, [c[0], c[1]], &mut n[..nn], &mut d2[..nn]);
+        for (d, e) in dn.iter_mut().zip(&d2) {
+            *d = [e[0], e[1], 0.0];
+        }
+        j[(2, 2)] = 1.0;
+    } else {
+        solid_shape(shape, centre(shape), &mut n[..nn], &mut dn[..nn]);
+    }
     for (x, d) in coords.iter().zip(&dn[..nn]) {
         for r in 0..3 {
             for c in 0..3 {

@@ -179,12 +179,43 @@ pub fn tri_shape(shape: CellShape, xi: [f64; 2], n: &mut [f64], dn: &mut [[f64; 
     }
 }
 
-/// Shape functions of any surface (quadrilateral or triangle): dispatches
-/// to [`quad_shape`] or [`tri_shape`]. `xi` is `(xi, eta)` in `[-1, 1]^2`
-/// for quadrilaterals, `(r, s)` in the unit triangle for triangles.
+/// Shape functions of a line (Line2 or Line3) at natural coordinate `xi`
+/// in `[-1, 1]`: Line2 `N_0 = (1 - xi) / 2`, `N_1 = (1 + xi) / 2`; Line3
+/// (nodes at -1, 1, 0) `N_0 = xi (xi - 1) / 2`, `N_1 = xi (xi + 1) / 2`,
+/// `N_2 = 1 - xi^2`. Writes `n[a]` and `dn[a] = dN_a/dxi`.
+///
+/// # Panics
+/// If `shape` is not a line (a programming error).
+pub fn line_shape(shape: CellShape, xi: f64, n: &mut [f64], dn: &mut [f64]) {
+    match shape {
+        CellShape::Line2 => {
+            n[..2].copy_from_slice(&[0.5 * (1.0 - xi), 0.5 * (1.0 + xi)]);
+            dn[..2].copy_from_slice(&[-0.5, 0.5]);
+        }
+        CellShape::Line3 => {
+            n[..3].copy_from_slice(&[0.5 * xi * (xi - 1.0), 0.5 * xi * (xi + 1.0), 1.0 - xi * xi]);
+            dn[..3].copy_from_slice(&[xi - 0.5, xi + 0.5, -2.0 * xi]);
+        }
+        s => panic!("line_shape called with non-line shape {s:?}"),
+    }
+}
+
+/// Shape functions of any surface (quadrilateral or triangle, or the plane
+/// cell of the same order) or line: dispatches to [`quad_shape`],
+/// [`tri_shape`] or [`line_shape`]. `xi` is `(xi, eta)` in `[-1, 1]^2` for
+/// quadrilaterals, `(r, s)` in the unit triangle for triangles, `(xi, _)`
+/// for lines (whose `dn[a][1]` is 0).
 pub fn surface_shape(shape: CellShape, xi: [f64; 2], n: &mut [f64], dn: &mut [[f64; 2]]) {
+    let shape = shape.plane_reference().unwrap_or(shape);
     match shape {
         CellShape::Tri3 | CellShape::Tri6 => tri_shape(shape, xi, n, dn),
+        CellShape::Line2 | CellShape::Line3 => {
+            let mut d = [0.0; 3];
+            line_shape(shape, xi[0], n, &mut d);
+            for (a, da) in d.iter().enumerate().take(shape.num_nodes()) {
+                dn[a] = [*da, 0.0];
+            }
+        }
         _ => quad_shape(shape, xi, n, dn),
     }
 }
@@ -340,7 +371,9 @@ pub fn solid_shape(shape: CellShape, xi: [f64; 3], n: &mut [f64], dn: &mut [[f64
 /// or wedge, padded
 /// with zeros to three components.
 pub fn natural_node(shape: CellShape, a: usize) -> [f64; 3] {
+    let shape = shape.plane_reference().unwrap_or(shape);
     match shape {
+        CellShape::Line2 | CellShape::Line3 => [[-1.0, 1.0, 0.0][a], 0.0, 0.0],
         CellShape::Quad4 | CellShape::Quad8 | CellShape::Quad9 => {
             [QUAD9_NODES[a][0], QUAD9_NODES[a][1], 0.0]
         }

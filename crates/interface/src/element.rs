@@ -131,19 +131,43 @@
 //! slightly nonsymmetric exact tangent where the mode ratio changes with
 //! the jump).
 //!
+//! # Line interfaces (2D: LINE_INTER4, LINE_INTER6)
+//!
+//! Between the edges of plane cells the sides are lines (Line2 / Line3,
+//! natural coordinate xi). The same kernel runs with the second tangent
+//! set to the out-of-plane direction scaled by the width `s` the line
+//! stands for,
+//!
+//! ```text
+//! V_eta = -s e_z,   s = t (plane strain / stress: option `thickness`, default 1)
+//!                   s = 2 pi r (axisymmetric: option `axisymmetric = true`, the full ring,
+//!                               r the mid-line's x at the point)
+//! ```
+//!
+//! so that `e1` follows the line, `e2 = -e_z` and `e3 = e_z x e1` (the left
+//! of the bottom line, from its node 0 to node 1), `dA = s |V_xi| dxi`, and
+//! the law sees `[s1, s2, n]` with `s2 = 0` (the `z` components are not
+//! the model's: [`Element::active_components`]). Rules: `gauss` 2 points
+//! (LINE_INTER4) or 3 (LINE_INTER6); `lobatto` 2 or 3 points, which are
+//! also the closed Newton-Cotes rules of 2 and 3 points (trapezoid,
+//! Simpson): nodal integration. Under finite kinematics `V_eta` is
+//! constant for a plane line (the tangent above holds with `dV_eta = 0`);
+//! an axisymmetric line's width changes with `r`, so it is small-strain only.
+//!
 //! Point outputs: `jump`, `traction`, `frame`, `area`, `state`, `failed`,
 //! `failure_index`, then every scalar the law names in
 //! [`InterfaceLaw::output_names`] (e.g. `damage`, `dissipated_energy`).
 //! Under finite kinematics the frame and the area are the current ones; the
 //! output position is on the reference mid-surface.
 
-use junta_core::element::{Element, ElementContext, ElementError, PointOutput};
+use junta_core::element::{Element, ElementContext, ElementError, PlaneWidth, PointOutput};
 use junta_core::law::{InterfaceLaw, LawContext, LawResponse, PointStage};
 use junta_core::registry::{parse_params, ElementBuild, ElementEntry, ParamDoc};
 use junta_core::topology::CellShape;
 use junta_core::{CoreError, Kinematics, MatrixKind};
 use junta_elements::quadrature::{
-    gauss_legendre_2d, gauss_lobatto_2d, triangle_rule, triangle_vertex_rule,
+    gauss_legendre, gauss_legendre_2d, gauss_lobatto, gauss_lobatto_2d, triangle_rule,
+    triangle_vertex_rule, Rule, Rule1D,
 };
 use junta_elements::shape::surface_shape;
 use serde::Deserialize;
@@ -171,9 +195,19 @@ pub struct InterfaceElement {
     law: Arc<dyn InterfaceLaw>,
     key: &'static str,
     kinematics: Kinematics,
+    /// The width a line interface stands for (`None` for surfaces).
+    line: Option<PlaneWidth>,
     /// Largest scaled skew of a tangent this element stored as its
     /// symmetric part since the driver last asked ([`SkewRecord`]).
     skew: SkewRecord,
+}
+
+/// A 1D rule as points `(xi, 0)` of the surface kernel.
+fn line_rule(r: Rule1D) -> Rule<2> {
+    Rule {
+        points: r.points.iter().map(|&x| [x, 0.0]).collect(),
+        weights: r.weights.to_vec(),
+    }
 }
 
 /// The largest scaled skew `max |k_ij - k_ji| / sqrt(|k_ii k_jj|)` of the
@@ -335,6 +369,8 @@ impl InterfaceElement {
             CellShape::Inter18 => (CellShape::Quad9, 3, "inter18"),
             CellShape::Inter6 => (CellShape::Tri3, 3, "inter6"),
             CellShape::Inter12 => (CellShape::Tri6, 6, "inter12"),
+            CellShape::LineInter4 => (CellShape::Line2, 2, "line_inter4"),
+            CellShape::LineInter6 => (CellShape::Line3, 3, "line_inter6"),
             s => {
                 return Err(CoreError::Invalid(format!(
                     "{} is not an interface shape",
@@ -343,7 +379,10 @@ impl InterfaceElement {
             }
         };
         let triangle = matches!(face, CellShape::Tri3 | CellShape::Tri6);
+        let line = matches!(face, CellShape::Line2 | CellShape::Line3);
         let r = match (rule, triangle) {
+            (InterfaceRule::Gauss, _) if line => gauss_legendre(n).map(line_rule),
+            (InterfaceRule::Lobatto, _) if line => gauss_lobatto(n).map(line_rule),
             (InterfaceRule::Gauss, false) => gauss_legendre_2d(n),
             (InterfaceRule::Lobatto, false) => gauss_lobatto_2d(n),
             (InterfaceRule::Gauss, true) => triangle_rule(n),
@@ -366,8 +405,35 @@ impl InterfaceElement {
             law,
             key,
             kinematics: Kinematics::Small,
+            line: line.then_some(PlaneWidth::Thickness(1.0)),
             skew: SkewRecord::default(),
         })
+    }
+
+    /// A line interface with the width `w` (a thickness, or the full ring
+    /// axisymmetric). Errors: not a line interface, or a thickness that is
+    /// not positive and finite.
+    pub fn with_line_width(mut self, w: PlaneWidth) -> Result<Self, CoreError> {
+        if self.line.is_none() {
+            return Err(CoreError::InvalidParameters {
+                kind: "element",
+                key: self.key.into(),
+                message: "thickness and axisymmetric apply to line interfaces only (line_inter4, line_inter6)".into(),
+            });
+        }
+        if let PlaneWidth::Thickness(t) = w {
+            if !(t.is_finite() && t > 0.0) {
+                return Err(CoreError::InvalidParameters {
+                    kind: "element",
+                    key: self.key.into(),
+                    message: format!(
+                        "thickness = {t}: the out-of-plane thickness must be positive"
+                    ),
+                });
+            }
+        }
+        self.line = Some(w);
+        Ok(self)
     }
 
     /// The same element with kinematics `k` (small by default; finite
@@ -412,7 +478,7 @@ impl InterfaceElement {
     ) -> Result<Frame, ElementError> {
         let mut dn = [[0.0; 2]; 9];
         self.shape_at(q, n, &mut dn);
-        self.frame_on(q, &dn, |a, c| coords[a][c])
+        self.frame_on(q, n, &dn, |a, c| coords[a][c])
     }
 
     /// Shape functions and frame at point `q` in the element's kinematics:
@@ -427,28 +493,35 @@ impl InterfaceElement {
         self.shape_at(q, n, dn);
         let (x, u) = (ctx.coords, ctx.disp);
         match self.kinematics {
-            Kinematics::Small => self.frame_on(q, dn, |a, c| x[a][c]),
-            Kinematics::Finite => self.frame_on(q, dn, |a, c| x[a][c] + u[3 * a + c]),
+            Kinematics::Small => self.frame_on(q, n, dn, |a, c| x[a][c]),
+            Kinematics::Finite => self.frame_on(q, n, dn, |a, c| x[a][c] + u[3 * a + c]),
         }
     }
 
-    /// Frame at point `q` (shape derivatives `dn`) of the mid-surface of
-    /// the nodal positions `pos(node, component)`.
+    /// Frame at point `q` (shape functions `n`, derivatives `dn`) of the
+    /// mid-surface of the nodal positions `pos(node, component)`; a line's
+    /// `V_eta` is `-s e_z` (see the module docs).
     fn frame_on(
         &self,
         q: usize,
+        n: &[f64; 9],
         dn: &[[f64; 2]; 9],
         pos: impl Fn(usize, usize) -> f64,
     ) -> Result<Frame, ElementError> {
         let m = self.m();
         let mut vxi = [0.0; 3];
         let mut veta = [0.0; 3];
+        let mut r = 0.0;
         for (a, d) in dn.iter().enumerate().take(m) {
             for c in 0..3 {
                 let xm = 0.5 * (pos(a, c) + pos(m + a, c));
                 vxi[c] += d[0] * xm;
                 veta[c] += d[1] * xm;
             }
+            r += n[a] * 0.5 * (pos(a, 0) + pos(m + a, 0));
+        }
+        if let Some(w) = self.line {
+            veta = [0.0, 0.0, -w.at([r, 0.0, 0.0])];
         }
         let nv = cross(vxi, veta);
         let jac = norm(nv);
@@ -884,6 +957,14 @@ impl Element for InterfaceElement {
         self.skew.take()
     }
 
+    /// `[x, y]` only for a line interface (its `z` jump is not the
+    /// model's), all three otherwise.
+    fn active_components(&self) -> [bool; 3] {
+        [true, true, self.line.is_none()]
+    }
+    fn plane_width(&self) -> Option<PlaneWidth> {
+        self.line
+    }
     fn kinematics(&self) -> Kinematics {
         self.kinematics
     }
@@ -938,10 +1019,53 @@ impl Element for InterfaceElement {
 #[serde(deny_unknown_fields)]
 struct Options {
     integration: Option<InterfaceRule>,
+    /// Out-of-plane thickness of a plane line interface (default 1).
+    thickness: Option<f64>,
+    /// A line interface of an axisymmetric model (the full ring).
+    axisymmetric: Option<bool>,
+}
+
+/// The width of a line interface from its options (see the module docs).
+fn line_width(key: &str, o: &Options, b: &ElementBuild<'_>) -> Result<PlaneWidth, CoreError> {
+    let bad = |message: &str| CoreError::InvalidParameters {
+        kind: "element",
+        key: key.into(),
+        message: message.into(),
+    };
+    match (o.axisymmetric.unwrap_or(false), o.thickness) {
+        (true, Some(_)) => Err(bad(
+            "an axisymmetric line interface takes no thickness: it models the full ring",
+        )),
+        (true, None) if b.kinematics == Kinematics::Finite => Err(bad(
+            "an axisymmetric line interface has no large-deformation (nlgeom) form yet",
+        )),
+        (true, None) => Ok(PlaneWidth::Axisymmetric),
+        (false, t) => Ok(PlaneWidth::Thickness(t.unwrap_or(1.0))),
+    }
 }
 
 fn build(shape: CellShape, key: &str, b: &ElementBuild<'_>) -> Result<Arc<dyn Element>, CoreError> {
     let o: Options = parse_params("element", key, b.options)?;
+    if shape.face_shape().is_some_and(|f| f.dimension() == 2) {
+        let w = line_width(key, &o, b)?;
+        let law = b.law.clone().ok_or_else(|| CoreError::InvalidParameters {
+            kind: "element",
+            key: key.into(),
+            message: "an interface element needs a traction law (e.g. `law = \"linear_penalty\"`)"
+                .into(),
+        })?;
+        let el = InterfaceElement::new(shape, o.integration.unwrap_or(InterfaceRule::Gauss), law)?
+            .with_kinematics(b.kinematics)
+            .with_line_width(w)?;
+        return Ok(Arc::new(el));
+    }
+    if o.thickness.is_some() || o.axisymmetric.is_some() {
+        return Err(CoreError::InvalidParameters {
+            kind: "element",
+            key: key.into(),
+            message: "thickness and axisymmetric apply to line interfaces only (line_inter4, line_inter6)".into(),
+        });
+    }
     let law = b.law.clone().ok_or_else(|| CoreError::InvalidParameters {
         kind: "element",
         key: key.into(),
@@ -958,6 +1082,40 @@ const OPTIONS: &[ParamDoc] = &[ParamDoc {
     name: "integration",
     doc: "\"gauss\" (default; the paper's 3x3 for INTER18, 3 points INTER6, 6 points INTER12) or \"lobatto\" (nodal: Gauss-Lobatto on quadrilaterals, the vertices on INTER6; not available for INTER12)",
 }];
+
+const LINE_OPTIONS: &[ParamDoc] = &[
+    ParamDoc {
+        name: "integration",
+        doc: "\"gauss\" (default; 2 points line_inter4, 3 line_inter6) or \"lobatto\" (nodal: 2 or 3 Gauss-Lobatto points, the closed Newton-Cotes rules)",
+    },
+    ParamDoc {
+        name: "thickness",
+        doc: "out-of-plane thickness of a plane strain / plane stress model (default 1)",
+    },
+    ParamDoc {
+        name: "axisymmetric",
+        doc: "true in an axisymmetric model: the full ring, width 2 pi r (default false)",
+    },
+];
+
+inventory::submit! {
+    ElementEntry {
+        key: "line_inter4",
+        description: "4-node zero-thickness line interface (2+2), matches the edges of linear plane cells (Abaqus COH2D4, COHAX4)",
+        params: LINE_OPTIONS,
+        shape: CellShape::LineInter4,
+        build: |b| build(CellShape::LineInter4, "line_inter4", b),
+    }
+}
+inventory::submit! {
+    ElementEntry {
+        key: "line_inter6",
+        description: "6-node zero-thickness line interface (3+3), matches the edges of quadratic plane cells",
+        params: LINE_OPTIONS,
+        shape: CellShape::LineInter6,
+        build: |b| build(CellShape::LineInter6, "line_inter6", b),
+    }
+}
 
 inventory::submit! {
     ElementEntry {

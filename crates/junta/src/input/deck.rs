@@ -496,10 +496,11 @@ fn block_element(
     })?;
     let entry = registry::find::<ElementEntry>(&b.element_type).map_err(|e| err!("{file}: {e}"))?;
     let mut softening = false;
+    let options = plane_options(deck, bi);
     let mut build = ElementBuild {
         material: None,
         law: None,
-        options: &toml::Table::new(),
+        options: &options,
         kinematics: deck_kinematics(deck),
     };
     let at = format!("{file}:{}: *MATERIAL, NAME={}", mat.line, mat.name);
@@ -531,6 +532,53 @@ fn block_element(
     }
     let element = (entry.build)(&build).map_err(|e| err!("{file}: block `{}`: {e}", b.name))?;
     Ok((element, softening))
+}
+
+/// The width a plane block's elements stand for: the full ring in an
+/// axisymmetric model (CAX elements; a 2D cohesive block too), else the
+/// section's thickness (default 1); `None` for 3D blocks.
+pub(crate) fn block_width(deck: &InpDeck, bi: usize) -> Option<junta_core::element::PlaneWidth> {
+    use junta_core::element::PlaneWidth;
+    let b = &deck.mesh.blocks[bi];
+    if b.shape.dimension() != 2 {
+        return None;
+    }
+    let axisymmetric = if b.shape.is_interface() {
+        deck.mesh
+            .blocks
+            .iter()
+            .any(|o| o.element_type.starts_with("cax"))
+    } else {
+        b.element_type.starts_with("cax")
+    };
+    Some(if axisymmetric {
+        PlaneWidth::Axisymmetric
+    } else {
+        PlaneWidth::Thickness(
+            deck.block_thickness
+                .get(bi)
+                .copied()
+                .flatten()
+                .unwrap_or(1.0),
+        )
+    })
+}
+
+/// The element options of a plane block ([`block_width`]): `thickness`,
+/// or for a 2D cohesive block of an axisymmetric model `axisymmetric`.
+fn plane_options(deck: &InpDeck, bi: usize) -> toml::Table {
+    use junta_core::element::PlaneWidth;
+    let mut t = toml::Table::new();
+    match block_width(deck, bi) {
+        Some(PlaneWidth::Thickness(w)) => {
+            t.insert("thickness".into(), w.into());
+        }
+        Some(PlaneWidth::Axisymmetric) if deck.mesh.blocks[bi].shape.is_interface() => {
+            t.insert("axisymmetric".into(), true.into());
+        }
+        _ => {}
+    }
+    t
 }
 
 /// The solid material of `mat` (isotropic, orthotropic or anisotropic)
@@ -1502,8 +1550,8 @@ fn add_distributed_loads(
 ) -> Result<()> {
     use crate::input::inp::InpDloadKind;
     use junta_core::mesh::{ElementRef, FaceRef};
-    use junta_elements::body_load::{add_body_load, BodyLoad};
-    use junta_elements::face_load::{add_face_load, FaceLoad};
+    use junta_elements::body_load::{add_body_load_with, BodyLoad};
+    use junta_elements::face_load::{add_face_load_with, FaceLoad};
     // (element, label) -> (load index, face)
     let mut active: std::collections::BTreeMap<(ElementRef, &str), (usize, usize)> =
         std::collections::BTreeMap::new();
@@ -1552,8 +1600,9 @@ fn add_distributed_loads(
                 )),
             }
         };
+        let width = |b: usize| block_width(deck, b);
         let body = |rho: f64, load: BodyLoad, f: &mut [f64]| {
-            add_body_load(&deck.mesh, &elements, rho, load, f).map_err(at)
+            add_body_load_with(&deck.mesh, &elements, rho, load, &width, f).map_err(at)
         };
         match d.kind {
             InpDloadKind::Pressure(p) => {
@@ -1565,7 +1614,8 @@ fn add_distributed_loads(
                         face,
                     })
                     .collect();
-                add_face_load(&deck.mesh, &faces, FaceLoad::Pressure(c * p), f_ext).map_err(at)?
+                add_face_load_with(&deck.mesh, &faces, FaceLoad::Pressure(c * p), &width, f_ext)
+                    .map_err(at)?
             }
             InpDloadKind::Gravity(g) => {
                 body(density()?, BodyLoad::Gravity(g.map(|x| c * x)), f_ext)?

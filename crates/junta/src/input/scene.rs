@@ -1400,7 +1400,7 @@ pub fn build_model_with_notes(sf: &SceneFile, notes: &mut Vec<String>) -> Result
     let mut mesh = build_mesh(sf)?;
     let elements = build_elements(sf, &mut mesh, &materials, &laws)?;
     let (constraints, reaction_sets) = boundary_constraints(sf, &mesh)?;
-    let f_ext = nodal_loads(sf, &mesh, notes)?;
+    let f_ext = nodal_loads(sf, &mesh, &elements, notes)?;
     crate::prepare::limits::check_memory(
         &format!(
             "{}: the model ({} nodes, {} elements)",
@@ -1489,13 +1489,14 @@ fn boundary_constraints(
 fn nodal_loads(
     sf: &SceneFile,
     mesh: &junta_core::mesh::Mesh,
+    elements: &[Arc<dyn Element>],
     notes: &mut Vec<String>,
 ) -> Result<Vec<f64>> {
     let mut f_ext = vec![0.0; 3 * mesh.nodes.len()];
     for (i, l) in sf.scene.load.iter().enumerate() {
         match (&l.set, &l.face_set) {
             (Some(set), None) => node_set_load(sf, i, l, set, mesh, notes, &mut f_ext)?,
-            (None, Some(fs)) => face_set_load(sf, i, l, fs, mesh, &mut f_ext)?,
+            (None, Some(fs)) => face_set_load(sf, i, l, fs, mesh, elements, &mut f_ext)?,
             _ => bail!(
                 "{}: key `load[{i}]`: give exactly one of `set` (nodal force) or `face_set` (pressure, traction)",
                 sf.path.display()
@@ -1616,6 +1617,7 @@ fn face_set_load(
     l: &LoadSpec,
     fs: &Spanned<String>,
     mesh: &junta_core::mesh::Mesh,
+    elements: &[Arc<dyn Element>],
     f_ext: &mut [f64],
 ) -> Result<()> {
     let faces = mesh
@@ -1636,7 +1638,8 @@ fn face_set_load(
             sf.at(fs.span())
         ),
     };
-    junta_elements::face_load::add_face_load(mesh, &faces, load, f_ext)
+    let width = |b: usize| elements[b].plane_width();
+    junta_elements::face_load::add_face_load_with(mesh, &faces, load, &width, f_ext)
         .map_err(|e| err!("{}: key `load[{i}]`: {e}", sf.at(fs.span())))?;
     Ok(())
 }

@@ -329,6 +329,10 @@ pub struct InpSolidSection {
     pub material: String,
     /// `ORIENTATION=` name as written.
     pub orientation: Option<String>,
+    /// The data line's first value: the out-of-plane thickness of plane
+    /// strain and plane stress elements (ignored by 3D and axisymmetric
+    /// ones).
+    pub thickness: Option<f64>,
     /// `COMPOSITE`: the plies.
     pub composite: Option<InpComposite>,
     /// Line of the keyword.
@@ -412,6 +416,9 @@ pub struct InpCohesiveSection {
     pub response: String,
     /// Initial constitutive thickness from the data line, if given.
     pub thickness: Option<f64>,
+    /// Out-of-plane thickness of 2D cohesive elements (COH2D4): the data
+    /// line's second value, if given.
+    pub out_of_plane: Option<f64>,
     /// Line of the keyword.
     pub line: usize,
 }
@@ -573,6 +580,10 @@ pub struct InpDeck {
     /// Composite section of each mesh block (index-aligned with
     /// `mesh.blocks`): its index in `solid_sections`.
     pub block_composites: Vec<Option<usize>>,
+    /// Out-of-plane thickness of each mesh block's elements (index-aligned
+    /// with `mesh.blocks`) from its section: plane elements and 2D
+    /// cohesive elements (blocks are split by thickness).
+    pub block_thickness: Vec<Option<f64>>,
     /// `*AMPLITUDE`s, in input order.
     pub amplitudes: Vec<InpAmplitude>,
     /// `*INITIAL CONDITIONS, TYPE=TEMPERATURE` and `*TEMPERATURE` data

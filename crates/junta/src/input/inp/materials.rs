@@ -216,6 +216,36 @@ impl Parser<'_> {
         Ok(())
     }
 
+    /// Field `k` of a data line as a positive number (`None`: no line, or
+    /// the field missing or empty).
+    fn optional_positive(
+        &self,
+        data: Option<&(usize, &[&str], bool)>,
+        k: usize,
+        kw: &str,
+        what: &str,
+    ) -> Result<Option<f64>, InpError> {
+        let Some((dl, f, _)) = data else {
+            return Ok(None);
+        };
+        match f.get(k).filter(|t| !t.is_empty()) {
+            None => Ok(None),
+            Some(t) => {
+                let v = self.float(*dl, kw, what, t)?;
+                if !(v > 0.0 && v.is_finite()) {
+                    return Err(self.invalid(
+                        *dl,
+                        kw,
+                        format!(
+                            "{what} {v} must be positive (leave the field empty for the default 1)"
+                        ),
+                    ));
+                }
+                Ok(Some(v))
+            }
+        }
+    }
+
     /// `*SOLID SECTION, ELSET=, MATERIAL= [, ORIENTATION=]`, or `*SOLID
     /// SECTION, COMPOSITE, ELSET= [, ORIENTATION=] [, STACK DIRECTION=] [,
     /// LAYUP=]` with a data line per ply (resolved in
@@ -239,8 +269,19 @@ impl Parser<'_> {
                 "COMPOSITE",
                 "STACK DIRECTION",
                 "LAYUP",
+                "OFFSET",
             ],
         )?;
+        if let Some((_, Some(o))) = Self::param(params, "OFFSET") {
+            let v = self.float(line, kw, "OFFSET", o)?;
+            if v != 0.0 {
+                return Err(self.invalid(
+                    line,
+                    kw,
+                    format!("OFFSET={v}: Junta's plane elements lie on their mid-plane; only OFFSET=0 is supported"),
+                ));
+            }
+        }
         let elset = self.required(line, kw, params, "ELSET")?;
         let orientation = match Self::param(params, "ORIENTATION") {
             None => None,
@@ -252,6 +293,7 @@ impl Parser<'_> {
                 elset,
                 material: String::new(),
                 orientation,
+                thickness: None,
                 composite: Some(composite),
                 line,
             });
@@ -270,10 +312,12 @@ impl Parser<'_> {
         if data.len() > 1 {
             return Err(self.invalid(data[1].0, kw, "expected at most one data line"));
         }
+        let thickness = self.optional_positive(data.first(), 0, kw, "thickness")?;
         self.deck.solid_sections.push(InpSolidSection {
             elset,
             material,
             orientation,
+            thickness,
             composite: None,
             line,
         });
@@ -454,11 +498,13 @@ impl Parser<'_> {
             }
             _ => None,
         };
+        let out_of_plane = self.optional_positive(data.first(), 1, kw, "out-of-plane thickness")?;
         self.deck.cohesive_sections.push(InpCohesiveSection {
             elset,
             material,
             response,
             thickness,
+            out_of_plane,
             line,
         });
         Ok(())

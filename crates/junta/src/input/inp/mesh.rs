@@ -42,11 +42,14 @@ impl Parser<'_> {
         };
         for &(dl, f, _) in data {
             let f: Vec<&str> = f.iter().copied().filter(|s| !s.is_empty()).collect();
-            if f.len() < 3 || f.len() > 4 {
+            if f.is_empty() || f.len() > 4 {
                 return Err(self.invalid(
                     dl,
                     kw,
-                    format!("expected `label, x, y[, z]`, found {} values", f.len()),
+                    format!(
+                        "expected `label, x[, y[, z]]` (a missing coordinate is 0), found {} values",
+                        f.len()
+                    ),
                 ));
             }
             let label = self.label(dl, kw, "node label", f[0])?;
@@ -147,10 +150,11 @@ impl Parser<'_> {
                 let l = self.label(dl, kw, "node label", t)?;
                 given.push(self.node_of(dl, kw, l)?);
             }
-            let conn: Vec<usize> = if shape == CellShape::Hex27 {
-                C3D27_TO_OURS.iter().map(|&a| given[a]).collect()
-            } else {
-                given
+            let conn: Vec<usize> = match shape {
+                CellShape::Hex27 => C3D27_TO_OURS.iter().map(|&a| given[a]).collect(),
+                // COH2D4 1-2-3-4 counter-clockwise: the top line is 4-3
+                CellShape::LineInter4 => vec![given[0], given[1], given[3], given[2]],
+                _ => given,
             };
             if self.elem_id.contains_key(&label) {
                 return Err(self.invalid(dl, kw, format!("element label {label} defined twice")));
@@ -163,6 +167,7 @@ impl Parser<'_> {
                 label,
                 material: None,
                 orientation: None,
+                thickness: None,
             });
             if let Some(s) = set {
                 self.elsets[s].members.push(id);

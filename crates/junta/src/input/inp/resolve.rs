@@ -251,7 +251,15 @@ impl Parser<'_> {
             }
         }
         #[allow(clippy::type_complexity)]
-        let mut sections: Vec<(String, String, usize, bool, Option<String>, bool)> = self
+        let mut sections: Vec<(
+            String,
+            String,
+            usize,
+            bool,
+            Option<String>,
+            bool,
+            Option<f64>,
+        )> = self
             .deck
             .solid_sections
             .iter()
@@ -264,6 +272,7 @@ impl Parser<'_> {
                     // a composite section's plies carry their axes
                     s.orientation.clone().filter(|_| s.composite.is_none()),
                     s.composite.is_some(),
+                    s.thickness,
                 )
             })
             .collect();
@@ -275,9 +284,10 @@ impl Parser<'_> {
                 true,
                 None,
                 false,
+                s.out_of_plane,
             )
         }));
-        for (elset, material, line, cohesive, orientation, composite) in sections {
+        for (elset, material, line, cohesive, orientation, composite, thickness) in sections {
             let orientation = match orientation {
                 None => None,
                 Some(o) => Some(self.section_orientation(line, o)?),
@@ -306,6 +316,10 @@ impl Parser<'_> {
                 ));
             }
             self.assign_section(set, &mname, line, kw, &orientation)?;
+            for &e in &self.elsets[set].members {
+                let plane = self.pre_blocks[self.elems[e].pre_block].shape.dimension() == 2;
+                self.elems[e].thickness = thickness.filter(|_| plane);
+            }
         }
         Ok(())
     }
@@ -578,23 +592,31 @@ impl Parser<'_> {
         let mut blocks: Vec<ElementBlock> = Vec::new();
         let mut block_orientations = Vec::new();
         for (pb_i, pb) in self.pre_blocks.iter().enumerate() {
-            // one block per (material, orientation)
-            let mut mats: Vec<(String, Option<String>)> = Vec::new();
+            // one block per (material, orientation, plane thickness)
+            let mut mats: Vec<(String, Option<String>, Option<f64>)> = Vec::new();
             for e in self.elems.iter().filter(|e| e.pre_block == pb_i) {
                 let m = e.material.as_ref().map(|m| m.0.clone()).unwrap_or_default();
-                let key = (m, e.orientation.clone());
+                let key = (m, e.orientation.clone(), e.thickness);
                 if !mats.contains(&key) {
                     mats.push(key);
                 }
             }
+            let thicknesses = mats
+                .iter()
+                .filter_map(|k| k.2.map(f64::to_bits))
+                .collect::<std::collections::HashSet<_>>()
+                .len();
             let split = mats.len() > 1;
-            for (m, o) in &mats {
+            for (m, o, t) in &mats {
                 let bi = blocks.len();
                 let name = if split {
                     let mut n =
                         format!("{}_{}", pb.name, if m.is_empty() { "nosection" } else { m });
                     if let Some(o) = o {
                         n = format!("{n}_{o}");
+                    }
+                    if let (Some(t), true) = (t, thicknesses > 1) {
+                        n = format!("{n}_t{t}");
                     }
                     n
                 } else {
@@ -604,6 +626,7 @@ impl Parser<'_> {
                     o.as_ref()
                         .and_then(|o| self.deck.orientations.iter().position(|x| &x.name == o)),
                 );
+                self.deck.block_thickness.push(*t);
                 let mut b = ElementBlock {
                     name,
                     shape: pb.shape,
@@ -613,7 +636,7 @@ impl Parser<'_> {
                 };
                 for (id, e) in self.elems.iter().enumerate() {
                     let em = e.material.as_ref().map(|x| x.0.as_str()).unwrap_or("");
-                    if e.pre_block == pb_i && em == m && &e.orientation == o {
+                    if e.pre_block == pb_i && em == m && &e.orientation == o && e.thickness == *t {
                         refs[id] = ElementRef {
                             block: bi,
                             element: b.len(),
