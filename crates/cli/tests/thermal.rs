@@ -5,8 +5,6 @@
 mod common;
 use common::*;
 use serde_json::Value;
-use std::collections::BTreeMap;
-use std::path::Path;
 
 /// A block with every node fixed, heated by dT = 100: the strain is zero,
 /// so `sigma = -C alpha dT`, for an isotropic material `-E alpha dT / (1 -
@@ -109,98 +107,6 @@ fn bimetal_strip_curvature_matches_timoshenko() {
     let umax = |s: &Value| s["displacement_max"].as_f64().unwrap();
     assert!(rel(umax(&s), umax(&linear)) < 1e-9, "{s} vs {linear}");
     assert_eq!(s["status"], "completed");
-}
-
-/// The blocks of a CalculiX `.dat` (`displacements`, `forces`, `total
-/// force`, `stresses` for a set): per (what, set) the rows by label (node,
-/// `elem.point` for stresses, `total` for totals).
-fn dat_blocks(text: &str) -> BTreeMap<(String, String), BTreeMap<String, Vec<f64>>> {
-    let mut out: BTreeMap<(String, String), BTreeMap<String, Vec<f64>>> = BTreeMap::new();
-    let mut cur: Option<(String, String)> = None;
-    for l in text.lines() {
-        let t = l.trim();
-        if let Some(at) = t.find(" for set ") {
-            let what = t.split(' ').next().unwrap();
-            let what = if t.starts_with("total force") {
-                "total"
-            } else {
-                what
-            };
-            let set = t[at + 9..].split_whitespace().next().unwrap();
-            cur = Some((what.to_string(), set.to_string()));
-            continue;
-        }
-        let Some(key) = &cur else { continue };
-        let f: Vec<&str> = t.split_whitespace().filter(|x| *x != "CYL").collect();
-        if f.is_empty() {
-            continue;
-        }
-        let nums: Vec<f64> = f.iter().filter_map(|x| x.parse().ok()).collect();
-        if nums.len() != f.len() {
-            continue;
-        }
-        let (label, vals) = match key.0.as_str() {
-            "total" => ("total".to_string(), nums),
-            "stresses" => (format!("{}.{}", f[0], f[1]), nums[2..].to_vec()),
-            _ => (f[0].to_string(), nums[1..].to_vec()),
-        };
-        out.entry(key.clone()).or_default().insert(label, vals);
-    }
-    out
-}
-
-/// Junta's `node_print.csv` / `el_print.csv` rows as the same blocks.
-fn junta_blocks(dir: &Path) -> BTreeMap<(String, String), BTreeMap<String, Vec<f64>>> {
-    let mut out: BTreeMap<(String, String), BTreeMap<String, Vec<f64>>> = BTreeMap::new();
-    let vals = |f: &[&str]| -> Vec<f64> { f.iter().filter_map(|x| x.parse().ok()).collect() };
-    if let Ok(t) = std::fs::read_to_string(dir.join("node_print.csv")) {
-        for l in t.lines().skip(1) {
-            let f: Vec<&str> = l.split(',').collect();
-            let what = match (f[2], f[3]) {
-                (_, "total") => "total",
-                ("U", _) => "displacements",
-                _ => "forces",
-            };
-            out.entry((what.into(), f[1].into()))
-                .or_default()
-                .insert(f[3].into(), vals(&f[4..7]));
-        }
-    }
-    if let Ok(t) = std::fs::read_to_string(dir.join("el_print.csv")) {
-        for l in t.lines().skip(1) {
-            let f: Vec<&str> = l.split(',').collect();
-            if f[2] == "S" {
-                out.entry(("stresses".into(), f[1].into()))
-                    .or_default()
-                    .insert(format!("{}.{}", f[3], f[4]), vals(&f[5..11]));
-            }
-        }
-    }
-    out
-}
-
-/// Largest difference between Junta's rows and CalculiX's over every block
-/// of the `.dat`, relative to the block's largest value (as
-/// `bench/calculix_suite.py` measures).
-fn worst_against_dat(dat: &str, dir: &Path) -> f64 {
-    let (refs, got) = (dat_blocks(dat), junta_blocks(dir));
-    assert!(!refs.is_empty());
-    let mut worst = 0.0f64;
-    for (key, rows) in &refs {
-        let g = got
-            .get(key)
-            .unwrap_or_else(|| panic!("no Junta rows for {key:?}"));
-        let scale = rows.values().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
-        for (label, want) in rows {
-            let have = g
-                .get(label)
-                .unwrap_or_else(|| panic!("{key:?}: no row {label}"));
-            for (a, b) in have.iter().zip(want) {
-                worst = worst.max((a - b).abs() / scale);
-            }
-        }
-    }
-    worst
 }
 
 /// CalculiX's own test deck `c3d6` (C3D6 wedges in tension, with

@@ -70,13 +70,13 @@ pub const KEYWORDS: &[Keyword] = &[
     Keyword {
         names: &["NODE"],
         parameters: r#"`NSET=`"#,
-        notes: r#""#,
+        notes: r#"data lines `label[, x[, y[, z]]]`: a missing coordinate is 0 (2D decks give x and y)"#,
         reader: Reader::Node,
     },
     Keyword {
         names: &["ELEMENT"],
-        parameters: r#"`ELSET=`, `TYPE=` C3D6, C3D8, C3D8I, C3D15, C3D20, C3D20R, C3D27, COH3D8, COH3D6"#,
-        notes: r#"C3D8I: ccx 2.20 on [`crates/cli/tests/data/cantilever_c3d8i.inp`](../crates/cli/tests/data/cantilever_c3d8i.inp) (`c3d8i_cantilever_deck_matches_calculix` in [`crates/cli/tests/cli.rs`](../crates/cli/tests/cli.rs)); C3D6/C3D15: `wedge_cantilever_decks_match_calculix` (same file)"#,
+        parameters: r#"`ELSET=`, `TYPE=` C3D6, C3D8, C3D8I, C3D15, C3D20, C3D20R, C3D27, COH3D8, COH3D6; 2D: CPE3, CPE4, CPE6, CPE8, CPE8R, CPS3, CPS4, CPS6, CPS8, CPS8R, CAX3, CAX4, CAX6, CAX8, CAX8R, COH2D4, COHAX4"#,
+        notes: r#"2D: CalculiX's own 2D decks against their `.dat.ref` in [`crates/cli/tests/plane_decks.rs`](../crates/cli/tests/plane_decks.rs) (what CalculiX's 3D expansion changes: [2D decks](#2d-decks)). C3D8I: ccx 2.20 on [`crates/cli/tests/data/cantilever_c3d8i.inp`](../crates/cli/tests/data/cantilever_c3d8i.inp) (`c3d8i_cantilever_deck_matches_calculix` in [`crates/cli/tests/cli.rs`](../crates/cli/tests/cli.rs)); C3D6/C3D15: `wedge_cantilever_decks_match_calculix` (same file)"#,
         reader: Reader::Element,
     },
     Keyword {
@@ -153,13 +153,13 @@ pub const KEYWORDS: &[Keyword] = &[
     },
     Keyword {
         names: &["SOLID SECTION"],
-        parameters: r#"`ELSET=`, `MATERIAL=`, `ORIENTATION=`; `COMPOSITE` with `STACK DIRECTION=1|2|3` (default 3), `LAYUP=` (kept, unused) and a data line per ply, bottom to top: `thickness, points (default 3, 1-5), material, orientation name or angle, ply name`"#,
+        parameters: r#"`ELSET=`, `MATERIAL=`, `ORIENTATION=`, `OFFSET=0` (only 0); data line: the out-of-plane thickness of CPE and CPS elements (default 1; ignored by 3D and CAX elements); `COMPOSITE` with `STACK DIRECTION=1|2|3` (default 3), `LAYUP=` (kept, unused) and a data line per ply, bottom to top: `thickness, points (default 3, 1-5), material, orientation name or angle, ply name`"#,
         notes: r#"a damage material in a `*SOLID SECTION` is an error. [Composite sections](#composite-solid-sections): C3D8, C3D20, C3D20R, C3D27 only, integrated ply by ply with Gauss-Legendre points (Abaqus: Simpson); `tests/composite_section.rs`: [A B; B D] of a 2 x 2 C3D20 plate with one element through all plies within 1e-5 of CLT"#,
         reader: Reader::SolidSection,
     },
     Keyword {
         names: &["COHESIVE SECTION"],
-        parameters: r#"`ELSET=`, `MATERIAL=`, `RESPONSE=TRACTION SEPARATION`, `THICKNESS=`; data line: constitutive thickness `T0` (default 1)"#,
+        parameters: r#"`ELSET=`, `MATERIAL=`, `RESPONSE=TRACTION SEPARATION`, `THICKNESS=`; data line: constitutive thickness `T0` (default 1), then for COH2D4 the out-of-plane thickness (default 1)"#,
         notes: r#"[cohesive decks](#cohesive-decks)"#,
         reader: Reader::CohesiveSection,
     },
