@@ -39,7 +39,8 @@ fn suite(name: &str) -> std::path::PathBuf {
 /// Run a deck and return the worst relative difference per `.dat` block.
 fn against(deck: &std::path::Path, dat: &std::path::Path) -> Vec<((String, String), f64)> {
     let dir = tempfile::tempdir().unwrap();
-    run_ok(deck, dir.path());
+    let s = run_ok(deck, dir.path());
+    assert!(s["plane"]["section"].is_string(), "{s}");
     let dat = std::fs::read_to_string(dat).unwrap();
     worst_against_dat_of(&dat, dir.path(), true)
         .into_iter()

@@ -71,9 +71,11 @@
 //! Line interfaces ([`CellShape::LineInter4`], [`CellShape::LineInter6`]):
 //! the nodes of the bottom line then those of the top line, each in the
 //! line's order; the normal points from bottom to top: with `t` the bottom
-//! line's tangent from node 0 to node 1, `n = e_z x t = (-t_y, t_x)` (the
-//! left of the line). Abaqus's COH2D4 lists the top line reversed (1-2-3-4
-//! counter-clockwise, node 4 above node 1): the deck reader swaps it.
+//! line's tangent from node 0 to node 1, `n = t x e_z = (t_y, -t_x)` (the
+//! right of the line: the outward normal of the edge of a counter-clockwise
+//! cell below it, as a solid's face normal points out of it). Abaqus's
+//! COH2D4 is counter-clockwise (1-2-3-4, the top on the left of 1-2, node 4
+//! above node 1): the deck reader takes it as 2-1-3-4.
 
 /// Every cell shape Junta knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -355,6 +357,8 @@ impl CellShape {
                 | CellShape::Inter18
                 | CellShape::Inter6
                 | CellShape::Inter12
+                | CellShape::LineInter4
+                | CellShape::LineInter6
         )
     }
 
@@ -591,6 +595,18 @@ mod tests {
         assert_eq!(CellShape::Inter12.face_shape(), Some(CellShape::Tri6));
         assert_eq!(CellShape::Inter12.num_nodes(), 12);
         assert!(CellShape::Inter6.is_interface() && !CellShape::Tri3.is_interface());
+        assert!(CellShape::LineInter4.is_interface() && CellShape::LineInter6.is_interface());
+        assert_eq!(
+            CellShape::Line3.matching_interface(),
+            Some(CellShape::LineInter6)
+        );
+        assert_eq!(
+            CellShape::PlaneQuad8.face_shape_of(3),
+            Some(CellShape::Line3)
+        );
+        assert_eq!(CellShape::PlaneQuad8.face_nodes(3), &[3, 0, 7]);
+        assert_eq!(CellShape::PlaneTri6.face_nodes(2), &[2, 0, 5]);
+        assert!(CellShape::PlaneTri3.is_solid() && CellShape::PlaneTri3.dimension() == 2);
     }
 
     #[test]

@@ -287,6 +287,18 @@ pub fn adjacent_solids(model: &Model, block: usize) -> Result<Option<AdjacentSol
     for e in 0..b.len() {
         let nodes = b.element(e);
         let x = |a: usize| mesh.nodes[nodes[a]];
+        if is_line(b) {
+            // a line interface (2D): its bottom line, normal e_z x t
+            let e01 = sub(x(1), x(0));
+            let l = norm(e01);
+            l_min = l_min.min(l);
+            if l > l_max {
+                l_max = l;
+                along = unit(e01);
+                normal = [-along[1], along[0], 0.0];
+            }
+            continue;
+        }
         if b.shape.face_shape().is_some_and(|f| f.num_corners() == 3) {
             // triangle: corners 0..2 of the bottom face
             let (e01, e02, e12) = (sub(x(1), x(0)), sub(x(2), x(0)), sub(x(2), x(1)));
@@ -471,8 +483,14 @@ pub fn cohesive_zone_advice(
     }))
 }
 
+/// Whether interface block `b` is a line interface (2D).
+fn is_line(b: &junta_core::mesh::ElementBlock) -> bool {
+    b.shape.face_shape().is_some_and(|f| f.num_corners() == 2)
+}
+
 /// Shorter in-plane side of element `e` of interface block `b` (the
-/// rule of the module documentation), and its bottom-face corners.
+/// rule of the module documentation; a line interface's length), and its
+/// bottom-face corners.
 fn short_side(
     mesh: &junta_core::mesh::Mesh,
     b: &junta_core::mesh::ElementBlock,
@@ -480,6 +498,9 @@ fn short_side(
 ) -> (f64, usize) {
     let nodes = b.element(e);
     let x = |a: usize| mesh.nodes[nodes[a]];
+    if is_line(b) {
+        return (norm(sub(x(1), x(0))), 2);
+    }
     if b.shape.face_shape().is_some_and(|f| f.num_corners() == 3) {
         let l = [sub(x(1), x(0)), sub(x(2), x(0)), sub(x(2), x(1))]
             .iter()
@@ -521,6 +542,13 @@ pub fn initial_front(model: &Model, block: usize) -> Vec<([f64; 3], [f64; 3])> {
     for e in 0..b.len() {
         let (_, corners) = short_side(mesh, b, e);
         let nodes = b.element(e);
+        if is_line(b) {
+            // a line's boundary is its end nodes: a front is a point (p, p)
+            for &p in &nodes[..2] {
+                edges.entry((p, p)).or_insert((e, 0)).1 += 1;
+            }
+            continue;
+        }
         for a in 0..corners {
             let (p, q) = (nodes[a], nodes[(a + 1) % corners]);
             let key = (p.min(q), p.max(q));
@@ -562,10 +590,15 @@ pub fn initial_front(model: &Model, block: usize) -> Vec<([f64; 3], [f64; 3])> {
             }
         }
         // outward in-plane direction: from the centroid, across the edge
-        let t = unit(sub(xq, xp));
+        // (a line's end point: from the centroid to the point)
         let to_mid = sub(mid, c);
-        let along = dot(to_mid, t);
-        let out = sub(to_mid, [along * t[0], along * t[1], along * t[2]]);
+        let out = if p == q {
+            to_mid
+        } else {
+            let t = unit(sub(xq, xp));
+            let along = dot(to_mid, t);
+            sub(to_mid, [along * t[0], along * t[1], along * t[2]])
+        };
         if norm(out) == 0.0 {
             continue;
         }

@@ -139,13 +139,15 @@
 //! stands for,
 //!
 //! ```text
-//! V_eta = -s e_z,   s = t (plane strain / stress: option `thickness`, default 1)
+//! V_eta = s e_z,    s = t (plane strain / stress: option `thickness`, default 1)
 //!                   s = 2 pi r (axisymmetric: option `axisymmetric = true`, the full ring,
 //!                               r the mid-line's x at the point)
 //! ```
 //!
-//! so that `e1` follows the line, `e2 = -e_z` and `e3 = e_z x e1` (the left
-//! of the bottom line, from its node 0 to node 1), `dA = s |V_xi| dxi`, and
+//! so that `e1` follows the line, `e2 = e_z` and `e3 = e1 x e_z` (the right
+//! of the bottom line, from its node 0 to node 1: the outward normal of the
+//! edge of a counter-clockwise plane cell below it, as for the faces of
+//! solids), `dA = s |V_xi| dxi`, and
 //! the law sees `[s1, s2, n]` with `s2 = 0` (the `z` components are not
 //! the model's: [`Element::active_components`]). Rules: `gauss` 2 points
 //! (LINE_INTER4) or 3 (LINE_INTER6); `lobatto` 2 or 3 points, which are
@@ -500,7 +502,7 @@ impl InterfaceElement {
 
     /// Frame at point `q` (shape functions `n`, derivatives `dn`) of the
     /// mid-surface of the nodal positions `pos(node, component)`; a line's
-    /// `V_eta` is `-s e_z` (see the module docs).
+    /// `V_eta` is `s e_z` (see the module docs).
     fn frame_on(
         &self,
         q: usize,
@@ -521,7 +523,7 @@ impl InterfaceElement {
             r += n[a] * 0.5 * (pos(a, 0) + pos(m + a, 0));
         }
         if let Some(w) = self.line {
-            veta = [0.0, 0.0, -w.at([r, 0.0, 0.0])];
+            veta = [0.0, 0.0, w.at([r, 0.0, 0.0])];
         }
         let nv = cross(vxi, veta);
         let jac = norm(nv);

@@ -3,8 +3,8 @@
 //!
 //! 1. Constant jump: a straight, oblique line of length `L` and thickness
 //!    `t` opened by a uniform jump carries the resultant `K delta L t`
-//!    along the jump, and the frame is `e1` along the line, `e2 = -e_z`,
-//!    `e3 = e_z x e1`; every rule, both shapes.
+//!    along the jump, and the frame is `e1` along the line, `e2 = e_z`,
+//!    `e3 = e1 x e_z` (the right of the line); every rule, both shapes.
 //! 2. Axisymmetric: the same on a ring: the resultant is `K delta` times
 //!    the ring's area `2 pi int r dl` (a line along the axis at radius
 //!    `r0`: `2 pi r0 L`; a radial line from `r1` to `r2`: `pi (r2^2 -
@@ -107,7 +107,7 @@ fn constant_jump_carries_k_delta_times_the_area() {
     let (a, b): (V3, V3) = ([0.3, -0.2, 0.0], [2.7, 1.6, 0.0]);
     let len = ((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1])).sqrt();
     let e1 = [(b[0] - a[0]) / len, (b[1] - a[1]) / len, 0.0];
-    let e3 = [-e1[1], e1[0], 0.0];
+    let e3 = [e1[1], -e1[0], 0.0];
     for shape in SHAPES {
         for rule in RULES {
             let el = element(
@@ -138,7 +138,7 @@ fn constant_jump_carries_k_delta_times_the_area() {
                 let jump = p.get("jump").unwrap();
                 for c in 0..3 {
                     assert!((fr[c] - e1[c]).abs() < 1e-14);
-                    assert!((fr[3 + c] - [0.0, 0.0, -1.0][c]).abs() < 1e-14);
+                    assert!((fr[3 + c] - [0.0, 0.0, 1.0][c]).abs() < 1e-14);
                     assert!((fr[6 + c] - e3[c]).abs() < 1e-14);
                 }
                 assert!(

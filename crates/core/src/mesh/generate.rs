@@ -238,6 +238,9 @@ pub fn box_mesh(
     element_type: &str,
     material: &str,
 ) -> Result<Mesh, CoreError> {
+    if spec.shape.is_plane() {
+        return plane_box_mesh(spec, block_name, element_type, material);
+    }
     let p = match spec.shape {
         CellShape::Hex8 | CellShape::Wedge6 => 1,
         CellShape::Hex20 | CellShape::Hex27 | CellShape::Wedge15 => 2,
@@ -280,9 +283,168 @@ pub fn box_mesh(
     Ok(mesh)
 }
 
+/// Names of the sides of a plane box in the edge order of its
+/// quadrilaterals (Abaqus S1..S4: y-, x+, y+, x-).
+const PLANE_SIDE_NAMES: [&str; 4] = ["y0", "x1", "y1", "x0"];
+
+/// A plane box (the x-y rectangle at `z = origin[2]`; the z size and
+/// divisions are not used) of quadrilaterals, or of triangles, two per
+/// rectangle split along its diagonal from the lower-left corner: node
+/// sets and face (edge) sets `x0`, `x1`, `y0`, `y1` and the element set
+/// `all`, as [`box_mesh`].
+fn plane_box_mesh(
+    spec: &BoxSpec,
+    block_name: &str,
+    element_type: &str,
+    material: &str,
+) -> Result<Mesh, CoreError> {
+    let p = if spec.shape.num_nodes() > 4 { 2 } else { 1 };
+    let flat = BoxSpec {
+        size: [spec.size[0], spec.size[1], 1.0],
+        divisions: [spec.divisions[0], spec.divisions[1], 1],
+        grading: [spec.grading[0], spec.grading[1], 1.0],
+        ..*spec
+    };
+    check_box_spec(&flat)?;
+    let lattice = box_lattice(&flat, p);
+    let lx = lattice[0].len();
+    let [nx, ny, _] = flat.divisions;
+    // one quadrilateral's lattice points in Quad9 order
+    let quad = |ex: usize, ey: usize| -> [usize; 9] {
+        std::array::from_fn(|a| {
+            let xi = crate::topology::QUAD9_NODES[a];
+            let i = p * ex + ((xi[0] + 1.0) * 0.5 * p as f64) as usize;
+            let j = p * ey + ((xi[1] + 1.0) * 0.5 * p as f64) as usize;
+            j * lx + i
+        })
+    };
+    // triangles of a rectangle: local Quad9 ids, and which side (in
+    // PLANE_SIDE_NAMES order) each triangle edge lies on
+    const TRIS: [([usize; 6], [Option<usize>; 3]); 2] = [
+        ([0, 1, 2, 4, 5, 8], [Some(0), Some(1), None]),
+        ([0, 2, 3, 8, 6, 7], [None, Some(2), Some(3)]),
+    ];
+    let tri = matches!(spec.shape, CellShape::PlaneTri3 | CellShape::PlaneTri6);
+    let npe = spec.shape.num_nodes();
+    let (mut conn, mut faces, mut e) = (Vec::new(), vec![Vec::new(); 4], 0);
+    for ey in 0..ny {
+        for ex in 0..nx {
+            let q = quad(ex, ey);
+            let on = [ey == 0, ex == nx - 1, ey == ny - 1, ex == 0];
+            let cells: Vec<(Vec<usize>, [Option<usize>; 4])> = if tri {
+                TRIS.iter()
+                    .map(|(local, sides)| {
+                        let mut edge_of_side = [None; 4];
+                        for (k, s) in sides.iter().enumerate() {
+                            if let Some(s) = s {
+                                edge_of_side[*s] = Some(k);
+                            }
+                        }
+                        (local[..npe].iter().map(|&a| q[a]).collect(), edge_of_side)
+                    })
+                    .collect()
+            } else {
+                vec![(q[..npe].to_vec(), [Some(0), Some(1), Some(2), Some(3)])]
+            };
+            for (nodes, edge_of_side) in cells {
+                conn.extend(nodes);
+                for side in 0..4 {
+                    if let (true, Some(face)) = (on[side], edge_of_side[side]) {
+                        faces[side].push(FaceRef {
+                            block: 0,
+                            element: e,
+                            face,
+                        });
+                    }
+                }
+                e += 1;
+            }
+        }
+    }
+    let plane = [lattice[0].clone(), lattice[1].clone(), vec![spec.origin[2]]];
+    let nodes = compact_lattice(&plane, &mut conn);
+    let mut mesh = Mesh {
+        nodes,
+        blocks: vec![ElementBlock {
+            name: block_name.to_string(),
+            shape: spec.shape,
+            connectivity: conn,
+            element_type: element_type.to_string(),
+            material: material.to_string(),
+        }],
+        ..Default::default()
+    };
+    for (f, list) in faces.into_iter().enumerate() {
+        let name = PLANE_SIDE_NAMES[f].to_string();
+        mesh.node_sets
+            .insert(name.clone(), mesh.nodes_of_faces(&list));
+        mesh.face_sets.insert(name, list);
+    }
+    mesh.element_sets.insert(
+        "all".into(),
+        (0..e)
+            .map(|element| ElementRef { block: 0, element })
+            .collect(),
+    );
+    Ok(mesh)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Plane boxes: node counts, counter-clockwise cells of the box's area,
+    /// and side sets made of edges on the sides.
+    #[test]
+    fn plane_boxes_cover_the_rectangle_with_their_sides_named() {
+        for (shape, nodes) in [
+            (CellShape::PlaneQuad4, 4 * 3),
+            (CellShape::PlaneQuad8, 7 * 5 - 6),
+            (CellShape::PlaneQuad9, 7 * 5),
+            (CellShape::PlaneTri3, 4 * 3),
+            (CellShape::PlaneTri6, 7 * 5),
+        ] {
+            let mut spec = BoxSpec::new([3.0, 2.0, 9.0], [3, 2, 5], shape);
+            spec.origin = [1.0, -1.0, 0.5];
+            let m = box_mesh(&spec, "b", "k", "m").unwrap();
+            assert_eq!(m.nodes.len(), nodes, "{shape:?}");
+            let b = &m.blocks[0];
+            let mut area = 0.0;
+            for e in 0..b.len() {
+                let c = b.element(e);
+                let k = if b.shape.num_faces() == 3 { 3 } else { 4 };
+                let a: f64 = (0..k)
+                    .map(|i| {
+                        let (p, q) = (m.nodes[c[i]], m.nodes[c[(i + 1) % k]]);
+                        0.5 * (p[0] * q[1] - q[0] * p[1])
+                    })
+                    .sum();
+                assert!(a > 0.0, "{shape:?}: clockwise cell {e}");
+                area += a;
+            }
+            assert!((area - 6.0).abs() < 1e-12, "{shape:?}: {area}");
+            assert!(m.nodes.iter().all(|x| x[2] == 0.5));
+            for (side, axis, at) in [
+                ("x0", 0, 1.0),
+                ("x1", 0, 4.0),
+                ("y0", 1, -1.0),
+                ("y1", 1, 1.0),
+            ] {
+                let faces = &m.face_sets[side];
+                assert_eq!(
+                    faces.len(),
+                    if axis == 0 { 2 } else { 3 },
+                    "{shape:?} {side}"
+                );
+                for &f in faces {
+                    assert!(
+                        m.face_nodes(f).iter().all(|&n| m.nodes[n][axis] == at),
+                        "{shape:?} {side}"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn node_counts_match_closed_forms() {

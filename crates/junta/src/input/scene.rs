@@ -382,6 +382,11 @@ pub struct ModelInfo {
     pub title: Option<String>,
     /// The units the scene's numbers are in (informative, e.g. "N, mm, MPa").
     pub units: Option<String>,
+    /// The out-of-plane thickness of a plane strain or plane stress model
+    /// (its plane elements and line interfaces; default 1): forces,
+    /// reactions and energies are those of this thickness. An axisymmetric
+    /// model (cax elements) takes none: it is the full ring.
+    pub thickness: Option<f64>,
 }
 
 /// Where the mesh comes from: `type = "box"` (built-in structured box),
@@ -393,17 +398,21 @@ pub struct MeshSpec {
     /// `box`, `boxes`, `gmsh` or `inp`.
     #[serde(rename = "type")]
     pub kind: Spanned<String>,
-    /// Box: edge lengths.
+    /// Box: edge lengths (`[x, y]` for a plane box).
+    #[serde(default, deserialize_with = "some_size")]
     pub size: Option<[f64; 3]>,
-    /// Box: elements along x, y, z.
+    /// Box: elements along x, y, z (`[x, y]` for a plane box).
+    #[serde(default, deserialize_with = "some_divisions")]
     pub divisions: Option<[usize; 3]>,
     /// Box: element type key (h8, h8i, h20, h27, h20r, h27r).
     pub element: Option<Spanned<String>>,
     /// Box: material name (a key of `[materials]`).
     pub material: Option<Spanned<String>>,
     /// Box: lower corner.
+    #[serde(default, deserialize_with = "some_origin")]
     pub origin: Option<[f64; 3]>,
     /// Box: last/first element size per axis.
+    #[serde(default, deserialize_with = "some_grading")]
     pub grading: Option<[f64; 3]>,
     /// Gmsh / inp: the file.
     pub file: Option<PathBuf>,
@@ -419,19 +428,22 @@ pub struct MeshSpec {
 pub struct BoxPart {
     /// Name of the part: its element set and the prefix of its node sets.
     pub name: String,
-    /// Edge lengths along x, y, z.
+    /// Edge lengths along x, y, z (`[x, y]` for a plane box).
+    #[serde(deserialize_with = "size_xyz")]
     pub size: [f64; 3],
-    /// Elements along x, y, z.
+    /// Elements along x, y, z (`[x, y]` for a plane box).
+    #[serde(deserialize_with = "divisions_xyz")]
     pub divisions: [usize; 3],
-    /// Element type key (h8, h8i, h20, h27, h20r, h27r, wedge6, wedge15).
+    /// Element type key (h8, h8i, h20, h27, h20r, h27r, wedge6, wedge15;
+    /// plane: cpe4, cps8, cax8, ...).
     pub element: Spanned<String>,
     /// Material name (a key of `[materials]`).
     pub material: Spanned<String>,
     /// Lower corner (default the origin).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "origin_xyz")]
     pub origin: [f64; 3],
     /// Ratio of the last to the first element size per axis (default 1).
-    #[serde(default = "unit_grading")]
+    #[serde(default = "unit_grading", deserialize_with = "grading_xyz")]
     pub grading: [f64; 3],
     /// Further element set the box's elements join (several boxes with the
     /// same `group` form one body, e.g. a beam arm meshed finer near a
@@ -441,6 +453,56 @@ pub struct BoxPart {
 
 fn unit_grading() -> [f64; 3] {
     [1.0; 3]
+}
+
+/// Two or three values per axis: `[x, y]` (a plane box) gets `pad` along z.
+fn xyz<'de, D: serde::Deserializer<'de>, T: Deserialize<'de> + Copy>(
+    d: D,
+    pad: T,
+) -> std::result::Result<[T; 3], D::Error> {
+    let v: Vec<T> = Vec::deserialize(d)?;
+    match v[..] {
+        [x, y] => Ok([x, y, pad]),
+        [x, y, z] => Ok([x, y, z]),
+        _ => Err(serde::de::Error::invalid_length(
+            v.len(),
+            &"two values [x, y] (a plane box) or three [x, y, z]",
+        )),
+    }
+}
+fn size_xyz<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<[f64; 3], D::Error> {
+    xyz(d, 1.0)
+}
+fn divisions_xyz<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<[usize; 3], D::Error> {
+    xyz(d, 1)
+}
+fn origin_xyz<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<[f64; 3], D::Error> {
+    xyz(d, 0.0)
+}
+fn grading_xyz<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<[f64; 3], D::Error> {
+    xyz(d, 1.0)
+}
+fn some_size<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<[f64; 3]>, D::Error> {
+    size_xyz(d).map(Some)
+}
+fn some_divisions<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<[usize; 3]>, D::Error> {
+    divisions_xyz(d).map(Some)
+}
+fn some_origin<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<[f64; 3]>, D::Error> {
+    origin_xyz(d).map(Some)
+}
+fn some_grading<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<[f64; 3]>, D::Error> {
+    grading_xyz(d).map(Some)
 }
 
 /// Zero-thickness interface elements along the faces shared by two element
@@ -803,7 +865,7 @@ pub(crate) fn generate_box(
         .map_err(|e| err!("{}: key `{key}.element`: {e}", sf.at(element.span())))?;
     if !entry.shape.is_solid() {
         bail!(
-            "{}: key `{key}.element`: `{}` is not a solid element; the box generator makes h8, h8i, h20, h27, h20r, h27r, wedge6, wedge6r, wedge15",
+            "{}: key `{key}.element`: `{}` is not a solid element; the box generator makes h8, h8i, h20, h27, h20r, h27r, wedge6, wedge6r, wedge15, and the plane cpe*, cps*, cax* elements",
             sf.at(element.span()),
             entry.key
         );
@@ -1286,7 +1348,7 @@ pub fn build_elements(
         block.material = b.material.get_ref().clone();
     }
     let mut out = Vec::new();
-    for block in &mesh.blocks {
+    for (bi, block) in mesh.blocks.iter().enumerate() {
         let override_ = sf
             .scene
             .blocks
@@ -1334,7 +1396,7 @@ pub fn build_elements(
                 block.shape.name()
             );
         }
-        let mut options = toml::Table::new();
+        let mut options = plane_options(sf, mesh, bi)?;
         let (material, law) = if block.shape.is_interface() {
             let law = laws.get(&block.material).cloned().ok_or_else(|| {
                 err!(
@@ -1378,6 +1440,35 @@ pub fn build_elements(
         out.push(el);
     }
     Ok(out)
+}
+
+/// The options of a plane block `b` (plane elements, line interfaces):
+/// `thickness` from `[model] thickness`, or `axisymmetric = true` for a
+/// line interface of a model of cax elements (see [`ModelInfo::thickness`]).
+fn plane_options(sf: &SceneFile, mesh: &Mesh, b: usize) -> Result<toml::Table> {
+    let mut t = toml::Table::new();
+    let block = &mesh.blocks[b];
+    if block.shape.dimension() != 2 {
+        return Ok(t);
+    }
+    let axisymmetric = mesh
+        .blocks
+        .iter()
+        .any(|o| o.element_type.starts_with("cax"));
+    match (axisymmetric, sf.scene.model.thickness) {
+        (true, Some(_)) => bail!(
+            "{}: key `model.thickness`: an axisymmetric model (cax elements) takes no thickness: it models the full ring",
+            sf.path.display()
+        ),
+        (true, None) if block.shape.is_interface() => {
+            t.insert("axisymmetric".into(), true.into());
+        }
+        (false, Some(w)) => {
+            t.insert("thickness".into(), w.into());
+        }
+        _ => {}
+    }
+    Ok(t)
 }
 
 /// Translate the whole scene into a model.

@@ -336,6 +336,44 @@ pub fn cohesive_zone_advice(model: &Model) -> Result<(Value, Vec<String>, Vec<St
     Ok((Value::Object(m), lines, warnings))
 }
 
+/// `summary.json` `plane` of a plane (2D) model, `null` for a 3D one: the
+/// section (`plane_strain`, `plane_stress`, `axisymmetric`), the width its
+/// forces, reactions and energies are those of (a thickness, or the full
+/// ring of 2 pi radians), and a sentence saying so.
+pub fn plane_summary(model: &junta_core::Model) -> serde_json::Value {
+    use junta_core::element::PlaneWidth;
+    if !model.mesh.blocks.iter().all(|b| b.shape.dimension() == 2) {
+        return serde_json::Value::Null;
+    }
+    let solid = |prefix: &str| {
+        model
+            .mesh
+            .blocks
+            .iter()
+            .any(|b| b.element_type.starts_with(prefix))
+    };
+    let section = match (solid("cax"), solid("cps"), solid("cpe")) {
+        (true, _, _) => "axisymmetric",
+        (_, true, true) => "plane_strain_and_plane_stress",
+        (_, true, false) => "plane_stress",
+        _ => "plane_strain",
+    };
+    match model.elements.iter().find_map(|e| e.plane_width()) {
+        Some(PlaneWidth::Axisymmetric) => serde_json::json!({
+            "section": section,
+            "width": "full_ring",
+            "note": "forces, reactions and energies are those of the full ring (2 pi radians); x is the radius, y the axis",
+        }),
+        Some(PlaneWidth::Thickness(t)) => serde_json::json!({
+            "section": section,
+            "width": "thickness",
+            "thickness": t,
+            "note": format!("forces, reactions and energies are those of the out-of-plane thickness {t}"),
+        }),
+        None => serde_json::Value::Null,
+    }
+}
+
 /// `summary.json` `distributed` of a run over MPI ranks (`null` in one
 /// process): the ranks, and per rank its elements, the nodes they touch
 /// and of those the nodes shared with other ranks (the partition's cut,

@@ -811,6 +811,7 @@ fn base_summary(input: &Path, p: &Prepared, log: &RunLog, status: &str) -> serde
         "equations": model.dofs.num_free,
         "elements": crate::output::summary::element_counts(model),
         "distributed": crate::output::summary::distributed_summary(model),
+        "plane": crate::output::summary::plane_summary(model),
         "increments": log.last_increment,
         "newton_iterations": {
             "total": total_iterations,

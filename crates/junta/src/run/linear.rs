@@ -96,6 +96,7 @@ pub(crate) fn run_linear(
         "equations": p.model.dofs.num_free,
         "elements": crate::output::summary::element_counts(&p.model),
         "distributed": crate::output::summary::distributed_summary(&p.model),
+        "plane": crate::output::summary::plane_summary(&p.model),
         "reactions": reactions,
         "displacement_max": crate::output::summary::displacement_max(&res.u),
         "largest_rotation": largest_rotation,

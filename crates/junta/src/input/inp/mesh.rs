@@ -152,8 +152,9 @@ impl Parser<'_> {
             }
             let conn: Vec<usize> = match shape {
                 CellShape::Hex27 => C3D27_TO_OURS.iter().map(|&a| given[a]).collect(),
-                // COH2D4 1-2-3-4 counter-clockwise: the top line is 4-3
-                CellShape::LineInter4 => vec![given[0], given[1], given[3], given[2]],
+                // COH2D4 1-2-3-4 counter-clockwise (the top on the left of
+                // 1-2): ours has the top on the right of the bottom line
+                CellShape::LineInter4 => vec![given[1], given[0], given[2], given[3]],
                 _ => given,
             };
             if self.elem_id.contains_key(&label) {

@@ -100,7 +100,7 @@
 //! | CPE3, CPE4, CPE6, CPE8, CPE8R | PlaneTri3 / PlaneQuad4 / PlaneTri6 / PlaneQuad8 | `cpe3` ... `cpe8r` | none; thickness: the `*SOLID SECTION` data line (default 1) |
 //! | CPS3 ... CPS8R | the same | `cps3` ... `cps8r` | as CPE |
 //! | CAX3 ... CAX8R | the same | `cax3` ... `cax8r` | none; the full ring (a thickness on the data line has no effect, as in CalculiX) |
-//! | COH2D4, COHAX4 | LineInter4 | `line_inter4` | 1-2-4-3: Abaqus lists the top line reversed (counter-clockwise); out-of-plane thickness: the `*COHESIVE SECTION` data line's second field (default 1); axisymmetric in a model of CAX elements |
+//! | COH2D4, COHAX4 | LineInter4 | `line_inter4` | 2-1-3-4: Abaqus's is counter-clockwise (the top on the left of 1-2), ours has the top on the right of the bottom line; out-of-plane thickness: the `*COHESIVE SECTION` data line's second field (default 1); axisymmetric in a model of CAX elements |
 //!
 //! Faces for `*DLOAD` `P1..P6` and `*SURFACE` `S1..S6`: hexahedra have six
 //! ([`junta_core::topology::HEX_FACES`]), wedges five

@@ -1,0 +1,128 @@
+//! The DCB as a 2D plane-strain problem (issue 39):
+//! `examples/plane/dcb_plane_strain.toml` (CPE8 arms, LINE_INTER6 bond,
+//! the width out of the plane) against corrected beam theory in plane
+//! strain, and against the one-element-wide 3D slab of the same in-plane
+//! mesh (`examples/delamination/dcb_arc.toml`, H20 + INTER16).
+
+mod common;
+use common::*;
+
+/// (opening, load) rows of a run's curve.csv.
+fn curve(dir: &std::path::Path) -> Vec<(f64, f64)> {
+    let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |n: &str| head.iter().position(|h| *h == n).unwrap();
+    let (d, p) = (col("displacement"), col("reaction"));
+    lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[d].parse().unwrap(), f[p].parse().unwrap())
+        })
+        .collect()
+}
+
+/// The load at opening `d` on the curve, interpolated on the first
+/// segment whose opening grows across `d`.
+fn load_at(c: &[(f64, f64)], d: f64) -> f64 {
+    c.windows(2)
+        .find(|w| w[0].0 <= d && d <= w[1].0 && w[1].0 > w[0].0)
+        .map(|w| w[0].1 + (w[1].1 - w[0].1) * (d - w[0].0) / (w[1].0 - w[0].0))
+        .unwrap_or_else(|| panic!("no point of the curve at {d}"))
+}
+
+fn peak(c: &[(f64, f64)]) -> (f64, f64) {
+    c.iter()
+        .copied()
+        .fold((0.0, 0.0), |m, p| if p.1 > m.1 { p } else { m })
+}
+
+/// Mean load over openings 5.5 to 9.5 mm (the propagation branch).
+fn mean_propagation_load(c: &[(f64, f64)]) -> f64 {
+    (0..=40)
+        .map(|k| load_at(c, 5.5 + 0.1 * k as f64))
+        .sum::<f64>()
+        / 41.0
+}
+
+/// Corrected beam theory (BENCHMARKS.md sections 4 and 7) in plane strain:
+/// `E11' = E11 / (1 - nu13 nu31)` with 3 the width, `nu31 = nu13 E3 /
+/// E1`; the peak `P_c = sqrt(G b E' I) / a_e` at `delta_c = 2 P_c a_e^3 /
+/// (3 E' I)`, `a_e = a0 + chi h`, and on the propagation branch `P =
+/// (G b)^(3/4) (E' I)^(1/4) sqrt(2 / (3 delta))`.
+struct BeamTheory {
+    ei: f64,
+    gb: f64,
+    a_e: f64,
+}
+
+impl BeamTheory {
+    fn as4peek_plane_strain() -> Self {
+        let (e11, e22, e33, g13, nu13) = (122700.0f64, 10100.0f64, 10100.0, 5500.0, 0.25);
+        let e = e11 / (1.0 - nu13 * nu13 * e33 / e11);
+        let (b, h, a0, gc) = (25.4, 1.56f64, 32.9, 0.969);
+        let gamma = 1.18 * (e * e22).sqrt() / g13;
+        let chi = (e / (11.0 * g13) * (3.0 - 2.0 * (gamma / (1.0 + gamma)).powi(2))).sqrt();
+        BeamTheory {
+            ei: e * b * h.powi(3) / 12.0,
+            gb: gc * b,
+            a_e: a0 + chi * h,
+        }
+    }
+    fn peak(&self) -> (f64, f64) {
+        let p = (self.gb * self.ei).sqrt() / self.a_e;
+        (2.0 * p * self.a_e.powi(3) / (3.0 * self.ei), p)
+    }
+    fn propagation(&self, delta: f64) -> f64 {
+        self.gb.powf(0.75) * self.ei.powf(0.25) * (2.0 / (3.0 * delta)).sqrt()
+    }
+}
+
+#[test]
+fn plane_strain_dcb_against_beam_theory_and_the_3d_slab() {
+    let plane = tempfile::tempdir().unwrap();
+    let s = run_ok(
+        &repo().join("examples/plane/dcb_plane_strain.toml"),
+        plane.path(),
+    );
+    assert_eq!(s["status"], "completed", "{s}");
+    assert_eq!(s["plane"]["section"], "plane_strain", "{s}");
+    assert_eq!(s["plane"]["thickness"], 25.4, "{s}");
+    let c2 = curve(plane.path());
+    let cbt = BeamTheory::as4peek_plane_strain();
+    // peak within 2 %, propagation within 3 % of corrected beam theory
+    let (d_c, p_c) = cbt.peak();
+    let (d2, p2) = peak(&c2);
+    assert!(
+        rel(p2, p_c) < 0.02,
+        "peak {p2} at {d2} against {p_c} at {d_c}"
+    );
+    for d in [6.0, 7.0, 8.0, 9.0, 10.0] {
+        let (p, want) = (load_at(&c2, d), cbt.propagation(d));
+        assert!(rel(p, want) < 0.03, "at {d} mm: {p} against {want}");
+    }
+    // the 3D slab of the same in-plane mesh: elastic branch, peak and
+    // mean propagation load within 1 %
+    let slab = tempfile::tempdir().unwrap();
+    run_ok(
+        &repo().join("examples/delamination/dcb_arc.toml"),
+        slab.path(),
+    );
+    let c3 = curve(slab.path());
+    for d in [1.0, 2.0, 3.0, 4.0] {
+        assert!(
+            rel(load_at(&c2, d), load_at(&c3, d)) < 0.01,
+            "elastic branch at {d} mm"
+        );
+    }
+    assert!(
+        rel(p2, peak(&c3).1) < 0.01,
+        "peak {p2} against the slab's {:?}",
+        peak(&c3)
+    );
+    let (m2, m3) = (mean_propagation_load(&c2), mean_propagation_load(&c3));
+    assert!(
+        rel(m2, m3) < 0.01,
+        "mean propagation load {m2} against the slab's {m3}"
+    );
+}
