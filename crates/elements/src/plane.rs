@@ -1,6 +1,7 @@
 //! Plane solid elements: plane strain, plane stress and axisymmetric
 //! quadrilaterals (4, 8, 9 nodes) and triangles (3, 6 nodes), registered
-//! under the Abaqus names (`cpe4`, `cps8r`, `cax6`, ...).
+//! under the Abaqus names (`cpe4`, `cps8r`, `cax6`, ...), and the 4-node
+//! quadrilateral with incompatible modes (`cpe4i`, `cps4i`: [`incompatible`]).
 //!
 //! ## Kinematics
 //!
@@ -102,6 +103,8 @@
 //! `material_stress` for a material with axes, and `thermal_strain` under
 //! a temperature change.
 
+mod incompatible;
+
 use crate::quadrature::{gauss_legendre_2d, triangle_rule, Rule};
 use crate::shape::surface_shape;
 use crate::solid::{material_stress, von_mises};
@@ -175,7 +178,13 @@ pub struct PlaneElement {
     /// `D` over `[xx, yy, zz, xy]` of a material uniform in space.
     d: Matrix4<f64>,
     points: Vec<PlanePoint>,
+    /// Natural coordinates of the points.
+    xi: Vec<[f64; 2]>,
     corners: Vec<PlanePoint>,
+    /// The centre of the cell (the incompatible modes' `J0`).
+    centre: PlanePoint,
+    /// With the incompatible modes of [`incompatible`] (`cpe4i`, `cps4i`).
+    incompatible: bool,
 }
 
 /// The strains, stresses and `D` at one point.
@@ -338,6 +347,10 @@ impl PlaneElement {
             .zip(&rule.weights)
             .map(|(&xi, &w)| PlanePoint::new(shape, xi, w))
             .collect();
+        let centre = match shape {
+            CellShape::PlaneTri3 | CellShape::PlaneTri6 => [1.0 / 3.0, 1.0 / 3.0],
+            _ => [0.0, 0.0],
+        };
         let corners = corners
             .iter()
             .map(|&xi| PlanePoint::new(shape, xi, 0.0))
@@ -350,8 +363,26 @@ impl PlaneElement {
             d: section_stiffness(section, &material.elasticity()),
             material,
             points,
+            xi: rule.points.clone(),
             corners,
+            centre: PlanePoint::new(shape, centre, 0.0),
+            incompatible: false,
         })
+    }
+
+    /// The same 4-node quadrilateral with incompatible modes (plane strain
+    /// or plane stress; see [`incompatible`]). Errors for other cells and
+    /// for axisymmetric sections.
+    pub fn with_incompatible_modes(mut self) -> Result<Self, CoreError> {
+        if self.shape != CellShape::PlaneQuad4 || self.section == Section::Axisymmetric {
+            return Err(CoreError::InvalidParameters {
+                kind: "element",
+                key: self.key.into(),
+                message: "incompatible modes are for the 4-node plane strain or plane stress quadrilateral (cpe4i, cps4i); an axisymmetric one would fail the patch test".into(),
+            });
+        }
+        self.incompatible = true;
+        Ok(self)
     }
 
     /// The section (plane strain, plane stress or axisymmetric).
@@ -374,6 +405,10 @@ impl PlaneElement {
         reduced: bool,
         build: &ElementBuild<'_>,
     ) -> Result<Self, CoreError> {
+        let incompatible = key.ends_with('i');
+        if incompatible {
+            crate::small_strain_only(key, build.kinematics)?;
+        }
         let bad = |message: String| CoreError::InvalidParameters {
             kind: "element",
             key: key.into(),
@@ -411,7 +446,13 @@ impl PlaneElement {
                  `anisotropic` material named by the block); none was given"
             ))
         })?;
-        Ok(Self::new(key, shape, section, reduced, material)?.with_kinematics(build.kinematics))
+        let el =
+            Self::new(key, shape, section, reduced, material)?.with_kinematics(build.kinematics);
+        if incompatible {
+            el.with_incompatible_modes()
+        } else {
+            Ok(el)
+        }
     }
 
     /// Physical gradients `g[a] = ∂N_a/∂(x, y)`, the position and the
@@ -690,6 +731,9 @@ impl Element for PlaneElement {
         if self.kinematics == Kinematics::Finite {
             return self.compute_finite(ctx, f_int, k);
         }
+        if self.incompatible {
+            return self.compute_incompatible(ctx, f_int, k);
+        }
         let axi = self.section == Section::Axisymmetric;
         let mut g = [[0.0; 2]; MAX_NODES];
         for (q, p) in self.points.iter().enumerate() {
@@ -749,46 +793,86 @@ impl Element for PlaneElement {
     }
 
     fn point_outputs(&self, ctx: &ElementContext<'_>) -> Result<Vec<PointOutput>, ElementError> {
+        if self.incompatible {
+            return self.point_outputs_incompatible(ctx);
+        }
         let mut g = [[0.0; 2]; MAX_NODES];
         let mut out = Vec::with_capacity(self.points.len());
         for (q, p) in self.points.iter().enumerate() {
             let (x, vol) = self.gradients(p, ctx.coords, q, &mut g)?;
-            let (ps, pk2) = match self.kinematics {
-                Kinematics::Small => (
-                    self.point_state(p, self.active_strain(p, &g, x, ctx.disp), x, ctx),
-                    None,
-                ),
-                Kinematics::Finite => {
-                    let st = self.stretch(p, &g, x, ctx.disp);
-                    let mut ps = self.point_state(p, st.green(), x, ctx);
-                    let pk2 = ps.stress;
-                    let f = st.full(ps.strain[2]);
-                    ps.stress = crate::total_lagrangian::cauchy_stress(&f, &Vector6::from(pk2));
-                    (ps, Some(pk2))
+            out.push(match self.kinematics {
+                Kinematics::Small => {
+                    self.point_output(p, self.active_strain(p, &g, x, ctx.disp), x, vol, ctx)
                 }
-            };
-            let mut values = vec![
-                ("stress", ps.stress.to_vec()),
-                ("strain", ps.strain.iter().copied().collect()),
-                ("mises", vec![von_mises(&ps.stress)]),
-                ("volume", vec![p.w * vol]),
-            ];
-            if let Some(pk2) = pk2 {
-                values.push(("pk2_stress", pk2.to_vec()));
-            }
-            let objective = pk2.as_ref().unwrap_or(&ps.stress);
-            if let Some(s) = material_stress(&*self.material, x, objective) {
-                values.push(("material_stress", s.to_vec()));
-            }
-            if ctx.temperature.is_some() {
-                values.push(("thermal_strain", ps.thermal.iter().copied().collect()));
-            }
-            out.push(PointOutput {
-                position: x,
-                values,
+                Kinematics::Finite => self.point_output_finite(p, &g, x, vol, ctx),
             });
         }
         Ok(out)
+    }
+}
+
+impl PlaneElement {
+    /// The outputs at point `p` (position `x`, volume factor `vol`) of the
+    /// small-strain in-plane strain `e`.
+    fn point_output(
+        &self,
+        p: &PlanePoint,
+        e: [f64; 4],
+        x: [f64; 3],
+        vol: f64,
+        ctx: &ElementContext<'_>,
+    ) -> PointOutput {
+        let ps = self.point_state(p, e, x, ctx);
+        self.output_values(p, ps, None, x, vol, ctx)
+    }
+
+    /// The outputs at point `p` under `nlgeom`: Cauchy `stress`, Green
+    /// `strain`, `pk2_stress`.
+    fn point_output_finite(
+        &self,
+        p: &PlanePoint,
+        g: &[[f64; 2]; MAX_NODES],
+        x: [f64; 3],
+        vol: f64,
+        ctx: &ElementContext<'_>,
+    ) -> PointOutput {
+        let st = self.stretch(p, g, x, ctx.disp);
+        let mut ps = self.point_state(p, st.green(), x, ctx);
+        let pk2 = ps.stress;
+        let f = st.full(ps.strain[2]);
+        ps.stress = crate::total_lagrangian::cauchy_stress(&f, &Vector6::from(pk2));
+        self.output_values(p, ps, Some(pk2), x, vol, ctx)
+    }
+
+    fn output_values(
+        &self,
+        p: &PlanePoint,
+        ps: PointState,
+        pk2: Option<[f64; 6]>,
+        x: [f64; 3],
+        vol: f64,
+        ctx: &ElementContext<'_>,
+    ) -> PointOutput {
+        let mut values = vec![
+            ("stress", ps.stress.to_vec()),
+            ("strain", ps.strain.iter().copied().collect()),
+            ("mises", vec![von_mises(&ps.stress)]),
+            ("volume", vec![p.w * vol]),
+        ];
+        if let Some(pk2) = pk2 {
+            values.push(("pk2_stress", pk2.to_vec()));
+        }
+        let objective = pk2.as_ref().unwrap_or(&ps.stress);
+        if let Some(s) = material_stress(&*self.material, x, objective) {
+            values.push(("material_stress", s.to_vec()));
+        }
+        if ctx.temperature.is_some() {
+            values.push(("thermal_strain", ps.thermal.iter().copied().collect()));
+        }
+        PointOutput {
+            position: x,
+            values,
+        }
     }
 }
 
@@ -956,4 +1040,18 @@ register_plane!(
     Ax,
     false,
     "9-node axisymmetric quadrilateral, 3x3 Gauss"
+);
+register_plane!(
+    "cpe4i",
+    Q4,
+    Pe,
+    false,
+    "4-node plane strain quadrilateral with incompatible modes (CPE4I): bends without shear locking"
+);
+register_plane!(
+    "cps4i",
+    Q4,
+    Ps,
+    false,
+    "4-node plane stress quadrilateral with incompatible modes (CPS4I): bends without shear locking"
 );

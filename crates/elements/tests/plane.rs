@@ -61,6 +61,12 @@ const KEYS: [&str; 18] = [
     "cps9", "cax3", "cax4", "cax6", "cax8", "cax8r", "cax9",
 ];
 
+/// The small-strain keys: [`KEYS`] and the incompatible-mode quadrilaterals.
+const SMALL_KEYS: [&str; 20] = [
+    "cpe3", "cpe4", "cpe6", "cpe8", "cpe8r", "cpe9", "cps3", "cps4", "cps6", "cps8", "cps8r",
+    "cps9", "cax3", "cax4", "cax6", "cax8", "cax8r", "cax9", "cpe4i", "cps4i",
+];
+
 /// A distorted cell of `shape` in the x-y plane at x in [1, 3] (off the
 /// axis), straight-edged (mid-side nodes at mid-edges), counter-clockwise.
 fn distorted(shape: CellShape) -> Vec<[f64; 3]> {
@@ -134,7 +140,7 @@ fn zero_modes(k: &DMatrix<f64>) -> usize {
 /// offered reduced). The z rows and columns are zero.
 #[test]
 fn zero_energy_modes_of_a_free_element() {
-    for key in KEYS {
+    for key in SMALL_KEYS {
         let el = build(key, steel(), "", Kinematics::Small).unwrap();
         let coords = distorted(el.shape());
         let (_, k) = compute(&*el, &coords, &vec![0.0; 3 * coords.len()]);
@@ -217,7 +223,7 @@ fn closed_form(key: &str, e: [f64; 3]) -> ([f64; 6], [f64; 6]) {
 #[test]
 fn uniform_strain_gives_the_closed_form_stress_at_every_point() {
     let e = [1.2e-3, -0.7e-3, 0.9e-3];
-    for key in KEYS {
+    for key in SMALL_KEYS {
         let el = build(key, steel(), "thickness = 2.5", Kinematics::Small)
             .or_else(|_| build(key, steel(), "", Kinematics::Small))
             .unwrap();
@@ -383,6 +389,61 @@ fn rigid_motions_are_stress_free_under_nlgeom() {
         let (f, _) = compute(&*el, &coords, &disp);
         assert!(f.amax() < 1e-9, "{key}: {}", f.amax());
     }
+}
+
+/// Pure bending of one rectangular element (plane stress, length `L`,
+/// height `h`, thickness `t`): the consistent nodal couple `F = M / h` at
+/// the free end, the other end held in x (and one corner in y). With the
+/// incompatible modes the element is exact (Wilson et al. 1973: the
+/// quadratic terms of `u_x = -kappa x y`, `u_y = kappa (x^2 + nu y^2) / 2`,
+/// `kappa = M / (E I)`, are its modes); the plain bilinear one locks (its
+/// end rotation here is 40 % short).
+#[test]
+fn incompatible_modes_bend_exactly() {
+    let (l, h, t, m): (f64, f64, f64, f64) = (2.0, 1.0, 0.5, 10.0);
+    let coords = [
+        [0.0, -h / 2.0, 0.0],
+        [l, -h / 2.0, 0.0],
+        [l, h / 2.0, 0.0],
+        [0.0, h / 2.0, 0.0],
+    ];
+    let kappa = m / (E * t * h.powi(3) / 12.0);
+    let exact = |x: [f64; 3]| {
+        [
+            -kappa * x[0] * x[1],
+            kappa * (x[0] * x[0] + NU * (x[1] * x[1] - h * h / 4.0)) / 2.0,
+        ]
+    };
+    let tip = |key: &str| -> Vec<[f64; 2]> {
+        let el = build(key, steel(), &format!("thickness = {t}"), Kinematics::Small).unwrap();
+        let (_, k) = compute(&*el, &coords, &[0.0; 12]);
+        // free dofs: node 1 x, y; node 2 x, y; node 3 y
+        let free = [3usize, 4, 6, 7, 10];
+        let kf = DMatrix::from_fn(5, 5, |i, j| k[(free[i], free[j])]);
+        let f = DVector::from_vec(vec![m / h, 0.0, -m / h, 0.0, 0.0]);
+        let u = kf.lu().solve(&f).unwrap();
+        vec![[u[0], u[1]], [u[2], u[3]], [0.0, u[4]]]
+    };
+    let nodes = [coords[1], coords[2], coords[3]];
+    let exact_u: Vec<[f64; 2]> = nodes.iter().map(|&x| exact(x)).collect();
+    let scale = exact_u
+        .iter()
+        .map(|v| v[0].abs().max(v[1].abs()))
+        .fold(0.0, f64::max);
+    let got = tip("cps4i");
+    for (g, w) in got.iter().zip(&exact_u) {
+        for c in 0..2 {
+            assert!(
+                (g[c] - w[c]).abs() < 1e-10 * scale,
+                "cps4i: {got:?} against {exact_u:?}"
+            );
+        }
+    }
+    let plain = tip("cps4");
+    assert!(
+        plain[0][1] < 0.7 * exact_u[0][1],
+        "cps4 should lock: {plain:?} against {exact_u:?}"
+    );
 }
 
 /// Mistakes are errors that name what is valid: an axisymmetric element
