@@ -127,6 +127,23 @@ fn plane_strain_dcb_against_beam_theory_and_the_3d_slab() {
     );
 }
 
+/// The plane DCB stopped before its peak and in its propagation, each
+/// restarted from its checkpoint, gives the uninterrupted run's curve bit
+/// for bit.
+#[test]
+fn plane_dcb_restarts_bit_for_bit() {
+    let scene = repo().join("examples/plane/dcb_plane_strain.toml");
+    let whole = tempfile::tempdir().unwrap();
+    run_ok(&scene, whole.path());
+    let want = curve_without_seconds(whole.path());
+    for n in ["10", "30"] {
+        let parts = tempfile::tempdir().unwrap();
+        run_ok_with(&scene, parts.path(), &["--max-increments", n]);
+        restart_ok(parts.path());
+        assert_eq!(curve_without_seconds(parts.path()), want, "stopped at increment {n}");
+    }
+}
+
 /// `examples/plane/dcb_cpe4i.inp`, the 2D DCB as an Abaqus user writes it
 /// (CPE4I arms, COH2D4 bond listed counter-clockwise, `*COHESIVE SECTION`
 /// with the out-of-plane thickness, QUADS onset, BK energy softening) runs
