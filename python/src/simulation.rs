@@ -463,7 +463,7 @@ fn frame_dict<'py>(py: Python<'py>, f: Frame) -> PyResult<Bound<'py, PyDict>> {
     Ok(d)
 }
 
-/// meshio's name of a solid cell shape.
+/// meshio's name of a solid cell shape (3D or plane).
 fn meshio_name(s: CellShape) -> &'static str {
     match s {
         CellShape::Hex8 => "hexahedron",
@@ -471,6 +471,11 @@ fn meshio_name(s: CellShape) -> &'static str {
         CellShape::Hex27 => "hexahedron27",
         CellShape::Wedge6 => "wedge",
         CellShape::Wedge15 => "wedge15",
+        CellShape::PlaneQuad4 => "quad",
+        CellShape::PlaneQuad8 => "quad8",
+        CellShape::PlaneQuad9 => "quad9",
+        CellShape::PlaneTri3 => "triangle",
+        CellShape::PlaneTri6 => "triangle6",
         _ => "",
     }
 }

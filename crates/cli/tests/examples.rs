@@ -51,6 +51,10 @@ examples! {
     cube_scene => "cube.toml";
     cube_deck => "cube.inp";
     cube_steps_deck => "cube_steps.inp";
+    plane_dcb => "plane/dcb_plane_strain.toml";
+    plane_dcb_deck => "plane/dcb_cpe4i.inp";
+    plane_enf => "plane/enf_plane_strain.toml";
+    plane_tube_joint => "plane/tube_lap_joint.toml";
     dcb_abaqus_deck => "delamination/dcb_abaqus.inp";
     dcb_arc => "delamination/dcb_arc.toml";
     dcb_coarse => "delamination/dcb_coarse.toml";

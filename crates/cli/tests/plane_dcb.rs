@@ -88,6 +88,21 @@ fn plane_strain_dcb_against_beam_theory_and_the_3d_slab() {
     assert_eq!(s["status"], "completed", "{s}");
     assert_eq!(s["plane"]["section"], "plane_strain", "{s}");
     assert_eq!(s["plane"]["thickness"], 25.4, "{s}");
+    // the interface's energies are those of the width: G_Ic per damaged
+    // area (measured +2.4 %: the process zone's dissipation over the failed
+    // area), and the crack is measured across the width
+    let bond = &s["interfaces"]["bond"];
+    let per_area =
+        bond["dissipated_energy"].as_f64().unwrap() / bond["damaged_area"].as_f64().unwrap();
+    assert!(
+        rel(per_area, 0.969) < 0.03,
+        "dissipated energy per damaged area {per_area}"
+    );
+    assert!(
+        rel(s["crack"]["width"].as_f64().unwrap(), 25.4) < 1e-9,
+        "{}",
+        s["crack"]
+    );
     let c2 = curve(plane.path());
     let cbt = BeamTheory::as4peek_plane_strain();
     // peak within 2 %, propagation within 3 % of corrected beam theory
@@ -140,7 +155,11 @@ fn plane_dcb_restarts_bit_for_bit() {
         let parts = tempfile::tempdir().unwrap();
         run_ok_with(&scene, parts.path(), &["--max-increments", n]);
         restart_ok(parts.path());
-        assert_eq!(curve_without_seconds(parts.path()), want, "stopped at increment {n}");
+        assert_eq!(
+            curve_without_seconds(parts.path()),
+            want,
+            "stopped at increment {n}"
+        );
     }
 }
 

@@ -11,7 +11,11 @@ use common::*;
 fn volkersen(p: f64) -> (f64, f64) {
     let (e, r1, r2, r3, k, l) = (70000.0, 10.0f64, 11.0f64, 12.0f64, 200.0, 50.0);
     let pi = std::f64::consts::PI;
-    let (a1, a2, b) = (pi * (r2 * r2 - r1 * r1), pi * (r3 * r3 - r2 * r2), 2.0 * pi * r2);
+    let (a1, a2, b) = (
+        pi * (r2 * r2 - r1 * r1),
+        pi * (r3 * r3 - r2 * r2),
+        2.0 * pi * r2,
+    );
     let w = (k * b * (1.0 / (e * a1) + 1.0 / (e * a2))).sqrt();
     let n1p = p * a1 / (a1 + a2);
     let c1 = p - n1p;
@@ -28,7 +32,10 @@ fn volkersen(p: f64) -> (f64, f64) {
 #[test]
 fn tube_lap_joint_against_volkersen() {
     let dir = tempfile::tempdir().unwrap();
-    let s = run_ok(&repo().join("examples/plane/tube_lap_joint.toml"), dir.path());
+    let s = run_ok(
+        &repo().join("examples/plane/tube_lap_joint.toml"),
+        dir.path(),
+    );
     assert_eq!(s["plane"]["width"], "full_ring", "{s}");
     let fy = s["reactions"]["outer.y1"][1].as_f64().unwrap();
     assert!(rel(fy, 1000.0) < 1e-9, "{fy}");

@@ -446,6 +446,60 @@ fn incompatible_modes_bend_exactly() {
     );
 }
 
+/// A cell held at every node and heated by dT: the strain is zero, so the
+/// stress is `-C alpha dT` restricted by the section: plane strain and
+/// axisymmetric `-E alpha dT / (1 - 2 nu)` in every normal component (the
+/// out-of-plane one too), plane stress `-E alpha dT / (1 - nu)` in the
+/// plane and 0 out of it, with the free thickness strain `(1 + nu) / (1 -
+/// nu) alpha dT` (Timoshenko & Goodier, Theory of Elasticity, section 150).
+#[test]
+fn restrained_heated_cells_carry_the_thermal_stress() {
+    let alpha = 1.2e-5;
+    let dt = 100.0;
+    let mat: Arc<dyn Material> = {
+        let t: toml::Table =
+            toml::from_str(&format!("E = {E}\nnu = {NU}\nalpha = {alpha}")).unwrap();
+        (registry::find::<junta_core::registry::MaterialEntry>("isotropic")
+            .unwrap()
+            .build)(&t)
+        .unwrap()
+    };
+    for key in SMALL_KEYS {
+        let el = build(key, mat.clone(), "", Kinematics::Small).unwrap();
+        let coords = distorted(el.shape());
+        let zero = vec![0.0; 3 * coords.len()];
+        let temps = vec![dt; coords.len()];
+        let c = ElementContext {
+            temperature: Some(&temps),
+            ..ctx(&coords, &zero)
+        };
+        for p in el.point_outputs(&c).unwrap() {
+            let s = p.get("stress").unwrap();
+            let (inplane, out) = match &key[..3] {
+                "cps" => (-E * alpha * dt / (1.0 - NU), 0.0),
+                _ => (
+                    -E * alpha * dt / (1.0 - 2.0 * NU),
+                    -E * alpha * dt / (1.0 - 2.0 * NU),
+                ),
+            };
+            for (c, want) in [(0, inplane), (1, inplane), (2, out)] {
+                assert!(
+                    (s[c] - want).abs() < 1e-9 * inplane.abs(),
+                    "{key}: stress {c} {} against {want}",
+                    s[c]
+                );
+            }
+            if key.starts_with("cps") {
+                let ezz = p.get("strain").unwrap()[2];
+                assert!(
+                    (ezz - (1.0 + NU) / (1.0 - NU) * alpha * dt).abs() < 1e-12,
+                    "{key}: eps_zz {ezz}"
+                );
+            }
+        }
+    }
+}
+
 /// Mistakes are errors that name what is valid: an axisymmetric element
 /// with a thickness, a non-positive thickness, reduced integration on a
 /// linear cell, an unknown option; a cell listed clockwise fails the

@@ -1023,3 +1023,64 @@ fn include_reads_files_in_place_and_errors_name_the_included_file() {
     assert!(e.contains("test.inp:1: *INCLUDE"), "{e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A 2D Gmsh mesh (tests/data/plate_quad8.geo: a 4 x 2 plate of 8 x 4
+/// serendipity quadrangles, physical surface `plate`, curves `left` and
+/// `right`) is a plane model: one block of PlaneQuad8 cells,
+/// counter-clockwise, the curves as edge sets. Under a traction on `right`
+/// it gives the plane box of the same mesh to round-off, and the reaction
+/// is the traction times the edge's length and the thickness.
+#[test]
+fn gmsh_2d_mesh_is_a_plane_model() {
+    use junta::{RunSettings, Simulation};
+    let m = read_msh(data("plate_quad8.msh")).unwrap();
+    assert_eq!(m.blocks.len(), 1);
+    assert_eq!(
+        (m.blocks[0].shape, m.blocks[0].element_type.as_str()),
+        (CellShape::PlaneQuad8, "cpe8")
+    );
+    assert_eq!(m.face_sets["right"].len(), 4);
+    for e in 0..m.blocks[0].len() {
+        let c = m.blocks[0].element(e);
+        let area: f64 = (0..4)
+            .map(|i| {
+                let (p, q) = (m.nodes[c[i]], m.nodes[c[(i + 1) % 4]]);
+                p[0] * q[1] - q[0] * p[1]
+            })
+            .sum();
+        assert!(area > 0.0, "cell {e} is clockwise");
+    }
+    let common = "[model]\nthickness = 0.1\n[materials.steel]\ntype = \"isotropic\"\nE = 200000.0\nnu = 0.3\n\
+                  [[load]]\nface_set = \"RIGHT\"\ntraction = [10.0, 5.0, 0.0]\n[[boundary]]\nset = \"LEFT\"\nfixed = [\"x\", \"y\"]\n\
+                  [analysis]\ntype = \"linear\"\n";
+    let gmsh = format!(
+        "{}[mesh]\ntype = \"gmsh\"\nfile = \"{}\"\n[[blocks]]\nname = \"plate\"\nelement = \"cps8\"\nmaterial = \"steel\"\n",
+        common.replace("RIGHT", "right").replace("LEFT", "left"),
+        data("plate_quad8.msh").display()
+    );
+    let boxed = format!(
+        "{}[mesh]\ntype = \"box\"\nsize = [4.0, 2.0]\ndivisions = [8, 4]\nelement = \"cps8\"\nmaterial = \"steel\"\n",
+        common.replace("RIGHT", "x1").replace("LEFT", "x0")
+    );
+    let run = |text: &str| {
+        Simulation::from_scene_text(text, "plate.toml")
+            .unwrap()
+            .run(&RunSettings::in_memory(), &mut [])
+            .unwrap()
+            .summary
+            .to_json()
+    };
+    let (a, b) = (run(&gmsh), run(&boxed));
+    let umax = |s: &serde_json::Value| s["displacement_max"].as_f64().unwrap();
+    assert!(
+        (umax(&a) - umax(&b)).abs() < 1e-12 * umax(&b),
+        "{} against {}",
+        umax(&a),
+        umax(&b)
+    );
+    let r = a["reactions"]["left"].clone();
+    assert!(
+        (r[0].as_f64().unwrap() + 2.0).abs() < 1e-9 && (r[1].as_f64().unwrap() + 1.0).abs() < 1e-9,
+        "{r}"
+    );
+}

@@ -257,22 +257,35 @@ pub fn box_mesh(
     let (lx, ly) = (lattice[0].len(), lattice[1].len());
     let (mut conn, faces, e) = box_cells(spec, p, wedge, [lx, ly]);
     let nodes = compact_lattice(&lattice, &mut conn);
+    let block = ElementBlock {
+        name: block_name.to_string(),
+        shape: spec.shape,
+        connectivity: conn,
+        element_type: element_type.to_string(),
+        material: material.to_string(),
+    };
+    Ok(box_with_sets(nodes, block, faces, &HEX_FACE_NAMES, e))
+}
+
+/// The mesh of one box block: its side sets (node and face sets named
+/// `names[f]` for the faces `faces[f]`) and the element set `all` of its
+/// `e` elements.
+fn box_with_sets(
+    nodes: Vec<[f64; 3]>,
+    block: ElementBlock,
+    faces: Vec<Vec<FaceRef>>,
+    names: &[&str],
+    e: usize,
+) -> Mesh {
     let mut mesh = Mesh {
         nodes,
-        blocks: vec![ElementBlock {
-            name: block_name.to_string(),
-            shape: spec.shape,
-            connectivity: conn,
-            element_type: element_type.to_string(),
-            material: material.to_string(),
-        }],
+        blocks: vec![block],
         ..Default::default()
     };
-    for (f, list) in faces.into_iter().enumerate() {
-        let name = HEX_FACE_NAMES[f].to_string();
+    for (list, name) in faces.into_iter().zip(names) {
         mesh.node_sets
-            .insert(name.clone(), mesh.nodes_of_faces(&list));
-        mesh.face_sets.insert(name, list);
+            .insert(name.to_string(), mesh.nodes_of_faces(&list));
+        mesh.face_sets.insert(name.to_string(), list);
     }
     mesh.element_sets.insert(
         "all".into(),
@@ -280,7 +293,7 @@ pub fn box_mesh(
             .map(|element| ElementRef { block: 0, element })
             .collect(),
     );
-    Ok(mesh)
+    mesh
 }
 
 /// Names of the sides of a plane box in the edge order of its
@@ -363,30 +376,14 @@ fn plane_box_mesh(
     }
     let plane = [lattice[0].clone(), lattice[1].clone(), vec![spec.origin[2]]];
     let nodes = compact_lattice(&plane, &mut conn);
-    let mut mesh = Mesh {
-        nodes,
-        blocks: vec![ElementBlock {
-            name: block_name.to_string(),
-            shape: spec.shape,
-            connectivity: conn,
-            element_type: element_type.to_string(),
-            material: material.to_string(),
-        }],
-        ..Default::default()
+    let block = ElementBlock {
+        name: block_name.to_string(),
+        shape: spec.shape,
+        connectivity: conn,
+        element_type: element_type.to_string(),
+        material: material.to_string(),
     };
-    for (f, list) in faces.into_iter().enumerate() {
-        let name = PLANE_SIDE_NAMES[f].to_string();
-        mesh.node_sets
-            .insert(name.clone(), mesh.nodes_of_faces(&list));
-        mesh.face_sets.insert(name, list);
-    }
-    mesh.element_sets.insert(
-        "all".into(),
-        (0..e)
-            .map(|element| ElementRef { block: 0, element })
-            .collect(),
-    );
-    Ok(mesh)
+    Ok(box_with_sets(nodes, block, faces, &PLANE_SIDE_NAMES, e))
 }
 
 #[cfg(test)]

@@ -20,6 +20,15 @@
 //!   surface element's right-hand normal is taken (so orient internal surfaces as you want the pressure to act).
 //! - Points (15) and lines (1, 8, 26) only feed node sets of 0D / 1D
 //!   physical groups.
+//! - A 2D mesh (surface elements and no volume element): the model is a
+//!   plane one in the x-y plane (every node at z = 0). Each physical
+//!   surface's quadrangles and triangles become a block of plane cells
+//!   (`PlaneQuad4/8/9`, `PlaneTri3/6`) with the plane-strain element type
+//!   `cpe4` / `cpe8` / `cpe9` / `cpe3` / `cpe6` (a `[[blocks]]` entry picks
+//!   another: `cps8`, `cax8`, `cpe4i`, ...), each listed counter-clockwise
+//!   (a cell of a surface whose normal is -z is reversed). Physical curves
+//!   become node sets and edge (face) sets: each line element is matched
+//!   by its end nodes to the edge of a plane cell.
 //!
 //! Node orders. Gmsh's hexahedron corners equal ours (VTK); the Gmsh
 //! reference manual, section "Node ordering"
@@ -387,6 +396,9 @@ pub fn parse_msh(text: &str, file_name: &str) -> Result<Mesh, GmshError> {
         ..Mesh::default()
     };
     volume_blocks(&c, &s, &mut mesh)?;
+    if mesh.blocks.is_empty() && s.blocks.iter().any(|b| b.dim == 2) {
+        plane_blocks(&c, &s, &mut mesh)?;
+    }
     group_sets(&c, &s, &mut mesh)?;
     mesh.validate().map_err(|e| c.err(0, e.to_string()))?;
     Ok(mesh)
@@ -709,6 +721,115 @@ fn volume_blocks(c: &Cursor, s: &Sections, mesh: &mut Mesh) -> Result<(), GmshEr
     Ok(())
 }
 
+/// The plane cell and default element type of a 2D Gmsh element code.
+fn plane_kind(code: usize) -> Option<(CellShape, &'static str)> {
+    match code {
+        3 => Some((CellShape::PlaneQuad4, "cpe4")),
+        16 => Some((CellShape::PlaneQuad8, "cpe8")),
+        10 => Some((CellShape::PlaneQuad9, "cpe9")),
+        2 => Some((CellShape::PlaneTri3, "cpe3")),
+        9 => Some((CellShape::PlaneTri6, "cpe6")),
+        _ => None,
+    }
+}
+
+/// The node order of a plane cell listed clockwise, turned
+/// counter-clockwise: corners reversed from the first, mid-side nodes
+/// with them (`order[i]` is the given position of our node `i`).
+fn counter_clockwise(shape: CellShape) -> &'static [usize] {
+    match shape {
+        CellShape::PlaneTri3 => &[0, 2, 1],
+        CellShape::PlaneTri6 => &[0, 2, 1, 5, 4, 3],
+        CellShape::PlaneQuad4 => &[0, 3, 2, 1],
+        CellShape::PlaneQuad8 => &[0, 3, 2, 1, 7, 6, 5, 4],
+        _ => &[0, 3, 2, 1, 7, 6, 5, 4, 8],
+    }
+}
+
+/// Surface elements of a 2D mesh -> blocks of plane cells, one per
+/// physical surface and shape (named as [`volume_blocks`] names its
+/// blocks), counter-clockwise, with an element set per physical surface.
+fn plane_blocks(c: &Cursor, s: &Sections, mesh: &mut Mesh) -> Result<(), GmshError> {
+    if let Some(i) = mesh.nodes.iter().position(|x| x[2].abs() > 0.0) {
+        return Err(c.err(
+            0,
+            format!(
+                "a 2D mesh (surface elements only) is a plane model in the x-y plane, but node {} lies at z = {}",
+                mesh.node_labels.get(i).copied().unwrap_or(i + 1),
+                mesh.nodes[i][2]
+            ),
+        ));
+    }
+    let mut block_index: HashMap<(String, CellShape), usize> = HashMap::new();
+    let mut element_sets: BTreeMap<String, Vec<ElementRef>> = BTreeMap::new();
+    for b in s.blocks.iter().filter(|b| b.dim == 2) {
+        let (shape, etype) = plane_kind(b.code).ok_or_else(|| {
+            c.err(
+                b.line,
+                format!("element type {} cannot lie on a surface", b.code),
+            )
+        })?;
+        let groups = s.groups_of(2, b.entity);
+        let name = match groups.first() {
+            Some(&g) => s.phys_name(2, g),
+            None => format!("surface{}", b.entity),
+        };
+        let bi = *block_index.entry((name.clone(), shape)).or_insert_with(|| {
+            let taken = mesh.blocks.iter().any(|x| x.name == name);
+            mesh.blocks.push(ElementBlock {
+                name: if taken {
+                    format!("{name}_{}", shape.name())
+                } else {
+                    name.clone()
+                },
+                shape,
+                connectivity: Vec::new(),
+                element_type: etype.into(),
+                material: if groups.is_empty() {
+                    String::new()
+                } else {
+                    name.clone()
+                },
+            });
+            mesh.blocks.len() - 1
+        });
+        for (tag, conn) in &b.elements {
+            let ids: Vec<usize> = conn
+                .iter()
+                .map(|&t| s.resolve(c, b.line, t))
+                .collect::<Result<_, _>>()?;
+            let p: Vec<[f64; 3]> = ids
+                .iter()
+                .take(shape.num_faces())
+                .map(|&i| mesh.nodes[i])
+                .collect();
+            let ccw = face_normal(&p)[2] > 0.0;
+            let e = mesh.blocks[bi].len();
+            mesh.element_labels.resize(mesh.blocks.len(), Vec::new());
+            mesh.element_labels[bi].push(*tag);
+            let order: Vec<usize> = if ccw {
+                (0..ids.len()).collect()
+            } else {
+                counter_clockwise(shape).to_vec()
+            };
+            mesh.blocks[bi]
+                .connectivity
+                .extend(order.iter().map(|&k| ids[k]));
+            for &g in &groups {
+                element_sets
+                    .entry(s.phys_name(2, g))
+                    .or_default()
+                    .push(ElementRef {
+                        block: bi,
+                        element: e,
+                    });
+            }
+        }
+    }
+    mesh.element_sets = element_sets;
+    Ok(())
+}
+
 /// Lower-dimensional physical groups -> node sets (all nodes of their
 /// elements), and for surfaces also face sets: each quadrangle or triangle
 /// is matched by its corners to a face of a volume element
@@ -734,15 +855,23 @@ fn group_sets(c: &Cursor, s: &Sections, mesh: &mut Mesh) -> Result<(), GmshError
     }
     let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
     let mut face_sets: BTreeMap<String, Vec<FaceRef>> = BTreeMap::new();
-    for b in s.blocks.iter().filter(|b| b.dim < 3) {
+    // a plane mesh: its surfaces are its cells, its curves their edges
+    let plane = mesh.blocks.iter().any(|b| b.shape.is_plane());
+    for b in s
+        .blocks
+        .iter()
+        .filter(|b| b.dim < 3 && !(plane && b.dim == 2))
+    {
         let groups = s.groups_of(b.dim, b.entity);
         if groups.is_empty() {
             continue;
         }
-        // corners of a surface element: quadrangles 4, triangles 3
+        // corners of a surface element: quadrangles 4, triangles 3; of a
+        // line (the edge of a plane cell) 2
         let corners = match b.code {
             3 | 16 | 10 => 4,
             2 | 9 => 3,
+            1 | 8 | 26 if plane => 2,
             _ => 0,
         };
         if b.dim == 2 && corners == 0 {
@@ -756,10 +885,10 @@ fn group_sets(c: &Cursor, s: &Sections, mesh: &mut Mesh) -> Result<(), GmshError
                 .iter()
                 .map(|&t| s.resolve(c, b.line, t))
                 .collect::<Result<_, _>>()?;
-            let face = if b.dim == 2 {
-                Some(surface_face(c, mesh, &faces, b, *tag, &ids[..corners])?)
-            } else {
-                None
+            let face = match (b.dim, plane) {
+                (2, false) => Some(surface_face(c, mesh, &faces, b, *tag, &ids[..corners])?),
+                (1, true) => Some(surface_face(c, mesh, &faces, b, *tag, &ids[..corners])?),
+                _ => None,
             };
             for &g in &groups {
                 let name = s.phys_name(b.dim, g);
@@ -799,21 +928,29 @@ fn surface_face(
     let mut key = [usize::MAX; 4];
     key[..n].copy_from_slice(corners);
     key.sort_unstable();
-    let what = if n == 4 { "quadrangle" } else { "triangle" };
+    let what = match n {
+        4 => "quadrangle",
+        3 => "triangle",
+        _ => "line",
+    };
     let cands = faces.get(&key).ok_or_else(|| {
-        let hint = if n == 3 {
-            " (triangles match the end faces of wedge elements)"
-        } else {
-            ""
+        let hint = match n {
+            3 => " (triangles match the end faces of wedge elements)",
+            2 => " (a line of a 2D mesh matches the edge of a quadrangle or triangle)",
+            _ => "",
         };
         c.err(
             b.line,
             format!(
-                "{what} {tag} of surface {} is not a face of any volume element{hint}",
+                "{what} {tag} of entity {} is not a face of any volume element or edge of a cell{hint}",
                 b.entity
             ),
         )
     })?;
+    if n == 2 {
+        // an edge of a plane mesh: on the boundary it has one cell
+        return Ok(cands[0]);
+    }
     let p: Vec<[f64; 3]> = corners.iter().map(|&i| mesh.nodes[i]).collect();
     let nq = face_normal(&p);
     let pick = cands
