@@ -936,14 +936,20 @@ fn surface_face(
     let cands = faces.get(&key).ok_or_else(|| {
         let hint = match n {
             3 => " (triangles match the end faces of wedge elements)",
-            2 => " (a line of a 2D mesh matches the edge of a quadrangle or triangle)",
+            2 => " (a line of a 2D mesh matches the edge of one of its quadrangles or triangles)",
             _ => "",
         };
         c.err(
             b.line,
             format!(
-                "{what} {tag} of entity {} is not a face of any volume element or edge of a cell{hint}",
-                b.entity
+                "{what} {tag} of {} {} is not {}{hint}",
+                if n == 2 { "curve" } else { "surface" },
+                b.entity,
+                if n == 2 {
+                    "an edge of any plane cell"
+                } else {
+                    "a face of any volume element"
+                }
             ),
         )
     })?;
