@@ -31,7 +31,6 @@ pub(crate) fn run_linear(
             solver: p.solver.key().to_string(),
         });
     }
-    let read_seconds = p.read_seconds;
     let mut prints = std::mem::take(&mut p.prints);
     let (res, steps_summary) = if p.deck_steps.len() > 1 {
         let (res, steps) = solve_deck_steps(p, dir, observers, input, &mut prints)?;
@@ -107,7 +106,7 @@ pub(crate) fn run_linear(
         "reference": reference,
         "equilibrium_residual": res.free_residual,
         "timings": {
-            "read": read_seconds,
+            "read": p.read_seconds,
             "choose_solver": p.choose_solver_seconds,
             "build": p.build.map(|b| b.seconds),
             "build_peak_bytes": p.build.and_then(|b| b.peak_bytes),
@@ -117,7 +116,7 @@ pub(crate) fn run_linear(
             "factor": res.timings.factor,
             "solve": res.timings.solve,
             "output": output_seconds,
-            "total": read_seconds + p.choose_solver_seconds + t0.elapsed().as_secs_f64(),
+            "total": p.read_seconds + p.choose_solver_seconds + t0.elapsed().as_secs_f64(),
         },
         "solver": {
             "name": res.report.solver,
