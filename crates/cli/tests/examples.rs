@@ -70,6 +70,9 @@ examples! {
     /// [35 s; run in the suite by curved_beam.rs]
     #[ignore]
     curved_beam => "laminates/curved_beam.toml";
+    /// [9 s; run in the suite by plane_laminate.rs]
+    #[ignore]
+    curved_beam_plane => "laminates/curved_beam_plane.toml";
     block_mohr_coulomb => "interface_plasticity/block_mohr_coulomb.toml";
     cyclic_shear => "interface_plasticity/cyclic_shear.toml";
     debond_friction => "interface_plasticity/debond_friction.toml";

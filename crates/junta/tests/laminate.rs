@@ -627,6 +627,132 @@ fn ring_of_hoop_plies_matches_the_anisotropic_tube() {
     );
 }
 
+/// A `[0/90]s` cross-section on a `line` base (cpe8 plies in plane
+/// strain, glued by stiff line interfaces) stretched along `x`: with `eps_z
+/// = 0` and `sigma_y = 0` through the thickness every ply carries `sigma_x
+/// = E~ eps`, with `E~ = 1 / (S_xx - S_xz^2 / S_zz)` of its compliance in
+/// `(x, z)`: `E1 / (1 - nu12^2 E2 / E1)` for the 0-degree ply (fibre along
+/// `x`) and `1 / (1 / E2 - nu12^2 / E1)` for the 90-degree ply (fibre
+/// along `z`, out of the plane). The reaction against that closed form,
+/// and the sets of the line base.
+#[test]
+fn cross_section_line_base_stretches_as_its_plane_strain_plies() {
+    let (length, eps) = (10.0, 1e-3);
+    let text = format!(
+        r#"
+[model]
+thickness = 2.0
+{T300}
+[laws.glue]
+type = "linear_penalty"
+d = 1.0e8
+[laminate]
+base = {{ type = "line", length = {length}, divisions = [10], origin = [1.0, -0.5] }}
+element = "cpe8"
+material = "t300"
+ply_thickness = {T}
+layup = "[0/90]s"
+interface_law = "glue"
+[[node_set]]
+name = "pin"
+within = [[0.99, -0.51, -1.0], [1.01, -0.49, 1.0]]
+[[boundary]]
+set = "x0"
+fixed = ["x"]
+[[boundary]]
+set = "pin"
+fixed = ["y"]
+[[boundary]]
+set = "x1"
+displacement = {{ x = {u} }}
+"#,
+        u = eps * length
+    );
+    let sim = Simulation::from_scene_text(&text, "line.toml").unwrap();
+    let mesh = &sim.model().mesh;
+    // the sets of a line base: the ends every ply, the bottom and top faces
+    let h = 4.0 * T;
+    for (set, axis, at) in [
+        ("x0", 0, 1.0),
+        ("x1", 0, 1.0 + length),
+        ("bottom", 1, -0.5),
+        ("top", 1, -0.5 + h),
+    ] {
+        let nodes = &mesh.node_sets[set];
+        assert!(
+            !nodes.is_empty()
+                && nodes
+                    .iter()
+                    .all(|&i| (mesh.nodes[i][axis] - at).abs() < 1e-9),
+            "{set}"
+        );
+    }
+    // blocks 0 / 90 90 / 0: two interfaces
+    assert_eq!(
+        mesh.element_sets
+            .keys()
+            .filter(|k| k.starts_with("interface_"))
+            .count(),
+        2
+    );
+    let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
+    let reaction = r.summary.section("reactions").unwrap()["x1"][0]
+        .as_f64()
+        .unwrap();
+    let e0 = E1 / (1.0 - NU12 * NU12 * E2 / E1);
+    let e90 = 1.0 / (1.0 / E2 - NU12 * NU12 / E1);
+    let expected = 2.0 * (2.0 * T) * (e0 + e90) * eps;
+    eprintln!(
+        "[0/90]s in plane strain: reaction {reaction:.6e}, closed form {expected:.6e} ({:+.2e})",
+        reaction / expected - 1.0
+    );
+    assert!(
+        (reaction / expected - 1.0).abs() < 1e-6,
+        "{reaction} vs {expected}"
+    );
+}
+
+/// The same quarter ring as a cross-section: `cpe8` plies in plane strain
+/// on a `ring` base of the `x`-`y` plane (clockwise from `+x` to `-y`,
+/// docs/laminates.md "Cross-sections"), `line_inter6` interfaces between
+/// them, against the same anisotropic tube.
+#[test]
+fn cross_section_ring_of_hoop_plies_matches_the_anisotropic_tube() {
+    let (a, t, n, p) = (10.0, 0.5, 8usize, 1.0);
+    let base = format!("{{ type = \"ring\", inner_radius = {a}, sweep = 90.0, divisions = [24] }}");
+    let text = hoop_ring_scene(&base, ["end0", "end1", "", ""], t, n, p)
+        .replace("element = \"h20\"", "element = \"cpe8\"")
+        .replace("[[boundary]]\nset = \"\"\nfixed = [\"z\"]\n", "");
+    let text = format!("[model]\nthickness = 1.0\n{text}");
+    let sim = Simulation::from_scene_text(&text, "ring.toml").unwrap();
+    let model = sim.model();
+    let lines = model
+        .mesh
+        .blocks
+        .iter()
+        .filter(|b| b.shape == junta::core::topology::CellShape::LineInter6)
+        .count();
+    assert_eq!(lines, n - 1);
+    // the sector ends where the docs say: end0 on +x, end1 on -y
+    for (set, axis) in [("end0", 1), ("end1", 0)] {
+        assert!(
+            model.mesh.node_sets[set]
+                .iter()
+                .all(|&i| model.mesh.nodes[i][axis].abs() < 1e-9),
+            "{set}"
+        );
+    }
+    let r = sim.run(&junta::RunSettings::in_memory(), &mut []).unwrap();
+    let (err_r, err_t, k) = tube_errors(&r.frame.unwrap().solid, a, a + n as f64 * t, p);
+    eprintln!(
+        "cross-section: k = {k:.4}; largest error: sigma_r {err_r:.3e} of p, sigma_theta {err_t:.3e} of its peak"
+    );
+    assert!(
+        err_r < 1e-2 && err_t < 1e-2,
+        "sigma_r {err_r:.3e}, sigma_theta {err_t:.3e}"
+    );
+}
+
 /// The scene of the quarter ring of hoop plies of
 /// `ring_of_hoop_plies_matches_the_anisotropic_tube` on `base`, with the
 /// names of its sets at `theta = 0`, `theta = 90` degrees and its two
@@ -1491,5 +1617,24 @@ fn triangles_in_a_gmsh_base_give_clt() {
         if quadratic {
             assert!(eb < 1e-6 && ed < 1e-6, "B {eb:.3e}, D {ed:.3e}");
         }
+    }
+}
+
+/// A cross-section's base is a line, an L-section or a ring: the 3D bases
+/// and the 3D counts of divisions are refused by key, with what is valid.
+#[test]
+fn cross_section_mistakes_name_the_key() {
+    for (base, says) in [
+        ("{ type = \"rectangle\", size = [1.0, 1.0], divisions = [1, 1] }", "takes \"line\", \"l_section\" or \"ring\""),
+        ("{ type = \"line\", length = 1.0, divisions = [1, 1] }", "give 1 number,"),
+        ("{ type = \"line\", divisions = [2] }", "`laminate.base.length` is required"),
+        ("{ type = \"l_section\", inner_radius = 1.0, arms = [1.0, 1.0], divisions = [1, 2, 1, 1] }", "give 3 numbers"),
+        ("{ type = \"ring\", inner_radius = 1.0, divisions = [3] }", "even number"),
+        ("{ type = \"line\", length = 1.0, divisions = [2], grading = [2.0, 1.0] }", "give one ratio"),
+    ] {
+        let text = format!("{T300}\n[laminate]\nbase = {base}\nelement = \"cpe4\"\nmaterial = \"t300\"\nply_thickness = 0.1\nlayup = \"[0/90]\"\n");
+        let sf = SceneFile::parse(std::path::Path::new("cut.toml"), text).unwrap();
+        let e = build_model(&sf).err().expect(base).to_string();
+        assert!(e.contains(says) && e.contains("cut.toml") && e.contains("laminate.base"), "{base}: {e}");
     }
 }

@@ -114,6 +114,7 @@ pub struct FatigueSpec {
     /// Direction of crack growth for `"crack_front"` (default: `[output]
     /// crack`'s direction, else the axis along which the interfaces are
     /// longest).
+    #[serde(default, deserialize_with = "some_origin")]
     pub direction: Option<[f64; 3]>,
 }
 
@@ -455,7 +456,8 @@ fn unit_grading() -> [f64; 3] {
     [1.0; 3]
 }
 
-/// Two or three values per axis: `[x, y]` (a plane box) gets `pad` along z.
+/// Two or three values per axis: `[x, y]` (a plane box, a vector of a
+/// plane model) gets `pad` along z.
 fn xyz<'de, D: serde::Deserializer<'de>, T: Deserialize<'de> + Copy>(
     d: D,
     pad: T,
@@ -466,7 +468,7 @@ fn xyz<'de, D: serde::Deserializer<'de>, T: Deserialize<'de> + Copy>(
         [x, y, z] => Ok([x, y, z]),
         _ => Err(serde::de::Error::invalid_length(
             v.len(),
-            &"two values [x, y] (a plane box) or three [x, y, z]",
+            &"two values [x, y] (a plane model) or three [x, y, z]",
         )),
     }
 }
@@ -478,7 +480,9 @@ fn divisions_xyz<'de, D: serde::Deserializer<'de>>(
 ) -> std::result::Result<[usize; 3], D::Error> {
     xyz(d, 1)
 }
-fn origin_xyz<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<[f64; 3], D::Error> {
+pub(crate) fn origin_xyz<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<[f64; 3], D::Error> {
     xyz(d, 0.0)
 }
 fn grading_xyz<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<[f64; 3], D::Error> {
@@ -619,8 +623,10 @@ pub struct LoadSpec {
     /// Face set that receives `pressure` or `traction`.
     pub face_set: Option<Spanned<String>>,
     /// Force applied at *each* node of `set` (like `*CLOAD`).
+    #[serde(default, deserialize_with = "some_origin")]
     pub force: Option<[f64; 3]>,
     /// Total force on the nodes of `set`, shared as `split` says.
+    #[serde(default, deserialize_with = "some_origin")]
     pub total_force: Option<[f64; 3]>,
     /// How `total_force` is shared by the nodes of `set`:
     /// `"consistent"` (the default) gives each node the integral of its
@@ -633,6 +639,7 @@ pub struct LoadSpec {
     /// Pressure on `face_set`, positive pushing into the solid.
     pub pressure: Option<f64>,
     /// Traction vector (force per area) on `face_set`.
+    #[serde(default, deserialize_with = "some_origin")]
     pub traction: Option<[f64; 3]>,
 }
 
@@ -673,11 +680,12 @@ pub struct OutputSpec {
 #[serde(deny_unknown_fields)]
 pub struct CrackFrontSpec {
     /// Direction of growth (normalised; need not be a unit vector).
+    #[serde(deserialize_with = "origin_xyz")]
     pub direction: [f64; 3],
     /// Point the front position is measured from (its coordinate along
     /// the direction is the zero); default: where the interface starts
     /// along the direction (its smallest node coordinate).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "some_origin")]
     pub origin: Option<[f64; 3]>,
     /// Width of the crack front: the crack length is the damaged area over
     /// it; default: the interface's area over its extent along the

@@ -33,8 +33,12 @@ pub struct BaseGeometry<'a> {
     pub kind: &'a str,
     /// Where messages point.
     pub at: String,
+    /// A cross-section of plane elements ([`plane_segments`]).
+    pub plane: bool,
     /// Rectangle: `[Lx, Ly]`.
     pub size: Option<[f64; 2]>,
+    /// Line: its length.
+    pub length: Option<f64>,
     /// Elements along each direction of the type.
     pub divisions: &'a [usize],
     /// Rectangle: the lower corner.
@@ -132,7 +136,10 @@ fn positive(at: &str, key: &str, v: Option<f64>) -> Result<f64> {
 
 fn divisions<const N: usize>(at: &str, d: &[usize], what: &str) -> Result<[usize; N]> {
     let arr: [usize; N] = d.try_into().map_err(|_| {
-        crate::error::err!("{at}: key `laminate.base.divisions`: give {N} numbers, {what}")
+        crate::error::err!(
+            "{at}: key `laminate.base.divisions`: give {N} number{}, {what}",
+            if N == 1 { "" } else { "s" }
+        )
     })?;
     if arr.contains(&0) {
         bail!("{at}: key `laminate.base.divisions`: every count must be at least 1 ({what})");
@@ -142,6 +149,9 @@ fn divisions<const N: usize>(at: &str, d: &[usize], what: &str) -> Result<[usize
 
 /// The segments of a base region (module docs).
 pub fn segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
+    if g.plane {
+        return plane_segments(g);
+    }
     let at = &g.at;
     let x = Vector3::x();
     let y = Vector3::y();
@@ -276,6 +286,87 @@ pub fn segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
         }
         other => bail!(
             "{at}: key `laminate.base.type`: `{other}` is not valid; use \"rectangle\", \"l_section\", \"ring\" or \"gmsh\""
+        ),
+    }
+}
+
+/// The segments of a cross-section's base (plane elements; module docs):
+/// the 3D maps with `v = 0` and `e2 = -z`.
+pub fn plane_segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
+    let at = &g.at;
+    let (x, y, z) = (Vector3::x(), Vector3::y(), Vector3::z());
+    let straight =
+        |name, length, n, p0: Vector3<f64>, e1: Vector3<f64>, e3: Vector3<f64>| Segment {
+            name,
+            length,
+            width: 0.0,
+            divisions: [n, 1],
+            map: SegmentMap::Straight {
+                p0,
+                frame: [e1, -z, e3],
+            },
+            surface: None,
+        };
+    let arc = |name, from: Vector3<f64>, angle: f64, r: f64, n| Segment {
+        name,
+        length: angle,
+        width: 0.0,
+        divisions: [n, 1],
+        map: SegmentMap::Arc {
+            centre: Vector3::zeros(),
+            axis: -z,
+            start: from,
+            inner_radius: r,
+        },
+        surface: None,
+    };
+    match g.kind {
+        "line" => {
+            let [n] = divisions::<1>(at, g.divisions, "elements along the line")?;
+            let l = positive(at, "length", g.length)?;
+            Ok(vec![straight("", l, n, Vector3::from(g.origin), x, y)])
+        }
+        "l_section" => {
+            let [na, nb, nc] = divisions::<3>(
+                at,
+                g.divisions,
+                "elements along arm a, around the bend and along arm b",
+            )?;
+            let r = positive(at, "inner_radius", g.inner_radius)?;
+            let Some([la, lb]) = g.arms else {
+                bail!("{at}: key `laminate.base.arms` ([L_a, L_b]) is required with type = \"l_section\"")
+            };
+            positive(at, "arms", Some(la.min(lb)))?;
+            Ok(vec![
+                straight("arm_a", la, na, Vector3::new(-r, -la, 0.0), y, -x),
+                arc("bend", -x, std::f64::consts::FRAC_PI_2, r, nb),
+                straight("arm_b", lb, nc, Vector3::new(0.0, r, 0.0), x, y),
+            ])
+        }
+        "ring" => {
+            let [nu] = divisions::<1>(at, g.divisions, "elements around the ring")?;
+            let r = positive(at, "inner_radius", g.inner_radius)?;
+            let sweep = g.sweep.unwrap_or(360.0);
+            if !(sweep > 0.0 && sweep <= 360.0) {
+                bail!("{at}: key `laminate.base.sweep`: {sweep} must lie in (0, 360] degrees");
+            }
+            if sweep < 360.0 {
+                return Ok(vec![arc("sector", x, sweep.to_radians(), r, nu)]);
+            }
+            if nu < 2 || nu % 2 != 0 {
+                bail!("{at}: key `laminate.base.divisions`: a full ring needs an even number of elements around it (its two halves are merged), got {nu}");
+            }
+            Ok(vec![
+                arc("half_1", x, std::f64::consts::PI, r, nu / 2),
+                arc("half_2", -x, std::f64::consts::PI, r, nu / 2),
+            ])
+        }
+        "rectangle" | "gmsh" => bail!(
+            "{at}: key `laminate.base.type`: `{}` is a base of solid (3D) plies; a cross-section of plane elements takes \"line\", \"l_section\" or \"ring\"",
+            g.kind
+        ),
+        other => bail!(
+            "{at}: key `laminate.base.type`: `{other}` is not valid; a cross-section of plane elements takes \"line\", \"l_section\" or \"ring\""
         ),
     }
 }

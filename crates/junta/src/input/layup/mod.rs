@@ -41,6 +41,12 @@
 //!   K + 1`) with node sets `interface_K_L.bottom` and `.top`; and each
 //!   ply's own box sets `ply_K.x0` .. `ply_K.z1`.
 //!
+//! * **Cross-sections**: with a plane `element` (`cpe*`, `cps*`, `cax*`)
+//!   the base is a `line`, `l_section` or `ring` of the `x`-`y` plane
+//!   ([`base::plane_segments`]): each ply is a plane box `(u, w)` mapped
+//!   with `v = 0`, the interfaces are line interfaces, and the sets lose
+//!   the width's (`y0`, `y1` of a rectangle, `side0`, `side1`).
+//!
 //! The edge and face sets hold both copies of the nodes an interface
 //! duplicates (the rule of [`junta_core::mesh::interface`]), so a condition
 //! on an edge holds every ply.
@@ -100,20 +106,27 @@ pub struct LaminateSpec {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BaseSpec {
-    /// `"rectangle"`, `"l_section"` or `"ring"`.
+    /// `"rectangle"`, `"l_section"`, `"ring"` or `"gmsh"`; with plane
+    /// elements `"line"`, `"l_section"` or `"ring"` (a cross-section).
     #[serde(rename = "type")]
     pub kind: Spanned<String>,
     /// Rectangle: edge lengths along x and y.
     pub size: Option<[f64; 2]>,
+    /// Line (plane elements): its length along x.
+    pub length: Option<f64>,
     /// Elements: rectangle `[nx, ny]`; L-section `[arm a, bend, arm b,
-    /// width]`; ring `[around, along the axis]`; none for a Gmsh base.
+    /// width]`; ring `[around, along the axis]`; none for a Gmsh base. In
+    /// a cross-section: line `[n]`, L-section `[arm a, bend, arm b]`, ring
+    /// `[around]`.
     #[serde(default)]
     pub divisions: Vec<usize>,
-    /// Rectangle: the laminate's lower corner (bottom of ply 1), default the origin.
-    #[serde(default)]
+    /// Rectangle, line: the laminate's lower corner (bottom of ply 1),
+    /// default the origin (`[x, y]` in a cross-section).
+    #[serde(default, deserialize_with = "crate::input::scene::origin_xyz")]
     pub origin: [f64; 3],
-    /// Rectangle: ratio of the last to the first element size along x and y (default 1).
-    pub grading: Option<[f64; 2]>,
+    /// Rectangle: ratio of the last to the first element size along x and
+    /// y (default 1); line: one ratio, along x.
+    pub grading: Option<Vec<f64>>,
     /// L-section, ring: radius of the inner surface (ply 1's inner face).
     pub inner_radius: Option<f64>,
     /// L-section: lengths of arm a and arm b.
@@ -459,10 +472,41 @@ fn resolve_interfaces(
         .collect()
 }
 
-fn base_geometry<'a>(sf: &SceneFile, b: &'a BaseSpec) -> base::BaseGeometry<'a> {
-    base::BaseGeometry {
+/// Whether `laminate.element` is a plane element: the lay-up is then a
+/// cross-section in the `x`-`y` plane ([`base::plane_segments`]).
+fn is_cross_section(sf: &SceneFile, spec: &LaminateSpec) -> Result<bool> {
+    let entry =
+        junta_core::registry::find::<junta_core::registry::ElementEntry>(spec.element.get_ref())
+            .map_err(|e| {
+                err!(
+                    "{}: key `laminate.element`: {e}",
+                    sf.at(spec.element.span())
+                )
+            })?;
+    Ok(entry.shape.is_plane())
+}
+
+/// `laminate.base.grading` as the ratios along `u` and `v`: two values on
+/// a rectangle, one on a line, none elsewhere.
+fn base_grading(sf: &SceneFile, b: &BaseSpec) -> Result<[f64; 2]> {
+    let at = sf.at(b.kind.span());
+    match (b.kind.get_ref().as_str(), b.grading.as_deref()) {
+        (_, None) => Ok([1.0; 2]),
+        ("rectangle", Some(&[gx, gy])) => Ok([gx, gy]),
+        ("line", Some(&[g])) => Ok([g, 1.0]),
+        ("rectangle", Some(_)) => bail!("{at}: key `laminate.base.grading`: give two ratios [along x, along y]"),
+        ("line", Some(_)) => bail!("{at}: key `laminate.base.grading`: give one ratio [along the line]"),
+        (kind, Some(_)) => bail!("{at}: key `laminate.base.grading` is not used with type = \"{kind}\"; only a rectangle or a line is graded"),
+    }
+}
+
+fn base_geometry<'a>(sf: &SceneFile, spec: &'a LaminateSpec) -> Result<base::BaseGeometry<'a>> {
+    let b = &spec.base;
+    Ok(base::BaseGeometry {
         kind: b.kind.get_ref(),
         at: sf.at(b.kind.span()),
+        plane: is_cross_section(sf, spec)?,
+        length: b.length,
         size: b.size,
         divisions: &b.divisions,
         origin: b.origin,
@@ -476,7 +520,7 @@ fn base_geometry<'a>(sf: &SceneFile, b: &'a BaseSpec) -> base::BaseGeometry<'a> 
             away_from: b.normal_away_from,
             flip: b.flip.unwrap_or(false),
         },
-    }
+    })
 }
 
 /// The part (block and element set) of ply `k` on segment `s`: `ply_K`
@@ -504,9 +548,10 @@ fn part_material(p: &Ply, s: &base::Segment) -> String {
 pub fn build_mesh(sf: &SceneFile, spec: &LaminateSpec) -> Result<Mesh> {
     let layup = Layup::resolve(sf, spec)?;
     let at = sf.at(spec.base.kind.span());
-    let segments = base::segments(&base_geometry(sf, &spec.base))?;
+    let segments = base::segments(&base_geometry(sf, spec)?)?;
     let levels = layup.ply_levels(0.0);
-    let grading = spec.base.grading.unwrap_or([1.0; 2]);
+    let grading = base_grading(sf, &spec.base)?;
+    let plane = is_cross_section(sf, spec)?;
     let mut parts = Vec::with_capacity(layup.plies.len() * segments.len());
     for (k, ply) in layup.plies.iter().enumerate() {
         for s in &segments {
@@ -524,27 +569,42 @@ pub fn build_mesh(sf: &SceneFile, spec: &LaminateSpec) -> Result<Mesh> {
                 parts.push((part_name(k, s), part));
                 continue;
             }
-            let mut part = generate_box(
-                sf,
-                "laminate",
+            // a cross-section's ply is the plane box (u, w)
+            let geometry = if plane {
+                BoxGeometry {
+                    size: [s.length, ply.thickness, 1.0],
+                    divisions: [s.divisions[0], ply.elements, 1],
+                    origin: [0.0, levels[k], 0.0],
+                    grading: [grading[0], 1.0, 1.0],
+                }
+            } else {
                 BoxGeometry {
                     size: [s.length, s.width, ply.thickness],
                     divisions: [s.divisions[0], s.divisions[1], ply.elements],
                     origin: [0.0, 0.0, levels[k]],
                     grading: [grading[0], grading[1], 1.0],
-                },
+                }
+            };
+            let mut part = generate_box(
+                sf,
+                "laminate",
+                geometry,
                 &spec.element,
                 &part_material(ply, s),
             )?;
             for p in part.nodes.iter_mut() {
-                *p = s.map.point(*p);
+                *p = if plane {
+                    s.map.point([p[0], 0.0, p[1]])
+                } else {
+                    s.map.point(*p)
+                };
             }
             parts.push((part_name(k, s), part));
         }
     }
     let mut mesh = junta_core::mesh::merge::merge(parts, 1e-9)
         .map_err(|e| err!("{at}: key `laminate`: {e}"))?;
-    add_laminate_sets(&mut mesh, &layup, &segments);
+    add_laminate_sets(&mut mesh, &layup, &segments, plane);
     for f in &layup.interfaces {
         let (below, above) = (ply_set(f.below - 1), ply_set(f.below));
         junta_core::mesh::interface::insert_interface(&mut mesh, &below, &above, &f.name(), &f.law)
@@ -616,7 +676,7 @@ fn ply_set(k: usize) -> String {
 /// `ply_K` (on a curved base: the union of its segments), `block_J`, and
 /// the laminate's faces and edges (module docs), before the interfaces are
 /// inserted, so that they keep both copies of every duplicated node.
-fn add_laminate_sets(mesh: &mut Mesh, layup: &Layup, segments: &[base::Segment]) {
+fn add_laminate_sets(mesh: &mut Mesh, layup: &Layup, segments: &[base::Segment], plane: bool) {
     let n = layup.plies.len();
     let curved = !segments[0].name.is_empty();
     if curved {
@@ -642,23 +702,31 @@ fn add_laminate_sets(mesh: &mut Mesh, layup: &Layup, segments: &[base::Segment])
     let all: Vec<usize> = (0..segments.len()).collect();
     let last = segments.len() - 1;
     // (set, plies, segments, the box side of each part)
+    // the box sides of a ply's bottom, top and width
+    let (bottom, top, across) = if plane {
+        ("y0", "y1", None)
+    } else {
+        ("z0", "z1", Some(["y0", "y1"]))
+    };
     let mut sides: Vec<(&str, Vec<usize>, Vec<usize>, &str)> = vec![
-        ("bottom", vec![0], all.clone(), "z0"),
-        ("top", vec![n - 1], all.clone(), "z1"),
+        ("bottom", vec![0], all.clone(), bottom),
+        ("top", vec![n - 1], all.clone(), top),
     ];
     if let Some(surf) = &segments[0].surface {
         for name in surf.mesh.curves.keys() {
             sides.push((name.as_str(), (0..n).collect(), all.clone(), name.as_str()));
         }
     } else if !curved {
-        for side in ["x0", "x1", "y0", "y1"] {
+        for side in ["x0", "x1"].into_iter().chain(across.into_iter().flatten()) {
             sides.push((side, (0..n).collect(), all.clone(), side));
         }
     } else {
-        sides.push(("inner", vec![0], all.clone(), "z0"));
-        sides.push(("outer", vec![n - 1], all.clone(), "z1"));
-        sides.push(("side0", (0..n).collect(), all.clone(), "y0"));
-        sides.push(("side1", (0..n).collect(), all.clone(), "y1"));
+        sides.push(("inner", vec![0], all.clone(), bottom));
+        sides.push(("outer", vec![n - 1], all.clone(), top));
+        if let Some([y0, y1]) = across {
+            sides.push(("side0", (0..n).collect(), all.clone(), y0));
+            sides.push(("side1", (0..n).collect(), all.clone(), y1));
+        }
         if segments[0].name != "half_1" {
             sides.push(("end0", (0..n).collect(), vec![0], "x0"));
             sides.push(("end1", (0..n).collect(), vec![last], "x1"));
@@ -689,7 +757,7 @@ pub fn add_ply_materials(
 ) -> Result<()> {
     use junta_elements::material::Rotated;
     let layup = Layup::resolve(sf, spec)?;
-    let segments = base::segments(&base_geometry(sf, &spec.base))?;
+    let segments = base::segments(&base_geometry(sf, spec)?)?;
     let thickness = layup.plies.iter().map(|p| p.thickness).sum::<f64>();
     let frames: Vec<Option<SurfaceFrame>> = segments
         .iter()
