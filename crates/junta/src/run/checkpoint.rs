@@ -40,7 +40,7 @@ pub struct RestartFile {
     /// External forces of the checkpoint's increment
     /// ([`crate::run::observer::RunLog::external_force`]); empty in files of
     /// older runs.
-    #[serde(default)]
+    #[serde(default, with = "junta_solvers::nonlinear::packed")]
     pub external_force: Vec<f64>,
     /// The ply failure criteria's course so far (empty in files of older
     /// runs).

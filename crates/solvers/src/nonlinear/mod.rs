@@ -10,6 +10,7 @@
 //! | `newton.rs` | load/displacement control |
 //! | `arc_length.rs` | path following through limit points and snap-backs |
 //! | `balance.rs` | the energy balances of path following's dissipation constraint (global under small kinematics, the interfaces' under any) |
+//! | `packed.rs` | a checkpoint's long vectors packed as base64 of their bytes |
 //! | `path_switch.rs` | switching between load control and arc length (calls both drivers; neither calls it) |
 
 pub mod arc_length;
@@ -17,5 +18,6 @@ pub(crate) mod balance;
 pub(crate) mod engine;
 pub mod linear_static;
 pub mod newton;
+pub mod packed;
 pub mod path_switch;
 pub mod vocabulary;

@@ -337,8 +337,10 @@ pub struct Checkpoint {
     /// Largest force scale met so far (floor of the force criterion).
     pub force_peak: f64,
     /// Full displacement vector.
+    #[serde(with = "super::packed")]
     pub u: Vec<f64>,
     /// Committed state.
+    #[serde(with = "super::packed")]
     pub state_committed: Vec<f64>,
     /// Path-following state (arc-length runs only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -580,6 +582,7 @@ pub struct PathState {
     /// Load factor of the converged increment before the last one.
     pub previous_lambda: f64,
     /// Full displacement of the converged increment before the last one.
+    #[serde(with = "super::packed")]
     pub previous_u: Vec<f64>,
     /// Largest load factor reached.
     pub lambda_max: f64,
@@ -702,6 +705,7 @@ pub struct LoadTrack {
     /// The last increment's displacement (the checkpoint's own `u`).
     #[serde(skip)]
     pub(crate) u_last: Vec<f64>,
+    #[serde(with = "super::packed")]
     pub(crate) u_before: Vec<f64>,
     pub(crate) lambda_last: f64,
     pub(crate) lambda_before: f64,
