@@ -54,6 +54,7 @@ examples! {
     plane_dcb => "plane/dcb_plane_strain.toml";
     plane_dcb_deck => "plane/dcb_cpe4i.inp";
     plane_enf => "plane/enf_plane_strain.toml";
+    plane_mmb => "plane/mmb50_plane_strain.toml";
     plane_tube_joint => "plane/tube_lap_joint.toml";
     dcb_abaqus_deck => "delamination/dcb_abaqus.inp";
     dcb_arc => "delamination/dcb_arc.toml";

@@ -227,3 +227,80 @@ fn plane_strain_enf_against_beam_theory_and_the_3d_slab() {
         load_at(&c, 4.0)
     );
 }
+
+/// Corrected beam theory of the MMB (Reeder & Crews; BK), as
+/// `examples/delamination/make_mmb.py` writes it, in plane strain (`E11' =
+/// E11 / (1 - nu13 nu31)`, 3 the width): the lever load at which `G_I +
+/// G_II` reaches `G_c(B)` at crack length `a`, with `a + chi h` for mode I
+/// and `a + 0.42 chi h` for mode II.
+fn mmb_critical_load(c: f64, a: f64) -> f64 {
+    let (e11, e22, g13, nu13) = (122700.0f64, 10100.0f64, 5500.0f64, 0.25f64);
+    let (gic, giic, eta) = (0.969f64, 1.719f64, 2.284f64);
+    let (b, h, l) = (25.4f64, 1.56f64, 51.0f64);
+    let gamma = 1.18 * (e11 * e22).sqrt() / g13;
+    let chi = (e11 / (11.0 * g13) * (3.0 - 2.0 * (gamma / (1.0 + gamma)).powi(2))).sqrt();
+    let e = e11 / (1.0 - nu13 * nu13 * e22 / e11);
+    let (a1, a2) = (a + chi * h, a + 0.42 * chi * h);
+    let g1 = 3.0 * (3.0 * c - l).powi(2) * a1 * a1 / (4.0 * b * b * h.powi(3) * l * l * e);
+    let g2 = 9.0 * (c + l).powi(2) * a2 * a2 / (16.0 * b * b * h.powi(3) * l * l * e);
+    let mix = g2 / (g1 + g2);
+    ((gic + (giic - gic) * mix.powf(eta)) / (g1 + g2)).sqrt()
+}
+
+/// `examples/plane/mmb50_plane_strain.toml`: the MMB of
+/// `examples/delamination/mmb50.toml` (G_II/G_T = 0.5) in plane strain,
+/// traced by the default control to the mid-span. Against corrected beam
+/// theory in plane strain: the peak (measured -2.0 %; the 3D slab's is
+/// -1.9 % of the theory with E11, 258.7 N against this model's 259.0 N)
+/// and the propagation branch at the crack length of the damaged area,
+/// from a = 34 to 48.5 mm (measured -1.8 to +0.7 %; past it the mid-span
+/// load point stiffens the end).
+#[test]
+fn plane_strain_mmb_against_corrected_beam_theory() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = run_ok(
+        &repo().join("examples/plane/mmb50_plane_strain.toml"),
+        dir.path(),
+    );
+    assert!(s["status"].as_str().unwrap().contains("max_increments"), "{s}");
+    let text = std::fs::read_to_string(dir.path().join("curve.csv")).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |n: &str| head.iter().position(|h| *h == n).unwrap();
+    let (cp, ca, cc) = (col("reaction"), col("damaged_area"), col("control"));
+    let rows: Vec<(f64, f64, String)> = lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (
+                f[cp].parse().unwrap(),
+                32.9 + f[ca].parse::<f64>().unwrap() / 25.4,
+                f[cc].to_string(),
+            )
+        })
+        .collect();
+    let c = 44.596;
+    let peak = rows.iter().map(|r| r.0).fold(0.0, f64::max);
+    let cbt = mmb_critical_load(c, 32.9);
+    let branch: Vec<f64> = rows
+        .iter()
+        .filter(|r| (34.0..=48.5).contains(&r.1))
+        .map(|r| r.0 / mmb_critical_load(c, r.1) - 1.0)
+        .collect();
+    let (lo, hi) = branch
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(lo, hi), &e| (lo.min(e), hi.max(e)));
+    eprintln!(
+        "plane MMB50: peak {peak:.1} N against {cbt:.1} N ({:+.2} %); branch {:+.2} .. {:+.2} % over {} increments; reached a = {:.1} mm",
+        100.0 * (peak / cbt - 1.0),
+        100.0 * lo,
+        100.0 * hi,
+        branch.len(),
+        rows.last().unwrap().1
+    );
+    assert!(rel(peak, cbt) < 0.025, "peak {peak} against {cbt}");
+    assert!(branch.len() >= 20, "{} increments on the branch", branch.len());
+    assert!(lo > -0.03 && hi < 0.03, "branch {lo} .. {hi}");
+    // the default control switched to path following at the peak
+    assert!(rows.iter().any(|r| r.2 == "dissipation"));
+    assert!(rows.last().unwrap().1 > 48.5, "the crack stopped short of mid-span");
+}
