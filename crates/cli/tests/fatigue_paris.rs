@@ -86,8 +86,43 @@ fn mean(v: impl Iterator<Item = f64>) -> f64 {
 
 #[test]
 fn dcb_held_open_grows_at_the_paris_rate_at_three_levels() {
+    held_open_at_the_paris_rate(&repo().join("examples/fatigue/dcb_paris.toml"), E1);
+}
+
+/// The same DCB in plane strain (issue 39): the example's boxes as plane
+/// boxes of `cpe4` (two through each arm, as its two `h8`), the width
+/// out of the plane, `z` turned into `y`; the beam theory with `E11' =
+/// E11 / (1 - nu13 nu31)`.
+#[test]
+fn plane_strain_dcb_held_open_grows_at_the_paris_rate_at_three_levels() {
+    let text = std::fs::read_to_string(repo().join("examples/fatigue/dcb_paris.toml")).unwrap();
+    let mut plane = text.replacen("units = \"N, mm, MPa\"", "units = \"N, mm, MPa\"\nthickness = 25.4", 1);
+    for (from, to) in [
+        (", 25.4, 1.56]", ", 1.56]"),
+        (", 1, 2]", ", 2]"),
+        (", 0.0, 0.0]", ", 0.0]"),
+        (", 0.0, 1.56]", ", 1.56]"),
+        ("element = \"h8\"", "element = \"cpe4\""),
+        ("[102.0, 26.4, 4.12]", "[102.0, 4.12, 1.0]"),
+        ("{ z = ", "{ y = "),
+        ("_component = \"z\"", "_component = \"y\""),
+    ] {
+        assert!(plane.contains(from), "{from}");
+        plane = plane.replace(from, to);
+    }
     let dir = tempfile::tempdir().unwrap();
-    let s = run_ok(&repo().join("examples/fatigue/dcb_paris.toml"), dir.path());
+    let path = dir.path().join("dcb_paris_plane.toml");
+    std::fs::write(&path, plane).unwrap();
+    held_open_at_the_paris_rate(&path, E1 / (1.0 - 0.25 * 0.25 * 10100.0 / E1));
+}
+
+/// The DCB of `scene` held open grows at the Paris rate of its law at
+/// three levels of G (beam theory with the arms' modulus `e`), and the
+/// driver's J integral is beam theory's G.
+fn held_open_at_the_paris_rate(scene: &Path, e: f64) {
+    let bei = || WIDTH * e * WIDTH * ARM.powi(3) / 12.0;
+    let dir = tempfile::tempdir().unwrap();
+    let s = run_ok(scene, dir.path());
     assert!(
         s["status"].as_str().unwrap().starts_with("completed"),
         "{s}"
