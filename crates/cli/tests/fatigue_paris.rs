@@ -96,7 +96,11 @@ fn dcb_held_open_grows_at_the_paris_rate_at_three_levels() {
 #[test]
 fn plane_strain_dcb_held_open_grows_at_the_paris_rate_at_three_levels() {
     let text = std::fs::read_to_string(repo().join("examples/fatigue/dcb_paris.toml")).unwrap();
-    let mut plane = text.replacen("units = \"N, mm, MPa\"", "units = \"N, mm, MPa\"\nthickness = 25.4", 1);
+    let mut plane = text.replacen(
+        "units = \"N, mm, MPa\"",
+        "units = \"N, mm, MPa\"\nthickness = 25.4",
+        1,
+    );
     for (from, to) in [
         (", 25.4, 1.56]", ", 1.56]"),
         (", 1, 2]", ", 2]"),

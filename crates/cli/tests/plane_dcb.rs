@@ -262,7 +262,10 @@ fn plane_strain_mmb_against_corrected_beam_theory() {
         &repo().join("examples/plane/mmb50_plane_strain.toml"),
         dir.path(),
     );
-    assert!(s["status"].as_str().unwrap().contains("max_increments"), "{s}");
+    assert!(
+        s["status"].as_str().unwrap().contains("max_increments"),
+        "{s}"
+    );
     let text = std::fs::read_to_string(dir.path().join("curve.csv")).unwrap();
     let mut lines = text.lines();
     let head: Vec<&str> = lines.next().unwrap().split(',').collect();
@@ -298,9 +301,16 @@ fn plane_strain_mmb_against_corrected_beam_theory() {
         rows.last().unwrap().1
     );
     assert!(rel(peak, cbt) < 0.025, "peak {peak} against {cbt}");
-    assert!(branch.len() >= 20, "{} increments on the branch", branch.len());
+    assert!(
+        branch.len() >= 20,
+        "{} increments on the branch",
+        branch.len()
+    );
     assert!(lo > -0.03 && hi < 0.03, "branch {lo} .. {hi}");
     // the default control switched to path following at the peak
     assert!(rows.iter().any(|r| r.2 == "dissipation"));
-    assert!(rows.last().unwrap().1 > 48.5, "the crack stopped short of mid-span");
+    assert!(
+        rows.last().unwrap().1 > 48.5,
+        "the crack stopped short of mid-span"
+    );
 }

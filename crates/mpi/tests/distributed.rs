@@ -361,6 +361,64 @@ fn dcb_curve_through_its_peak_matches_one_process_on_1_2_4_ranks() {
     }
 }
 
+/// Plane models over ranks (issue 39): the 2D DCB (CPE8 + LINE_INTER6,
+/// two equations per node, the default control through its peak) and the
+/// axisymmetric tubular lap joint (linear, CAX8 + axisymmetric line
+/// interfaces) on 1 and 2 ranks against one process.
+#[test]
+fn plane_models_match_one_process_on_1_and_2_ranks() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (scene, args, tol) in [
+        (
+            "examples/plane/dcb_plane_strain.toml",
+            vec!["--max-increments", "25"],
+            1e-7,
+        ),
+        ("examples/plane/tube_lap_joint.toml", vec![], 1e-8),
+    ] {
+        let path = repo(scene);
+        let s = path.to_str().unwrap();
+        let seq = tmp.path().join("seq");
+        let mut a = vec!["run", s, "-o", seq.to_str().unwrap()];
+        a.extend(&args);
+        sequential(&a);
+        for ranks in [1, 2] {
+            let out = tmp.path().join(format!("np{ranks}"));
+            let mut a = vec!["run", s, "-o", out.to_str().unwrap()];
+            a.extend(&args);
+            mpirun(ranks, &a);
+            if scene.contains("dcb") {
+                let worst =
+                    assert_same_curve(&seq, &out, tol, &format!("{scene} on {ranks} ranks"));
+                eprintln!("{scene}, {ranks} ranks: worst relative difference {worst:.2e}");
+            } else {
+                // the largest displacement and the film's peak shear
+                let (s0, s1) = (summary(&seq), summary(&out));
+                for (what, v0, v1) in [
+                    (
+                        "displacement_max",
+                        &s0["displacement_max"],
+                        &s1["displacement_max"],
+                    ),
+                    (
+                        "traction_max",
+                        &s0["interfaces"]["film"]["traction_max"][0],
+                        &s1["interfaces"]["film"]["traction_max"][0],
+                    ),
+                ] {
+                    let (v0, v1) = (v0.as_f64().unwrap(), v1.as_f64().unwrap());
+                    eprintln!("{scene}, {ranks} ranks: {what} {v1:.12e} against {v0:.12e}");
+                    assert!(
+                        (v1 - v0).abs() <= tol * v0.abs(),
+                        "{scene} on {ranks} ranks: {what} {v1} against {v0}"
+                    );
+                }
+            }
+            assert_eq!(summary(&out)["plane"], summary(&seq)["plane"]);
+        }
+    }
+}
+
 #[test]
 fn friction_lu_and_arc_length_snap_back_match_one_process() {
     // bilinear_friction: a nonsymmetric tangent (MUMPS LU); the coarse
