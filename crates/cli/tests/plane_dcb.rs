@@ -314,3 +314,38 @@ fn plane_strain_mmb_against_corrected_beam_theory() {
         "the crack stopped short of mid-span"
     );
 }
+
+/// `junta sweep control` on the 2D DCB: arc length traces it to the end;
+/// displacement and load control stop at the peak and say why; every peak
+/// within 2 % of corrected beam theory in plane strain.
+#[test]
+fn sweep_control_on_the_plane_dcb() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = junta()
+        .args(["sweep", "control"])
+        .arg(repo().join("examples/plane/dcb_plane_strain.toml"))
+        .arg("-o")
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(dir.path().join("control_summary.csv")).unwrap();
+    let (_, peak_cbt) = BeamTheory::as4peek_plane_strain().peak();
+    let mut methods = Vec::new();
+    for l in text.lines().skip(1) {
+        let method = l.split(',').next().unwrap().to_string();
+        // after the quoted status: increments, peak displacement, peak reaction
+        let status_end = l.find("\",").unwrap() + 2;
+        let rest: Vec<&str> = l[status_end..].split(',').collect();
+        let peak: f64 = rest[2].parse().unwrap();
+        eprintln!("{method}: peak {peak:.2} N ({:+.2} %)", 100.0 * (peak / peak_cbt - 1.0));
+        assert!(rel(peak, peak_cbt) < 0.02, "{method}: {peak} against {peak_cbt}");
+        let completed = l.contains("\"completed\"");
+        assert_eq!(completed, method == "arc_length", "{l}");
+        if !completed {
+            assert!(l.contains("load increment too small"), "{l}");
+        }
+        methods.push(method);
+    }
+    assert_eq!(methods, ["arc_length", "displacement", "load"]);
+}
