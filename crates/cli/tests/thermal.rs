@@ -109,6 +109,44 @@ fn bimetal_strip_curvature_matches_timoshenko() {
     assert_eq!(s["status"], "completed");
 }
 
+/// The bimetal strip as a plane model (issue 39): `cpe8` layers of 10 x 1
+/// elements (nu = 0: plane strain is the beam), linear and as a thermal
+/// step of four increments, against Timoshenko's curvature.
+#[test]
+fn plane_bimetal_strip_curvature_matches_timoshenko() {
+    let (m, n, h, da, dt) = (1.0f64, 2.0f64, 2.0, 1.0e-5, 100.0);
+    let exact = 6.0 * da * dt * (1.0 + m).powi(2)
+        / (h * (3.0 * (1.0 + m).powi(2) + (1.0 + m * n) * (m * m + 1.0 / (m * n))));
+    let text = std::fs::read_to_string(repo().join("examples/thermal/bimetal.toml")).unwrap();
+    let mut plane = text.clone();
+    for (from, to) in [
+        ("size = [20.0, 1.0, 1.0]", "size = [20.0, 1.0]"),
+        ("divisions = [10, 1, 1]", "divisions = [10, 1]"),
+        ("origin = [0.0, 0.0, 1.0]", "origin = [0.0, 1.0]"),
+        ("\"h20\"", "\"cpe8\""),
+        ("fixed = [\"y\", \"z\"]", "fixed = [\"y\"]"),
+        ("[[boundary]]\nset = \"c\"\nfixed = [\"z\"]\n", ""),
+    ] {
+        assert!(plane.contains(from), "{from}");
+        plane = plane.replace(from, to);
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let w = |s: &Value, p: &str| s["probes"][p][1].as_f64().unwrap();
+    let s = run_ok(&write(dir.path(), "plane.toml", &plane), &dir.path().join("linear"));
+    // hotter and more expansive on top: the ends curl down
+    let k = -(w(&s, "p1") - 2.0 * w(&s, "p2") + w(&s, "p3")) / 16.0;
+    eprintln!("plane bimetal: curvature {k:.6e} against Timoshenko {exact:.6e} ({:+.1e})", k / exact - 1.0);
+    assert!(rel(k, exact) < 1e-3, "{k} vs Timoshenko {exact}");
+    let static_ = plane.replace(
+        "[output]",
+        "[analysis]\ntype = \"static\"\n[analysis.newton]\ninitial_increment = 0.25\n[output]",
+    );
+    let st = run_ok(&write(dir.path(), "static.toml", &static_), &dir.path().join("static"));
+    assert_eq!(st["temperature"]["thermal_step_increments"], 4, "{st}");
+    let umax = |s: &Value| s["displacement_max"].as_f64().unwrap();
+    assert!(rel(umax(&st), umax(&s)) < 1e-9, "{st} vs {s}");
+}
+
 /// CalculiX's own test deck `c3d6` (C3D6 wedges in tension, with
 /// `*EXPANSION, TYPE=ISO`, `*ELASTIC` and `*EXPANSION` at one temperature,
 /// `*DENSITY`, a `*MEMBRANE` on an empty set, no temperature change) runs as
