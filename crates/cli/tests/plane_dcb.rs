@@ -328,7 +328,11 @@ fn sweep_control_on_the_plane_dcb() {
         .arg(dir.path())
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = std::fs::read_to_string(dir.path().join("control_summary.csv")).unwrap();
     let (_, peak_cbt) = BeamTheory::as4peek_plane_strain().peak();
     let mut methods = Vec::new();
@@ -338,8 +342,14 @@ fn sweep_control_on_the_plane_dcb() {
         let status_end = l.find("\",").unwrap() + 2;
         let rest: Vec<&str> = l[status_end..].split(',').collect();
         let peak: f64 = rest[2].parse().unwrap();
-        eprintln!("{method}: peak {peak:.2} N ({:+.2} %)", 100.0 * (peak / peak_cbt - 1.0));
-        assert!(rel(peak, peak_cbt) < 0.02, "{method}: {peak} against {peak_cbt}");
+        eprintln!(
+            "{method}: peak {peak:.2} N ({:+.2} %)",
+            100.0 * (peak / peak_cbt - 1.0)
+        );
+        assert!(
+            rel(peak, peak_cbt) < 0.02,
+            "{method}: {peak} against {peak_cbt}"
+        );
         let completed = l.contains("\"completed\"");
         assert_eq!(completed, method == "arc_length", "{l}");
         if !completed {

@@ -149,3 +149,41 @@ fn oneel_is_uniaxial_plane_strain() {
         );
     }
 }
+
+/// A CAX4I deck: one ring element (r from 1 to 2, z from 0 to 1) held
+/// axially at both ends and radially free, pressed on its bore: the
+/// incompatible-mode quadrilateral is read from `TYPE=CAX4I` and passes
+/// the axisymmetric patch test, so the stress is uniform... not for a
+/// pressurized ring; instead a uniform radial stretch `u_r = e r` (every
+/// node prescribed) gives the closed-form stress `sigma_r = sigma_t =
+/// E e / (1 - nu) ... ` at every point: `C (e, 0, e, 0)` of the
+/// axisymmetric strain `(e_r, e_z, e_t, g_rz)`.
+#[test]
+fn cax4i_deck_passes_the_uniform_stretch() {
+    let (e, nu, s) = (210000.0, 0.3, 1e-3);
+    let coords = [[1.0, 0.0], [2.0, 0.1], [2.2, 1.2], [0.9, 0.9]];
+    let mut deck = String::from("*NODE, NSET=NALL\n");
+    for (i, c) in coords.iter().enumerate() {
+        deck += &format!("{}, {}, {}\n", i + 1, c[0], c[1]);
+    }
+    deck += "*ELEMENT, TYPE=CAX4I, ELSET=E1\n1, 1, 2, 3, 4\n*MATERIAL, NAME=M\n*ELASTIC\n";
+    deck += &format!("{e}, {nu}\n*SOLID SECTION, ELSET=E1, MATERIAL=M\n*BOUNDARY\n");
+    for (i, c) in coords.iter().enumerate() {
+        deck += &format!("{}, 1, 1, {}\n{}, 2, 2, 0.0\n", i + 1, s * c[0], i + 1);
+    }
+    deck += "*STEP\n*STATIC\n*EL PRINT, ELSET=E1\nS\n*END STEP\n";
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "ring.inp", &deck);
+    let summary = run_ok(&path, &dir.path().join("o"));
+    assert_eq!(summary["elements"]["cax4i"], 1, "{summary}");
+    let rows = &junta_blocks(&dir.path().join("o"))[&("stresses".to_string(), "E1".to_string())];
+    // (e_r, e_z, e_t) = (s, 0, s): sigma_r = sigma_t = E s / ((1 + nu)(1 - 2 nu)),
+    // sigma_z = 2 nu E s / ((1 + nu)(1 - 2 nu))
+    let k = e * s / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    assert_eq!(rows.len(), 4);
+    for (pt, v) in rows {
+        for (got, want) in [(v[0], k), (v[1], 2.0 * nu * k), (v[2], k), (v[3], 0.0)] {
+            assert!((got - want).abs() < 1e-9 * k, "{pt}: {v:?}");
+        }
+    }
+}

@@ -132,16 +132,25 @@ fn plane_bimetal_strip_curvature_matches_timoshenko() {
     }
     let dir = tempfile::tempdir().unwrap();
     let w = |s: &Value, p: &str| s["probes"][p][1].as_f64().unwrap();
-    let s = run_ok(&write(dir.path(), "plane.toml", &plane), &dir.path().join("linear"));
+    let s = run_ok(
+        &write(dir.path(), "plane.toml", &plane),
+        &dir.path().join("linear"),
+    );
     // hotter and more expansive on top: the ends curl down
     let k = -(w(&s, "p1") - 2.0 * w(&s, "p2") + w(&s, "p3")) / 16.0;
-    eprintln!("plane bimetal: curvature {k:.6e} against Timoshenko {exact:.6e} ({:+.1e})", k / exact - 1.0);
+    eprintln!(
+        "plane bimetal: curvature {k:.6e} against Timoshenko {exact:.6e} ({:+.1e})",
+        k / exact - 1.0
+    );
     assert!(rel(k, exact) < 1e-3, "{k} vs Timoshenko {exact}");
     let static_ = plane.replace(
         "[output]",
         "[analysis]\ntype = \"static\"\n[analysis.newton]\ninitial_increment = 0.25\n[output]",
     );
-    let st = run_ok(&write(dir.path(), "static.toml", &static_), &dir.path().join("static"));
+    let st = run_ok(
+        &write(dir.path(), "static.toml", &static_),
+        &dir.path().join("static"),
+    );
     assert_eq!(st["temperature"]["thermal_step_increments"], 4, "{st}");
     let umax = |s: &Value| s["displacement_max"].as_f64().unwrap();
     assert!(rel(umax(&st), umax(&s)) < 1e-9, "{st} vs {s}");

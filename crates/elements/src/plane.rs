@@ -1,7 +1,7 @@
 //! Plane solid elements: plane strain, plane stress and axisymmetric
 //! quadrilaterals (4, 8, 9 nodes) and triangles (3, 6 nodes), registered
 //! under the Abaqus names (`cpe4`, `cps8r`, `cax6`, ...), and the 4-node
-//! quadrilateral with incompatible modes (`cpe4i`, `cps4i`: [`incompatible`]).
+//! quadrilateral with incompatible modes (`cpe4i`, `cps4i`, `cax4i`: [`incompatible`]).
 //!
 //! ## Kinematics
 //!
@@ -183,7 +183,7 @@ pub struct PlaneElement {
     corners: Vec<PlanePoint>,
     /// The centre of the cell (the incompatible modes' `J0`).
     centre: PlanePoint,
-    /// With the incompatible modes of [`incompatible`] (`cpe4i`, `cps4i`).
+    /// With the incompatible modes of [`incompatible`] (`cpe4i`, `cps4i`, `cax4i`).
     incompatible: bool,
 }
 
@@ -370,15 +370,17 @@ impl PlaneElement {
         })
     }
 
-    /// The same 4-node quadrilateral with incompatible modes (plane strain
-    /// or plane stress; see [`incompatible`]). Errors for other cells and
-    /// for axisymmetric sections.
+    /// The same 4-node quadrilateral with incompatible modes (plane strain,
+    /// plane stress or axisymmetric; see [`incompatible`]). Errors for
+    /// other cells.
     pub fn with_incompatible_modes(mut self) -> Result<Self, CoreError> {
-        if self.shape != CellShape::PlaneQuad4 || self.section == Section::Axisymmetric {
+        if self.shape != CellShape::PlaneQuad4 {
             return Err(CoreError::InvalidParameters {
                 kind: "element",
                 key: self.key.into(),
-                message: "incompatible modes are for the 4-node plane strain or plane stress quadrilateral (cpe4i, cps4i); an axisymmetric one would fail the patch test".into(),
+                message:
+                    "incompatible modes are for the 4-node quadrilateral (cpe4i, cps4i, cax4i)"
+                        .into(),
             });
         }
         self.incompatible = true;
@@ -1047,6 +1049,13 @@ register_plane!(
     Pe,
     false,
     "4-node plane strain quadrilateral with incompatible modes (CPE4I): bends without shear locking"
+);
+register_plane!(
+    "cax4i",
+    Q4,
+    Ax,
+    false,
+    "4-node axisymmetric quadrilateral with incompatible modes (CAX4I): bends in the r-z plane without shear locking"
 );
 register_plane!(
     "cps4i",

@@ -62,9 +62,9 @@ const KEYS: [&str; 18] = [
 ];
 
 /// The small-strain keys: [`KEYS`] and the incompatible-mode quadrilaterals.
-const SMALL_KEYS: [&str; 20] = [
+const SMALL_KEYS: [&str; 21] = [
     "cpe3", "cpe4", "cpe6", "cpe8", "cpe8r", "cpe9", "cps3", "cps4", "cps6", "cps8", "cps8r",
-    "cps9", "cax3", "cax4", "cax6", "cax8", "cax8r", "cax9", "cpe4i", "cps4i",
+    "cps9", "cax3", "cax4", "cax6", "cax8", "cax8r", "cax9", "cpe4i", "cps4i", "cax4i",
 ];
 
 /// A distorted cell of `shape` in the x-y plane at x in [1, 3] (off the

@@ -1,5 +1,5 @@
 //! The 4-node plane quadrilateral with incompatible modes, `cpe4i` and
-//! `cps4i` (Wilson, Taylor, Doherty and Ghaboussi 1973 with Taylor,
+//! `cps4i`, and axisymmetric `cax4i` (Wilson, Taylor, Doherty and Ghaboussi 1973 with Taylor,
 //! Beresford and Wilson's 1976 modification: QM6, the element Abaqus calls
 //! CPE4I / CPS4I), the plane counterpart of [`crate::h8i`].
 //!
@@ -28,9 +28,20 @@
 //! ```
 //!
 //! exact for the linear elastic materials (a thermal strain is carried by
-//! `sigma_0`). Small strain only; not axisymmetric (the hoop strain of the
-//! modes, `P_k / r`, would break the patch test). Outputs are those of the
-//! plane elements, with the modes' strain added.
+//! `sigma_0`). Small strain only. Outputs are those of the plane elements,
+//! with the modes' strain added.
+//!
+//! **Axisymmetric (`cax4i`).** The ring's volume is `dV = 2 pi r dA`, so
+//! Taylor's gradients, whose area integral vanishes, no longer integrate
+//! to zero over the volume, and a constant stress would work on the modes.
+//! As Simo and Rifai (1990) do for their enhanced strains, the gradients
+//! are scaled by `r0 / r` (`r0` the centre's radius), `dP_k/dx <- (r0 / r)
+//! (det J0 / det J) J0^-T dP_k/dxi`, so that `int B_a dV = 2 pi r0 int
+//! J0^-T dP_k/dxi det J0 dxi = 0`; the modes take no hoop strain (a `P_k /
+//! r` term would break the patch test too). The patch test passes; pure
+//! bending of a plate is no longer exact (the scaled gradients are not
+//! those of a quadratic), but converges at second order without locking
+//! (`crates/cli/tests/lame_cylinder.rs`).
 
 use super::{PlaneElement, PlanePoint, MAX_NODES};
 use junta_core::element::{ElementContext, ElementError, PointOutput};
@@ -44,10 +55,14 @@ fn mode_rows(h: [f64; 2]) -> [[f64; 2]; 4] {
     [[h[0], 0.0], [0.0, h[1]], [0.0, 0.0], [h[1], h[0]]]
 }
 
-/// `B_u` rows of node `a` with gradient `g` (no hoop term: not axisymmetric).
-fn node_rows(g: [f64; 2]) -> [[f64; 2]; 4] {
-    [[g[0], 0.0], [0.0, g[1]], [0.0, 0.0], [g[1], g[0]]]
+/// `B_u` rows of node `a` with gradient `g` and `h = N_a / r`
+/// (axisymmetric: the hoop strain `u_r / r`) or 0.
+fn node_rows(g: [f64; 2], h: f64) -> [[f64; 2]; 4] {
+    [[g[0], 0.0], [0.0, g[1]], [h, 0.0], [g[1], g[0]]]
 }
+
+/// The mode gradients of the four points.
+type ModeGradients = [[[f64; 2]; 2]; 4];
 
 /// `sum_r x[r][i] D[r][s] y[s][j]` for 4-row blocks.
 fn btdb(x: &[[f64; 2]; 4], d: &Matrix4<f64>, y: &[[f64; 2]; 4]) -> [[f64; 2]; 2] {
@@ -86,6 +101,25 @@ struct Condensed {
 }
 
 impl PlaneElement {
+    /// The mode gradients of every point (Taylor's, [`Self::mode_gradients`]);
+    /// axisymmetric, scaled by `r0 / r` (module docs).
+    fn all_mode_gradients(&self, coords: &[[f64; 3]]) -> ModeGradients {
+        let mut h: ModeGradients =
+            std::array::from_fn(|q| self.mode_gradients(coords, q, self.xi[q]));
+        if self.section == super::Section::Axisymmetric {
+            let radius = |p: &PlanePoint| (0..4).map(|a| p.n[a] * coords[a][0]).sum::<f64>();
+            let r0 = radius(&self.centre);
+            for (hq, p) in h.iter_mut().zip(&self.points) {
+                let s = r0 / radius(p);
+                for hm in hq.iter_mut() {
+                    hm[0] *= s;
+                    hm[1] *= s;
+                }
+            }
+        }
+        h
+    }
+
     /// Mode gradients (Taylor's) at the points, with the centre's `J0`.
     fn mode_gradients(&self, coords: &[[f64; 3]], q: usize, xi: [f64; 2]) -> [[f64; 2]; 2] {
         let (j0, det0) = jacobian(&self.centre, coords);
@@ -112,6 +146,8 @@ impl PlaneElement {
     ) -> Result<Condensed, ElementError> {
         let mut g = [[0.0; 2]; MAX_NODES];
         let (mut k_ua, mut k_aa, mut r_a) = (Kua::zeros(), Matrix4::zeros(), [0.0; 4]);
+        let modes = self.all_mode_gradients(ctx.coords);
+        let axi = self.section == super::Section::Axisymmetric;
         for (q, p) in self.points.iter().enumerate() {
             let (x, vol) = self.gradients(p, ctx.coords, q, &mut g)?;
             let dv = p.w * vol;
@@ -120,9 +156,10 @@ impl PlaneElement {
                 .point_state(p, self.active_strain(p, &g, x, ctx.disp), x, ctx)
                 .stress;
             let s4 = [s[0], s[1], s[2], s[3]];
-            let h = self.mode_gradients(ctx.coords, q, self.xi[q]);
+            let h = modes[q];
             let ba = [mode_rows(h[0]), mode_rows(h[1])];
-            let bu: [[[f64; 2]; 4]; 4] = std::array::from_fn(|a| node_rows(g[a]));
+            let bu: [[[f64; 2]; 4]; 4] =
+                std::array::from_fn(|a| node_rows(g[a], if axi { p.n[a] / x[0] } else { 0.0 }));
             for a in 0..4 {
                 for i in 0..2 {
                     f[3 * a + i] += dv * (0..4).map(|r| bu[a][r][i] * s4[r]).sum::<f64>();
@@ -213,10 +250,11 @@ impl PlaneElement {
         let c = self.condense(ctx, &mut scratch, None)?;
         let mut g = [[0.0; 2]; MAX_NODES];
         let mut out = Vec::with_capacity(4);
+        let modes = self.all_mode_gradients(ctx.coords);
         for (q, p) in self.points.iter().enumerate() {
             let (x, vol) = self.gradients(p, ctx.coords, q, &mut g)?;
             let mut e = self.active_strain(p, &g, x, ctx.disp);
-            let h = self.mode_gradients(ctx.coords, q, self.xi[q]);
+            let h = modes[q];
             for (m, hm) in h.iter().enumerate() {
                 let rows = mode_rows(*hm);
                 for (r, row) in rows.iter().enumerate() {

@@ -75,7 +75,7 @@ pub const KEYWORDS: &[Keyword] = &[
     },
     Keyword {
         names: &["ELEMENT"],
-        parameters: r#"`ELSET=`, `TYPE=` C3D6, C3D8, C3D8I, C3D15, C3D20, C3D20R, C3D27, COH3D8, COH3D6; 2D: CPE3, CPE4, CPE4I, CPE6, CPE8, CPE8R, CPS3, CPS4, CPS4I, CPS6, CPS8, CPS8R, CAX3, CAX4, CAX6, CAX8, CAX8R, COH2D4, COHAX4"#,
+        parameters: r#"`ELSET=`, `TYPE=` C3D6, C3D8, C3D8I, C3D15, C3D20, C3D20R, C3D27, COH3D8, COH3D6; 2D: CPE3, CPE4, CPE4I, CPE6, CPE8, CPE8R, CPS3, CPS4, CPS4I, CPS6, CPS8, CPS8R, CAX3, CAX4, CAX4I, CAX6, CAX8, CAX8R, COH2D4, COHAX4"#,
         notes: r#"2D: CalculiX's own 2D decks against their `.dat.ref` in [`crates/cli/tests/plane_decks.rs`](../crates/cli/tests/plane_decks.rs) (what CalculiX's 3D expansion changes: [2D decks](#2d-decks)). C3D8I: ccx 2.20 on [`crates/cli/tests/data/cantilever_c3d8i.inp`](../crates/cli/tests/data/cantilever_c3d8i.inp) (`c3d8i_cantilever_deck_matches_calculix` in [`crates/cli/tests/cli.rs`](../crates/cli/tests/cli.rs)); C3D6/C3D15: `wedge_cantilever_decks_match_calculix` (same file)"#,
         reader: Reader::Element,
     },

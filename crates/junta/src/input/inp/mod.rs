@@ -99,7 +99,7 @@
 //! | COH3D6 | Inter6 | `inter6`       | none: bottom triangle 1-3 then top triangle 4-6 (normal from 1-2-3 towards 4-6 by the right-hand rule) |
 //! | CPE3, CPE4, CPE4I, CPE6, CPE8, CPE8R | PlaneTri3 / PlaneQuad4 / PlaneTri6 / PlaneQuad8 | `cpe3` ... `cpe8r` (`cpe4i`: incompatible modes) | none; thickness: the `*SOLID SECTION` data line (default 1) |
 //! | CPS3 ... CPS8R | the same | `cps3` ... `cps8r` | as CPE |
-//! | CAX3 ... CAX8R | the same | `cax3` ... `cax8r` | none; the full ring (a thickness on the data line has no effect, as in CalculiX) |
+//! | CAX3 ... CAX8R, CAX4I | the same | `cax3` ... `cax8r` (`cax4i`: incompatible modes) | none; the full ring (a thickness on the data line has no effect, as in CalculiX) |
 //! | COH2D4, COHAX4 | LineInter4 | `line_inter4` | 2-1-3-4: Abaqus's is counter-clockwise (the top on the left of 1-2), ours has the top on the right of the bottom line; out-of-plane thickness: the `*COHESIVE SECTION` data line's second field (default 1); axisymmetric in a model of CAX elements |
 //!
 //! Faces for `*DLOAD` `P1..P6` and `*SURFACE` `S1..S6`: hexahedra have six
@@ -153,7 +153,7 @@ pub const C3D27_TO_OURS: [usize; 27] = [
 
 /// Element types the reader understands (for messages).
 pub const SUPPORTED_ELEMENT_TYPES: &str =
-    "C3D8, C3D8I, C3D20, C3D20R, C3D27, C3D6, C3D15, COH3D8, COH3D6, CPE3, CPE4, CPE4I, CPE6, CPE8, CPE8R, CPS3, CPS4, CPS4I, CPS6, CPS8, CPS8R, CAX3, CAX4, CAX6, CAX8, CAX8R, COH2D4, COHAX4";
+    "C3D8, C3D8I, C3D20, C3D20R, C3D27, C3D6, C3D15, COH3D8, COH3D6, CPE3, CPE4, CPE4I, CPE6, CPE8, CPE8R, CPS3, CPS4, CPS4I, CPS6, CPS8, CPS8R, CAX3, CAX4, CAX4I, CAX6, CAX8, CAX8R, COH2D4, COHAX4";
 
 /// Read a deck from a file, with its `*INCLUDE, INPUT=` files in place
 /// ([`expand_includes`]); an error names the file and line it comes from,
@@ -282,7 +282,7 @@ pub(super) fn element_kind(t: &str) -> Option<(CellShape, &'static str)> {
 /// the registry keys of [`junta_elements::plane`] are their lower-case
 /// names.
 fn plane_kind(t: &str) -> Option<(CellShape, &'static str)> {
-    const KEYS: [(&str, CellShape, &str); 17] = [
+    const KEYS: [(&str, CellShape, &str); 18] = [
         ("CPE3", CellShape::PlaneTri3, "cpe3"),
         ("CPE4", CellShape::PlaneQuad4, "cpe4"),
         ("CPE4I", CellShape::PlaneQuad4, "cpe4i"),
@@ -297,6 +297,7 @@ fn plane_kind(t: &str) -> Option<(CellShape, &'static str)> {
         ("CPS8R", CellShape::PlaneQuad8, "cps8r"),
         ("CAX3", CellShape::PlaneTri3, "cax3"),
         ("CAX4", CellShape::PlaneQuad4, "cax4"),
+        ("CAX4I", CellShape::PlaneQuad4, "cax4i"),
         ("CAX6", CellShape::PlaneTri6, "cax6"),
         ("CAX8", CellShape::PlaneQuad8, "cax8"),
         ("CAX8R", CellShape::PlaneQuad8, "cax8r"),
