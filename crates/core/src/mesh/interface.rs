@@ -104,7 +104,7 @@ fn solid_elements(mesh: &Mesh, set: &str) -> Result<Vec<ElementRef>, CoreError> 
 
 /// Sorted corner ids of face `f` of element `r`: the key that identifies a
 /// face ([`Mesh::face_key`]; `f` is below the shape's face count).
-fn corner_key(mesh: &Mesh, r: ElementRef, f: usize) -> [usize; 4] {
+pub(super) fn corner_key(mesh: &Mesh, r: ElementRef, f: usize) -> [usize; 4] {
     mesh.face_key(FaceRef {
         block: r.block,
         element: r.element,
@@ -114,20 +114,20 @@ fn corner_key(mesh: &Mesh, r: ElementRef, f: usize) -> [usize; 4] {
 }
 
 /// Shape of face `f` of element `r` (`f` below the shape's face count).
-fn face_shape(mesh: &Mesh, r: ElementRef, f: usize) -> CellShape {
+pub(super) fn face_shape(mesh: &Mesh, r: ElementRef, f: usize) -> CellShape {
     mesh.blocks[r.block]
         .shape
         .face_shape_of(f)
         .expect("face index below num_faces")
 }
 
-fn face_nodes(mesh: &Mesh, r: ElementRef, f: usize) -> Vec<usize> {
+pub(super) fn face_nodes(mesh: &Mesh, r: ElementRef, f: usize) -> Vec<usize> {
     let b = &mesh.blocks[r.block];
     let conn = b.element(r.element);
     b.shape.face_nodes(f).iter().map(|&l| conn[l]).collect()
 }
 
-fn describe(mesh: &Mesh, r: ElementRef) -> String {
+pub(super) fn describe(mesh: &Mesh, r: ElementRef) -> String {
     format!(
         "element {} of block `{}`",
         r.element, mesh.blocks[r.block].name
@@ -220,6 +220,25 @@ struct Sides<'s> {
     name: &'s str,
 }
 
+/// No element set, block or node set (`name.bottom`, `name.top`) of the
+/// names an interface `name` creates exists yet.
+pub(super) fn check_new_names(mesh: &Mesh, name: &str) -> Result<(), CoreError> {
+    if mesh.element_sets.contains_key(name) || mesh.blocks.iter().any(|b| b.name == name) {
+        return Err(CoreError::Invalid(format!(
+            "interface name `{name}` is already used by an element set or block; choose another name"
+        )));
+    }
+    for s in ["bottom", "top"] {
+        let n = format!("{name}.{s}");
+        if mesh.node_sets.contains_key(&n) {
+            return Err(CoreError::Invalid(format!(
+                "interface `{name}` would create node set `{n}`, which already exists; choose another name"
+            )));
+        }
+    }
+    Ok(())
+}
+
 impl Sides<'_> {
     /// Two different sets, a non-empty name, and no element set, block or
     /// node set (`name.bottom`, `name.top`) of the names to be created.
@@ -235,20 +254,7 @@ impl Sides<'_> {
                 "interface between `{bottom}` and `{top}` needs a non-empty name"
             )));
         }
-        if mesh.element_sets.contains_key(name) || mesh.blocks.iter().any(|b| b.name == name) {
-            return Err(CoreError::Invalid(format!(
-                "interface name `{name}` is already used by an element set or block; choose another name"
-            )));
-        }
-        for s in ["bottom", "top"] {
-            let n = format!("{name}.{s}");
-            if mesh.node_sets.contains_key(&n) {
-                return Err(CoreError::Invalid(format!(
-                    "interface `{name}` would create node set `{n}`, which already exists; choose another name"
-                )));
-            }
-        }
-        Ok(())
+        check_new_names(mesh, name)
     }
 
     /// The faces `(bottom element, face)` shared by a bottom and a top
@@ -471,7 +477,7 @@ fn duplicate_surface(
 /// One interface block per face shape (`name`, then `name.tri`): each
 /// shared face's bottom nodes followed by their copies; element set `name`
 /// holds them all. Returns the new blocks.
-fn add_interface_blocks(
+pub(super) fn add_interface_blocks(
     mesh: &mut Mesh,
     shapes: &[CellShape],
     shared: &[(ElementRef, usize)],
@@ -529,7 +535,7 @@ fn owner<'a>(mesh: &Mesh, set: &'a str) -> Option<&'a str> {
 
 /// Apply the node-set rule of the module docs after the top elements were
 /// renumbered; `copy` maps each duplicated node to its copy.
-fn update_node_sets(mesh: &mut Mesh, copy: &HashMap<usize, usize>) {
+pub(super) fn update_node_sets(mesh: &mut Mesh, copy: &HashMap<usize, usize>) {
     let names: Vec<String> = mesh.node_sets.keys().cloned().collect();
     // per owner element set: the duplicated nodes and copies its elements use
     let mut used_by: HashMap<String, HashSet<usize>> = HashMap::new();

@@ -3,6 +3,7 @@
 //! Node and element numbers are 0-based internally; readers convert the
 //! user's labels and keep them in [`Mesh::node_labels`] for messages.
 
+pub mod along;
 pub mod generate;
 pub mod interface;
 pub mod merge;

@@ -510,8 +510,12 @@ fn some_grading<'de, D: serde::Deserializer<'de>>(
 }
 
 /// Zero-thickness interface elements along the faces shared by two element
-/// sets. The first set is the bottom side: the normal points from it to the
-/// second. The element (INTER8/16/18) follows the solids' order.
+/// sets (`between`): the first set is the bottom side, the normal points
+/// from it to the second; or along the faces of a face set inside the mesh
+/// (`along`: a Gmsh physical curve or surface, a box side), the listed
+/// elements the bottom side, cutting through a body or ending inside it
+/// (`junta_core::mesh::along`). The element (INTER8/16/18, LINE_INTER4/6)
+/// follows the solids' order.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct InterfaceSpec {
@@ -519,7 +523,9 @@ pub struct InterfaceSpec {
     /// `NAME.bottom`, `NAME.top`).
     pub name: String,
     /// `[bottom_set, top_set]`.
-    pub between: Spanned<[String; 2]>,
+    pub between: Option<Spanned<[String; 2]>>,
+    /// A face set inside the mesh (instead of `between`).
+    pub along: Option<Spanned<String>>,
     /// Law name (a key of `[laws]`).
     pub law: Spanned<String>,
     /// `"gauss"` (default) or `"lobatto"`.
@@ -1129,15 +1135,27 @@ fn add_box_node_sets(sf: &SceneFile, mesh: &mut Mesh) -> Result<()> {
 /// the elements inside a box.
 fn insert_interfaces(sf: &SceneFile, mesh: &mut Mesh) -> Result<()> {
     for (i, f) in sf.scene.interface.iter().enumerate() {
-        let [a, b] = f.between.get_ref();
-        let ins =
-            junta_core::mesh::interface::insert_interface(mesh, a, b, &f.name, f.law.get_ref())
-                .map_err(|e| {
-                    err!(
-                        "{}: key `interface[{i}].between`: {e}",
-                        sf.at(f.between.span())
-                    )
-                })?;
+        let ins = match (&f.between, &f.along) {
+            (Some(between), None) => {
+                let [a, b] = between.get_ref();
+                junta_core::mesh::interface::insert_interface(mesh, a, b, &f.name, f.law.get_ref())
+                    .map_err(|e| {
+                        err!("{}: key `interface[{i}].between`: {e}", sf.at(between.span()))
+                    })?
+            }
+            (None, Some(along)) => junta_core::mesh::along::insert_interface_along(
+                mesh,
+                along.get_ref(),
+                &f.name,
+                f.law.get_ref(),
+            )
+            .map_err(|e| err!("{}: key `interface[{i}].along`: {e}", sf.at(along.span())))?,
+            _ => bail!(
+                "{}: `[[interface]]` `{}` (interface[{i}]): give `between = [bottom_set, top_set]` (two element sets) or `along = \"FACE_SET\"` (faces inside the mesh), one of them",
+                sf.at(f.law.span()),
+                f.name
+            ),
+        };
         if let Some(pc) = &f.precrack {
             split_precrack(
                 mesh,
