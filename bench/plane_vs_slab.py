@@ -13,7 +13,10 @@ nu31); the slab's beam theory is the same within 0.13 %, BENCHMARKS.md
 section 7). Writes OUT/plane_vs_slab.csv and OUT/plane_vs_slab.svg (wall
 time against the peak error, one line per model).
 
-Run: python3 bench/plane_vs_slab.py [--repeat 3] [--junta target/release/junta] [--out out/plane_vs_slab]
+With --full, also the full-width 3D model (the slab's scene with four H20
+across the 25.4 mm width, its sides free): the third line of the chart.
+
+Run: python3 bench/plane_vs_slab.py [--repeat 3] [--full] [--junta target/release/junta] [--out out/plane_vs_slab]
 """
 import argparse
 import csv
@@ -45,9 +48,16 @@ def beam_theory():
     return peak, lambda d: (gc * b) ** 0.75 * ei ** 0.25 * math.sqrt(2.0 / (3.0 * d))
 
 
-def scene(path, n):
+def scene(path, n, across=1):
+    """The scene of `path` with `n` elements along the bond and, for the 3D
+    scenes, `across` elements across the width."""
     text = open(path).read()
     text = re.sub(r"divisions = \[155, 1(, 1)?\]", lambda m: f"divisions = [{n}, 1{m.group(1) or ''}]", text)
+    text = re.sub(r"divisions = \[(\d+), 1, 1\]", lambda m: f"divisions = [{m.group(1)}, {across}, 1]", text)
+    if across > 1:
+        # the curved front's snap-backs stop the arc length alone; the
+        # default control passes them
+        text = text.replace('control = "arc_length"\n', "")
     ref = os.path.join(ROOT, "examples", "delamination", "dcb_beam_theory.csv")
     text = re.sub(r'file = "[^"]*dcb_beam_theory.csv"', f'file = "{ref}"', text)
     return re.sub(r"every = \d+", "every = 100000", text)
@@ -74,7 +84,9 @@ def run(junta, text, repeat):
         for _ in range(repeat):
             out = os.path.join(tmp, "out")
             t0 = time.perf_counter()
-            subprocess.run([junta, "run", path, "-o", out, "-q"], check=True)
+            # a run that stops (a snap-back it cannot follow) still has
+            # its curve up to there: the chart shows how far it got
+            subprocess.run([junta, "run", path, "-o", out, "-q"], check=False)
             times.append(time.perf_counter() - t0)
             summary = json.load(open(os.path.join(out, "summary.json")))
             rows = curve(os.path.join(out, "curve.csv"))
@@ -88,16 +100,17 @@ def svg(rows, path):
     lx = lambda v: m + (math.log10(v) - math.log10(min(xs) / 1.5)) / (math.log10(max(xs) * 1.5) - math.log10(min(xs) / 1.5)) * (w - 2 * m)
     ly = lambda v: h - m - v / (max(ys) * 1.2) * (h - 2 * m)
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" font-family="sans-serif" font-size="12">',
-           f'<text x="{w/2}" y="20" text-anchor="middle">DCB: peak error against wall time (2D plane strain and 3D slab)</text>',
+           f'<text x="{w/2}" y="20" text-anchor="middle">DCB: peak error against wall time (2D plane strain, 3D slab, full-width 3D)</text>',
            f'<line x1="{m}" y1="{h-m}" x2="{w-m}" y2="{h-m}" stroke="black"/><line x1="{m}" y1="{m}" x2="{m}" y2="{h-m}" stroke="black"/>',
            f'<text x="{w/2}" y="{h-20}" text-anchor="middle">wall time (s, log)</text>',
            f'<text x="15" y="{h/2}" transform="rotate(-90 15 {h/2})" text-anchor="middle">|peak - beam theory| (%)</text>']
-    for model, colour in [("2D CPE8", "#1f77b4"), ("3D H20 slab", "#d62728")]:
+    for model, colour in [("2D CPE8", "#1f77b4"), ("3D H20 slab", "#d62728"), ("3D H20, 4 across", "#2ca02c")]:
         pts = [(lx(r["seconds"]), ly(abs(r["peak_error_pct"])), r) for r in rows if r["model"] == model]
         out.append('<polyline fill="none" stroke="%s" points="%s"/>' % (colour, " ".join(f"{x:.1f},{y:.1f}" for x, y, _ in pts)))
         for x, y, r in pts:
             out.append(f'<circle cx="{x:.1f}" cy="{y:.1f}" r="3" fill="{colour}"/><text x="{x+5:.1f}" y="{y-5:.1f}">{r["element_mm"]:.2f} mm</text>')
-        out.append(f'<text x="{w-m-120}" y="{m + (20 if colour != "#1f77b4" else 0)}" fill="{colour}">{model}</text>')
+        k = ["#1f77b4", "#d62728", "#2ca02c"].index(colour)
+        out.append(f'<text x="{w-m-120}" y="{m + 20 * k}" fill="{colour}">{model}</text>')
     out.append("</svg>")
     open(path, "w").write("\n".join(out))
 
@@ -107,6 +120,8 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--junta", default=None)
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "plane_vs_slab"))
+    ap.add_argument("--full", action="store_true",
+                    help="also the full-width 3D model: four H20 across the 25.4 mm width, free sides")
     a = ap.parse_args()
     junta = a.junta
     if junta is None:
@@ -117,13 +132,17 @@ def main():
     mean_cbt = statistics.mean(prop(5.5 + 0.1 * k) for k in range(41))
     rows = []
     for n in BOND_DIVISIONS:
-        for model, path in [("2D CPE8", PLANE), ("3D H20 slab", SLAB)]:
-            secs, s, c = run(junta, scene(path, n), a.repeat)
+        models = [("2D CPE8", PLANE, 1), ("3D H20 slab", SLAB, 1)]
+        if a.full:
+            models.append(("3D H20, 4 across", SLAB, 4))
+        for model, path, across in models:
+            secs, s, c = run(junta, scene(path, n, across), a.repeat)
             peak = max(p for _, p in c)
             mean = statistics.mean(load_at(c, 5.5 + 0.1 * k) for k in range(41))
             rows.append({
                 "model": model, "element_mm": 69.1 / n, "equations": s["equations"],
                 "seconds": secs, "increments": s["increments"],
+                "status": s.get("status", "")[:60],
                 "newton_iterations": s["newton_iterations"]["total"],
                 "peak_N": peak, "peak_error_pct": 100.0 * (peak / peak_cbt - 1.0),
                 "mean_propagation_N": mean, "mean_error_pct": 100.0 * (mean / mean_cbt - 1.0),
@@ -139,6 +158,10 @@ def main():
         three = next(r for r in rows if r["model"] == "3D H20 slab" and abs(r["element_mm"] - 69.1 / n) < 1e-9)
         print(f"{69.1 / n:.2f} mm: slab / 2D wall time = {three['seconds'] / two['seconds']:.2f}, "
               f"equations {three['equations']} / {two['equations']}")
+        full = [r for r in rows if r["model"] == "3D H20, 4 across" and abs(r["element_mm"] - 69.1 / n) < 1e-9]
+        if full:
+            print(f"{69.1 / n:.2f} mm: full-width 3D / 2D wall time = {full[0]['seconds'] / two['seconds']:.2f}, "
+                  f"equations {full[0]['equations']} / {two['equations']}")
 
 
 if __name__ == "__main__":

@@ -26,7 +26,7 @@
 
 use super::interface::{
     add_interface_blocks, check_new_names, corner_key, describe, face_nodes, face_shape,
-    update_node_sets, InterfaceInsertion,
+    finish_insertion, update_node_sets, InterfaceInsertion,
 };
 use super::{ElementRef, FaceRef, Mesh};
 use crate::error::CoreError;
@@ -106,18 +106,8 @@ pub fn insert_interface_along(
     let elements = shared.len();
     let n0 = mesh.nodes.len() - copy.len();
     let blocks = add_interface_blocks(mesh, &shapes, &shared, &bottom_faces, &top_of, name, law);
-    mesh.node_sets.insert(
-        format!("{name}.top"),
-        surface.iter().map(|n| top_of[n]).collect(),
-    );
-    mesh.node_sets.insert(format!("{name}.bottom"), surface);
-    mesh.validate()?;
-    Ok(InterfaceInsertion {
-        block: blocks[0],
-        blocks,
-        elements,
-        duplicated_nodes: mesh.nodes.len() - n0,
-    })
+    let top = surface.iter().map(|n| top_of[n]).collect();
+    finish_insertion(mesh, name, surface, top, blocks, elements, n0)
 }
 
 /// Every face of every solid element by its corner key.

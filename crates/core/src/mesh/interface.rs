@@ -200,8 +200,23 @@ pub fn insert_interface(
     update_node_sets(mesh, &copy);
     let elements = bottom_faces.len();
     let blocks = add_interface_blocks(mesh, &shapes, &shared, &bottom_faces, &copy, name, law);
-    mesh.node_sets
-        .insert(format!("{name}.top"), (n0..n0 + surface.len()).collect());
+    let top = (n0..n0 + surface.len()).collect();
+    finish_insertion(mesh, name, surface, top, blocks, elements, n0)
+}
+
+/// The node sets `name.bottom` (`surface`) and `name.top` (`top`), the
+/// mesh checked, and the record of an insertion that added the nodes from
+/// `n0` on.
+pub(super) fn finish_insertion(
+    mesh: &mut Mesh,
+    name: &str,
+    surface: Vec<usize>,
+    top: Vec<usize>,
+    blocks: Vec<usize>,
+    elements: usize,
+    n0: usize,
+) -> Result<InterfaceInsertion, CoreError> {
+    mesh.node_sets.insert(format!("{name}.top"), top);
     mesh.node_sets.insert(format!("{name}.bottom"), surface);
     mesh.validate()?;
     Ok(InterfaceInsertion {
