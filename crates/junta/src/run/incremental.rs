@@ -602,7 +602,11 @@ fn ending_of(
             } else if stopped {
                 EndReason::IncrementLimit
             } else if path_end == Some(PathEnd::Unloaded) {
-                EndReason::Unloaded
+                let last = engine.log.rows.last();
+                EndReason::Unloaded {
+                    failed: last.map_or(0, |r| r.failed),
+                    points: last.map_or(0, |r| r.points),
+                }
             } else if path_end == Some(PathEnd::IncrementLimit) {
                 EndReason::ArcLengthLimit(analysis.arc_length.max_increments)
             } else {

@@ -27,8 +27,17 @@ pub enum EndReason {
     /// The load program ran to its end.
     EndOfProgram,
     /// Path following brought the load factor back to zero after its
-    /// maximum: the structure carries no load any more.
-    Unloaded,
+    /// maximum, with `failed` of the model's `points` interface points
+    /// failed: the structure came apart when they all have; otherwise the
+    /// dissipation constraint unloaded it through its last softening
+    /// points, and the status line says so rather than that it carries no
+    /// load.
+    Unloaded {
+        /// Interface points failed at the last increment.
+        failed: usize,
+        /// Interface points of the model.
+        points: usize,
+    },
     /// Every interface point failed (`stop_when_separated`).
     Separated,
     /// An observer stopped the run, with its reason.
@@ -55,7 +64,7 @@ impl EndReason {
     /// The run's status.
     pub fn status(&self) -> Status {
         match self {
-            EndReason::EndOfProgram | EndReason::Unloaded => Status::Completed,
+            EndReason::EndOfProgram | EndReason::Unloaded { .. } => Status::Completed,
             EndReason::Failed(_) => Status::Failed,
             EndReason::Interrupted => Status::Interrupted,
             _ => Status::Stopped,
@@ -73,7 +82,10 @@ impl EndReason {
     pub fn line(&self) -> String {
         match self {
             EndReason::EndOfProgram => "completed".into(),
-            EndReason::Unloaded => "completed: the load factor fell back to zero after its maximum (the structure carries no load any more)".into(),
+            EndReason::Unloaded { failed, points } if failed >= points => "completed: the load factor fell back to zero after its maximum (every interface point has failed: the structure carries no load any more)".into(),
+            EndReason::Unloaded { failed, points } => format!(
+                "completed: the load factor fell back to zero after its maximum, with {failed} of {points} interface points failed: the structure has not come apart; the dissipation constraint unloaded it through its last softening points, and the path that reloads is not traced"
+            ),
             EndReason::Separated => "stopped: every interface point has failed".into(),
             EndReason::Requested(why) => format!("stopped: {why}"),
             EndReason::IncrementLimit => "stopped after the requested number of increments".into(),
@@ -385,7 +397,14 @@ mod tests {
     fn each_reason_has_its_status_and_line() {
         let all = [
             EndReason::EndOfProgram,
-            EndReason::Unloaded,
+            EndReason::Unloaded {
+                failed: 3,
+                points: 3,
+            },
+            EndReason::Unloaded {
+                failed: 1,
+                points: 3,
+            },
             EndReason::Separated,
             EndReason::Requested("enough".into()),
             EndReason::IncrementLimit,
