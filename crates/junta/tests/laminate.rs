@@ -1637,4 +1637,9 @@ fn cross_section_mistakes_name_the_key() {
         let e = build_model(&sf).err().expect(base).to_string();
         assert!(e.contains(says) && e.contains("cut.toml") && e.contains("laminate.base"), "{base}: {e}");
     }
+    // a line under solid plies: says what `line` is for
+    let text = format!("{T300}\n[laminate]\nbase = {{ type = \"line\", length = 1.0, divisions = [2] }}\nelement = \"h8\"\nmaterial = \"t300\"\nply_thickness = 0.1\nlayup = \"[0/90]\"\n");
+    let sf = SceneFile::parse(std::path::Path::new("cut.toml"), text).unwrap();
+    let e = build_model(&sf).err().expect("line with h8").to_string();
+    assert!(e.contains("cross-section of plane elements"), "{e}");
 }

@@ -284,8 +284,11 @@ pub fn segments(g: &BaseGeometry) -> Result<Vec<Segment>> {
                 surface: Some(Arc::new(Surface { mesh, base })),
             }])
         }
+        "line" => bail!(
+            "{at}: key `laminate.base.type`: `line` is the base of a cross-section of plane elements (cpe*, cps*, cax*); with solid plies use \"rectangle\", \"l_section\", \"ring\" or \"gmsh\""
+        ),
         other => bail!(
-            "{at}: key `laminate.base.type`: `{other}` is not valid; use \"rectangle\", \"l_section\", \"ring\" or \"gmsh\""
+            "{at}: key `laminate.base.type`: `{other}` is not valid; use \"rectangle\", \"l_section\", \"ring\" or \"gmsh\" (or, with plane elements, \"line\")"
         ),
     }
 }
