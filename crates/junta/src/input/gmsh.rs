@@ -592,6 +592,20 @@ impl Sections {
         c.expect_end("Elements")
     }
 
+    /// Element `r` into the element set of each physical group `groups`
+    /// of dimension `dim`.
+    fn add_to_groups(
+        &self,
+        sets: &mut BTreeMap<String, Vec<ElementRef>>,
+        dim: usize,
+        groups: &[i64],
+        r: ElementRef,
+    ) {
+        for &g in groups {
+            sets.entry(self.phys_name(dim, g)).or_default().push(r);
+        }
+    }
+
     /// Name of a physical group (`physical<dim>d_<tag>` when unnamed).
     fn phys_name(&self, dim: usize, tag: i64) -> String {
         self.physical_names
@@ -706,15 +720,15 @@ fn volume_blocks(c: &Cursor, s: &Sections, mesh: &mut Mesh) -> Result<(), GmshEr
                 let id = s.resolve(c, b.line, conn[k])?;
                 mesh.blocks[bi].connectivity.push(id);
             }
-            for &g in &groups {
-                element_sets
-                    .entry(s.phys_name(3, g))
-                    .or_default()
-                    .push(ElementRef {
-                        block: bi,
-                        element: e,
-                    });
-            }
+            s.add_to_groups(
+                &mut element_sets,
+                3,
+                &groups,
+                ElementRef {
+                    block: bi,
+                    element: e,
+                },
+            );
         }
     }
     mesh.element_sets = element_sets;
@@ -815,15 +829,15 @@ fn plane_blocks(c: &Cursor, s: &Sections, mesh: &mut Mesh) -> Result<(), GmshErr
             mesh.blocks[bi]
                 .connectivity
                 .extend(order.iter().map(|&k| ids[k]));
-            for &g in &groups {
-                element_sets
-                    .entry(s.phys_name(2, g))
-                    .or_default()
-                    .push(ElementRef {
-                        block: bi,
-                        element: e,
-                    });
-            }
+            s.add_to_groups(
+                &mut element_sets,
+                2,
+                &groups,
+                ElementRef {
+                    block: bi,
+                    element: e,
+                },
+            );
         }
     }
     mesh.element_sets = element_sets;
