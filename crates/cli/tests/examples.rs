@@ -56,6 +56,9 @@ examples! {
     plane_enf => "plane/enf_plane_strain.toml";
     plane_mmb => "plane/mmb50_plane_strain.toml";
     plane_tube_joint => "plane/tube_lap_joint.toml";
+    /// [run in the suite by plane_joint.rs]
+    #[ignore]
+    plane_tube_joint_failure => "plane/tube_joint_failure.toml";
     dcb_abaqus_deck => "delamination/dcb_abaqus.inp";
     dcb_arc => "delamination/dcb_arc.toml";
     dcb_coarse => "delamination/dcb_coarse.toml";

@@ -9,16 +9,9 @@ use common::*;
 
 /// (opening, load) rows of a run's curve.csv.
 fn curve(dir: &std::path::Path) -> Vec<(f64, f64)> {
-    let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
-    let mut lines = text.lines();
-    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |n: &str| head.iter().position(|h| *h == n).unwrap();
-    let (d, p) = (col("displacement"), col("reaction"));
-    lines
-        .map(|l| {
-            let f: Vec<&str> = l.split(',').collect();
-            (f[d].parse().unwrap(), f[p].parse().unwrap())
-        })
+    curve_columns(dir, ["displacement", "reaction"])
+        .into_iter()
+        .map(|[d, p]| (d, p))
         .collect()
 }
 

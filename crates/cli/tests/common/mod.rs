@@ -90,6 +90,25 @@ pub fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     p
 }
 
+/// The named columns of `DIR/curve.csv`, row by row, as numbers (an
+/// empty field reads as NaN); panics naming a column the file lacks.
+pub fn curve_columns<const N: usize>(dir: &Path, names: [&str; N]) -> Vec<[f64; N]> {
+    let text = std::fs::read_to_string(dir.join("curve.csv")).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let cols = names.map(|n| {
+        head.iter()
+            .position(|h| *h == n)
+            .unwrap_or_else(|| panic!("curve.csv has no column {n}"))
+    });
+    lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            cols.map(|c| f[c].parse().unwrap_or(f64::NAN))
+        })
+        .collect()
+}
+
 /// The lines of `DIR/curve.csv` (header included) without the wall-clock
 /// column `seconds`, found by its name: what a repeated or restarted run
 /// must reproduce bit for bit.
