@@ -81,21 +81,33 @@ struct RankPartition {
 struct LinearCache {
     /// Sum of the linear elements' matrices, in the pattern.
     values: Vec<f64>,
-    /// Linear elements by colour, with the offset of their matrix in `mats`
-    /// and of their thermal force in `thermal`.
-    linear_colors: Vec<Vec<(ElementRef, usize, usize)>>,
+    /// Linear elements by colour.
+    linear_colors: Vec<Vec<LinearElement>>,
     /// Nonlinear elements by colour.
     nonlinear_colors: Vec<Vec<ElementRef>>,
     /// Where the entries of each nonlinear element's matrix go in the
     /// pattern (`ScatterMap`), when they fit in [`SCATTER_MAP_ENTRIES`].
     nonlinear_map: Option<ScatterMap>,
-    /// Element matrices (packed upper triangles).
+    /// Element matrices over their kept dofs (packed upper triangles).
     mats: Vec<f64>,
+    /// Global component index (`3 node + c`) of each kept dof.
+    kept_dofs: Vec<usize>,
     /// Internal force of each linear element at zero displacement and
-    /// temperature factor 1 (minus its thermal force, `nd` values at the
-    /// third offset of `linear_colors`), when the assembler has a
-    /// temperature field: a linear element's force is `K_e u_e + theta f_e`.
+    /// temperature factor 1 (minus its thermal force, one value per kept
+    /// dof), when the assembler has a temperature field: a linear
+    /// element's force is `K_e u_e + theta f_e`.
     thermal: Vec<f64>,
+}
+
+/// A linear element of [`LinearCache`]: its dofs that its matrix or
+/// thermal force touch (a plane element's `z` components are left out),
+/// at `dofs` in `kept_dofs` and `thermal`, and its packed matrix over them
+/// at `mat` in `mats`.
+#[derive(Debug, Clone, Copy)]
+struct LinearElement {
+    dofs: usize,
+    len: usize,
+    mat: usize,
 }
 
 /// Largest number of element-matrix entries whose pattern positions
@@ -481,19 +493,15 @@ impl Assembler {
         for color in &cache.linear_colors {
             color.par_iter().for_each_init(
                 || (Vec::<f64>::new(), Vec::<f64>::new()),
-                |(ue, fe), &(er, off, toff)| {
-                    let conn = mesh.blocks[er.block].element(er.element);
-                    let nd = 3 * conn.len();
+                |(ue, fe), el| {
+                    let (nd, dofs) = (el.len, &cache.kept_dofs[el.dofs..el.dofs + el.len]);
                     ue.clear();
-                    ue.extend(
-                        conn.iter()
-                            .flat_map(|&node| u[3 * node..3 * node + 3].iter()),
-                    );
+                    ue.extend(dofs.iter().map(|&d| u[d]));
                     fe.clear();
                     fe.resize(nd, 0.0);
                     // packed upper triangle, row by row: the diagonal entry
                     // and the rest of the row, used for row a and column a
-                    let mut p = off;
+                    let mut p = el.mat;
                     for a in 0..nd {
                         let row = &cache.mats[p..p + nd - a];
                         p += nd - a;
@@ -507,13 +515,13 @@ impl Assembler {
                         fe[a] += acc;
                     }
                     if thermal {
-                        for (f, t) in fe.iter_mut().zip(&cache.thermal[toff..toff + nd]) {
+                        for (f, t) in fe.iter_mut().zip(&cache.thermal[el.dofs..el.dofs + nd]) {
                             *f += theta * t;
                         }
                     }
-                    for (a, &f) in fe.iter().enumerate() {
+                    for (&d, &f) in dofs.iter().zip(fe.iter()) {
                         // SAFETY: elements of one colour share no node.
-                        unsafe { fv.add(3 * conn[a / 3] + a % 3, f) };
+                        unsafe { fv.add(d, f) };
                     }
                 },
             );
@@ -541,6 +549,7 @@ impl Assembler {
         let mut linear_colors = Vec::new();
         let mut nonlinear_colors = Vec::new();
         let mut mats = Vec::new();
+        let mut kept_dofs = Vec::new();
         let mut thermal = Vec::new();
         let mut values = vec![0.0; self.pattern.values.len()];
         for color in &self.colors {
@@ -595,13 +604,25 @@ impl Assembler {
                     non.push(*er);
                     continue;
                 }
-                lin.push((*er, mats.len(), thermal.len()));
-                if self.temperature.is_some() {
+                let with_thermal = self.temperature.is_some();
+                let kept: Vec<usize> = (0..nd)
+                    .filter(|&a| {
+                        ke[a * nd..(a + 1) * nd].iter().any(|v| *v != 0.0)
+                            || (with_thermal && s.f[a] != 0.0)
+                    })
+                    .collect();
+                lin.push(LinearElement {
+                    dofs: kept_dofs.len(),
+                    len: kept.len(),
+                    mat: mats.len(),
+                });
+                kept_dofs.extend(kept.iter().map(|&a| s.dofs[a]));
+                if with_thermal {
                     // f_int(u = 0) at temperature factor 1: minus the thermal force
-                    thermal.extend_from_slice(&s.f[..nd]);
+                    thermal.extend(kept.iter().map(|&a| s.f[a]));
                 }
-                for a in 0..nd {
-                    mats.extend_from_slice(&ke[a * nd + a..(a + 1) * nd]);
+                for (i, &a) in kept.iter().enumerate() {
+                    mats.extend(kept[i..].iter().map(|&b| ke[a * nd + b]));
                 }
                 let (cp, ri) = (&self.pattern.col_ptr, &self.pattern.row_idx);
                 scatter_upper(cp, ri, dofs, &s.dofs[..nd], ke, |p, v, _| values[p] += v);
@@ -620,6 +641,7 @@ impl Assembler {
             nonlinear_colors,
             nonlinear_map,
             mats,
+            kept_dofs,
             thermal,
         })
     }

@@ -185,6 +185,30 @@ pub trait Element: Send + Sync + std::fmt::Debug {
     fn check_geometry(&self, coords: &[[f64; 3]]) -> Result<(), ElementError>;
     /// Integration-point output for post-processing (may allocate).
     fn point_outputs(&self, ctx: &ElementContext<'_>) -> Result<Vec<PointOutput>, ElementError>;
+    /// The energy the element's laws have dissipated (their
+    /// `dissipated_energy` and `viscous_energy` outputs times each point's
+    /// reference area, `area` under small strain), from the committed
+    /// state. By default from [`Element::point_outputs`]; an element that
+    /// can skip the other outputs overrides it (the drivers ask every
+    /// increment).
+    fn dissipated_energy(&self, ctx: &ElementContext<'_>) -> Result<f64, ElementError> {
+        use crate::law::output::{DISSIPATED_ENERGY, VISCOUS_ENERGY};
+        let mut total = 0.0;
+        for p in self.point_outputs(ctx)? {
+            // under nlgeom the reference area: a failed point keeps its
+            // energy when its faces move apart
+            let area = p
+                .get("reference_area")
+                .or_else(|| p.get("area"))
+                .map_or(0.0, |a| a[0]);
+            for name in [DISSIPATED_ENERGY, VISCOUS_ENERGY] {
+                if let Some(d) = p.get(name) {
+                    total += d[0] * area;
+                }
+            }
+        }
+        Ok(total)
+    }
     /// A representative Young's modulus of the element's material (solids),
     /// for diagnostics such as the penalty advisor.
     fn reference_modulus(&self) -> Option<f64> {

@@ -441,21 +441,45 @@ impl Model {
     /// [`crate::law::output`]) times the point's `area`. Zero for a model
     /// whose laws dissipate nothing. `u` is the full displacement vector.
     pub fn dissipated_energy(&self, u: &[f64], state: &StateStore) -> Result<f64, CoreError> {
-        use crate::law::output::{DISSIPATED_ENERGY, VISCOUS_ENERGY};
         let mut total = 0.0;
-        self.for_each_interface_point(u, state, |p| {
-            // under nlgeom the reference area (see `interface_energy` in
-            // the run API): a failed point keeps its energy
-            let area = p
-                .get("reference_area")
-                .or_else(|| p.get("area"))
-                .map_or(0.0, |a| a[0]);
-            for name in [DISSIPATED_ENERGY, VISCOUS_ENERGY] {
-                if let Some(d) = p.get(name) {
-                    total += d[0] * area;
-                }
+        let mut coords = Vec::new();
+        let mut disp = Vec::new();
+        for (b, block) in self.mesh.blocks.iter().enumerate() {
+            if !block.shape.is_interface() {
+                continue;
             }
-        })?;
+            let el = &self.elements[b];
+            if let Some(law) = el.batch_law() {
+                // one call for the block's outputs, none per point
+                let span = state.block_offsets[b]
+                    ..state.block_offsets[b] + block.len() * state.per_element[b];
+                law.prefetch_outputs(&state.committed[span]);
+            }
+            for e in 0..block.len() {
+                crate::assembly::gather_nodes(
+                    &self.mesh,
+                    block.element(e),
+                    u,
+                    &mut coords,
+                    &mut disp,
+                );
+                let ctx = crate::element::ElementContext {
+                    coords: &coords,
+                    disp: &disp,
+                    state_committed: &state.committed[state.range(b, e)],
+                    step: crate::element::StepInfo::default(),
+                    law_responses: None,
+                    temperature: None,
+                };
+                total += el
+                    .dissipated_energy(&ctx)
+                    .map_err(|source| CoreError::Element {
+                        block: block.name.clone(),
+                        element: e,
+                        source,
+                    })?;
+            }
+        }
         Ok(total)
     }
 

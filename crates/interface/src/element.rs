@@ -787,10 +787,13 @@ impl Element for InterfaceElement {
         // K = [[B - H, -B - H], [H - B, B + H]] over (bottom, top) nodes,
         // with the 3m x 3m blocks B = sum_q N_a N_b G_q da and (finite
         // kinematics only) H, the frame and area terms, accumulated first
-        let mut bk = [[0.0f64; MAX_FACE_DOFS]; MAX_FACE_DOFS];
-        let mut hk = [[0.0f64; MAX_FACE_DOFS]; MAX_FACE_DOFS];
         let want_k = k.is_some();
         let finite = self.kinematics == Kinematics::Finite;
+        // the blocks only where they are used: zeroing both costs about as
+        // much as a small element's whole residual
+        let mut bk: Option<FaceBlock> = want_k.then(|| [[0.0; MAX_FACE_DOFS]; MAX_FACE_DOFS]);
+        let mut hk: Option<FaceBlock> =
+            (want_k && finite).then(|| [[0.0; MAX_FACE_DOFS]; MAX_FACE_DOFS]);
         let sl = self.law.state_len();
         let symmetric =
             !finite && self.law.tangent_kind() != MatrixKind::General && !ctx.step.exact_tangent;
@@ -820,7 +823,7 @@ impl Element for InterfaceElement {
                     f_int[3 * (m + a) + c] += v;
                 }
             }
-            if want_k {
+            if let Some(bk) = bk.as_mut() {
                 // symmetric storage: assemble the symmetric part of the
                 // law's tangent (the tangent itself for symmetric laws)
                 let mut dt = r.tangent;
@@ -831,18 +834,18 @@ impl Element for InterfaceElement {
                         dt[j][i] = a;
                     }
                 }
-                self.add_jump_block(&mut bk, &n, &fr, &dt, da);
-                if finite {
+                self.add_jump_block(bk, &n, &fr, &dt, da);
+                if let Some(hk) = hk.as_mut() {
                     let g = self.gap(&n, ctx.disp);
                     let [dx, de] = frame_derivatives(&fr);
                     let px = frame_force_derivative(&fr, &dx, r.traction, &dt, g);
                     let pe = frame_force_derivative(&fr, &de, r.traction, &dt, g);
-                    self.add_frame_block(&mut hk, &n, &dn, [&px, &pe], self.weights[q]);
+                    self.add_frame_block(hk, &n, &dn, [&px, &pe], self.weights[q]);
                 }
             }
         }
-        if let Some(k) = k {
-            self.write_tangent(k, &bk, finite.then_some(&hk));
+        if let (Some(k), Some(bk)) = (k, &bk) {
+            self.write_tangent(k, bk, hk.as_ref());
             if finite && self.law.tangent_kind() != MatrixKind::General && !ctx.step.exact_tangent {
                 self.skew.record(scaled_skew(k, 6 * m));
                 symmetrise(k, 6 * m);
@@ -939,6 +942,40 @@ impl Element for InterfaceElement {
             });
         }
         Ok(out)
+    }
+
+    /// The laws' dissipated and viscous energies per area times each
+    /// point's reference area (the mid-surface of the reference
+    /// coordinates, as `area` under small strain and `reference_area`
+    /// under nlgeom in [`Element::point_outputs`]), without the other
+    /// outputs.
+    fn dissipated_energy(&self, ctx: &ElementContext<'_>) -> Result<f64, ElementError> {
+        use junta_core::law::output::{DISSIPATED_ENERGY, VISCOUS_ENERGY};
+        let names = self.law.output_names();
+        let nl = names.len().min(16);
+        // in the order point_outputs' readers add them, so that the sum is
+        // the same to the last bit
+        let wanted: Vec<usize> = [DISSIPATED_ENERGY, VISCOUS_ENERGY]
+            .iter()
+            .filter_map(|w| names[..nl].iter().position(|n| n == w))
+            .collect();
+        if wanted.is_empty() {
+            return Ok(0.0);
+        }
+        let sl = self.law.state_len();
+        let mut law_out = [0.0; 16];
+        let mut total = 0.0;
+        for q in 0..self.points.len() {
+            let area = self.frame(ctx.coords, q, &mut [0.0; 9])?.jac * self.weights[q];
+            self.law.outputs(
+                &ctx.state_committed[q * sl..(q + 1) * sl],
+                &mut law_out[..nl],
+            );
+            for &i in &wanted {
+                total += law_out[i] * area;
+            }
+        }
+        Ok(total)
     }
 
     fn interface_stiffness(&self) -> Option<[f64; 3]> {
