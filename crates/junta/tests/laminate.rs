@@ -1631,6 +1631,7 @@ fn cross_section_mistakes_name_the_key() {
         ("{ type = \"l_section\", inner_radius = 1.0, arms = [1.0, 1.0], divisions = [1, 2, 1, 1] }", "give 3 numbers"),
         ("{ type = \"ring\", inner_radius = 1.0, divisions = [3] }", "even number"),
         ("{ type = \"line\", length = 1.0, divisions = [2], grading = [2.0, 1.0] }", "give one ratio"),
+        ("{ type = \"ring\", inner_radius = 1.0, width = 2.0, divisions = [4] }", "`laminate.base.width` is not read with type = \"ring\" in a cross-section (a cross-section's width is `[model] thickness`)"),
     ] {
         let text = format!("{T300}\n[laminate]\nbase = {base}\nelement = \"cpe4\"\nmaterial = \"t300\"\nply_thickness = 0.1\nlayup = \"[0/90]\"\n");
         let sf = SceneFile::parse(std::path::Path::new("cut.toml"), text).unwrap();
@@ -1642,4 +1643,25 @@ fn cross_section_mistakes_name_the_key() {
     let sf = SceneFile::parse(std::path::Path::new("cut.toml"), text).unwrap();
     let e = build_model(&sf).err().expect("line with h8").to_string();
     assert!(e.contains("cross-section of plane elements"), "{e}");
+}
+
+/// A base key that its type does not read (one written for another type)
+/// is refused, naming it and the keys that type reads, rather than
+/// ignored.
+#[test]
+fn base_keys_of_another_type_are_refused() {
+    for (base, key, reads) in [
+        ("{ type = \"rectangle\", size = [1.0, 1.0], divisions = [1, 1], inner_radius = 2.0 }", "inner_radius", "`size`, `divisions`, `origin`"),
+        ("{ type = \"ring\", inner_radius = 1.0, width = 1.0, divisions = [4, 1], size = [1.0, 1.0] }", "size", "`inner_radius`, `width`, `sweep`, `divisions`"),
+        ("{ type = \"l_section\", inner_radius = 1.0, arms = [1.0, 1.0], width = 1.0, divisions = [1, 2, 1, 1], origin = [1.0, 0.0, 0.0] }", "origin", "`inner_radius`, `arms`, `width`, `divisions`"),
+        ("{ type = \"rectangle\", size = [1.0, 1.0], divisions = [1, 1], flip = true }", "flip", "`size`, `divisions`, `origin`"),
+    ] {
+        let text = format!("{T300}\n[laminate]\nbase = {base}\nelement = \"h8\"\nmaterial = \"t300\"\nply_thickness = 0.1\nlayup = \"[0/90]\"\n");
+        let sf = SceneFile::parse(std::path::Path::new("cut.toml"), text).unwrap();
+        let e = build_model(&sf).err().expect(base).to_string();
+        assert!(
+            e.contains("cut.toml") && e.contains(&format!("`laminate.base.{key}` is not read")) && e.contains(reads),
+            "{base}: {e}"
+        );
+    }
 }

@@ -502,10 +502,12 @@ fn base_grading(sf: &SceneFile, b: &BaseSpec) -> Result<[f64; 2]> {
 
 fn base_geometry<'a>(sf: &SceneFile, spec: &'a LaminateSpec) -> Result<base::BaseGeometry<'a>> {
     let b = &spec.base;
+    let plane = is_cross_section(sf, spec)?;
+    refuse_unused_base_keys(sf, b, plane)?;
     Ok(base::BaseGeometry {
         kind: b.kind.get_ref(),
         at: sf.at(b.kind.span()),
-        plane: is_cross_section(sf, spec)?,
+        plane,
         length: b.length,
         size: b.size,
         divisions: &b.divisions,
@@ -521,6 +523,69 @@ fn base_geometry<'a>(sf: &SceneFile, spec: &'a LaminateSpec) -> Result<base::Bas
             flip: b.flip.unwrap_or(false),
         },
     })
+}
+
+/// The `[laminate.base]` keys each base type reads (`type` and
+/// `grading`, checked by [`base_grading`], aside), in a solid laminate and
+/// in a cross-section of plane elements; `None` for a type that does not
+/// exist there (its own message comes from [`base::segments`]).
+fn base_keys(kind: &str, plane: bool) -> Option<&'static [&'static str]> {
+    Some(match (kind, plane) {
+        ("rectangle", false) => &["size", "divisions", "origin"],
+        ("line", true) => &["length", "divisions", "origin"],
+        ("l_section", false) => &["inner_radius", "arms", "width", "divisions"],
+        ("l_section", true) => &["inner_radius", "arms", "divisions"],
+        ("ring", false) => &["inner_radius", "width", "sweep", "divisions"],
+        ("ring", true) => &["inner_radius", "sweep", "divisions"],
+        ("gmsh", false) => &[
+            "file",
+            "normal_towards",
+            "normal_away_from",
+            "flip",
+            "fibre_direction",
+            "transverse_direction",
+        ],
+        _ => return None,
+    })
+}
+
+/// A `[laminate.base]` key that its type does not read is an error naming
+/// it and the keys that type reads (it would otherwise be ignored). An
+/// `origin` of `[0, 0, 0]` cannot be told from none and passes.
+fn refuse_unused_base_keys(sf: &SceneFile, b: &BaseSpec, plane: bool) -> Result<()> {
+    let kind = b.kind.get_ref().as_str();
+    let Some(reads) = base_keys(kind, plane) else {
+        return Ok(());
+    };
+    let given = [
+        ("size", b.size.is_some()),
+        ("length", b.length.is_some()),
+        ("divisions", !b.divisions.is_empty()),
+        ("origin", b.origin != [0.0; 3]),
+        ("inner_radius", b.inner_radius.is_some()),
+        ("arms", b.arms.is_some()),
+        ("width", b.width.is_some()),
+        ("sweep", b.sweep.is_some()),
+        ("file", b.file.is_some()),
+        ("normal_towards", b.normal_towards.is_some()),
+        ("normal_away_from", b.normal_away_from.is_some()),
+        ("flip", b.flip.is_some()),
+        ("fibre_direction", b.fibre_direction.is_some()),
+        ("transverse_direction", b.transverse_direction.is_some()),
+    ];
+    if let Some((key, _)) = given.iter().find(|(k, g)| *g && !reads.contains(k)) {
+        let section = if plane { " in a cross-section" } else { "" };
+        let hint = match (*key, plane) {
+            ("width", true) => " (a cross-section's width is `[model] thickness`)",
+            _ => "",
+        };
+        bail!(
+            "{}: key `laminate.base.{key}` is not read with type = \"{kind}\"{section}{hint}; that type reads {}",
+            sf.at(b.kind.span()),
+            reads.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
+        );
+    }
+    Ok(())
 }
 
 /// The part (block and element set) of ply `k` on segment `s`: `ply_K`
