@@ -634,148 +634,9 @@ impl InterfaceElement {
         Ok(Some(&own[..np]))
     }
 
-    /// `B += N_a N_b theta D theta^T da`, the jump block of one point.
-    fn add_jump_block(&self, bk: &mut FaceBlock, n: &[f64; 9], fr: &Frame, dt: &M3, da: f64) {
-        let m = self.m();
-        let e = &fr.e;
-        // G = theta D theta^T (global 3x3)
-        let mut g = [[0.0; 3]; 3];
-        for c in 0..3 {
-            for d in 0..3 {
-                let mut s = 0.0;
-                for i in 0..3 {
-                    for j in 0..3 {
-                        s += e[i][c] * dt[i][j] * e[j][d];
-                    }
-                }
-                g[c][d] = s * da;
-            }
-        }
-        for a in 0..m {
-            if n[a] == 0.0 {
-                continue;
-            }
-            for b in 0..m {
-                let w = n[a] * n[b];
-                for (c, gc) in g.iter().enumerate() {
-                    let row = &mut bk[3 * a + c][3 * b..3 * b + 3];
-                    for (x, gcd) in row.iter_mut().zip(gc) {
-                        *x += w * gcd;
-                    }
-                }
-            }
-        }
-    }
-
-    /// `H += w N_a (P_xi dN_b/dxi + P_eta dN_b/deta) / 2`, the frame and
-    /// area block of one point (finite kinematics; weight `w`).
-    fn add_frame_block(
-        &self,
-        hk: &mut FaceBlock,
-        n: &[f64; 9],
-        dn: &[[f64; 2]; 9],
-        p: [&M3; 2],
-        w: f64,
-    ) {
-        let m = self.m();
-        for a in 0..m {
-            if n[a] == 0.0 {
-                continue;
-            }
-            let s = 0.5 * w * n[a];
-            for b in 0..m {
-                let (sx, se) = (s * dn[b][0], s * dn[b][1]);
-                for c in 0..3 {
-                    let row = &mut hk[3 * a + c][3 * b..3 * b + 3];
-                    for (d, x) in row.iter_mut().enumerate() {
-                        *x += sx * p[0][c][d] + se * p[1][c][d];
-                    }
-                }
-            }
-        }
-    }
-
-    /// Write `K = [[B - H, -B - H], [H - B, B + H]]` (row-major, 6m x 6m);
-    /// `H = 0` (`None`) under small kinematics.
-    fn write_tangent(&self, k: &mut [f64], bk: &FaceBlock, hk: Option<&FaceBlock>) {
-        let h = 3 * self.m();
-        let nd = 2 * h;
-        for i in 0..h {
-            let (top, bottom) = (i * nd, (h + i) * nd);
-            for j in 0..h {
-                let v = bk[i][j];
-                match hk {
-                    None => {
-                        k[top + j] = v;
-                        k[top + h + j] = -v;
-                        k[bottom + j] = -v;
-                        k[bottom + h + j] = v;
-                    }
-                    Some(hk) => {
-                        let g = hk[i][j];
-                        k[top + j] = v - g;
-                        k[top + h + j] = -v - g;
-                        k[bottom + j] = g - v;
-                        k[bottom + h + j] = v + g;
-                    }
-                }
-            }
-        }
-    }
-}
-
-/// The largest `|k_ij - k_ji| / sqrt(|k_ii k_jj|)` of a row-major `n x n`.
-fn scaled_skew(k: &[f64], n: usize) -> f64 {
-    let mut largest: f64 = 0.0;
-    for i in 0..n {
-        for j in i + 1..n {
-            let scale = (k[i * n + i] * k[j * n + j]).abs().sqrt();
-            if scale > 0.0 {
-                largest = largest.max((k[i * n + j] - k[j * n + i]).abs() / scale);
-            }
-        }
-    }
-    largest
-}
-
-/// `k = (k + k^T) / 2` in place, row-major `n x n`.
-fn symmetrise(k: &mut [f64], n: usize) {
-    for i in 0..n {
-        for j in i + 1..n {
-            let a = 0.5 * (k[i * n + j] + k[j * n + i]);
-            k[i * n + j] = a;
-            k[j * n + i] = a;
-        }
-    }
-}
-
-/// Most dofs of one face (INTER18: 9 nodes).
-const MAX_FACE_DOFS: usize = 3 * 9;
-
-/// A `3m x 3m` block over one face's dofs.
-type FaceBlock = [[f64; MAX_FACE_DOFS]; MAX_FACE_DOFS];
-
-/// Most integration points of an interface element (INTER18: 9).
-const MAX_POINTS: usize = 16;
-
-impl Element for InterfaceElement {
-    fn key(&self) -> &'static str {
-        self.key
-    }
-    fn shape(&self) -> CellShape {
-        self.shape
-    }
-    fn num_points(&self) -> usize {
-        self.points.len()
-    }
-    fn state_len(&self) -> usize {
-        self.points.len() * self.law.state_len()
-    }
-    fn init_state(&self, state: &mut [f64]) {
-        self.law.init_states(state);
-    }
-
-    fn compute(
+    /// [`Element::compute`] with the face blocks in `N x N` arrays
+    /// ([`FaceBlock`]).
+    fn compute_sized<const N: usize>(
         &self,
         ctx: &ElementContext<'_>,
         state_trial: &mut [f64],
@@ -791,9 +652,8 @@ impl Element for InterfaceElement {
         let finite = self.kinematics == Kinematics::Finite;
         // the blocks only where they are used: zeroing both costs about as
         // much as a small element's whole residual
-        let mut bk: Option<FaceBlock> = want_k.then(|| [[0.0; MAX_FACE_DOFS]; MAX_FACE_DOFS]);
-        let mut hk: Option<FaceBlock> =
-            (want_k && finite).then(|| [[0.0; MAX_FACE_DOFS]; MAX_FACE_DOFS]);
+        let mut bk: Option<FaceBlock<N>> = want_k.then(|| [[0.0; N]; N]);
+        let mut hk: Option<FaceBlock<N>> = (want_k && finite).then(|| [[0.0; N]; N]);
         let sl = self.law.state_len();
         let symmetric =
             !finite && self.law.tangent_kind() != MatrixKind::General && !ctx.step.exact_tangent;
@@ -852,6 +712,176 @@ impl Element for InterfaceElement {
             }
         }
         Ok(())
+    }
+
+    /// `B += N_a N_b theta D theta^T da`, the jump block of one point.
+    fn add_jump_block<const N: usize>(
+        &self,
+        bk: &mut FaceBlock<N>,
+        n: &[f64; 9],
+        fr: &Frame,
+        dt: &M3,
+        da: f64,
+    ) {
+        let m = self.m();
+        let e = &fr.e;
+        // G = theta D theta^T (global 3x3)
+        let mut g = [[0.0; 3]; 3];
+        for c in 0..3 {
+            for d in 0..3 {
+                let mut s = 0.0;
+                for i in 0..3 {
+                    for j in 0..3 {
+                        s += e[i][c] * dt[i][j] * e[j][d];
+                    }
+                }
+                g[c][d] = s * da;
+            }
+        }
+        for a in 0..m {
+            if n[a] == 0.0 {
+                continue;
+            }
+            for b in 0..m {
+                let w = n[a] * n[b];
+                for (c, gc) in g.iter().enumerate() {
+                    let row = &mut bk[3 * a + c][3 * b..3 * b + 3];
+                    for (x, gcd) in row.iter_mut().zip(gc) {
+                        *x += w * gcd;
+                    }
+                }
+            }
+        }
+    }
+
+    /// `H += w N_a (P_xi dN_b/dxi + P_eta dN_b/deta) / 2`, the frame and
+    /// area block of one point (finite kinematics; weight `w`).
+    fn add_frame_block<const N: usize>(
+        &self,
+        hk: &mut FaceBlock<N>,
+        n: &[f64; 9],
+        dn: &[[f64; 2]; 9],
+        p: [&M3; 2],
+        w: f64,
+    ) {
+        let m = self.m();
+        for a in 0..m {
+            if n[a] == 0.0 {
+                continue;
+            }
+            let s = 0.5 * w * n[a];
+            for b in 0..m {
+                let (sx, se) = (s * dn[b][0], s * dn[b][1]);
+                for c in 0..3 {
+                    let row = &mut hk[3 * a + c][3 * b..3 * b + 3];
+                    for (d, x) in row.iter_mut().enumerate() {
+                        *x += sx * p[0][c][d] + se * p[1][c][d];
+                    }
+                }
+            }
+        }
+    }
+
+    /// Write `K = [[B - H, -B - H], [H - B, B + H]]` (row-major, 6m x 6m);
+    /// `H = 0` (`None`) under small kinematics.
+    fn write_tangent<const N: usize>(
+        &self,
+        k: &mut [f64],
+        bk: &FaceBlock<N>,
+        hk: Option<&FaceBlock<N>>,
+    ) {
+        let h = 3 * self.m();
+        let nd = 2 * h;
+        for i in 0..h {
+            let (top, bottom) = (i * nd, (h + i) * nd);
+            for j in 0..h {
+                let v = bk[i][j];
+                match hk {
+                    None => {
+                        k[top + j] = v;
+                        k[top + h + j] = -v;
+                        k[bottom + j] = -v;
+                        k[bottom + h + j] = v;
+                    }
+                    Some(hk) => {
+                        let g = hk[i][j];
+                        k[top + j] = v - g;
+                        k[top + h + j] = -v - g;
+                        k[bottom + j] = g - v;
+                        k[bottom + h + j] = v + g;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The largest `|k_ij - k_ji| / sqrt(|k_ii k_jj|)` of a row-major `n x n`.
+fn scaled_skew(k: &[f64], n: usize) -> f64 {
+    let mut largest: f64 = 0.0;
+    for i in 0..n {
+        for j in i + 1..n {
+            let scale = (k[i * n + i] * k[j * n + j]).abs().sqrt();
+            if scale > 0.0 {
+                largest = largest.max((k[i * n + j] - k[j * n + i]).abs() / scale);
+            }
+        }
+    }
+    largest
+}
+
+/// `k = (k + k^T) / 2` in place, row-major `n x n`.
+fn symmetrise(k: &mut [f64], n: usize) {
+    for i in 0..n {
+        for j in i + 1..n {
+            let a = 0.5 * (k[i * n + j] + k[j * n + i]);
+            k[i * n + j] = a;
+            k[j * n + i] = a;
+        }
+    }
+}
+
+/// Most dofs of one face (INTER18: 9 nodes).
+const MAX_FACE_DOFS: usize = 3 * 9;
+
+/// A `3m x 3m` block over one face's dofs, in an `N x N` array with
+/// `3m <= N`: [`InterfaceElement::compute`] takes the smallest of 12, 18
+/// and [`MAX_FACE_DOFS`] that holds it (zeroing the largest costs a small
+/// element as much as its whole residual).
+type FaceBlock<const N: usize> = [[f64; N]; N];
+
+/// Most integration points of an interface element (INTER18: 9).
+const MAX_POINTS: usize = 16;
+
+impl Element for InterfaceElement {
+    fn key(&self) -> &'static str {
+        self.key
+    }
+    fn shape(&self) -> CellShape {
+        self.shape
+    }
+    fn num_points(&self) -> usize {
+        self.points.len()
+    }
+    fn state_len(&self) -> usize {
+        self.points.len() * self.law.state_len()
+    }
+    fn init_state(&self, state: &mut [f64]) {
+        self.law.init_states(state);
+    }
+
+    fn compute(
+        &self,
+        ctx: &ElementContext<'_>,
+        state_trial: &mut [f64],
+        f_int: &mut [f64],
+        k: Option<&mut [f64]>,
+    ) -> Result<(), ElementError> {
+        match 3 * self.m() {
+            0..=12 => self.compute_sized::<12>(ctx, state_trial, f_int, k),
+            13..=18 => self.compute_sized::<18>(ctx, state_trial, f_int, k),
+            _ => self.compute_sized::<MAX_FACE_DOFS>(ctx, state_trial, f_int, k),
+        }
     }
 
     fn batch_law(&self) -> Option<&dyn InterfaceLaw> {
