@@ -221,6 +221,71 @@ fn plane_strain_enf_against_beam_theory_and_the_3d_slab() {
     );
 }
 
+/// The ENF's peak by corrected beam theory in plane strain: the
+/// propagation load `P = 4 b sqrt(E11' h^3 G_IIc) / (3 a_e)` at the
+/// precrack `a_e = a0 + 0.42 chi h` (Wang & Williams 1992, the mode II
+/// crack-tip rotation; `chi` as for the DCB, BENCHMARKS.md section 4). With
+/// `a0 = 0.75 L` the propagation branch is stable, so this is the peak.
+fn enf_cbt_peak() -> f64 {
+    let (e11, e22, g13, nu13) = (122700.0f64, 10100.0f64, 5500.0f64, 0.25f64);
+    let (b, h, a0, giic) = (25.4f64, 1.56f64, 37.5f64, 1.719f64);
+    let e = e11 / (1.0 - nu13 * nu13 * e22 / e11);
+    let gamma = 1.18 * (e * e22).sqrt() / g13;
+    let chi = (e / (11.0 * g13) * (3.0 - 2.0 * (gamma / (1.0 + gamma)).powi(2))).sqrt();
+    4.0 * b * (e * h.powi(3) * giic).sqrt() / (3.0 * (a0 + 0.42 * chi * h))
+}
+
+/// The ENF example's peak is 4.6 % under corrected beam theory (786.8 N),
+/// and the gap is its cohesive zone, not the model: at the material's
+/// shear strength S = 100 MPa the process zone is 3.9 mm long at the peak,
+/// against 12.5 mm from the precrack's tip to the load point. Raising S
+/// (with the bond's elements shrunk with the zone) shrinks it as `1 / S^2`
+/// and the peak reaches beam theory: measured -1.35 % at S = 200 MPa
+/// (zone 1.5 mm, 0.21 mm elements), +0.3 % at S = 400 MPa (0.67 mm, 0.10
+/// mm elements), the LEFM limit that beam theory describes.
+#[test]
+fn plane_strain_enf_reaches_corrected_beam_theory_as_its_process_zone_shrinks() {
+    let text =
+        std::fs::read_to_string(repo().join("examples/plane/enf_plane_strain.toml")).unwrap();
+    let want = enf_cbt_peak();
+    let mut errors = Vec::new();
+    for (strength, divisions) in [(200.0, 480), (400.0, 960)] {
+        let scene = text
+            .replace("S = 100.0", &format!("S = {strength:.1}"))
+            .replace(
+                "divisions = [240, 1]",
+                &format!("divisions = [{divisions}, 1]"),
+            )
+            .replace(
+                "\"../delamination/enf_beam_theory.csv\"",
+                "\"enf_beam_theory.csv\"",
+            );
+        assert_ne!(scene, text);
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::copy(
+            repo().join("examples/delamination/enf_beam_theory.csv"),
+            dir.path().join("enf_beam_theory.csv"),
+        )
+        .unwrap();
+        let input = write(dir.path(), "enf.toml", &scene);
+        let out = dir.path().join("out");
+        let s = run_ok(&input, &out);
+        assert_eq!(s["status"], "completed", "{s}");
+        let (_, p) = peak(&curve(&out));
+        errors.push((p - want) / want);
+    }
+    let [e200, e400] = [errors[0], errors[1]];
+    assert!(
+        e200 < 0.0 && e200.abs() < 0.02,
+        "S = 200: peak error {e200:.4} against {want:.1} N"
+    );
+    assert!(e400.abs() < 0.01, "S = 400: peak error {e400:.4}");
+    assert!(
+        e400.abs() < e200.abs(),
+        "the error shrinks with the zone: {e200:.4}, {e400:.4}"
+    );
+}
+
 /// Corrected beam theory of the MMB (Reeder & Crews; BK), as
 /// `examples/delamination/make_mmb.py` writes it, in plane strain (`E11' =
 /// E11 / (1 - nu13 nu31)`, 3 the width): the lever load at which `G_I +
