@@ -408,9 +408,6 @@ impl PlaneElement {
         build: &ElementBuild<'_>,
     ) -> Result<Self, CoreError> {
         let incompatible = key.ends_with('i');
-        if incompatible {
-            crate::small_strain_only(key, build.kinematics)?;
-        }
         let bad = |message: String| CoreError::InvalidParameters {
             kind: "element",
             key: key.into(),
@@ -707,6 +704,15 @@ impl Element for PlaneElement {
     fn kinematics(&self) -> Kinematics {
         self.kinematics
     }
+    /// Under `nlgeom` the incompatible modes' 4 parameters
+    /// ([`incompatible`]); none otherwise.
+    fn state_len(&self) -> usize {
+        if self.incompatible && self.kinematics == Kinematics::Finite {
+            4
+        } else {
+            0
+        }
+    }
     /// Symmetric positive definite; under `nlgeom` the geometric stiffness
     /// makes it indefinite under compression.
     fn tangent_kind(&self) -> junta_core::MatrixKind {
@@ -719,7 +725,7 @@ impl Element for PlaneElement {
     fn compute(
         &self,
         ctx: &ElementContext<'_>,
-        _state_trial: &mut [f64],
+        state_trial: &mut [f64],
         f_int: &mut [f64],
         mut k: Option<&mut [f64]>,
     ) -> Result<(), ElementError> {
@@ -730,11 +736,13 @@ impl Element for PlaneElement {
         if let Some(k) = k.as_deref_mut() {
             k[..ndof * ndof].fill(0.0);
         }
-        if self.kinematics == Kinematics::Finite {
-            return self.compute_finite(ctx, f_int, k);
-        }
-        if self.incompatible {
-            return self.compute_incompatible(ctx, f_int, k);
+        match (self.kinematics, self.incompatible) {
+            (Kinematics::Finite, true) => {
+                return self.compute_finite_incompatible(ctx, state_trial, f_int, k)
+            }
+            (Kinematics::Finite, false) => return self.compute_finite(ctx, f_int, k),
+            (Kinematics::Small, true) => return self.compute_incompatible(ctx, f_int, k),
+            (Kinematics::Small, false) => {}
         }
         let axi = self.section == Section::Axisymmetric;
         let mut g = [[0.0; 2]; MAX_NODES];
@@ -795,8 +803,10 @@ impl Element for PlaneElement {
     }
 
     fn point_outputs(&self, ctx: &ElementContext<'_>) -> Result<Vec<PointOutput>, ElementError> {
-        if self.incompatible {
-            return self.point_outputs_incompatible(ctx);
+        match (self.kinematics, self.incompatible) {
+            (Kinematics::Finite, true) => return self.point_outputs_finite_incompatible(ctx),
+            (Kinematics::Small, true) => return self.point_outputs_incompatible(ctx),
+            _ => {}
         }
         let mut g = [[0.0; 2]; MAX_NODES];
         let mut out = Vec::with_capacity(self.points.len());
@@ -839,6 +849,18 @@ impl PlaneElement {
         ctx: &ElementContext<'_>,
     ) -> PointOutput {
         let st = self.stretch(p, g, x, ctx.disp);
+        self.finite_output_of(p, &st, x, vol, ctx)
+    }
+
+    /// The outputs at point `p` of the stretch `st` under `nlgeom`.
+    fn finite_output_of(
+        &self,
+        p: &PlanePoint,
+        st: &Stretch,
+        x: [f64; 3],
+        vol: f64,
+        ctx: &ElementContext<'_>,
+    ) -> PointOutput {
         let mut ps = self.point_state(p, st.green(), x, ctx);
         let pk2 = ps.stress;
         let f = st.full(ps.strain[2]);

@@ -28,8 +28,27 @@
 //! ```
 //!
 //! exact for the linear elastic materials (a thermal strain is carried by
-//! `sigma_0`). Small strain only. Outputs are those of the plane elements,
-//! with the modes' strain added.
+//! `sigma_0`). Outputs are those of the plane elements, with the modes'
+//! strain added.
+//!
+//! **Large deformation (`nlgeom`).** As [`crate::h8i`] does in 3D, the
+//! modes enhance the deformation gradient of the total-Lagrangian plane
+//! element ([`super`], "Large deformation") as two more nodes with the
+//! gradients `G_k` above and no hoop stretch:
+//!
+//! ```text
+//! F = I + sum_a u_a ⊗ g_a + sum_k alpha_k ⊗ G_k,   E = (F^T F - I) / 2,   S = D E
+//! ```
+//!
+//! For each `u` the element solves its own equations `r_alpha(u, alpha) =
+//! 0` by Newton from the last converged `alpha` (the element's state, 4
+//! values) to `|Δalpha| <= 1e-12` of its size (at most 25 iterations,
+//! then an error that cuts the increment back), and condenses the full 12
+//! x 12 tangent there: `K = K_uu - K_ua K_aa^-1 K_au` is exact (implicit
+//! function theorem). A plane-stress cantilever of 50 CPS4I follows the
+//! elastica within 0.06 % to an 82-degree tip rotation
+//! (`crates/cli/tests/large_deformation.rs`); the tangent matches central
+//! differences (`crates/elements/tests/plane.rs`).
 //!
 //! **Axisymmetric (`cax4i`).** The ring's volume is `dV = 2 pi r dA`, so
 //! Taylor's gradients, whose area integral vanishes, no longer integrate
@@ -45,7 +64,7 @@
 
 use super::{PlaneElement, PlanePoint, MAX_NODES};
 use junta_core::element::{ElementContext, ElementError, PointOutput};
-use nalgebra::{Matrix4, SMatrix};
+use nalgebra::{Matrix4, SMatrix, SVector};
 
 type Kua = SMatrix<f64, 8, 4>;
 
@@ -265,4 +284,215 @@ impl PlaneElement {
         }
         Ok(out)
     }
+}
+
+/// Dofs of the finite system: 4 nodes and 2 modes, 2 components each.
+const NT: usize = 12;
+
+/// Most Newton iterations of the modes' own equations under `nlgeom`.
+const MODE_ITERATIONS: usize = 25;
+
+/// Force (8 nodal + 4 modal) and full tangent of the total-Lagrangian
+/// element with its modes, at one `(u, alpha)`.
+struct FiniteModes {
+    f: SVector<f64, NT>,
+    k: SMatrix<f64, NT, NT>,
+}
+
+impl PlaneElement {
+    /// The Taylor-modified mode gradients added to the deformation gradient
+    /// of point `p`: `F += sum_k alpha_k ⊗ G_k` (module docs, "Large
+    /// deformation"); the modes take no hoop stretch.
+    fn stretch_with_modes(
+        &self,
+        p: &PlanePoint,
+        g: &[[f64; 2]; MAX_NODES],
+        x: [f64; 3],
+        ctx: &ElementContext<'_>,
+        modes: &[[f64; 2]; 2],
+        alpha: &[f64; 4],
+    ) -> super::Stretch {
+        let mut st = self.stretch(p, g, x, ctx.disp);
+        for (k, gk) in modes.iter().enumerate() {
+            for (i, fi) in st.f.iter_mut().enumerate() {
+                fi[0] += alpha[2 * k + i] * gk[0];
+                fi[1] += alpha[2 * k + i] * gk[1];
+            }
+        }
+        st
+    }
+
+    /// The total-Lagrangian force and (if `with_k`) tangent of the 4 nodes
+    /// and the 2 modes taken as two more nodes with gradients `G_k` and no
+    /// hoop term, at the displacements of `ctx` and the modes `alpha`.
+    fn finite_modes_system(
+        &self,
+        ctx: &ElementContext<'_>,
+        modes: &ModeGradients,
+        alpha: &[f64; 4],
+        with_k: bool,
+    ) -> Result<FiniteModes, ElementError> {
+        let axi = self.section == super::Section::Axisymmetric;
+        let mut out = FiniteModes {
+            f: SVector::zeros(),
+            k: SMatrix::zeros(),
+        };
+        let mut g = [[0.0; 2]; MAX_NODES];
+        for (q, p) in self.points.iter().enumerate() {
+            let (x, vol) = self.gradients(p, ctx.coords, q, &mut g)?;
+            let dv = p.w * vol;
+            let st = self.stretch_with_modes(p, &g, x, ctx, &modes[q], alpha);
+            let s = self.point_state(p, st.green(), x, ctx).stress;
+            let s4 = [s[0], s[1], s[2], s[3]];
+            // gradient and hoop factor of each of the 6 "nodes"
+            let grad = |n: usize| if n < 4 { g[n] } else { modes[q][n - 4] };
+            let hoop = |n: usize| if axi && n < 4 { p.n[n] / x[0] } else { 0.0 };
+            let b: [[[f64; 2]; 4]; 6] = std::array::from_fn(|n| st.variation(grad(n), hoop(n)));
+            for (n, bn) in b.iter().enumerate() {
+                for i in 0..2 {
+                    out.f[2 * n + i] += dv * (0..4).map(|r| bn[r][i] * s4[r]).sum::<f64>();
+                }
+            }
+            if !with_k {
+                continue;
+            }
+            let d = self.stiffness_at(x);
+            for m in 0..6 {
+                for n in 0..6 {
+                    let blk = btdb(&b[m], &d, &b[n]);
+                    let (gm, gn) = (grad(m), grad(n));
+                    let geo = gm[0] * (s4[0] * gn[0] + s4[3] * gn[1])
+                        + gm[1] * (s4[3] * gn[0] + s4[1] * gn[1]);
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            let mut v = blk[i][j];
+                            if i == j {
+                                v += geo;
+                                if i == 0 {
+                                    v += s4[2] * hoop(m) * hoop(n);
+                                }
+                            }
+                            out.k[(2 * m + i, 2 * n + j)] += dv * v;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Solve the modes' equations `r_alpha(u, alpha) = 0` by Newton from
+    /// the committed modes (zero when there are none); the modes and the
+    /// full system there.
+    fn solve_finite_modes(
+        &self,
+        ctx: &ElementContext<'_>,
+        modes: &ModeGradients,
+    ) -> Result<([f64; 4], FiniteModes), ElementError> {
+        let mut alpha = [0.0; 4];
+        if ctx.state_committed.len() >= 4 {
+            alpha.copy_from_slice(&ctx.state_committed[..4]);
+        }
+        let size = element_size(ctx.coords);
+        for _ in 0..MODE_ITERATIONS {
+            let sys = self.finite_modes_system(ctx, modes, &alpha, true)?;
+            let kaa = Matrix4::from_fn(|r, c| sys.k[(8 + r, 8 + c)]);
+            let ra = nalgebra::Vector4::from_fn(|r, _| sys.f[8 + r]);
+            let step = kaa.lu().solve(&ra).ok_or_else(singular_modes)?;
+            for (a, da) in alpha.iter_mut().zip(step.iter()) {
+                *a -= da;
+            }
+            if !step.norm().is_finite() {
+                break;
+            }
+            if step.norm() <= 1e-12 * size {
+                let sys = self.finite_modes_system(ctx, modes, &alpha, true)?;
+                return Ok((alpha, sys));
+            }
+        }
+        Err(ElementError::Law {
+            point: 0,
+            message: format!(
+                "{}: the incompatible modes did not converge in {MODE_ITERATIONS} Newton iterations (the element is too distorted for this increment)",
+                self.key
+            ),
+        })
+    }
+
+    /// Under `nlgeom`: the force of the nodes at the solved modes and the
+    /// condensed tangent `K_uu - K_ua K_aa^-1 K_au` (exact by the implicit
+    /// function theorem), the modes into `state_trial`.
+    pub(super) fn compute_finite_incompatible(
+        &self,
+        ctx: &ElementContext<'_>,
+        state_trial: &mut [f64],
+        f_int: &mut [f64],
+        k: Option<&mut [f64]>,
+    ) -> Result<(), ElementError> {
+        let modes = self.all_mode_gradients(ctx.coords);
+        let (alpha, sys) = self.solve_finite_modes(ctx, &modes)?;
+        state_trial[..4].copy_from_slice(&alpha);
+        for a in 0..4 {
+            for i in 0..2 {
+                f_int[3 * a + i] = sys.f[2 * a + i];
+            }
+        }
+        if let Some(k) = k {
+            let kaa = Matrix4::from_fn(|r, c| sys.k[(8 + r, 8 + c)]);
+            let kua = Kua::from_fn(|r, c| sys.k[(r, 8 + c)]);
+            let x = kaa
+                .lu()
+                .solve(&kua.transpose())
+                .ok_or_else(singular_modes)?;
+            let kc = SMatrix::<f64, 8, 8>::from_fn(|r, c| sys.k[(r, c)]) - kua * x;
+            for a in 0..4 {
+                for b in 0..4 {
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            let (r, c) = (2 * a + i, 2 * b + j);
+                            k[(3 * a + i) * 12 + 3 * b + j] = 0.5 * (kc[(r, c)] + kc[(c, r)]);
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Point outputs under `nlgeom` with the modes solved from the
+    /// committed ones: Cauchy `stress`, Green `strain`, `pk2_stress`.
+    pub(super) fn point_outputs_finite_incompatible(
+        &self,
+        ctx: &ElementContext<'_>,
+    ) -> Result<Vec<PointOutput>, ElementError> {
+        let modes = self.all_mode_gradients(ctx.coords);
+        let (alpha, _) = self.solve_finite_modes(ctx, &modes)?;
+        let mut g = [[0.0; 2]; MAX_NODES];
+        let mut out = Vec::with_capacity(4);
+        for (q, p) in self.points.iter().enumerate() {
+            let (x, vol) = self.gradients(p, ctx.coords, q, &mut g)?;
+            let st = self.stretch_with_modes(p, &g, x, ctx, &modes[q], &alpha);
+            out.push(self.finite_output_of(p, &st, x, vol, ctx));
+        }
+        Ok(out)
+    }
+}
+
+fn singular_modes() -> ElementError {
+    ElementError::Law {
+        point: 0,
+        message: "the incompatible-mode tangent K_aa is singular (degenerate element, or a stress state at which the modes buckle)".into(),
+    }
+}
+
+/// The diagonal of the reference nodes' bounding box (in the plane).
+fn element_size(coords: &[[f64; 3]]) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for x in &coords[..4] {
+        for i in 0..2 {
+            lo[i] = lo[i].min(x[i]);
+            hi[i] = hi[i].max(x[i]);
+        }
+    }
+    ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2)).sqrt()
 }
