@@ -154,7 +154,10 @@
 //! also the closed Newton-Cotes rules of 2 and 3 points (trapezoid,
 //! Simpson): nodal integration. Under finite kinematics `V_eta` is
 //! constant for a plane line (the tangent above holds with `dV_eta = 0`);
-//! an axisymmetric line's width changes with `r`, so it is small-strain only.
+//! an axisymmetric line's `V_eta = 2 pi r e_z` follows the current
+//! radius `r = sum_b N_b x_b` of the mid-line, so `dV_eta / du_{b,x} =
+//! pi N_b e_z` for each face's node `b` (the ring's area grows as it
+//! moves outward).
 //!
 //! Point outputs: `jump`, `traction`, `frame`, `area`, `state`, `failed`,
 //! `failure_index`, then every scalar the law names in
@@ -765,6 +768,9 @@ impl InterfaceElement {
         w: f64,
     ) {
         let m = self.m();
+        // an axisymmetric line's V_eta = 2 pi r e_z moves with the radius
+        // r = sum_b N_b x_b (mid-line): dV_eta / du_{b,x} = pi N_b e_z per face
+        let ring = self.line == Some(PlaneWidth::Axisymmetric);
         for a in 0..m {
             if n[a] == 0.0 {
                 continue;
@@ -776,6 +782,9 @@ impl InterfaceElement {
                     let row = &mut hk[3 * a + c][3 * b..3 * b + 3];
                     for (d, x) in row.iter_mut().enumerate() {
                         *x += sx * p[0][c][d] + se * p[1][c][d];
+                    }
+                    if ring {
+                        row[0] += s * std::f64::consts::TAU * n[b] * p[1][c][2];
                     }
                 }
             }
@@ -1095,7 +1104,7 @@ struct Options {
 }
 
 /// The width of a line interface from its options (see the module docs).
-fn line_width(key: &str, o: &Options, b: &ElementBuild<'_>) -> Result<PlaneWidth, CoreError> {
+fn line_width(key: &str, o: &Options) -> Result<PlaneWidth, CoreError> {
     let bad = |message: &str| CoreError::InvalidParameters {
         kind: "element",
         key: key.into(),
@@ -1105,9 +1114,6 @@ fn line_width(key: &str, o: &Options, b: &ElementBuild<'_>) -> Result<PlaneWidth
         (true, Some(_)) => Err(bad(
             "an axisymmetric line interface takes no thickness: it models the full ring",
         )),
-        (true, None) if b.kinematics == Kinematics::Finite => Err(bad(
-            "an axisymmetric line interface has no large-deformation (nlgeom) form yet",
-        )),
         (true, None) => Ok(PlaneWidth::Axisymmetric),
         (false, t) => Ok(PlaneWidth::Thickness(t.unwrap_or(1.0))),
     }
@@ -1116,7 +1122,7 @@ fn line_width(key: &str, o: &Options, b: &ElementBuild<'_>) -> Result<PlaneWidth
 fn build(shape: CellShape, key: &str, b: &ElementBuild<'_>) -> Result<Arc<dyn Element>, CoreError> {
     let o: Options = parse_params("element", key, b.options)?;
     if shape.face_shape().is_some_and(|f| f.dimension() == 2) {
-        let w = line_width(key, &o, b)?;
+        let w = line_width(key, &o)?;
         let law = b.law.clone().ok_or_else(|| CoreError::InvalidParameters {
             kind: "element",
             key: key.into(),
