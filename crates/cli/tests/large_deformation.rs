@@ -65,6 +65,34 @@ fn curve_by_load(dir: &Path) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The cantilevers' load factors and their `P L^2 / EI`.
+const LOAD_STEPS: [(f64, f64); 3] = [(0.1, 1.0), (0.3, 3.0), (1.0, 10.0)];
+
+/// The value of a curve at the increment that ends at load factor `lambda`.
+fn at_load(curve: &[(f64, f64)], lambda: f64) -> f64 {
+    curve
+        .iter()
+        .find(|(l, _)| (l - lambda).abs() < 1e-9)
+        .unwrap_or_else(|| panic!("no increment ends at {lambda}"))
+        .1
+}
+
+/// Tip deflection `w` and shortening `u` curves of a cantilever of length
+/// 100 within 0.5 % of the elastica at every one of [`LOAD_STEPS`].
+fn assert_follows_elastica(element: &str, w: &[(f64, f64)], u: &[(f64, f64)]) {
+    for (lambda, alpha) in LOAD_STEPS {
+        let (we, ue) = elastica(alpha);
+        let (wj, uj) = (-at_load(w, lambda) / 100.0, -at_load(u, lambda) / 100.0);
+        let (ew, eu) = ((wj - we) / we, (uj - ue) / ue);
+        assert!(
+            ew.abs() < 5e-3 && eu.abs() < 5e-3,
+            "{element} at P L^2/EI = {alpha}: w/L {wj:.5} (elastica {we:.5}, {:+.3} %), u/L {uj:.5} ({ue:.5}, {:+.3} %)",
+            100.0 * ew,
+            100.0 * eu
+        );
+    }
+}
+
 /// A 100 x 2 x 2 cantilever (E = 1000, nu = 0: no Poisson stiffening at
 /// the clamped root) with a dead traction on its end face making
 /// `P L^2 / EI = 10` at load factor 1; steps end at 0.1, 0.3 and 1.
@@ -141,23 +169,7 @@ fn cantilever_follows_the_elastica_to_a_tip_rotation_of_82_degrees() {
     for (element, divisions) in [("h20", "[20, 1, 1]"), ("h8i", "[50, 1, 1]")] {
         let w = cantilever(tmp.path(), element, divisions, "z");
         let u = cantilever(tmp.path(), element, divisions, "x");
-        for (lambda, alpha) in [(0.1, 1.0), (0.3, 3.0), (1.0, 10.0)] {
-            let at = |c: &[(f64, f64)]| {
-                c.iter()
-                    .find(|(l, _)| (l - lambda).abs() < 1e-9)
-                    .unwrap_or_else(|| panic!("{element}: no increment ends at {lambda}"))
-                    .1
-            };
-            let (we, ue) = elastica(alpha);
-            let (wj, uj) = (-at(&w) / 100.0, -at(&u) / 100.0);
-            let (ew, eu) = ((wj - we) / we, (uj - ue) / ue);
-            assert!(
-                ew.abs() < 5e-3 && eu.abs() < 5e-3,
-                "{element} at P L^2/EI = {alpha}: w/L {wj:.5} (elastica {we:.5}, {:+.3} %), u/L {uj:.5} ({ue:.5}, {:+.3} %)",
-                100.0 * ew,
-                100.0 * eu
-            );
-        }
+        assert_follows_elastica(element, &w, &u);
     }
 }
 
@@ -213,21 +225,9 @@ fn plane_stress_cps4i_cantilever_follows_the_elastica() {
     let w = plane_cantilever(tmp.path(), "cps4i", "y");
     let u = plane_cantilever(tmp.path(), "cps4i", "x");
     let locked = plane_cantilever(tmp.path(), "cps4", "y");
-    for (lambda, alpha) in [(0.1, 1.0), (0.3, 3.0), (1.0, 10.0)] {
-        let at = |c: &[(f64, f64)]| {
-            c.iter()
-                .find(|(l, _)| (l - lambda).abs() < 1e-9)
-                .unwrap_or_else(|| panic!("no increment ends at {lambda}"))
-                .1
-        };
-        let (we, ue) = elastica(alpha);
-        let (wj, uj) = (-at(&w) / 100.0, -at(&u) / 100.0);
-        let (ew, eu) = ((wj - we) / we, (uj - ue) / ue);
-        assert!(
-            ew.abs() < 5e-3 && eu.abs() < 5e-3,
-            "cps4i at P L^2/EI = {alpha}: w/L {wj:.5} ({we:.5}), u/L {uj:.5} ({ue:.5})"
-        );
-        let wl = -at(&locked) / 100.0;
+    assert_follows_elastica("cps4i", &w, &u);
+    for (lambda, alpha) in LOAD_STEPS {
+        let (we, wl) = (elastica(alpha).0, -at_load(&locked, lambda) / 100.0);
         assert!(wl < we * 0.95, "cps4 at {alpha}: w/L {wl:.5} does not lock");
     }
 }

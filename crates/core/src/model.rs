@@ -442,44 +442,21 @@ impl Model {
     /// whose laws dissipate nothing. `u` is the full displacement vector.
     pub fn dissipated_energy(&self, u: &[f64], state: &StateStore) -> Result<f64, CoreError> {
         let mut total = 0.0;
-        let mut coords = Vec::new();
-        let mut disp = Vec::new();
-        for (b, block) in self.mesh.blocks.iter().enumerate() {
-            if !block.shape.is_interface() {
-                continue;
-            }
-            let el = &self.elements[b];
-            if let Some(law) = el.batch_law() {
-                // one call for the block's outputs, none per point
-                let span = state.block_offsets[b]
-                    ..state.block_offsets[b] + block.len() * state.per_element[b];
-                law.prefetch_outputs(&state.committed[span]);
-            }
-            for e in 0..block.len() {
-                crate::assembly::gather_nodes(
-                    &self.mesh,
-                    block.element(e),
-                    u,
-                    &mut coords,
-                    &mut disp,
-                );
-                let ctx = crate::element::ElementContext {
-                    coords: &coords,
-                    disp: &disp,
-                    state_committed: &state.committed[state.range(b, e)],
-                    step: crate::element::StepInfo::default(),
-                    law_responses: None,
-                    temperature: None,
-                };
-                total += el
-                    .dissipated_energy(&ctx)
-                    .map_err(|source| CoreError::Element {
-                        block: block.name.clone(),
-                        element: e,
-                        source,
-                    })?;
-            }
-        }
+        self.for_each_interface_element(
+            u,
+            state,
+            |b| {
+                if let Some(law) = self.elements[b].batch_law() {
+                    // one call for the block's outputs, none per point
+                    law.prefetch_outputs(state.block_committed(b, self.mesh.blocks[b].len()));
+                }
+                Ok(Some(Vec::new()))
+            },
+            |b, ctx| {
+                total += self.elements[b].dissipated_energy(ctx)?;
+                Ok(())
+            },
+        )?;
         Ok(total)
     }
 
@@ -516,9 +493,7 @@ impl Model {
         let Some(law) = el.batch_law() else {
             return Ok(Vec::new());
         };
-        let span = state.block_offsets[b]
-            ..state.block_offsets[b] + self.mesh.blocks[b].len() * state.per_element[b];
-        let committed = &state.committed[span];
+        let committed = state.block_committed(b, self.mesh.blocks[b].len());
         law.prefetch_outputs(committed);
         let mut trial = committed.to_vec();
         crate::assembly::block_law_responses(
@@ -551,41 +526,16 @@ impl Model {
         out: &mut Vec<bool>,
     ) -> Result<(), CoreError> {
         out.clear();
-        let mut coords = Vec::new();
-        let mut disp = Vec::new();
-        for (b, block) in self.mesh.blocks.iter().enumerate() {
-            let el = &self.elements[b];
-            if !block.shape.is_interface() || !el.has_contact_switch() {
-                continue;
-            }
-            let np = el.num_points();
-            for e in 0..block.len() {
-                crate::assembly::gather_nodes(
-                    &self.mesh,
-                    block.element(e),
-                    u,
-                    &mut coords,
-                    &mut disp,
-                );
-                let ctx = crate::element::ElementContext {
-                    coords: &coords,
-                    disp: &disp,
-                    state_committed: &state.committed[state.range(b, e)],
-                    step: crate::element::StepInfo::default(),
-                    law_responses: None,
-                    temperature: None,
-                };
+        self.for_each_interface_element(
+            u,
+            state,
+            |b| Ok(self.elements[b].has_contact_switch().then(Vec::new)),
+            |b, ctx| {
                 let start = out.len();
-                out.resize(start + np, false);
-                el.contact_closed_into(&ctx, &mut out[start..])
-                    .map_err(|source| CoreError::Element {
-                        block: block.name.clone(),
-                        element: e,
-                        source,
-                    })?;
-            }
-        }
-        Ok(())
+                out.resize(start + self.elements[b].num_points(), false);
+                self.elements[b].contact_closed_into(ctx, &mut out[start..])
+            },
+        )
     }
 
     /// Calls `f` with the outputs of every interface integration point at
@@ -596,15 +546,43 @@ impl Model {
         state: &StateStore,
         mut f: impl FnMut(&crate::element::PointOutput),
     ) -> Result<(), CoreError> {
+        self.for_each_interface_element(
+            u,
+            state,
+            |b| self.batched_block_responses(b, u, state).map(Some),
+            |b, ctx| {
+                self.elements[b].point_outputs(ctx)?.iter().for_each(&mut f);
+                Ok(())
+            },
+        )
+    }
+
+    /// Calls `f(b, ctx)` for every element of each interface block `b`,
+    /// its nodes gathered at `u` with its committed `state`. `prepare(b)`
+    /// comes first for each block: `None` skips it, and a non-empty list
+    /// holds the block's law responses (a batched law's,
+    /// [`Self::batched_block_responses`]) that each element's context
+    /// carries. An element's error is named by block and element.
+    fn for_each_interface_element(
+        &self,
+        u: &[f64],
+        state: &StateStore,
+        mut prepare: impl FnMut(usize) -> Result<Option<Vec<crate::LawResponse>>, CoreError>,
+        mut f: impl FnMut(
+            usize,
+            &crate::element::ElementContext<'_>,
+        ) -> Result<(), crate::element::ElementError>,
+    ) -> Result<(), CoreError> {
         let mut coords = Vec::new();
         let mut disp = Vec::new();
         for (b, block) in self.mesh.blocks.iter().enumerate() {
             if !block.shape.is_interface() {
                 continue;
             }
-            let el = &self.elements[b];
-            let responses = self.batched_block_responses(b, u, state)?;
-            let np = el.num_points();
+            let Some(responses) = prepare(b)? else {
+                continue;
+            };
+            let np = self.elements[b].num_points();
             for e in 0..block.len() {
                 crate::assembly::gather_nodes(
                     &self.mesh,
@@ -622,14 +600,11 @@ impl Model {
                         .then(|| &responses[e * np..(e + 1) * np]),
                     temperature: None,
                 };
-                let pts = el
-                    .point_outputs(&ctx)
-                    .map_err(|source| CoreError::Element {
-                        block: block.name.clone(),
-                        element: e,
-                        source,
-                    })?;
-                pts.iter().for_each(&mut f);
+                f(b, &ctx).map_err(|source| CoreError::Element {
+                    block: block.name.clone(),
+                    element: e,
+                    source,
+                })?;
             }
         }
         Ok(())

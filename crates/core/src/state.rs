@@ -42,6 +42,12 @@ impl StateStore {
         s..s + self.per_element[b]
     }
 
+    /// The committed values of block `b`'s `len` elements.
+    pub fn block_committed(&self, b: usize, len: usize) -> &[f64] {
+        let start = self.block_offsets[b];
+        &self.committed[start..start + len * self.per_element[b]]
+    }
+
     /// Accept the trial state.
     pub fn commit(&mut self) {
         self.committed.copy_from_slice(&self.trial);
