@@ -145,8 +145,14 @@ pub(super) struct Coupling {
     /// The thermal force `f_th` of the step's temperature change (module
     /// doc), if the model has one.
     pub(super) thermal: Option<ThermalForce>,
-    /// Elements `(block, element)` with a prescribed non-zero displacement.
+    /// Elements `(block, element)` with a prescribed non-zero displacement
+    /// whose matrix changes with `u` (recomputed at every call).
     elements: Vec<(usize, usize)>,
+    /// The same for the linear elements (small strain, no state), whose
+    /// constant matrices give a constant part of `q`, `g` and `h`.
+    linear_elements: Vec<(usize, usize)>,
+    /// That constant part, once computed: `(q, g, h)`, `q` without `f_ext`.
+    linear_part: Option<(Vec<f64>, Vec<f64>, f64)>,
     /// `ubar` (full length; zero on free dofs).
     pub(super) ubar: Vec<f64>,
     /// `|ubar_c|^2`.
@@ -185,15 +191,21 @@ impl Coupling {
             })
             .collect();
         model.dofs.fill_dependents(&mut ubar);
-        let mut elements = Vec::new();
+        let (mut elements, mut linear_elements) = (Vec::new(), Vec::new());
         for (b, block) in model.mesh.blocks.iter().enumerate() {
+            let el = &model.elements[b];
+            let linear = el.is_linear() && el.state_len() == 0;
             for e in 0..block.len() {
                 if block
                     .element(e)
                     .iter()
                     .any(|&n| (0..3).any(|c| ubar[3 * n + c] != 0.0))
                 {
-                    elements.push((b, e));
+                    if linear {
+                        linear_elements.push((b, e));
+                    } else {
+                        elements.push((b, e));
+                    }
                 }
             }
         }
@@ -201,6 +213,8 @@ impl Coupling {
         Coupling {
             thermal,
             elements,
+            linear_elements,
+            linear_part: None,
             c: ubar.iter().map(|v| v * v).sum(),
             ubar,
             trial: Vec::new(),
@@ -227,70 +241,103 @@ impl Coupling {
         q: &mut [f64],
         g: &mut [f64],
     ) -> Result<f64, CoreError> {
+        if self.linear_part.is_none() {
+            let (mut ql, mut gl) = (vec![0.0; q.len()], vec![0.0; g.len()]);
+            let mut hl = 0.0;
+            for (b, e) in std::mem::take(&mut self.linear_elements) {
+                hl += self.add_element(model, u, state, step, (b, e), &mut ql, &mut gl)?;
+            }
+            self.linear_part = Some((ql, gl, hl));
+        }
         model.dofs.reduce_into(&model.f_ext, q);
-        g.fill(0.0);
+        let mut h = {
+            let (ql, gl, hl) = self.linear_part.as_ref().expect("computed above");
+            for (qi, v) in q.iter_mut().zip(ql) {
+                *qi += v;
+            }
+            g.copy_from_slice(gl);
+            *hl
+        };
+        for i in 0..self.elements.len() {
+            let be = self.elements[i];
+            h += self.add_element(model, u, state, step, be, q, g)?;
+        }
+        Ok(h)
+    }
+
+    /// Element `(b, e)`'s part of `q` (`-K ubar`) and `g` (`K^T ubar`),
+    /// added; returns its part of `h` (`ubar^T K ubar`).
+    #[allow(clippy::too_many_arguments)]
+    fn add_element(
+        &mut self,
+        model: &Model,
+        u: &[f64],
+        state: &StateStore,
+        step: StepInfo,
+        (b, e): (usize, usize),
+        q: &mut [f64],
+        g: &mut [f64],
+    ) -> Result<f64, CoreError> {
         let mut h = 0.0;
-        for &(b, e) in &self.elements {
-            let block = &model.mesh.blocks[b];
-            let el = &model.elements[b];
-            let conn = block.element(e);
-            let nd = 3 * conn.len();
-            self.coords.clear();
-            self.disp.clear();
-            self.dofs.clear();
-            self.temps.clear();
-            if let Some(t) = &model.temperature {
-                let theta = step.temperature_factor;
-                self.temps.extend(conn.iter().map(|&n| theta * t[n]));
+        let block = &model.mesh.blocks[b];
+        let el = &model.elements[b];
+        let conn = block.element(e);
+        let nd = 3 * conn.len();
+        self.coords.clear();
+        self.disp.clear();
+        self.dofs.clear();
+        self.temps.clear();
+        if let Some(t) = &model.temperature {
+            let theta = step.temperature_factor;
+            self.temps.extend(conn.iter().map(|&n| theta * t[n]));
+        }
+        for &n in conn {
+            self.coords.push(model.mesh.nodes[n]);
+            for c in 0..3 {
+                self.disp.push(u[3 * n + c]);
+                self.dofs.push(3 * n + c);
             }
-            for &n in conn {
-                self.coords.push(model.mesh.nodes[n]);
-                for c in 0..3 {
-                    self.disp.push(u[3 * n + c]);
-                    self.dofs.push(3 * n + c);
-                }
-            }
-            let r = state.range(b, e);
-            self.trial.clear();
-            self.trial.extend_from_slice(&state.committed[r.clone()]);
-            self.kbuf.resize(nd * nd, 0.0);
-            self.fbuf.resize(nd, 0.0);
-            let ctx = ElementContext {
-                coords: &self.coords,
-                disp: &self.disp,
-                state_committed: &state.committed[r],
-                step,
-                law_responses: None,
-                temperature: (model.temperature.is_some() && !el.shape().is_interface())
-                    .then_some(self.temps.as_slice()),
-            };
-            el.compute(&ctx, &mut self.trial, &mut self.fbuf, Some(&mut self.kbuf))
-                .map_err(|source| CoreError::Element {
-                    block: block.name.clone(),
-                    element: e,
-                    source,
-                })?;
-            for i in 0..nd {
-                let di = self.dofs[i];
-                let ui = self.ubar[di];
-                for j in 0..nd {
-                    let dj = self.dofs[j];
-                    let kij = self.kbuf[i * nd + j];
-                    let uj = self.ubar[dj];
-                    // row i's equations: -K ubar into q
-                    if uj != 0.0 {
-                        for (ei, ci) in model.dofs.targets(di) {
-                            q[ei] -= ci * kij * uj;
-                        }
+        }
+        let r = state.range(b, e);
+        self.trial.clear();
+        self.trial.extend_from_slice(&state.committed[r.clone()]);
+        self.kbuf.resize(nd * nd, 0.0);
+        self.fbuf.resize(nd, 0.0);
+        let ctx = ElementContext {
+            coords: &self.coords,
+            disp: &self.disp,
+            state_committed: &state.committed[r],
+            step,
+            law_responses: None,
+            temperature: (model.temperature.is_some() && !el.shape().is_interface())
+                .then_some(self.temps.as_slice()),
+        };
+        el.compute(&ctx, &mut self.trial, &mut self.fbuf, Some(&mut self.kbuf))
+            .map_err(|source| CoreError::Element {
+                block: block.name.clone(),
+                element: e,
+                source,
+            })?;
+        for i in 0..nd {
+            let di = self.dofs[i];
+            let ui = self.ubar[di];
+            for j in 0..nd {
+                let dj = self.dofs[j];
+                let kij = self.kbuf[i * nd + j];
+                let uj = self.ubar[dj];
+                // row i's equations: -K ubar into q
+                if uj != 0.0 {
+                    for (ei, ci) in model.dofs.targets(di) {
+                        q[ei] -= ci * kij * uj;
                     }
-                    // column j's equations: K^T ubar into g
-                    if ui != 0.0 {
-                        for (ej, cj) in model.dofs.targets(dj) {
-                            g[ej] += cj * ui * kij;
-                        }
-                    }
-                    h += ui * kij * uj;
                 }
+                // column j's equations: K^T ubar into g
+                if ui != 0.0 {
+                    for (ej, cj) in model.dofs.targets(dj) {
+                        g[ej] += cj * ui * kij;
+                    }
+                }
+                h += ui * kij * uj;
             }
         }
         Ok(h)
