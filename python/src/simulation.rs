@@ -227,6 +227,7 @@ impl PySimulation {
         let settings = RunSettings {
             output,
             max_increments,
+            ..RunSettings::default()
         };
         let slots = self.slots.clone();
         let mut observer = PyObserver {

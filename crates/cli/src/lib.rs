@@ -343,6 +343,7 @@ fn run(
     let settings = RunSettings {
         output: writer.then_some(dir),
         max_increments,
+        without_end_frame: true,
     };
     let results = sim.run(&settings, &mut [&mut bar])?;
     bar.finish();
@@ -379,6 +380,7 @@ fn restart_run(
     let settings = RunSettings {
         output: writer.then(|| dir.to_path_buf()),
         max_increments,
+        without_end_frame: true,
     };
     let results = junta::run::simulation::restart(dir, restart, &settings, &mut [&mut bar])?;
     bar.finish();

@@ -196,6 +196,45 @@ fn frames_and_check_report_are_typed_values() {
     );
 }
 
+/// A linear run keeps its end fields in `RunResults::frame` unless the
+/// caller does without them (`without_end_frame`, as the command line
+/// does: they cost about 200 bytes per integration point); the summary is
+/// the same either way, and the frame's displacement gives its largest.
+#[test]
+fn a_linear_run_keeps_its_end_frame_unless_told_not_to() {
+    let scene = repo().join("examples/cube.toml");
+    let kept = Simulation::from_file(&scene)
+        .unwrap()
+        .run(&RunSettings::in_memory(), &mut [])
+        .unwrap();
+    let settings = RunSettings {
+        without_end_frame: true,
+        ..RunSettings::in_memory()
+    };
+    let without = Simulation::from_file(&scene)
+        .unwrap()
+        .run(&settings, &mut [])
+        .unwrap();
+    assert!(without.frame.is_none());
+    let mut a = kept.summary.to_json();
+    let mut b = without.summary.to_json();
+    for s in [&mut a, &mut b] {
+        s["timings"] = serde_json::Value::Null;
+    }
+    assert_eq!(a, b);
+    let frame = kept.frame.expect("a linear run keeps its frame");
+    let umax = frame
+        .displacement
+        .chunks(3)
+        .map(|c| (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt())
+        .fold(0.0, f64::max);
+    let reported = kept.summary.displacement_max.unwrap();
+    assert!(
+        umax > 0.0 && (umax - reported).abs() <= 1e-12 * reported,
+        "{umax} {reported}"
+    );
+}
+
 /// A model built in code runs through the same API: the unit cube of
 /// BENCHMARKS.md section 1 (H20 n = 2) gives CalculiX 2.20's reaction.
 #[test]

@@ -176,24 +176,33 @@ pub struct PartitionCut {
     pub shared_nodes: Vec<usize>,
 }
 
-/// Measure the cut of `parts` ([`partition_elements`]) over `ranks` ranks.
-pub fn partition_cut(mesh: &Mesh, parts: &[Vec<u32>], ranks: usize) -> PartitionCut {
+/// The ranks whose elements touch each node of `mesh` under `parts`
+/// ([`partition_elements`]): bit r for rank r (ranks past 63 read as 63).
+pub fn node_ranks(mesh: &Mesh, parts: &[Vec<u32>]) -> Vec<u64> {
     let mut touched: Vec<u64> = vec![0; mesh.nodes.len()];
-    let mut cut = PartitionCut {
-        elements: vec![0; ranks],
-        nodes: vec![0; ranks],
-        shared_nodes: vec![0; ranks],
-    };
-    for (b, block) in mesh.blocks.iter().enumerate() {
-        for e in 0..block.len() {
-            let r = parts[b][e] as usize;
-            cut.elements[r] += 1;
+    for (block, part) in mesh.blocks.iter().zip(parts) {
+        for (e, &r) in part.iter().enumerate() {
             for &n in block.element(e) {
                 touched[n] |= 1 << r.min(63);
             }
         }
     }
-    for mask in touched {
+    touched
+}
+
+/// Measure the cut of `parts` ([`partition_elements`]) over `ranks` ranks.
+pub fn partition_cut(mesh: &Mesh, parts: &[Vec<u32>], ranks: usize) -> PartitionCut {
+    let mut cut = PartitionCut {
+        elements: vec![0; ranks],
+        nodes: vec![0; ranks],
+        shared_nodes: vec![0; ranks],
+    };
+    for part in parts {
+        for &r in part {
+            cut.elements[r as usize] += 1;
+        }
+    }
+    for mask in node_ranks(mesh, parts) {
         for r in 0..ranks.min(64) {
             if mask & (1 << r) != 0 {
                 cut.nodes[r] += 1;
@@ -204,6 +213,39 @@ pub fn partition_cut(mesh: &Mesh, parts: &[Vec<u32>], ranks: usize) -> Partition
         }
     }
     cut
+}
+
+/// Per rank, the equations it owns and its ghosts under `parts`: a node's
+/// equations belong to the lowest rank whose elements touch it (the rule of
+/// the distributed solver's rows); the other ranks touching it hold them as
+/// ghosts.
+pub fn equations_by_rank(
+    mesh: &Mesh,
+    parts: &[Vec<u32>],
+    ranks: usize,
+    dofs: &crate::dof::DofMap,
+) -> (Vec<usize>, Vec<usize>) {
+    let (mut owned, mut ghost) = (vec![0; ranks], vec![0; ranks]);
+    let per_node = dofs.eq.len() / dofs.num_nodes.max(1);
+    for (n, mask) in node_ranks(mesh, parts).into_iter().enumerate() {
+        let free = (n * per_node..(n + 1) * per_node)
+            .filter(|&d| {
+                dofs.eq
+                    .get(d)
+                    .is_some_and(|&e| e != crate::dof::CONSTRAINED)
+            })
+            .count();
+        if mask == 0 || free == 0 {
+            continue;
+        }
+        owned[mask.trailing_zeros() as usize] += free;
+        for r in (mask.trailing_zeros() as usize + 1)..ranks.min(64) {
+            if mask & (1 << r) != 0 {
+                ghost[r] += free;
+            }
+        }
+    }
+    (owned, ghost)
 }
 
 #[cfg(test)]

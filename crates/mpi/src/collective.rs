@@ -87,3 +87,55 @@ impl Collective for MpiCollective {
         );
     }
 }
+
+/// Send `counts[r]` items of `send` (in rank order) to each rank r and
+/// receive what every rank sends here: the items in rank order and their
+/// counts per rank. Collective.
+pub(crate) fn exchange<T: Copy + Default>(send: &[T], counts: &[usize]) -> (Vec<T>, Vec<usize>) {
+    let send_counts: Vec<i64> = counts.iter().map(|&c| c as i64).collect();
+    let mut received_counts = vec![0i64; counts.len()];
+    // SAFETY: both arrays hold one count per rank.
+    check(
+        unsafe { ffi::junta_alltoall_counts(send_counts.as_ptr(), received_counts.as_mut_ptr()) },
+        "count exchange",
+    );
+    let received_counts: Vec<usize> = received_counts.iter().map(|&c| c as usize).collect();
+    let mut received = vec![T::default(); received_counts.iter().sum()];
+    exchange_into(send, counts, &mut received, &received_counts);
+    (received, received_counts)
+}
+
+/// [`exchange`] with the receiving counts known and the buffer given.
+pub(crate) fn exchange_into<T: Copy>(
+    send: &[T],
+    send_counts: &[usize],
+    received: &mut [T],
+    received_counts: &[usize],
+) {
+    let item = std::mem::size_of::<T>();
+    let bytes =
+        |counts: &[usize]| -> Vec<i64> { counts.iter().map(|&c| (c * item) as i64).collect() };
+    let (sb, rb) = (bytes(send_counts), bytes(received_counts));
+    let limit = i32::MAX as i64;
+    if sb.iter().sum::<i64>() > limit || rb.iter().sum::<i64>() > limit {
+        crate::abort_all("an exchange between ranks passes 2 GB (MPI's int counts)");
+    }
+    assert_eq!(send.len(), send_counts.iter().sum::<usize>(), "send counts");
+    assert_eq!(
+        received.len(),
+        received_counts.iter().sum::<usize>(),
+        "receive counts"
+    );
+    // SAFETY: the buffers hold the stated bytes; T is plain data.
+    check(
+        unsafe {
+            ffi::junta_alltoallv_bytes(
+                send.as_ptr().cast(),
+                sb.as_ptr(),
+                received.as_mut_ptr().cast(),
+                rb.as_ptr(),
+            )
+        },
+        "exchange",
+    );
+}

@@ -19,15 +19,21 @@ extern "C" {
     pub fn junta_min_u64(v: *mut u64, n: i64) -> c_int;
     pub fn junta_any(flag: c_int, any: *mut c_int) -> c_int;
     pub fn junta_bcast(data: *mut c_void, bytes: i64, root: c_int) -> c_int;
+    pub fn junta_alltoall_counts(send: *const i64, received: *mut i64) -> c_int;
+    pub fn junta_alltoallv_bytes(
+        send: *const c_void,
+        send_bytes: *const i64,
+        received: *mut c_void,
+        received_bytes: *const i64,
+    ) -> c_int;
     pub fn junta_insert_options(text: *const c_char) -> c_int;
     pub fn junta_has_option(name: *const c_char, set: *mut c_int) -> c_int;
     pub fn junta_set_option(name: *const c_char, value: *const c_char) -> c_int;
     pub fn junta_system_create(
         nlocal: PetscInt,
         n: PetscInt,
-        ncoo: i64,
-        rows: *const PetscInt,
-        cols: *const PetscInt,
+        row_ptr: *const PetscInt,
+        columns: *const PetscInt,
         out: *mut *mut c_void,
     ) -> c_int;
     pub fn junta_system_solver(

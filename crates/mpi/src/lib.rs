@@ -25,6 +25,7 @@
 pub mod collective;
 #[allow(missing_docs)]
 pub mod ffi;
+mod owned_rows;
 pub mod petsc_solver;
 
 use std::ffi::CString;

@@ -6,11 +6,10 @@
 //! storage. `analyze` numbers the equations for PETSc so that each rank owns
 //! a contiguous range of rows: an equation belongs to the lowest rank whose
 //! elements touch it, and the ranks' equations follow one another (rank 0's
-//! first), each in Junta's order. Every rank hands its entries, both
-//! triangles, as COO triplets (`MatSetPreallocationCOO` once, then
-//! `MatSetValuesCOO` per tangent); PETSc sums the triplets of the ranks that
-//! share a row. The pattern is fixed, so the symbolic factorisation is
-//! PETSc's to reuse.
+//! first), each in Junta's order. The entries of rows another rank owns (the
+//! nodes shared with a lower rank) are sent to it, and each rank gives PETSc
+//! its own rows, summed, in CSR form ([`crate::owned_rows`]). The pattern is
+//! fixed, so the symbolic factorisation is PETSc's to reuse.
 //!
 //! **The methods** (`method`):
 //! - `mumps` (default): MUMPS, `LDL^T` for a symmetric tangent (positive
@@ -31,6 +30,7 @@
 //! and receives the whole solution (`VecScatterCreateToAll`).
 
 use crate::ffi::{self, PetscInt};
+use crate::owned_rows::{OwnedRows, RowMap};
 use junta_core::registry::{ParamDoc, SolverEntry};
 use junta_core::{
     CoreError, EquationLayout, LinearSolver, MatrixKind, SolveReport, SolverError, SymmetricCsc,
@@ -62,16 +62,13 @@ impl Method {
 /// How Junta's equations map to PETSc's rows on this rank.
 #[derive(Debug, Default)]
 struct Numbering {
-    /// PETSc row of each Junta equation.
-    row: Vec<usize>,
+    /// PETSc row of each Junta equation (below 2^31: PETSc's 32-bit
+    /// `PetscInt`).
+    row: Vec<u32>,
     /// Junta equations of this rank's PETSc rows, in order.
     owned: Vec<usize>,
-    /// First PETSc row of this rank.
-    first: usize,
-    /// Number of COO triplets: every stored entry of this rank's part, and
-    /// its transpose off the diagonal, in column order
-    /// ([`PetscSolver::fill_values`] writes them in that order).
-    triplets: usize,
+    /// First PETSc row of each rank, and the number of rows last.
+    start: Vec<usize>,
 }
 
 /// The `petsc` back end ([module docs](self)).
@@ -81,11 +78,10 @@ pub struct PetscSolver {
     tolerance: f64,
     max_iterations: usize,
     layout: Option<EquationLayout>,
-    coords: Vec<[f64; 3]>,
     numbering: Numbering,
     system: *mut c_void,
     general: bool,
-    values: Vec<f64>,
+    rows: OwnedRows,
     b_local: Vec<f64>,
     report: SolveReport,
 }
@@ -124,11 +120,10 @@ impl PetscSolver {
             tolerance,
             max_iterations,
             layout: None,
-            coords: Vec::new(),
             numbering: Numbering::default(),
             system: std::ptr::null_mut(),
             general: false,
-            values: Vec::new(),
+            rows: OwnedRows::default(),
             b_local: Vec::new(),
             report: SolveReport {
                 solver: format!("petsc ({})", method.name()),
@@ -170,56 +165,38 @@ impl PetscSolver {
         let mut row = vec![0; m.n];
         let mut owned = Vec::with_capacity(start[rank + 1] - first);
         for (j, &o) in owner.iter().enumerate() {
-            row[j] = next[o];
+            row[j] = next[o] as u32;
             next[o] += 1;
             if o == rank {
                 owned.push(j);
             }
         }
-        let off_diagonal = (0..m.n)
-            .map(|j| {
-                (m.col_ptr[j]..m.col_ptr[j + 1])
-                    .filter(|&p| m.row_idx[p] != j)
-                    .count()
-            })
-            .sum::<usize>();
-        self.numbering = Numbering {
-            row,
-            owned,
-            first,
-            triplets: m.nnz() + off_diagonal,
-        };
+        self.numbering = Numbering { row, owned, start };
         Ok(())
     }
 
     /// Create the PETSc matrix, vectors and solver.
-    fn create_system(&mut self, m: &SymmetricCsc) -> Result<(), SolverError> {
+    fn create_system(&mut self, m: &SymmetricCsc, coords: &[[f64; 3]]) -> Result<(), SolverError> {
         let nb = &self.numbering;
-        let (mut rows, mut cols) = (Vec::new(), Vec::new());
-        for j in 0..m.n {
-            for p in m.col_ptr[j]..m.col_ptr[j + 1] {
-                let (r, c) = (nb.row[m.row_idx[p]] as PetscInt, nb.row[j] as PetscInt);
-                rows.push(r);
-                cols.push(c);
-                if m.row_idx[p] != j {
-                    rows.push(c);
-                    cols.push(r);
-                }
-            }
-        }
-        // SAFETY: the arrays hold rows.len() valid indices; system is out.
+        let map = RowMap {
+            row: &nb.row,
+            start: &nb.start,
+            rank: junta_core::distributed::collective().map_or(0, |c| c.rank()),
+        };
+        let (rows, pattern) = OwnedRows::new(m, &map)?;
+        self.rows = rows;
+        // SAFETY: row_ptr has owned + 1 offsets into columns; system is out.
         petsc(
             unsafe {
                 ffi::junta_system_create(
                     nb.owned.len() as PetscInt,
                     m.n as PetscInt,
-                    rows.len() as i64,
-                    rows.as_ptr(),
-                    cols.as_ptr(),
+                    pattern.row_ptr.as_ptr(),
+                    pattern.columns.as_ptr(),
                     &mut self.system,
                 )
             },
-            "matrix creation (MatSetPreallocationCOO)",
+            "matrix creation (MatCreateMPIAIJWithArrays)",
         )?;
         let (ksp, pc, package) = match (self.method, self.general) {
             (Method::Mumps, false) => ("preonly", "cholesky", Some("mumps")),
@@ -244,7 +221,7 @@ impl PetscSolver {
             "solver set-up (KSPSetFromOptions)",
         )?;
         if self.method == Method::Gamg {
-            self.set_rigid_body_modes()?;
+            self.set_rigid_body_modes(coords)?;
         }
         let mut buf = vec![0u8; 128];
         // SAFETY: buf holds 128 bytes.
@@ -260,39 +237,35 @@ impl PetscSolver {
     /// The six rigid-body modes of the equations' points (translations,
     /// rotations about the centroid), orthonormalised, as GAMG's
     /// near-null space. Needs the points and the equations' components.
-    fn set_rigid_body_modes(&mut self) -> Result<(), SolverError> {
+    fn set_rigid_body_modes(&mut self, coords: &[[f64; 3]]) -> Result<(), SolverError> {
         let (Some(layout), n) = (&self.layout, self.numbering.row.len()) else {
             return Ok(());
         };
-        if self.coords.len() != n || layout.component.len() != n {
+        if coords.len() != n || layout.component.len() != n {
             return Ok(());
         }
-        let centroid = self
-            .coords
+        let centroid = coords
             .iter()
             .fold([0.0; 3], |a, x| [a[0] + x[0], a[1] + x[1], a[2] + x[2]])
             .map(|s| s / n.max(1) as f64);
-        let mut modes = vec![vec![0.0; n]; 6];
-        for j in 0..n {
+        // this rank's rows of the modes; dot products summed over the ranks
+        let owned = &self.numbering.owned;
+        let mut modes = vec![vec![0.0; owned.len()]; 6];
+        for (k, &j) in owned.iter().enumerate() {
             let c = layout.component[j] as usize;
             let x = [
-                self.coords[j][0] - centroid[0],
-                self.coords[j][1] - centroid[1],
-                self.coords[j][2] - centroid[2],
+                coords[j][0] - centroid[0],
+                coords[j][1] - centroid[1],
+                coords[j][2] - centroid[2],
             ];
             let rot = [[0.0, -x[2], x[1]], [x[2], 0.0, -x[0]], [-x[1], x[0], 0.0]];
-            let r = self.numbering.row[j];
-            modes[c][r] = 1.0;
+            modes[c][k] = 1.0;
             for a in 0..3 {
-                modes[3 + a][r] = rot[a][c];
+                modes[3 + a][k] = rot[a][c];
             }
         }
-        let modes = orthonormal(modes);
-        let (first, nlocal) = (self.numbering.first, self.numbering.owned.len());
-        let local: Vec<f64> = modes
-            .iter()
-            .flat_map(|m| m[first..first + nlocal].iter().copied())
-            .collect();
+        let modes = orthonormal(modes, global_dot);
+        let local: Vec<f64> = modes.concat();
         // SAFETY: local holds modes.len() * nlocal values.
         petsc(
             unsafe {
@@ -307,37 +280,27 @@ impl PetscSolver {
     }
 }
 
-impl PetscSolver {
-    /// The COO values of `m`, in the order of the triplets
-    /// ([`PetscSolver::create_system`]): each stored entry `(i, j)`, then
-    /// its transpose `(j, i)` off the diagonal (from `lower` for a
-    /// nonsymmetric matrix).
-    fn fill_values(&mut self, m: &SymmetricCsc) {
-        let lower = if m.is_general() { &m.lower } else { &m.values };
-        let mut k = 0;
-        for j in 0..m.n {
-            for p in m.col_ptr[j]..m.col_ptr[j + 1] {
-                self.values[k] = m.values[p];
-                k += 1;
-                if m.row_idx[p] != j {
-                    self.values[k] = lower[p];
-                    k += 1;
-                }
-            }
-        }
+/// The dot product of two vectors held in parts by the ranks (each rank
+/// its own rows), the same on every rank.
+fn global_dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut d = [a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>()];
+    if let Some(c) = junta_core::distributed::collective() {
+        c.sum_in_place(&mut d);
     }
+    d[0]
 }
 
-/// Modified Gram-Schmidt; vectors that are (nearly) dependent are dropped.
-fn orthonormal(vectors: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+/// Modified Gram-Schmidt under the dot product `dot`; vectors that are
+/// (nearly) dependent are dropped.
+fn orthonormal(vectors: Vec<Vec<f64>>, dot: impl Fn(&[f64], &[f64]) -> f64) -> Vec<Vec<f64>> {
     let mut out: Vec<Vec<f64>> = Vec::new();
     for mut v in vectors {
-        let norm0 = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let norm0 = dot(&v, &v).sqrt();
         for q in &out {
-            let d: f64 = v.iter().zip(q).map(|(a, b)| a * b).sum();
+            let d = dot(&v, q);
             v.iter_mut().zip(q).for_each(|(a, b)| *a -= d * b);
         }
-        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let norm = dot(&v, &v).sqrt();
         if norm > 1e-10 * norm0 && norm > 0.0 {
             v.iter_mut().for_each(|a| *a /= norm);
             out.push(v);
@@ -377,10 +340,8 @@ impl LinearSolver for PetscSolver {
         if let Some(c) = junta_core::distributed::collective() {
             self.general = c.any(self.general);
         }
-        self.coords = coords.map(<[_]>::to_vec).unwrap_or_default();
         self.number(matrix)?;
-        self.create_system(matrix)?;
-        self.values = vec![0.0; self.numbering.triplets];
+        self.create_system(matrix, coords.unwrap_or_default())?;
         self.b_local = vec![0.0; self.numbering.owned.len()];
         self.report.analyze_seconds += t.elapsed().as_secs_f64();
         Ok(())
@@ -392,14 +353,14 @@ impl LinearSolver for PetscSolver {
         }
         let t = Instant::now();
         let general = self.general;
-        self.fill_values(matrix);
+        self.rows.assemble(matrix);
         let mut failed = 0;
-        // SAFETY: values holds one value per triplet.
+        // SAFETY: values holds one value per entry of the owned rows.
         petsc(
             unsafe {
-                ffi::junta_system_values(self.system, self.values.as_ptr(), (!general) as i32)
+                ffi::junta_system_values(self.system, self.rows.values.as_ptr(), (!general) as i32)
             },
-            "MatSetValuesCOO",
+            "MatUpdateMPIAIJWithArray",
         )?;
         // SAFETY: system valid.
         petsc(
@@ -477,7 +438,7 @@ impl LinearSolver for PetscSolver {
             });
         }
         for (j, v) in b.iter_mut().enumerate() {
-            *v = x_all[self.numbering.row[j]];
+            *v = x_all[self.numbering.row[j] as usize];
         }
         if let Some(j) = b.iter().position(|v| !v.is_finite()) {
             return Err(SolverError::NonFinite {

@@ -6,13 +6,14 @@
  * non-zero code into a typed error with junta_error_text().
  *
  * A "system" is one linear system distributed over PETSC_COMM_WORLD: the
- * parallel AIJ matrix (rows owned in contiguous ranges, assembled from COO
- * triplets that may name other ranks' rows), its solver (KSP and PC), a
+ * parallel AIJ matrix (rows owned in contiguous ranges, each rank giving
+ * its own rows in CSR form, summed beforehand: owned_rows.rs), its solver (KSP and PC), a
  * right-hand side, a solution, and the scatter that gives every rank the
  * whole solution.
  */
 #include <petscksp.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 typedef struct {
@@ -104,6 +105,32 @@ int junta_bcast(void *data, int64_t bytes, int root) {
   return 0;
 }
 
+/* Each rank sends send_bytes[r] bytes of send (in rank order) to rank r and
+ * receives received_bytes[r] from it (the counts exchanged first by
+ * junta_alltoall_counts); the totals fit an int (checked by the caller). */
+int junta_alltoall_counts(const int64_t *send, int64_t *received) {
+  return MPI_Alltoall(send, 1, MPI_INT64_T, received, 1, MPI_INT64_T, PETSC_COMM_WORLD);
+}
+
+int junta_alltoallv_bytes(const void *send, const int64_t *send_bytes, void *received,
+                          const int64_t *received_bytes) {
+  int size = junta_size(), e;
+  int *counts = malloc(4 * (size_t)size * sizeof(int));
+  if (!counts) return MPI_ERR_NO_MEM;
+  int *sc = counts, *sd = counts + size, *rc = counts + 2 * size, *rd = counts + 3 * size;
+  for (int r = 0, so = 0, ro = 0; r < size; r++) {
+    sc[r] = (int)send_bytes[r];
+    rc[r] = (int)received_bytes[r];
+    sd[r] = so;
+    rd[r] = ro;
+    so += sc[r];
+    ro += rc[r];
+  }
+  e = MPI_Alltoallv(send, sc, sd, MPI_BYTE, received, rc, rd, MPI_BYTE, PETSC_COMM_WORLD);
+  free(counts);
+  return e;
+}
+
 /* PETSc options: a string such as "-ksp_monitor -pc_gamg_threshold 0.02" */
 int junta_insert_options(const char *text) { return PetscOptionsInsertString(NULL, text); }
 
@@ -118,26 +145,19 @@ int junta_set_option(const char *name, const char *value) {
   return PetscOptionsSetValue(NULL, name, value);
 }
 
-/* The matrix (nlocal of n rows here, from ncoo triplets with global
- * 0-based indices), its vectors and the scatter to every rank. */
-int junta_system_create(PetscInt nlocal, PetscInt n, int64_t ncoo, const PetscInt *rows,
-                        const PetscInt *cols, junta_system **out) {
+/* The matrix (nlocal of n rows here) from the CSR pattern of this rank's
+ * rows (global 0-based columns, sorted within each row; values zero) and
+ * its vectors. The scatter to every rank comes with the first solve, after
+ * the preconditioner's set-up, whose memory peaks. */
+int junta_system_create(PetscInt nlocal, PetscInt n, const PetscInt *row_ptr,
+                        const PetscInt *columns, junta_system **out) {
   junta_system *s;
-  PetscInt *ci, *cj;
   PetscCall(PetscCalloc1(1, &s));
   s->nlocal = nlocal;
   s->n = n;
-  PetscCall(MatCreate(PETSC_COMM_WORLD, &s->A));
-  PetscCall(MatSetSizes(s->A, nlocal, nlocal, n, n));
-  PetscCall(MatSetType(s->A, MATAIJ));
-  /* MatSetPreallocationCOO may reorder the arrays it is given */
-  PetscCall(PetscMalloc2(ncoo, &ci, ncoo, &cj));
-  PetscCall(PetscArraycpy(ci, rows, ncoo));
-  PetscCall(PetscArraycpy(cj, cols, ncoo));
-  PetscCall(MatSetPreallocationCOO(s->A, (PetscCount)ncoo, ci, cj));
-  PetscCall(PetscFree2(ci, cj));
+  PetscCall(MatCreateMPIAIJWithArrays(PETSC_COMM_WORLD, nlocal, nlocal, n, n, row_ptr, columns,
+                                      NULL, &s->A));
   PetscCall(MatCreateVecs(s->A, &s->x, &s->b));
-  PetscCall(VecScatterCreateToAll(s->x, &s->toall, &s->xall));
   PetscCall(KSPCreate(PETSC_COMM_WORLD, &s->ksp));
   *out = s;
   return 0;
@@ -182,9 +202,9 @@ int junta_system_near_null_space(junta_system *s, PetscInt nvec, const double *l
   return 0;
 }
 
-/* New values, in the order of the triplets (summed over the ranks). */
+/* New values of this rank's rows, in the order of the CSR pattern. */
 int junta_system_values(junta_system *s, const double *values, int symmetric) {
-  PetscCall(MatSetValuesCOO(s->A, values, INSERT_VALUES));
+  PetscCall(MatUpdateMPIAIJWithArray(s->A, values));
   PetscCall(MatSetOption(s->A, MAT_SYMMETRIC, symmetric ? PETSC_TRUE : PETSC_FALSE));
   if (symmetric) PetscCall(MatSetOption(s->A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
   PetscCall(KSPSetOperators(s->ksp, s->A, s->A));
@@ -229,6 +249,7 @@ int junta_system_solve(junta_system *s, const double *b_local, double *x_all, in
   PetscCall(KSPGetIterationNumber(s->ksp, its));
   PetscCall(KSPGetResidualNorm(s->ksp, rnorm));
   *reason = (int)r;
+  if (!s->toall) PetscCall(VecScatterCreateToAll(s->x, &s->toall, &s->xall));
   PetscCall(VecScatterBegin(s->toall, s->x, s->xall, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(s->toall, s->x, s->xall, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGetArrayRead(s->xall, &xa));

@@ -316,7 +316,46 @@ fn h20_cube_deck_reactions_match_one_process_on_1_2_4_ranks() {
             (b / -reference - 1.0).abs() < 1e-10,
             "{ranks} ranks: bottom {b}"
         );
-        assert_eq!(summary(&out)["solver"]["name"], "petsc (mumps)");
+        let s = summary(&out);
+        assert_eq!(s["solver"]["name"], "petsc (mumps)");
+        assert_partition_adds_up(&s, ranks, 6 * 6 * 6);
+    }
+}
+
+/// `summary.json` `distributed` of a run on `ranks` ranks of a model of
+/// `elements` elements: every element on one rank, every equation owned by
+/// one rank, ghosts only where a rank shares nodes, each rank's peak memory.
+fn assert_partition_adds_up(s: &serde_json::Value, ranks: usize, elements: u64) {
+    let d = &s["distributed"];
+    let list = |key: &str| -> Vec<u64> {
+        let v: Vec<u64> = d[key]
+            .as_array()
+            .unwrap_or_else(|| panic!("distributed.{key}: {d}"))
+            .iter()
+            .map(|x| x.as_f64().unwrap() as u64)
+            .collect();
+        assert_eq!(v.len(), ranks, "distributed.{key} per rank");
+        v
+    };
+    assert_eq!(list("elements").iter().sum::<u64>(), elements);
+    let owned = list("owned_equations");
+    assert_eq!(owned.iter().sum::<u64>(), s["equations"].as_u64().unwrap());
+    let (ghost, shared) = (list("ghost_equations"), list("shared_nodes"));
+    // the lowest rank touching a node owns its equations; the others hold
+    // them as ghosts, so rank 0 has none and the ranks that share nodes do
+    assert_eq!(ghost[0], 0, "{d}");
+    assert_eq!(ghost.iter().sum::<u64>() > 0, ranks > 1, "{d}");
+    for r in 0..ranks {
+        assert!(owned[r] > 0, "rank {r} owns no equation: {d}");
+        assert!(
+            ghost[r] <= 3 * shared[r],
+            "rank {r}: ghosts beyond its shared nodes: {d}"
+        );
+    }
+    // each rank's peak resident memory: more than one value per owned
+    // equation, less than a terabyte
+    for (r, p) in list("peak_resident_bytes").into_iter().enumerate() {
+        assert!(p > 8 * owned[r] && p < 1 << 40, "rank {r}: peak {p} bytes");
     }
 }
 
@@ -565,12 +604,15 @@ fn assert_every_rank_ended(out: &Output) -> String {
 #[test]
 fn restart_on_another_rank_count_continues_the_curve() {
     // dcb_coarse under arc length: 2 ranks for 40 increments, then 2, 4
-    // and 1 ranks to the end, against the run in one process
+    // and 1 ranks to the end, against the run in one process; on the same
+    // rank count, against the uninterrupted 2-rank run bit for bit
     let tmp = tempfile::tempdir().unwrap();
     let path = repo("examples/delamination/dcb_coarse.toml");
     let s = path.to_str().unwrap();
     let seq = tmp.path().join("seq");
     sequential(&["run", s, "-o", seq.to_str().unwrap()]);
+    let whole = tmp.path().join("np2");
+    mpirun(2, &["run", s, "-o", whole.to_str().unwrap()]);
     for ranks in [2, 4, 1] {
         let out = tmp.path().join(format!("restart{ranks}"));
         let o = out.to_str().unwrap();
@@ -579,5 +621,14 @@ fn restart_on_another_rank_count_continues_the_curve() {
         mpirun(ranks, &["run", "--restart", o]);
         let worst = assert_same_curve(&seq, &out, 1e-7, &format!("restart on {ranks} ranks"));
         eprintln!("restart from 2 on {ranks} ranks: worst {worst:.2e}");
+        if ranks == 2 {
+            assert_same_curve(&whole, &out, 0.0, "restart on the same 2 ranks");
+            let iterations = |d: &Path| {
+                let (h, rows) = curve(d);
+                let c = h.iter().position(|c| c == "newton_iterations").unwrap();
+                rows.iter().map(|r| r[c]).collect::<Vec<_>>()
+            };
+            assert_eq!(iterations(&whole), iterations(&out));
+        }
     }
 }

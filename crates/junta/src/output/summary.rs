@@ -378,14 +378,23 @@ pub fn plane_summary(model: &junta_core::Model) -> serde_json::Value {
 /// process): the ranks, and per rank its elements, the nodes they touch
 /// and of those the nodes shared with other ranks (the partition's cut,
 /// [`junta_core::distributed::partition_cut`]), with the bytes per Newton
-/// iteration each rank exchanges.
+/// iteration each rank exchanges; the equations each rank owns and holds as
+/// ghosts, and each rank's peak resident memory so far, also per owned
+/// equation. Collective: every rank calls it once.
 pub fn distributed_summary(model: &junta_core::Model) -> serde_json::Value {
-    use junta_core::distributed::{collective, partition_cut, partition_elements};
+    use junta_core::distributed::{
+        collective, equations_by_rank, partition_cut, partition_elements,
+    };
     let Some(c) = collective() else {
         return serde_json::Value::Null;
     };
     let ranks = c.size();
-    let cut = partition_cut(&model.mesh, &partition_elements(&model.mesh, ranks), ranks);
+    let parts = partition_elements(&model.mesh, ranks);
+    let cut = partition_cut(&model.mesh, &parts, ranks);
+    let (owned, ghost) = equations_by_rank(&model.mesh, &parts, ranks, &model.dofs);
+    let mut peak = vec![0.0; ranks];
+    peak[c.rank()] = crate::prepare::limits::peak_resident_bytes().unwrap_or(0) as f64;
+    c.sum_in_place(&mut peak);
     let n = model.dofs.num_free as f64;
     let states: usize = model
         .mesh
@@ -405,5 +414,10 @@ pub fn distributed_summary(model: &junta_core::Model) -> serde_json::Value {
         // replicated vectors: the force sum, the state copy and the solution
         // gathered on every rank, each the whole length
         "replicated_bytes_per_iteration": 8.0 * (2.0 * 3.0 * model.mesh.nodes.len() as f64 + states as f64 + n),
+        "owned_equations": owned,
+        "ghost_equations": ghost,
+        // VmHWM of each rank when the summary is made (the run's end)
+        "peak_resident_bytes": peak,
+        "peak_bytes_per_owned_equation": peak.iter().zip(&owned).map(|(p, &o)| (p / o.max(1) as f64).round()).collect::<Vec<_>>(),
     })
 }

@@ -14,12 +14,14 @@ use std::path::Path;
 use std::time::Instant;
 
 /// Run the linear analysis of `p`: write the standard files into `dir`
-/// (when given) and hand the end state to the observers' `on_end`.
+/// (when given) and hand the end state to the observers' `on_end`; keep the
+/// end fields in [`RunResults::frame`] when `keep_frame`.
 pub(crate) fn run_linear(
     input: &Path,
     p: &mut Prepared,
     dir: Option<&Path>,
     observers: &mut [&mut dyn Observer],
+    keep_frame: bool,
 ) -> Result<RunResults> {
     let t0 = Instant::now();
     let mut notes = p.notes.clone();
@@ -151,7 +153,7 @@ pub(crate) fn run_linear(
     if let Some(dir) = dir {
         crate::output::summary::write_json(&dir.join("summary.json"), &summary.to_json())?;
     }
-    let frame = end_linear(&p.model, &res, &summary, observers)?;
+    let frame = end_linear(&p.model, &res, &summary, observers, keep_frame)?;
     Ok(RunResults {
         status: Status::Completed,
         reason: crate::run::results::EndReason::EndOfProgram,
@@ -359,6 +361,7 @@ fn end_linear(
     res: &junta_solvers::linear_static::LinearStaticResult,
     summary: &crate::run::results::Summary,
     observers: &mut [&mut dyn Observer],
+    keep_frame: bool,
 ) -> Result<Option<crate::post::frame::Frame>> {
     let step = junta_core::StepInfo::at(0, 1.0, 0.0);
     let interfaces = crate::post::fields::interface_results(model, &res.u, &res.state)?;
@@ -377,6 +380,9 @@ fn end_linear(
     let log = RunLog::default();
     for o in observers.iter_mut() {
         o.on_end(&end, &log)?;
+    }
+    if !keep_frame {
+        return Ok(None);
     }
     Ok(Some(crate::post::frame::Frame::at(
         model,
