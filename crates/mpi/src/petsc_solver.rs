@@ -280,6 +280,27 @@ impl PetscSolver {
     }
 }
 
+/// The error of a failed factorisation or preconditioner set-up, from
+/// PETSc's `PCFailedReason` (`petscpc.h`: 1 and 2 a zero pivot, 3 out of
+/// memory, 4 another factorisation failure, 6 a sub-preconditioner's).
+fn set_up_failure(reason: i32, method: &str) -> SolverError {
+    let what =
+        |text: &str| format!(": PETSc {method} set-up failed (PCFailedReason {reason}: {text})");
+    match reason {
+        3 => SolverError::OutOfMemory {
+            detail: format!(
+                "PETSc {method}: the factorisation ran out of memory on a rank (PCFailedReason 3); more ranks, or `method = \"gamg\"`, need less per rank"
+            ),
+        },
+        1 | 2 => SolverError::NotPositiveDefinite {
+            detail: what("a zero pivot, a singular matrix"),
+        },
+        _ => SolverError::NotPositiveDefinite {
+            detail: what("the factorisation or preconditioner failed"),
+        },
+    }
+}
+
 /// The dot product of two vectors held in parts by the ranks (each rank
 /// its own rows), the same on every rank.
 fn global_dot(a: &[f64], b: &[f64]) -> f64 {
@@ -370,9 +391,7 @@ impl LinearSolver for PetscSolver {
         self.report.factorizations += 1;
         self.report.factor_seconds += t.elapsed().as_secs_f64();
         if failed != 0 {
-            return Err(SolverError::NotPositiveDefinite {
-                detail: format!(": PETSc {} set-up failed (PCFailedReason {failed}: a zero pivot or a singular matrix)", self.report.ordering),
-            });
+            return Err(set_up_failure(failed, &self.report.ordering));
         }
         // MUMPS gives the inertia of its LDL^T factor (not of an LU one)
         if self.method == Method::Mumps && !general {

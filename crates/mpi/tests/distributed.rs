@@ -584,6 +584,43 @@ fn a_rank_with_bad_input_or_a_failing_solve_ends_every_rank() {
     assert!(err.contains("pivot") || err.contains("singular"), "{err}");
 }
 
+#[test]
+fn a_rank_out_of_memory_ends_every_rank() {
+    // the H8 cube 50^3 (390,000 equations, about 2 GB of address space per
+    // rank on 2 ranks) with rank 1 limited to 1.3 GB of address space
+    // (`ulimit -v`; a small model starts within 1.2 GB). MUMPS on rank 1
+    // runs out of memory in the factorisation, which every rank reports as
+    // "not enough memory" (a failed allocation of Junta's own would abort
+    // rank 1, and mpirun end rank 0, waiting in a collective, as well)
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("cube.toml");
+    let text = std::fs::read_to_string(repo("examples/cube.toml")).unwrap();
+    std::fs::write(
+        &scene,
+        text.replace("divisions = [2, 2, 2]", "divisions = [50, 50, 50]"),
+    )
+    .unwrap();
+    let (bin, s) = (junta(), scene.to_str().unwrap());
+    let limited = format!(
+        "ulimit -v 1300000; exec {} run {s} -q -o {}",
+        bin.display(),
+        tmp.path().join("b").display()
+    );
+    let out = timed_mpirun(300)
+        .args(["-np", "1"])
+        .arg(&bin)
+        .args(["run", s, "-q", "-o"])
+        .arg(tmp.path().join("a"))
+        .args([":", "-np", "1", "sh", "-c", &limited])
+        .output()
+        .unwrap();
+    let err = assert_every_rank_ended(&out);
+    assert!(
+        err.contains("not enough memory") || err.contains("memory allocation"),
+        "{err}"
+    );
+}
+
 /// `junta run INPUT -o OUT` on 2 ranks, which must end every rank with an
 /// error ([`assert_every_rank_ended`]); its stderr.
 fn failed_run_on_two_ranks(input: &Path, out: &Path) -> String {
