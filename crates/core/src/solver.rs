@@ -54,6 +54,10 @@ pub enum SolverError {
     /// `factorize`/`solve` called before `analyze`, or with a different pattern.
     #[error("solver misuse: {0}")]
     Usage(String),
+    /// An external solver library (PETSc and what it calls) reported a
+    /// failure of its own: the call, its error code and text.
+    #[error("{0}")]
+    Library(String),
 }
 
 /// What a solve did.

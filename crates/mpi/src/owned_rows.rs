@@ -125,9 +125,11 @@ impl OwnedRows {
             slot.push(REMOTE | k as u32);
         });
         if total >= REMOTE as usize {
-            return Err(SolverError::Usage(format!(
-                "petsc: {total} matrix entries of this rank belong to other ranks (at most 2^31)"
-            )));
+            return Err(SolverError::OutOfMemory {
+                detail: format!(
+                    "petsc: {total} matrix entries of this rank belong to other ranks (at most 2^31); more ranks give each fewer"
+                ),
+            });
         }
         let pair_counts: Vec<usize> = send_counts.iter().map(|c| 2 * c).collect();
         let (received_pairs, received_pair_counts) =
@@ -199,10 +201,9 @@ impl OwnedRows {
                 }
             }
             if columns.len() > PetscInt::MAX as usize {
-                return Err(SolverError::Usage(
-                    "petsc: this rank's rows hold more than 2^31 - 1 entries (32-bit PetscInt)"
-                        .into(),
-                ));
+                return Err(SolverError::OutOfMemory {
+                    detail: "petsc: this rank's rows hold more than 2^31 - 1 entries (32-bit PetscInt of the Debian build); more ranks give each fewer".into(),
+                });
             }
             row_ptr.push(columns.len() as PetscInt);
         }

@@ -96,15 +96,28 @@ impl Drop for PetscSolver {
     }
 }
 
-/// A PETSc call's error code as a solver error.
+/// PETSc's error code for a failed allocation (`PETSC_ERR_MEM`,
+/// `petscerror.h`).
+const PETSC_ERR_MEM: i32 = 55;
+
+/// A PETSc call's error code as a solver error: a failed allocation is
+/// "not enough memory", any other the call's failure with PETSc's text.
 fn petsc(code: i32, what: &str) -> Result<(), SolverError> {
-    if code == 0 {
-        return Ok(());
+    match code {
+        0 => Ok(()),
+        PETSC_ERR_MEM => Err(SolverError::OutOfMemory {
+            detail: format!("PETSc {what} could not allocate on a rank (PETSC_ERR_MEM); more ranks need less per rank"),
+        }),
+        // PETSc's own codes are below 100 (PETSC_ERR_MAX_VALUE); a larger
+        // one comes from a library it called (MPI, a factorisation package)
+        _ if code >= 100 => Err(SolverError::Library(format!(
+            "PETSc {what} failed with error code {code}, not one of PETSc's own (below 100): a library PETSc calls failed, such as MPI; a rank short of memory is one cause"
+        ))),
+        _ => Err(SolverError::Library(format!(
+            "PETSc {what} failed (error {code}: {})",
+            ffi::error_text(code)
+        ))),
     }
-    Err(SolverError::Usage(format!(
-        "PETSc {what} failed (error {code}: {})",
-        ffi::error_text(code)
-    )))
 }
 
 fn c_string(s: &str) -> CString {
