@@ -56,12 +56,8 @@ fn build(
     })
 }
 
-const KEYS: [&str; 18] = [
-    "cpe3", "cpe4", "cpe6", "cpe8", "cpe8r", "cpe9", "cps3", "cps4", "cps6", "cps8", "cps8r",
-    "cps9", "cax3", "cax4", "cax6", "cax8", "cax8r", "cax9",
-];
-
-/// Every key: [`KEYS`] and the incompatible-mode quadrilaterals.
+/// Every plane and axisymmetric solid key, the incompatible-mode
+/// quadrilaterals included.
 const ALL_KEYS: [&str; 21] = [
     "cpe3", "cpe4", "cpe6", "cpe8", "cpe8r", "cpe9", "cps3", "cps4", "cps6", "cps8", "cps8r",
     "cps9", "cax3", "cax4", "cax6", "cax8", "cax8r", "cax9", "cpe4i", "cps4i", "cax4i",
