@@ -16,8 +16,9 @@
 //!   exact copy).
 //!
 //! The tangent stays partial, each rank holding its elements' part: the
-//! distributed linear solver (PETSc, crate `junta-mpi`) sums the parts in
-//! its parallel matrix. Because every rank then holds the same vectors and
+//! distributed linear solver (PETSc, crate `junta-mpi`) sends each rank the
+//! entries of the rows it owns from the ranks that share them, and each
+//! rank hands PETSc its own rows, summed. Because every rank then holds the same vectors and
 //! states, every norm, dot product, constraint and decision of a driver is
 //! computed identically on every rank, with no further communication; and
 //! a checkpoint written by one rank restarts on any number of ranks.
