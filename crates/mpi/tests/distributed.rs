@@ -459,6 +459,66 @@ fn plane_models_match_one_process_on_1_and_2_ranks() {
 }
 
 #[test]
+fn a_fatigue_hold_and_a_laminate_of_seven_interfaces_match_one_process_on_1_2_4_ranks() {
+    // dcb_paris: the static opening (100 increments), then the held
+    // opening under cycle jumps, 24 increments of fatigue growth with
+    // failed points; curved_beam_plane: an L-section of eight plies with
+    // an interface between every pair (the lay-up builder, plane strain),
+    // under the default control, 10 increments past the first failed point
+    // (path following: each increment converged to its tolerance, not to
+    // round-off, hence 1e-7 as for the other arc-length runs)
+    let tmp = tempfile::tempdir().unwrap();
+    for (scene, increments, tol) in [
+        ("examples/fatigue/dcb_paris.toml", "125", 1e-8),
+        ("examples/laminates/curved_beam_plane.toml", "60", 1e-7),
+    ] {
+        let path = repo(scene);
+        let s = path.to_str().unwrap();
+        let seq = tmp.path().join("seq");
+        let args = |out: &Path| {
+            let o = out.to_str().unwrap().to_string();
+            vec![
+                "run".to_string(),
+                s.to_string(),
+                "-o".into(),
+                o,
+                "--max-increments".into(),
+                increments.into(),
+            ]
+        };
+        let a = args(&seq);
+        sequential(&a.iter().map(String::as_str).collect::<Vec<_>>());
+        let (h, rows) = curve(&seq);
+        let col = |name: &str| h.iter().position(|c| c == name).unwrap();
+        let last = rows.last().unwrap();
+        assert!(
+            last[col("failed_points")] > 0.0,
+            "{scene}: the parity reaches failed points"
+        );
+        for ranks in [1, 2, 4] {
+            let out = tmp.path().join(format!("np{ranks}"));
+            let a = args(&out);
+            mpirun(ranks, &a.iter().map(String::as_str).collect::<Vec<_>>());
+            let what = format!("{scene} on {ranks} ranks");
+            let worst = assert_same_curve(&seq, &out, tol, &what);
+            // the cycle count the jumps reach, to the same tolerance
+            let (_, other) = curve(&out);
+            let c = col("cycles");
+            let scale = rows.iter().map(|r| r[c].abs()).fold(1.0, f64::max);
+            for (ra, rb) in rows.iter().zip(&other) {
+                assert!(
+                    (ra[c] - rb[c]).abs() <= 1e-8 * scale,
+                    "{what}: cycles {} against {}",
+                    rb[c],
+                    ra[c]
+                );
+            }
+            eprintln!("{what}: worst relative difference {worst:.2e}");
+        }
+    }
+}
+
+#[test]
 fn friction_lu_and_arc_length_snap_back_match_one_process() {
     // bilinear_friction: a nonsymmetric tangent (MUMPS LU); the coarse
     // DCB under arc length: snap-backs, negative pivots (MUMPS inertia)
