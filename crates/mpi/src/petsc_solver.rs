@@ -145,8 +145,8 @@ impl PetscSolver {
         }
     }
 
-    /// Number the equations for PETSc and list the triplets
-    /// ([module docs](self)).
+    /// Number the equations for PETSc: each rank's rows contiguous, an
+    /// equation the lowest touching rank's ([module docs](self)).
     fn number(&mut self, m: &SymmetricCsc) -> Result<(), SolverError> {
         let c = junta_core::distributed::collective().ok_or_else(|| {
             SolverError::Usage("petsc: MPI is not started (run under mpirun)".into())
