@@ -183,17 +183,20 @@ fn frames_and_check_report_are_typed_values() {
         .filter(|f| **f > 0.5)
         .count();
     assert_eq!(failed, results.rows.last().unwrap().failed);
-    // largest nodal displacement magnitude, as summary.json defines it
-    let umax = last
-        .displacement
-        .chunks(3)
-        .map(|c| (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt())
-        .fold(0.0, f64::max);
+    let umax = largest_displacement(&last.displacement);
     let reported = results.summary.displacement_max.unwrap();
     assert!(
         (umax - reported).abs() <= 1e-12 * reported.abs().max(1.0),
         "{umax} {reported}"
     );
+}
+
+/// The largest nodal displacement magnitude of a frame's displacement
+/// (three components per node), as `summary.json` defines it.
+fn largest_displacement(u: &[f64]) -> f64 {
+    u.chunks(3)
+        .map(|c| (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt())
+        .fold(0.0, f64::max)
 }
 
 /// A linear run keeps its end fields in `RunResults::frame` unless the
@@ -223,11 +226,7 @@ fn a_linear_run_keeps_its_end_frame_unless_told_not_to() {
     }
     assert_eq!(a, b);
     let frame = kept.frame.expect("a linear run keeps its frame");
-    let umax = frame
-        .displacement
-        .chunks(3)
-        .map(|c| (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt())
-        .fold(0.0, f64::max);
+    let umax = largest_displacement(&frame.displacement);
     let reported = kept.summary.displacement_max.unwrap();
     assert!(
         umax > 0.0 && (umax - reported).abs() <= 1e-12 * reported,

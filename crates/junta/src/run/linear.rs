@@ -107,19 +107,7 @@ pub(crate) fn run_linear(
         "penalty_advice": advice,
         "reference": reference,
         "equilibrium_residual": res.free_residual,
-        "timings": {
-            "read": p.read_seconds,
-            "choose_solver": p.choose_solver_seconds,
-            "build": p.build.map(|b| b.seconds),
-            "build_peak_bytes": p.build.and_then(|b| b.peak_bytes),
-            "pattern": res.timings.pattern,
-            "assemble": res.timings.assemble,
-            "analyze": res.timings.analyze,
-            "factor": res.timings.factor,
-            "solve": res.timings.solve,
-            "output": output_seconds,
-            "total": p.read_seconds + p.choose_solver_seconds + t0.elapsed().as_secs_f64(),
-        },
+        "timings": timings_entry(p, &res.timings, output_seconds, t0),
         "solver": {
             "name": res.report.solver,
             "iterations": res.report.iterations,
@@ -165,6 +153,28 @@ pub(crate) fn run_linear(
         warnings,
         failure: None,
         frame,
+    })
+}
+
+/// `summary.json` `timings` of a linear run that started at `t0`.
+fn timings_entry(
+    p: &Prepared,
+    t: &junta_solvers::linear_static::Timings,
+    output_seconds: f64,
+    t0: Instant,
+) -> serde_json::Value {
+    json!({
+        "read": p.read_seconds,
+        "choose_solver": p.choose_solver_seconds,
+        "build": p.build.map(|b| b.seconds),
+        "build_peak_bytes": p.build.and_then(|b| b.peak_bytes),
+        "pattern": t.pattern,
+        "assemble": t.assemble,
+        "analyze": t.analyze,
+        "factor": t.factor,
+        "solve": t.solve,
+        "output": output_seconds,
+        "total": p.read_seconds + p.choose_solver_seconds + t0.elapsed().as_secs_f64(),
     })
 }
 
