@@ -227,6 +227,8 @@ impl PySimulation {
         let settings = RunSettings {
             output,
             max_increments,
+            // Ctrl-C (`check_signals`) is only seen on Python's main thread
+            on_calling_thread: true,
             ..RunSettings::default()
         };
         let slots = self.slots.clone();

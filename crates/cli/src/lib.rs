@@ -178,6 +178,13 @@ pub fn main() -> ExitCode {
             "under mpirun only `junta run` is distributed; run the other commands in one process",
         );
     }
+    // the drivers run on rayon's pool (`Simulation::run`): its threads get
+    // the stack of a main thread (8 MiB), not rayon's 2 MiB; built after
+    // the MPI session, which sets each rank's thread count
+    rayon::ThreadPoolBuilder::new()
+        .stack_size(8 << 20)
+        .build_global()
+        .ok();
     let progress = !cli.quiet && writer;
     let result = match cli.command {
         Command::Run {
@@ -344,6 +351,7 @@ fn run(
         output: writer.then_some(dir),
         max_increments,
         without_end_frame: true,
+        ..RunSettings::default()
     };
     let results = sim.run(&settings, &mut [&mut bar])?;
     bar.finish();
@@ -381,6 +389,7 @@ fn restart_run(
         output: writer.then(|| dir.to_path_buf()),
         max_increments,
         without_end_frame: true,
+        ..RunSettings::default()
     };
     let results = junta::run::simulation::restart(dir, restart, &settings, &mut [&mut bar])?;
     bar.finish();

@@ -12,6 +12,8 @@ use junta_core::PointStage;
 
 /// Cell-averaged output of every solid element, in block order, and the
 /// range of each stress component over the integration points per block.
+/// `Default`: no cell (what a rank of an MPI run that writes nothing keeps).
+#[derive(Default)]
 pub struct CellResults {
     /// Per solid block: (name, stress_min, stress_max) over all points.
     pub ranges: Vec<(String, [f64; 6], [f64; 6])>,

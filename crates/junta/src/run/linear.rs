@@ -65,8 +65,17 @@ pub(crate) fn run_linear(
     }
     let t_out = Instant::now();
     let interfaces = crate::post::fields::interface_results(&p.model, &res.u, &res.state)?;
-    let mut cells = crate::post::fields::cell_results(&p.model, &res.u, &res.state)?;
-    let ply = ply_failure_cells(p, &res, &mut cells)?;
+    // a rank of an MPI run other than the writer, keeping no frame, has no
+    // use for the whole model's cell averages and ply indices (about 60
+    // bytes per element, and the time of every element's point outputs)
+    let silent_rank = dir.is_none() && !keep_frame && junta_core::distributed::collective().is_some();
+    let (cells, ply) = if silent_rank {
+        (crate::post::fields::CellResults::default(), Vec::new())
+    } else {
+        let mut cells = crate::post::fields::cell_results(&p.model, &res.u, &res.state)?;
+        let ply = ply_failure_cells(p, &res, &mut cells)?;
+        (cells, ply)
+    };
     if let Some(dir) = dir {
         write_result_files(dir, p, &res, &cells, &interfaces)?;
         notes.extend(prints.write(dir)?);

@@ -222,8 +222,9 @@ pub struct RunEnd<'a> {
 }
 
 /// Something a run reports to. Every method but `on_increment` has a
-/// default that does nothing.
-pub trait Observer {
+/// default that does nothing. `Send`: the run calls it from a thread of
+/// rayon's pool (`Simulation::run`).
+pub trait Observer: Send {
     /// Before the first increment (after a restart: the log holds the past
     /// rows and frames).
     fn on_start(&mut self, _run: &RunInfo<'_>, _log: &RunLog) -> Result<()> {
@@ -272,7 +273,7 @@ impl Writer for ReadOnly<'_> {
 /// A closure as an observer: `|inc| Flow::Continue`.
 pub struct FnObserver<F>(pub F);
 
-impl<F: FnMut(&Increment<'_>) -> Flow> Observer for FnObserver<F> {
+impl<F: FnMut(&Increment<'_>) -> Flow + Send> Observer for FnObserver<F> {
     fn on_increment(&mut self, inc: &Increment<'_>, _log: &RunLog) -> Result<Flow> {
         Ok((self.0)(inc))
     }

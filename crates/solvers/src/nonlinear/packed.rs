@@ -49,27 +49,28 @@ impl<'de> Visitor<'de> for PackedVisitor {
     }
 }
 
-/// `"f64le:"` and the base64 of the little-endian bytes of `v`.
+/// `"f64le:"` and the base64 of the little-endian bytes of `v`. Whole
+/// groups of three bytes first (four characters each, no branch), then the
+/// last one or two bytes with their padding.
 pub fn pack(v: &[f64]) -> String {
-    let mut out = String::with_capacity(TAG.len() + v.len().div_ceil(3) * 32 / 3 + 4);
-    out.push_str(TAG);
     let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
-    for chunk in bytes.chunks(3) {
-        let b = [
-            chunk[0],
-            chunk.get(1).copied().unwrap_or(0),
-            chunk.get(2).copied().unwrap_or(0),
-        ];
-        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
-        for k in 0..4 {
-            if k <= chunk.len() {
-                out.push(ALPHABET[((n >> (18 - 6 * k)) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
+    let mut out = Vec::with_capacity(TAG.len() + bytes.len().div_ceil(3) * 4);
+    out.extend_from_slice(TAG.as_bytes());
+    let letter = |n: u32, k: u32| ALPHABET[((n >> (18 - 6 * k)) & 63) as usize];
+    let mut groups = bytes.chunks_exact(3);
+    for g in &mut groups {
+        let n = (u32::from(g[0]) << 16) | (u32::from(g[1]) << 8) | u32::from(g[2]);
+        out.extend_from_slice(&[letter(n, 0), letter(n, 1), letter(n, 2), letter(n, 3)]);
     }
-    out
+    let rest = groups.remainder();
+    if !rest.is_empty() {
+        let b1 = rest.get(1).copied().unwrap_or(0);
+        let n = (u32::from(rest[0]) << 16) | (u32::from(b1) << 8);
+        let third = if rest.len() == 2 { letter(n, 2) } else { b'=' };
+        out.extend_from_slice(&[letter(n, 0), letter(n, 1), third, b'=']);
+    }
+    // every byte pushed is from TAG or ALPHABET: ASCII
+    String::from_utf8(out).expect("base64 text is ASCII")
 }
 
 /// The values of a packed string (an error names what is wrong).
@@ -145,6 +146,13 @@ mod tests {
         // bytes "foobar\0\0" packs as that plus "AAA="
         let x = f64::from_le_bytes(*b"foobar\0\0");
         assert_eq!(pack(&[x]), "f64le:Zm9vYmFyAAA=");
+        // the other two remainders (16 and 24 bytes), as Python's
+        // base64.b64encode(struct.pack("<2d", 1.0, -2.5)) and "<3d" with 0.1
+        assert_eq!(pack(&[1.0, -2.5]), "f64le:AAAAAAAA8D8AAAAAAAAEwA==");
+        assert_eq!(
+            pack(&[1.0, -2.5, 0.1]),
+            "f64le:AAAAAAAA8D8AAAAAAAAEwJqZmZmZmbk/"
+        );
     }
 
     #[test]
