@@ -93,6 +93,48 @@ fn observer_stop_leaves_a_restartable_run() {
     );
 }
 
+/// The drivers (and so the observers) run on a thread of rayon's pool, so
+/// that the parallel loops they start begin on that thread; with
+/// `on_calling_thread` they stay on the caller's thread. The curve is the
+/// same to the last bit either way (the paper's peel beam, 12 increments).
+#[test]
+fn the_drivers_run_on_the_pool_unless_told_to_stay() {
+    let scene = repo().join("examples/paper/beam_peel.toml");
+    let caller = std::thread::current().id();
+    let mut rows = Vec::new();
+    for stay in [false, true] {
+        let mut threads = Vec::new();
+        let mut watch = FnObserver(|_: &Increment<'_>| {
+            threads.push((
+                std::thread::current().id() == caller,
+                rayon::current_thread_index().is_some(),
+            ));
+            Flow::Continue
+        });
+        let settings = RunSettings {
+            max_increments: Some(12),
+            on_calling_thread: stay,
+            ..RunSettings::in_memory()
+        };
+        let r = Simulation::from_file(&scene)
+            .unwrap()
+            .run(&settings, &mut [&mut watch])
+            .unwrap();
+        assert_eq!(threads.len(), 12);
+        assert!(
+            threads.iter().all(|&t| t == (stay, !stay)),
+            "on_calling_thread = {stay}: (caller's thread, pool thread) per increment {threads:?}"
+        );
+        rows.push(
+            r.rows
+                .iter()
+                .map(|r| (r.lambda.to_bits(), r.reaction.map(f64::to_bits)))
+                .collect::<Vec<_>>(),
+        );
+    }
+    assert_eq!(rows[0], rows[1]);
+}
+
 /// An override gives the result of the edited scene; a key the scene does
 /// not have is an error that names it.
 #[test]

@@ -77,7 +77,11 @@ pub struct PetscSolver {
     method: Method,
     tolerance: f64,
     max_iterations: usize,
-    layout: Option<EquationLayout>,
+    /// The component (0 = x, 1 = y, 2 = z) of every equation, from
+    /// `set_layout`, until the near-null space is built from it: all the
+    /// equation layout GAMG needs (the whole layout, 13 bytes an equation,
+    /// was kept on every rank for the run).
+    components: Option<Vec<u8>>,
     numbering: Numbering,
     system: *mut c_void,
     general: bool,
@@ -132,7 +136,7 @@ impl PetscSolver {
             method,
             tolerance,
             max_iterations,
-            layout: None,
+            components: None,
             numbering: Numbering::default(),
             system: std::ptr::null_mut(),
             general: false,
@@ -251,10 +255,10 @@ impl PetscSolver {
     /// rotations about the centroid), orthonormalised, as GAMG's
     /// near-null space. Needs the points and the equations' components.
     fn set_rigid_body_modes(&mut self, coords: &[[f64; 3]]) -> Result<(), SolverError> {
-        let (Some(layout), n) = (&self.layout, self.numbering.row.len()) else {
+        let (Some(components), n) = (self.components.take(), self.numbering.row.len()) else {
             return Ok(());
         };
-        if coords.len() != n || layout.component.len() != n {
+        if coords.len() != n || components.len() != n {
             return Ok(());
         }
         let centroid = coords
@@ -265,7 +269,7 @@ impl PetscSolver {
         let owned = &self.numbering.owned;
         let mut modes = vec![vec![0.0; owned.len()]; 6];
         for (k, &j) in owned.iter().enumerate() {
-            let c = layout.component[j] as usize;
+            let c = components[j] as usize;
             let x = [
                 coords[j][0] - centroid[0],
                 coords[j][1] - centroid[1],
@@ -481,7 +485,7 @@ impl LinearSolver for PetscSolver {
     }
 
     fn set_layout(&mut self, layout: &EquationLayout) {
-        self.layout = Some(layout.clone());
+        self.components = Some(layout.component.clone());
     }
 
     fn report(&self) -> SolveReport {
