@@ -16,7 +16,7 @@ use pyo3::exceptions::{PyKeyboardInterrupt, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyList, PyString};
 use std::path::PathBuf;
-use std::sync::{Arc, Mutex};
+use std::sync::{mpsc, Arc, Mutex};
 
 /// A simulation read from a file, ready to check and to run once.
 #[pyclass(name = "Simulation", module = "junta._junta")]
@@ -227,8 +227,6 @@ impl PySimulation {
         let settings = RunSettings {
             output,
             max_increments,
-            // Ctrl-C (`check_signals`) is only seen on Python's main thread
-            on_calling_thread: true,
             ..RunSettings::default()
         };
         let slots = self.slots.clone();
@@ -237,16 +235,27 @@ impl PySimulation {
             slots: slots.clone(),
             error: None,
             interrupted: false,
+            main_thread: None,
         };
         let mut collector = frames_every.map(FrameCollector::every);
         let ran = py.detach(|| {
-            guard(|| {
-                let mut observers: Vec<&mut dyn Observer> = Vec::new();
-                if let Some(c) = collector.as_mut() {
-                    observers.push(c);
-                }
-                observers.push(&mut observer);
-                sim.run(&settings, &mut observers)
+            // the run on a thread of rayon's pool (`Simulation::run`), this
+            // thread answering its signal checks until it is done
+            let (to_main, main_inbox) = mpsc::channel();
+            observer.main_thread = Some(to_main.clone());
+            rayon::in_place_scope(|scope| {
+                scope.spawn(|_| {
+                    let r = guard(|| {
+                        let mut observers: Vec<&mut dyn Observer> = Vec::new();
+                        if let Some(c) = collector.as_mut() {
+                            observers.push(c);
+                        }
+                        observers.push(&mut observer);
+                        sim.run(&settings, &mut observers)
+                    });
+                    let _ = to_main.send(ToMain::Done(Box::new(r)));
+                });
+                serve_signal_checks(&main_inbox)
             })
         });
         let result = match ran {
@@ -349,11 +358,64 @@ struct PyObserver {
     /// The exception the callback raised.
     error: Option<PyErr>,
     interrupted: bool,
+    /// Python's main thread, waiting for the run: the signal checks go
+    /// there (`check_signals` sees Ctrl-C only on the main thread).
+    main_thread: Option<mpsc::Sender<ToMain>>,
+}
+
+/// What a run on rayon's pool sends the Python thread that started it.
+enum ToMain {
+    /// Check for signals (Ctrl-C) and answer with the exception it raised.
+    CheckSignals(mpsc::Sender<Option<PyErr>>),
+    /// The run's end.
+    Done(Box<Result<junta::Result<junta::RunResults>, String>>),
+}
+
+/// On the thread that started a run: answer its signal checks until it is
+/// done, then give its end.
+fn serve_signal_checks(
+    inbox: &mpsc::Receiver<ToMain>,
+) -> Result<junta::Result<junta::RunResults>, String> {
+    loop {
+        match inbox.recv() {
+            Ok(ToMain::CheckSignals(answer)) => {
+                let raised = Python::attach(|py| py.check_signals().err());
+                let _ = answer.send(raised);
+            }
+            Ok(ToMain::Done(end)) => return *end,
+            Err(_) => return Err("internal error: the run ended without its result".into()),
+        }
+    }
 }
 
 impl Observer for PyObserver {
+    /// Signals are checked before the callback and after it (a Ctrl-C, or
+    /// a SIGINT the callback sent, ends the run at this increment, as when
+    /// the run was on Python's main thread and the callback raised it).
     fn on_increment(&mut self, inc: &Increment<'_>, _log: &RunLog) -> junta::Result<Flow> {
-        Ok(Python::attach(|py| self.increment(py, inc)))
+        if let Some(e) = self.signal_raised() {
+            return Ok(Python::attach(|py| self.raised(py, e)));
+        }
+        let flow = Python::attach(|py| self.increment(py, inc));
+        if !matches!(flow, Flow::Continue) {
+            return Ok(flow);
+        }
+        Ok(match self.signal_raised() {
+            Some(e) => Python::attach(|py| self.raised(py, e)),
+            None => flow,
+        })
+    }
+}
+
+impl PyObserver {
+    /// The exception Python's signal handlers raised, asked of the main
+    /// thread when the run is on rayon's pool (without holding the GIL,
+    /// which the main thread needs to answer).
+    fn signal_raised(&self) -> Option<PyErr> {
+        let main = self.main_thread.as_ref()?;
+        let (answer, reply) = mpsc::channel();
+        main.send(ToMain::CheckSignals(answer)).ok()?;
+        reply.recv().ok().flatten()
     }
 }
 
@@ -380,8 +442,10 @@ fn callback_flow(v: &Bound<'_, PyAny>) -> Flow {
 
 impl PyObserver {
     fn increment(&mut self, py: Python<'_>, inc: &Increment<'_>) -> Flow {
-        if let Err(e) = py.check_signals() {
-            return self.raised(py, e);
+        if self.main_thread.is_none() {
+            if let Err(e) = py.check_signals() {
+                return self.raised(py, e);
+            }
         }
         if self.slots.iter().any(|s| s.failed()) {
             return Flow::Stop("a Python law failed".into());

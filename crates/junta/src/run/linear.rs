@@ -68,7 +68,8 @@ pub(crate) fn run_linear(
     // a rank of an MPI run other than the writer, keeping no frame, has no
     // use for the whole model's cell averages and ply indices (about 60
     // bytes per element, and the time of every element's point outputs)
-    let silent_rank = dir.is_none() && !keep_frame && junta_core::distributed::collective().is_some();
+    let silent_rank =
+        dir.is_none() && !keep_frame && junta_core::distributed::collective().is_some();
     let (cells, ply) = if silent_rank {
         (crate::post::fields::CellResults::default(), Vec::new())
     } else {

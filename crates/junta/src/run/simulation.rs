@@ -63,8 +63,10 @@ pub struct RunSettings {
     pub without_end_frame: bool,
     /// Run the drivers on the calling thread rather than on a thread of
     /// rayon's pool (see [`Simulation::run`]). For a caller that must see
-    /// its own thread's state during the run: the Python package, whose
-    /// Ctrl-C is only seen on Python's main thread.
+    /// its own thread's state during the run (a signal handler, a
+    /// thread-local). The Python package, whose Ctrl-C is only seen on
+    /// Python's main thread, runs on the pool and has that thread answer
+    /// its signal checks instead.
     pub on_calling_thread: bool,
 }
 
