@@ -124,10 +124,11 @@ impl OwnedRows {
             pairs[2 * k + 1] = c as PetscInt;
             slot.push(REMOTE | k as u32);
         });
-        if total >= REMOTE as usize {
+        // every rank agrees before the exchange, so that none is left in it
+        if any_rank(total >= REMOTE as usize) {
             return Err(SolverError::OutOfMemory {
                 detail: format!(
-                    "petsc: {total} matrix entries of this rank belong to other ranks (at most 2^31); more ranks give each fewer"
+                    "petsc: a rank holds 2^31 or more matrix entries that belong to other ranks (this rank: {total}); more ranks give each fewer"
                 ),
             });
         }
@@ -187,6 +188,7 @@ impl OwnedRows {
         let mut row_ptr = Vec::with_capacity(count.len() + 1);
         let mut columns = Vec::with_capacity(raw_len);
         row_ptr.push(0);
+        let mut too_many = false;
         for r in 0..count.len() {
             let entries = &mut raw[raw_ptr[r]..raw_ptr[r + 1]];
             entries.sort_unstable();
@@ -201,11 +203,16 @@ impl OwnedRows {
                 }
             }
             if columns.len() > PetscInt::MAX as usize {
-                return Err(SolverError::OutOfMemory {
-                    detail: "petsc: this rank's rows hold more than 2^31 - 1 entries (32-bit PetscInt of the Debian build); more ranks give each fewer".into(),
-                });
+                too_many = true;
+                break;
             }
             row_ptr.push(columns.len() as PetscInt);
+        }
+        // agreed by every rank, as the set-up's next step is collective
+        if any_rank(too_many) {
+            return Err(SolverError::OutOfMemory {
+                detail: "petsc: a rank's rows hold more than 2^31 - 1 entries (32-bit PetscInt of the Debian build); more ranks give each fewer".into(),
+            });
         }
         Ok(Pattern { row_ptr, columns })
     }
@@ -245,4 +252,9 @@ fn prefix(counts: &[usize]) -> Vec<usize> {
         out.push(out.last().copied().unwrap_or(0) + c);
     }
     out
+}
+
+/// Whether `flag` holds on any rank (on one process: `flag`); collective.
+fn any_rank(flag: bool) -> bool {
+    junta_core::distributed::collective().map_or(flag, |c| c.any(flag))
 }
