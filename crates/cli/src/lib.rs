@@ -143,6 +143,32 @@ enum SweepKind {
     },
 }
 
+/// The log level (`-v` counts; a rank that does not write logs errors
+/// only) and rayon's global pool. The drivers run on that pool
+/// (`Simulation::run`): its threads get a main thread's stack (8 MiB), not
+/// rayon's 2 MiB. Called after the MPI session starts, which sets each
+/// rank's thread count.
+fn set_up_process(verbose: u8, writer: bool) {
+    let level = match (verbose, writer) {
+        (_, false) => "error",
+        (0, _) => "warn",
+        (1, _) => "info",
+        _ => "debug",
+    };
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| {
+                tracing_subscriber::EnvFilter::new(format!("{level},junta_solvers=error"))
+            }),
+        )
+        .with_writer(std::io::stderr)
+        .init();
+    rayon::ThreadPoolBuilder::new()
+        .stack_size(8 << 20)
+        .build_global()
+        .ok();
+}
+
 /// Parse the command line, run it, and map the outcome to an exit code.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -158,33 +184,13 @@ pub fn main() -> ExitCode {
     let writer = session.as_ref().is_none_or(junta_mpi::Session::is_root);
     #[cfg(not(feature = "mpi"))]
     let writer = true;
-    let level = match (cli.verbose, writer) {
-        (_, false) => "error",
-        (0, _) => "warn",
-        (1, _) => "info",
-        _ => "debug",
-    };
-    tracing_subscriber::fmt()
-        .with_env_filter(
-            tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| {
-                tracing_subscriber::EnvFilter::new(format!("{level},junta_solvers=error"))
-            }),
-        )
-        .with_writer(std::io::stderr)
-        .init();
+    set_up_process(cli.verbose, writer);
     #[cfg(feature = "mpi")]
     if session.is_some() && !matches!(cli.command, Command::Run { .. }) {
         junta_mpi::abort_all(
             "under mpirun only `junta run` is distributed; run the other commands in one process",
         );
     }
-    // the drivers run on rayon's pool (`Simulation::run`): its threads get
-    // the stack of a main thread (8 MiB), not rayon's 2 MiB; built after
-    // the MPI session, which sets each rank's thread count
-    rayon::ThreadPoolBuilder::new()
-        .stack_size(8 << 20)
-        .build_global()
-        .ok();
     let progress = !cli.quiet && writer;
     let result = match cli.command {
         Command::Run {
