@@ -230,19 +230,19 @@ impl PySimulation {
             ..RunSettings::default()
         };
         let slots = self.slots.clone();
+        let (to_main, main_inbox) = mpsc::channel();
         let mut observer = PyObserver {
             callback,
             slots: slots.clone(),
             error: None,
             interrupted: false,
-            main_thread: None,
+            main_thread: to_main.clone(),
         };
         let mut collector = frames_every.map(FrameCollector::every);
         let ran = py.detach(|| {
             // the run on a thread of rayon's pool (`Simulation::run`), this
             // thread answering its signal checks until it is done
-            let (to_main, main_inbox) = mpsc::channel();
-            observer.main_thread = Some(to_main.clone());
+            let main_inbox = main_inbox;
             rayon::in_place_scope(|scope| {
                 scope.spawn(|_| {
                     let r = guard(|| {
@@ -360,7 +360,7 @@ struct PyObserver {
     interrupted: bool,
     /// Python's main thread, waiting for the run: the signal checks go
     /// there (`check_signals` sees Ctrl-C only on the main thread).
-    main_thread: Option<mpsc::Sender<ToMain>>,
+    main_thread: mpsc::Sender<ToMain>,
 }
 
 /// What a run on rayon's pool sends the Python thread that started it.
@@ -409,12 +409,11 @@ impl Observer for PyObserver {
 
 impl PyObserver {
     /// The exception Python's signal handlers raised, asked of the main
-    /// thread when the run is on rayon's pool (without holding the GIL,
-    /// which the main thread needs to answer).
+    /// thread (without holding the GIL, which the main thread needs to
+    /// answer).
     fn signal_raised(&self) -> Option<PyErr> {
-        let main = self.main_thread.as_ref()?;
         let (answer, reply) = mpsc::channel();
-        main.send(ToMain::CheckSignals(answer)).ok()?;
+        self.main_thread.send(ToMain::CheckSignals(answer)).ok()?;
         reply.recv().ok().flatten()
     }
 }
@@ -442,11 +441,6 @@ fn callback_flow(v: &Bound<'_, PyAny>) -> Flow {
 
 impl PyObserver {
     fn increment(&mut self, py: Python<'_>, inc: &Increment<'_>) -> Flow {
-        if self.main_thread.is_none() {
-            if let Err(e) = py.check_signals() {
-                return self.raised(py, e);
-            }
-        }
         if self.slots.iter().any(|s| s.failed()) {
             return Flow::Stop("a Python law failed".into());
         }
