@@ -6,7 +6,7 @@
 //!
 //! | key | type | what |
 //! |---|---|---|
-//! | `cholesky` | [`CholeskySolver`] | supernodal Cholesky on faer's symbolic analysis and dense kernels, nested-dissection or AMD ordering ([`ordering`]; by default the one with fewer predicted flops), double or mixed precision ([`Precision`]), iterative refinement, conditioning warnings |
+//! | `cholesky` | [`CholeskySolver`] | supernodal Cholesky (symbolic analysis on the graph of nodes, faer's dense kernels), nested-dissection or AMD ordering ([`ordering`]; by default the one with fewer predicted flops), double or mixed precision ([`Precision`]), iterative refinement, conditioning warnings |
 //! | `ldlt` | [`LdltSolver`] | supernodal `L D L^T` for symmetric indefinite (softening) tangents: Bunch-Kaufman 1x1/2x2 pivoting within each panel on the same ordering and symbolic analysis as `cholesky`, inertia (`negative_pivots`) in the report, static perturbation of tiny pivots with iterative refinement |
 //! | `lu` | [`LuSolver`] | supernodal `LU` with partial pivoting for general (nonsymmetric) tangents (friction, non-associated plasticity): faer's numeric LU on the ordering of the shared analysis, symbolic analysis reused, iterative refinement |
 //! | `cg` | [`CgSolver`] | preconditioned conjugate gradients, Jacobi, 3×3 nodal block-Jacobi or smoothed-aggregation AMG ([`amg`]) with rigid-body modes per body |
@@ -75,7 +75,7 @@ pub mod nonlinear;
 
 // The crate's paths before the split (`junta_solvers::lu`, `junta_solvers::newton`, ...).
 pub use linear::{amg, cg, cholesky, gallery, ldlt, lu, minres, ordering};
-pub(crate) use linear::{common, panel_lu, supernodal};
+pub(crate) use linear::{common, panel_lu, supernodal, symbolic};
 pub use nonlinear::{arc_length, linear_static, newton, path_switch, vocabulary};
 
 pub use cg::{CgSettings, CgSolver, KrylovMethod, Preconditioner};

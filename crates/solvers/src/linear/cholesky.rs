@@ -7,8 +7,9 @@
 //! * [`LinearSolver::analyze`] (`crate::supernodal::analyze`, shared with
 //!   the `ldlt` back end [`crate::LdltSolver`]): the fill-reducing ordering `P`
 //!   ([`crate::ordering::choose`]; the report's notes give the predicted
-//!   factor non-zeros of every candidate and the one kept), then faer's symbolic factorisation with
-//!   `SymmetricOrdering::Custom(P)`: elimination tree, column counts,
+//!   factor non-zeros of every candidate and the one kept), then the
+//!   supernodal symbolic factorisation on the quotient graph of equation
+//!   groups (`crate::symbolic`): elimination tree, column counts,
 //!   supernodes, and the row structure of `L`. Supernodes wider than
 //!   `PANEL` (256) columns are split into panels (`crate::supernodal`,
 //!   which holds the numeric kernels). Done once per pattern.
@@ -901,7 +902,7 @@ impl LinearSolver for CholeskySolver {
 /// elsewhere only a failed reservation is caught). Aborting on a failed
 /// allocation, or being killed by the kernel once the pages are touched,
 /// is what this avoids.
-fn allocate_values<T: Default + Clone>(
+fn allocate_values<T: Default + Copy + Send + Sync>(
     values: &mut Vec<T>,
     len: usize,
     precision: &str,
@@ -933,14 +934,14 @@ fn allocate_values<T: Default + Clone>(
     values
         .try_reserve_exact(len)
         .map_err(|_| refuse("and the allocation failed".into()))?;
-    values.resize(len, T::default());
+    crate::common::fill_default_in_parallel(values, len);
     Ok(bytes)
 }
 
 inventory::submit! {
     SolverEntry {
         key: "cholesky",
-        description: "sparse supernodal Cholesky (faer symbolic analysis and dense kernels) with nested-dissection or AMD ordering (auto: the one with fewer predicted flops), double or mixed (single-precision factor refined in double) precision, iterative refinement and conditioning warnings",
+        description: "sparse supernodal Cholesky (symbolic analysis on the graph of nodes, faer dense kernels) with nested-dissection or AMD ordering (auto: the one with fewer predicted flops), double or mixed (single-precision factor refined in double) precision, iterative refinement and conditioning warnings",
         params: CHOLESKY_PARAMS,
         build: |table| Ok(Box::new(CholeskySolver::from_table(table)?)),
     }

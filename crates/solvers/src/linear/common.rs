@@ -583,3 +583,24 @@ pub(crate) fn available_memory() -> Option<u64> {
     let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kb * 1024)
 }
+
+/// Extend the empty `values` (reserved for at least `len` entries) to `len`
+/// default values, written by rayon's threads in chunks. The first write
+/// to a fresh page maps it; spread over the threads, mapping and zeroing
+/// the half-gigabyte factor of a 100k-equation cube takes a fraction of
+/// the single-thread `resize` (0.25 s on the H20 cube n=20).
+pub(crate) fn fill_default_in_parallel<T: Default + Copy + Send + Sync>(
+    values: &mut Vec<T>,
+    len: usize,
+) {
+    assert!(values.is_empty() && values.capacity() >= len);
+    values.spare_capacity_mut()[..len]
+        .par_chunks_mut(1 << 16)
+        .for_each(|chunk| {
+            for v in chunk {
+                v.write(T::default());
+            }
+        });
+    // SAFETY: the first `len` entries were written just above.
+    unsafe { values.set_len(len) };
+}

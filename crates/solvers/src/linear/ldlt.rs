@@ -7,7 +7,7 @@
 //!
 //! The ordering `P` and the symbolic structure are those of
 //! [`crate::CholeskySolver`] (one shared analysis, `crate::supernodal::analyze`:
-//! fill-reducing ordering, faer's supernodal symbolic Cholesky, supernodes
+//! fill-reducing ordering, the supernodal symbolic Cholesky, supernodes
 //! split into panels of at most 256 columns). Column by column the numeric
 //! factor is a block elimination of `P A P^T`: for panel `s` with columns
 //! `J` and rows `R` below,

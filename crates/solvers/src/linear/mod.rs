@@ -7,6 +7,7 @@
 //! | `lu.rs` | supernodal LU with partial pivoting (general), key `lu` |
 //! | `panel_lu.rs` | the LU's dense panel kernel |
 //! | `supernodal.rs` | the symbolic analysis and panel storage the three factors share |
+//! | `symbolic.rs` | the supernodal symbolic factorisation on the quotient graph of equation groups |
 //! | `ordering.rs` | fill-reducing orderings (nested dissection, AMD) and fill estimates |
 //! | `cg.rs`, `cg/gmres.rs` | preconditioned CG and GMRES, key `cg` |
 //! | `amg.rs` | smoothed-aggregation AMG preconditioner |
@@ -27,3 +28,4 @@ pub mod minres;
 pub mod ordering;
 pub(crate) mod panel_lu;
 pub(crate) mod supernodal;
+pub(crate) mod symbolic;

@@ -258,6 +258,19 @@ pub fn choose_reusing(
     nd_weight: f64,
     known: Option<&PrecomputedDissection>,
 ) -> OrderingChoice {
+    choose_keeping_counter(kind, matrix, coords, nd_weight, known).0
+}
+
+/// [`choose_reusing`], and the [`FillCounter`] that predicted the
+/// candidates' fill (`None` when there was nothing to predict), for the
+/// symbolic analysis to reuse its quotient graph.
+pub(crate) fn choose_keeping_counter(
+    kind: OrderingKind,
+    matrix: &SymmetricCsc,
+    coords: Option<&[[f64; 3]]>,
+    nd_weight: f64,
+    known: Option<&PrecomputedDissection>,
+) -> (OrderingChoice, Option<FillCounter>) {
     let t0 = std::time::Instant::now();
     let kinds: &[OrderingKind] = match kind {
         OrderingKind::Auto => &[OrderingKind::NestedDissection, OrderingKind::Amd],
@@ -315,14 +328,15 @@ pub fn choose_reusing(
         Some(b) => (std::mem::take(&mut candidates[b].1), candidates[b].0),
         None => (Vec::new(), OrderingKind::Natural),
     };
-    OrderingChoice {
+    let choice = OrderingChoice {
         perm,
         kind: kept,
         candidates: candidates.into_iter().map(|(k, _, e)| (k, e)).collect(),
         seconds: t0.elapsed().as_secs_f64(),
         nd_weight: if kinds.len() > 1 { nd_weight } else { 1.0 },
         dissection_reused: known.is_some(),
-    }
+    };
+    (choice, counter)
 }
 
 /// The inverse permutation: `inv[perm[k]] = k`.
@@ -423,7 +437,7 @@ fn amd_scalar(matrix: &SymmetricCsc) -> Vec<usize> {
 /// compression: `parent[i]` (or `usize::MAX` for a root), from the
 /// neighbours of each vertex `k` in elimination order (those `< k` are
 /// used). `O(nnz log n)` at worst, near-linear in practice.
-fn elimination_tree<I: Iterator<Item = usize>>(
+pub(crate) fn elimination_tree<I: Iterator<Item = usize>>(
     n: usize,
     neighbours: impl Fn(usize) -> I,
 ) -> Vec<usize> {
@@ -454,7 +468,8 @@ fn elimination_tree<I: Iterator<Item = usize>>(
 /// upper triangle, the tree path from `i` towards `k` until a vertex already
 /// marked for row `k`: the walk visits exactly the pattern of row `k` of
 /// `L`, so the cost is `O(nnz(L))`. For statistics and tests; the solver
-/// itself reads its factor size from faer's symbolic structure.
+/// itself reads its factor size from its symbolic structure
+/// ([`crate::symbolic`]).
 pub fn factor_nonzeros(matrix: &SymmetricCsc, perm: Option<&[usize]>) -> usize {
     let n = matrix.n;
     let permuted;
@@ -499,8 +514,8 @@ pub fn factor_nonzeros(matrix: &SymmetricCsc, perm: Option<&[usize]>) -> usize {
 /// count `C_g` (the sum of `w_h` over the groups `h` in column `g` of the
 /// quotient factor, `g` included) the group adds `sum_{t < w_g} (C_g - t)
 /// = w_g C_g - w_g (w_g - 1) / 2` non-zeros and `sum_{t < w_g} (C_g -
-/// t)^2` flops. Orderings that split groups are counted on the equation
-/// graph itself (every group of size 1).
+/// t)^2` flops. Orderings that split groups are counted on the graph of
+/// their runs (stretches of one group, [`FillCounter`]'s `run_graph`).
 ///
 /// Column counts by the algorithm of Gilbert, Ng and Peyton (1994), as in
 /// Davis' CSparse `cs_counts`, with weights: elimination tree (Liu, path
@@ -517,13 +532,10 @@ pub struct FillCounter {
     group_ptr: Vec<usize>,
     group_of: Vec<u32>,
     graph: Graph,
-    /// The equation graph, for orderings that split groups.
-    scalar: std::sync::OnceLock<Graph>,
-    upper: SymmetricCsc,
 }
 
 impl FillCounter {
-    /// Groups and quotient graph of `matrix` (its pattern is copied).
+    /// Groups and quotient graph of `matrix`.
     pub fn new(matrix: &SymmetricCsc) -> Self {
         let group_ptr = equation_groups(matrix, None);
         let ng = group_ptr.len() - 1;
@@ -537,14 +549,6 @@ impl FillCounter {
             group_ptr,
             group_of,
             graph,
-            scalar: std::sync::OnceLock::new(),
-            upper: SymmetricCsc {
-                n: matrix.n,
-                col_ptr: matrix.col_ptr.clone(),
-                row_idx: matrix.row_idx.clone(),
-                values: Vec::new(),
-                lower: Vec::new(),
-            },
         }
     }
 
@@ -552,19 +556,85 @@ impl FillCounter {
     /// matrix's equations).
     pub fn predict(&self, perm: &[usize]) -> FillEstimate {
         debug_assert_eq!(perm.len(), self.n);
+        self.with_quotient(perm, weighted_counts)
+    }
+
+    /// The supernodal structure of the factor of `perm` computed on the
+    /// quotient graph ([`crate::symbolic`]), amalgamated (`relax`) or
+    /// fundamental.
+    pub(crate) fn supernodes(&self, perm: &[usize], relax: bool) -> crate::symbolic::Supernodes {
+        debug_assert_eq!(perm.len(), self.n);
+        self.with_quotient(perm, |graph, w, order| {
+            crate::symbolic::Supernodes::of_groups(graph, w, order, relax)
+        })
+    }
+
+    /// `f(graph, w, order)` on the quotient graph of `perm`: the groups'
+    /// graph when `perm` keeps every group contiguous, else the graph of
+    /// its runs ([`Self::run_graph`]).
+    fn with_quotient<R>(&self, perm: &[usize], f: impl Fn(&Graph, &[usize], &[u32]) -> R) -> R {
         if let Some(order) = self.group_order(perm) {
             let w: Vec<usize> = (0..self.group_ptr.len() - 1)
                 .map(|g| self.group_ptr[g + 1] - self.group_ptr[g])
                 .collect();
-            weighted_counts(&self.graph, &w, &order)
+            f(&self.graph, &w, &order)
         } else {
-            let graph = self.scalar.get_or_init(|| {
-                let singletons: Vec<usize> = (0..=self.n).collect();
-                group_graph(&self.upper, &singletons)
-            });
-            let order: Vec<u32> = perm.iter().map(|&p| p as u32).collect();
-            weighted_counts(graph, &vec![1; self.n], &order)
+            let (graph, w) = self.run_graph(perm);
+            let order: Vec<u32> = (0..w.len() as u32).collect();
+            f(&graph, &w, &order)
         }
+    }
+
+    /// The quotient graph of the runs of `perm` (maximal stretches of
+    /// consecutive positions whose equations lie in one group) and the
+    /// size of each run; runs are numbered in the order of `perm`. The
+    /// equations of a group have one closed neighbourhood, so they are
+    /// adjacent to each other and to the same other groups: run `r` of
+    /// group `g` neighbours the other runs of `g` and every run of the
+    /// groups next to `g`. An ordering that splits groups (nested
+    /// dissection by coordinates parts two corner nodes of one element
+    /// that hashing joins; AMD on equations) is then still counted on a
+    /// graph smaller than the equations'.
+    fn run_graph(&self, perm: &[usize]) -> (Graph, Vec<usize>) {
+        let n = perm.len();
+        let group = |p: usize| self.group_of[perm[p]] as usize;
+        let mut run_ptr = vec![0usize];
+        for p in 1..n {
+            if group(p) != group(p - 1) {
+                run_ptr.push(p);
+            }
+        }
+        run_ptr.push(n);
+        let nr = run_ptr.len() - 1;
+        let ng = self.group_ptr.len() - 1;
+        let mut runs_ptr = vec![0usize; ng + 1];
+        for r in 0..nr {
+            runs_ptr[group(run_ptr[r]) + 1] += 1;
+        }
+        for g in 0..ng {
+            runs_ptr[g + 1] += runs_ptr[g];
+        }
+        let mut next = runs_ptr.clone();
+        let mut runs = vec![0u32; nr];
+        for r in 0..nr {
+            let g = group(run_ptr[r]);
+            runs[next[g]] = r as u32;
+            next[g] += 1;
+        }
+        let runs_of = |g: usize| &runs[runs_ptr[g]..runs_ptr[g + 1]];
+        let mut xadj = Vec::with_capacity(nr + 1);
+        xadj.push(0usize);
+        let mut adj = Vec::new();
+        for r in 0..nr {
+            let g = group(run_ptr[r]);
+            adj.extend(runs_of(g).iter().filter(|&&q| q as usize != r));
+            for &h in self.graph.neighbours(g) {
+                adj.extend_from_slice(runs_of(h as usize));
+            }
+            xadj.push(adj.len());
+        }
+        let w = run_ptr.windows(2).map(|p| p[1] - p[0]).collect();
+        (Graph { xadj, adj }, w)
     }
 
     /// The sequence of groups of `perm` when it keeps every group
@@ -602,6 +672,29 @@ pub fn predict_fill(matrix: &SymmetricCsc, perm: &[usize]) -> FillEstimate {
 /// (vertex weights `w`) eliminated in the order `order` (`order[new] =
 /// vertex`); see [`FillCounter`].
 fn weighted_counts(graph: &Graph, w: &[usize], order: &[u32]) -> FillEstimate {
+    let (_, counts) = weighted_column_counts(graph, w, order);
+    let mut est = FillEstimate::default();
+    for (j, &c) in counts.iter().enumerate() {
+        let wg = w[order[j] as usize];
+        est.nonzeros += wg * c - wg * (wg - 1) / 2;
+        for t in 0..wg {
+            let ct = (c - t) as f64;
+            est.flops += ct * ct;
+        }
+    }
+    est
+}
+
+/// The elimination tree (`parent[k]`, `usize::MAX` for a root) and the
+/// weighted column counts `C_k` of the Cholesky factor of the graph
+/// `graph` (vertex weights `w`) eliminated in the order `order`, both in
+/// the elimination numbering (`order[k]` is the `k`-th vertex); see
+/// [`FillCounter`].
+pub(crate) fn weighted_column_counts(
+    graph: &Graph,
+    w: &[usize],
+    order: &[u32],
+) -> (Vec<usize>, Vec<usize>) {
     const NONE: usize = usize::MAX;
     let n = order.len();
     let mut inv = vec![0usize; n];
@@ -695,17 +788,8 @@ fn weighted_counts(graph: &Graph, w: &[usize], order: &[u32]) -> FillEstimate {
             delta[parent[j]] += delta[j];
         }
     }
-    let mut est = FillEstimate::default();
-    for j in 0..n {
-        let wg = w[order[j] as usize];
-        let c = delta[j] as usize;
-        est.nonzeros += wg * c - wg * (wg - 1) / 2;
-        for t in 0..wg {
-            let ct = (c - t) as f64;
-            est.flops += ct * ct;
-        }
-    }
-    est
+    let counts = delta.into_iter().map(|d| d as usize).collect();
+    (parent, counts)
 }
 
 /// Pattern (values zero) of the upper triangle of `P A P^T`, `perm[new] = old`.
@@ -798,14 +882,14 @@ pub fn equation_groups(matrix: &SymmetricCsc, coords: Option<&[[f64; 3]]>) -> Ve
 }
 
 /// Undirected graph in CSR form (no self loops, no duplicates).
-struct Graph {
+pub(crate) struct Graph {
     xadj: Vec<usize>,
     adj: Vec<u32>,
 }
 
 impl Graph {
     #[inline]
-    fn neighbours(&self, v: usize) -> &[u32] {
+    pub(crate) fn neighbours(&self, v: usize) -> &[u32] {
         &self.adj[self.xadj[v]..self.xadj[v + 1]]
     }
 }

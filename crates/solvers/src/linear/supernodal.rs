@@ -2,8 +2,8 @@
 //! working precision (`f64`, or `f32` for the mixed-precision mode of
 //! [`crate::CholeskySolver`]).
 //!
-//! The structure ([`PanelFactor`]) comes from faer's supernodal symbolic
-//! analysis and does not depend on the precision; the values live in a
+//! The structure ([`PanelFactor`]) comes from the supernodal symbolic
+//! analysis ([`crate::symbolic`]) and does not depend on the precision; the values live in a
 //! separate buffer (`Vec<T>`) so that one structure serves a single- and a
 //! double-precision factor. The maths:
 //!
@@ -17,15 +17,11 @@
 //!   panels in reverse order).
 
 use crate::ordering::{self, OrderingKind};
+use crate::symbolic::Supernodes;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError as DenseLltError, LltRegularization};
 use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering,
-};
-use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::SymbolicSparseColMatRef;
-use faer::{Accum, MatMut, MatRef, Par, Side};
+use faer::{Accum, MatMut, MatRef, Par};
 use junta_core::{PrecomputedDissection, SolverError, SymmetricCsc};
 use rayon::prelude::*;
 
@@ -76,7 +72,7 @@ const MAX_TASK_DEPTH: usize = 12;
 /// left-looking with subtree parallelism (independent subtrees of the
 /// supernodal elimination tree run as rayon tasks; the dense kernels of
 /// large panels run in parallel too). The supernode partition and row
-/// structure come from faer's symbolic analysis; wide supernodes are split
+/// structure come from [`crate::symbolic`]; wide supernodes are split
 /// into panels (a panel of a supernode is itself a valid supernode whose
 /// structure is the rest of its supernode plus the supernode's rows).
 ///
@@ -237,7 +233,7 @@ pub(crate) fn threads_of(par: Par) -> usize {
 }
 
 /// The symbolic analysis shared by the direct back ends (Cholesky and
-/// LDL^T): the fill-reducing ordering, faer's supernodal symbolic Cholesky
+/// LDL^T): the fill-reducing ordering, the supernodal symbolic Cholesky
 /// on it, and the panel structure.
 pub(crate) struct Analysis {
     /// `perm[new] = old`, and its inverse.
@@ -259,10 +255,13 @@ pub(crate) struct Analysis {
 
 /// Ordering `kind` of `matrix` ([`ordering::choose_reusing`], with `coords`
 /// for the geometric orderings and `known` a nested dissection computed
-/// earlier), then faer's supernodal symbolic Cholesky with
-/// that ordering (elimination tree, column counts, supernodes, row
-/// structure of `L`) and the panels. The structure of an `L D L^T` factor
-/// without delayed pivots is the same.
+/// earlier), then the supernodal symbolic Cholesky with that ordering
+/// (elimination tree, column counts, supernodes, row structure of `L`) and
+/// the panels. The symbolic step runs on the quotient graph of equation
+/// groups ([`crate::symbolic`]), reusing the graph the ordering's fill
+/// prediction built (the groups are split into runs where the ordering
+/// parts them). The structure of an `L D L^T` factor without delayed
+/// pivots is the same.
 pub(crate) fn analyze(
     kind: OrderingKind,
     matrix: &SymmetricCsc,
@@ -272,7 +271,8 @@ pub(crate) fn analyze(
 ) -> Result<Analysis, SolverError> {
     let t0 = std::time::Instant::now();
     let n = matrix.n;
-    let choice = ordering::choose_reusing(kind, matrix, coords, nd_weight, known);
+    let (choice, counter) =
+        ordering::choose_keeping_counter(kind, matrix, coords, nd_weight, known);
     let dissection_reused = choice.dissection_reused;
     let ordering_note = choice.note();
     let ordering::OrderingChoice {
@@ -284,24 +284,9 @@ pub(crate) fn analyze(
     debug_assert!(ordering::is_permutation(&perm, n));
     let ordering_seconds = t0.elapsed().as_secs_f64();
     let perm_inv = ordering::inverse(&perm);
-    let a = SymbolicSparseColMatRef::new_checked(n, n, &matrix.col_ptr, None, &matrix.row_idx);
-    let perm_ref = faer::perm::PermRef::new_checked(&perm, &perm_inv, n);
-    let symbolic = factorize_symbolic_cholesky(
-        a,
-        Side::Upper,
-        SymmetricOrdering::Custom(perm_ref),
-        CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
-        },
-    )
-    .map_err(|e| SolverError::Usage(format!("symbolic Cholesky failed: {e:?}")))?;
-    let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
-        return Err(SolverError::Usage(
-            "symbolic Cholesky: supernodal structure expected".into(),
-        ));
-    };
-    let factor = PanelFactor::new(sn);
+    let counter = counter.unwrap_or_else(|| ordering::FillCounter::new(matrix));
+    let supernodes = counter.supernodes(&perm, true);
+    let factor = PanelFactor::new(&supernodes);
     Ok(Analysis {
         perm,
         perm_inv,
@@ -343,30 +328,23 @@ impl PanelFactor {
             .sum()
     }
 
-    /// Panels from faer's supernodal symbolic structure.
-    pub(crate) fn new(
-        sym: &faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky<usize>,
-    ) -> Self {
-        let n = sym.nrows();
-        let ns = sym.n_supernodes();
-        let sb = sym.supernode_begin();
-        let se = sym.supernode_end();
-        let cpr = sym.col_ptr_for_row_idx();
-        let nps = sym.nnz_per_super();
-        let rows = sym.row_idx();
+    /// Panels of a supernodal symbolic structure.
+    pub(crate) fn new(sym: &Supernodes) -> Self {
+        let n = sym.n;
+        let ns = sym.count();
         let mut begin = vec![0usize];
         let mut pat_ptr = vec![0usize];
         let mut pat: Vec<u32> = Vec::new();
         let mut val_ptr = vec![0usize];
         let pw = PANEL;
         for k in 0..ns {
-            let (b, e) = (sb[k], se[k]);
-            let below = &rows[cpr[k]..cpr[k] + nps[k]];
+            let (b, e) = (sym.bounds[k], sym.bounds[k + 1]);
+            let below = sym.rows_of(k);
             let mut c0 = b;
             while c0 < e {
                 let c1 = (c0 + pw).min(e);
                 pat.extend((c1..e).map(|i| i as u32));
-                pat.extend(below.iter().map(|&i| i as u32));
+                pat.extend_from_slice(below);
                 let r = (e - c1) + below.len();
                 let w = c1 - c0;
                 begin.push(c1);
