@@ -33,7 +33,7 @@
 //! The result equals faer's supernodal symbolic factorisation of the
 //! equation matrix up to the amalgamation step (same fundamental
 //! supernodes and structures, checked in the tests), for a fraction of its
-//! time: 0.03 s against 0.39 s on the H20 unit cube n=20 (102,039
+//! time: about 0.06 s against 0.39 s on the H20 unit cube n=20 (102,039
 //! equations, 125M factor entries).
 
 use crate::ordering::Graph;
