@@ -121,9 +121,8 @@ fn amalgamated(first: &[usize], parent: &[usize], counts: &[usize], w: &[usize])
         let (a, b) = (first[s], first[s + 1]);
         let s_size: usize = w[a..b].iter().sum();
         let s_degree = counts[a] - s_size;
-        let child_adjacent = merged.last().is_some_and(|_| {
-            a > 0 && parent[a - 1] != NONE && parent[a - 1] >= a && parent[a - 1] < b
-        });
+        // the last merged supernode ends at group a - 1: is it a child of s?
+        let child_adjacent = !merged.is_empty() && (a..b).contains(&parent[a - 1]);
         if child_adjacent {
             let new_zeros = (s_size + s_degree - degree) * size;
             let all = new_zeros + zeros;
