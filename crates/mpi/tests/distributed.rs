@@ -701,15 +701,16 @@ fn assert_every_rank_ended(out: &Output) -> String {
 #[test]
 fn restart_on_another_rank_count_continues_the_curve() {
     // dcb_coarse under arc length: 2 ranks for 40 increments, then 2, 4
-    // and 1 ranks to the end, against the run in one process; on the same
-    // rank count, against the uninterrupted 2-rank run bit for bit
+    // and 1 ranks to the end, against the run in one process. Bit for bit
+    // only on one rank: two uninterrupted 2-rank runs differ in the last
+    // bits now and then (4 of 54 here, by up to 1.4e-8 after Newton's
+    // tolerance; likely MUMPS's dynamic scheduling, docs/distributed.md),
+    // and a restart cannot do better than that
     let tmp = tempfile::tempdir().unwrap();
     let path = repo("examples/delamination/dcb_coarse.toml");
     let s = path.to_str().unwrap();
     let seq = tmp.path().join("seq");
     sequential(&["run", s, "-o", seq.to_str().unwrap()]);
-    let whole = tmp.path().join("np2");
-    mpirun(2, &["run", s, "-o", whole.to_str().unwrap()]);
     for ranks in [2, 4, 1] {
         let out = tmp.path().join(format!("restart{ranks}"));
         let o = out.to_str().unwrap();
@@ -718,14 +719,18 @@ fn restart_on_another_rank_count_continues_the_curve() {
         mpirun(ranks, &["run", "--restart", o]);
         let worst = assert_same_curve(&seq, &out, 1e-7, &format!("restart on {ranks} ranks"));
         eprintln!("restart from 2 on {ranks} ranks: worst {worst:.2e}");
-        if ranks == 2 {
-            assert_same_curve(&whole, &out, 0.0, "restart on the same 2 ranks");
-            let iterations = |d: &Path| {
-                let (h, rows) = curve(d);
-                let c = h.iter().position(|c| c == "newton_iterations").unwrap();
-                rows.iter().map(|r| r[c]).collect::<Vec<_>>()
-            };
-            assert_eq!(iterations(&whole), iterations(&out));
-        }
     }
+    let whole = tmp.path().join("np1");
+    mpirun(1, &["run", s, "-o", whole.to_str().unwrap()]);
+    let out = tmp.path().join("np1_restart");
+    let o = out.to_str().unwrap();
+    mpirun(1, &["run", s, "-o", o, "--max-increments", "40"]);
+    mpirun(1, &["run", "--restart", o]);
+    assert_same_curve(&whole, &out, 0.0, "restart on the same rank");
+    let iterations = |d: &Path| {
+        let (h, rows) = curve(d);
+        let c = h.iter().position(|c| c == "newton_iterations").unwrap();
+        rows.iter().map(|r| r[c]).collect::<Vec<_>>()
+    };
+    assert_eq!(iterations(&whole), iterations(&out));
 }
