@@ -209,6 +209,21 @@ pub trait Element: Send + Sync + std::fmt::Debug {
         }
         Ok(total)
     }
+    /// The largest value of the law output `name` (a scalar the element's
+    /// laws report, such as `viscous_energy` or `damage_rate`) over the
+    /// element's points, from the committed state; 0 where no law reports
+    /// it or every value is below 0. By default from
+    /// [`Element::point_outputs`]; an element that can skip the other
+    /// outputs overrides it (the drivers ask every increment).
+    fn max_law_output(&self, ctx: &ElementContext<'_>, name: &str) -> Result<f64, ElementError> {
+        let mut max = 0.0f64;
+        for p in self.point_outputs(ctx)? {
+            if let Some(v) = p.get(name) {
+                max = max.max(v[0]);
+            }
+        }
+        Ok(max)
+    }
     /// A representative Young's modulus of the element's material (solids),
     /// for diagnostics such as the penalty advisor.
     fn reference_modulus(&self) -> Option<f64> {

@@ -80,7 +80,7 @@ impl std::fmt::Debug for KeptAssembler {
 /// increment's `delta_cycles` and the step's load ratio to the laws
 /// ([`crate::element::StepInfo`]) and size a fatigue step's increments so
 /// that no point's damage grows by more than `max_damage_increment` (from
-/// the laws' committed `damage_rate`, [`Model::max_point_output`]).
+/// the laws' committed `damage_rate`, [`Model::max_law_output`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FatigueProgram {
     /// Cycles at the end of each step of the program.
@@ -460,21 +460,33 @@ impl Model {
         Ok(total)
     }
 
-    /// The largest value of the scalar point output `name` over every
+    /// The largest value of the scalar law output `name` over every
     /// interface integration point, from the committed `state` (0 where no
-    /// law reports it), e.g. the fatigue laws' `damage_rate`.
-    pub fn max_point_output(
+    /// law reports it), e.g. the fatigue laws' `damage_rate`: the laws'
+    /// outputs only ([`crate::Element::max_law_output`]), not the points'
+    /// whole output.
+    pub fn max_law_output(
         &self,
         u: &[f64],
         state: &StateStore,
         name: &str,
     ) -> Result<f64, CoreError> {
         let mut max = 0.0f64;
-        self.for_each_interface_point(u, state, |p| {
-            if let Some(v) = p.get(name) {
-                max = max.max(v[0]);
-            }
-        })?;
+        self.for_each_interface_element(
+            u,
+            state,
+            |b| {
+                if let Some(law) = self.elements[b].batch_law() {
+                    // one call for the block's outputs, none per point
+                    law.prefetch_outputs(state.block_committed(b, self.mesh.blocks[b].len()));
+                }
+                Ok(Some(Vec::new()))
+            },
+            |b, ctx| {
+                max = max.max(self.elements[b].max_law_output(ctx, name)?);
+                Ok(())
+            },
+        )?;
         Ok(max)
     }
 

@@ -1017,6 +1017,28 @@ impl Element for InterfaceElement {
         Ok(total)
     }
 
+    /// The law's outputs of the committed states only, as
+    /// [`Element::point_outputs`] lists them (the first 16 of the law's
+    /// names), without the element's own (jump, traction, frame).
+    fn max_law_output(&self, ctx: &ElementContext<'_>, name: &str) -> Result<f64, ElementError> {
+        let names = self.law.output_names();
+        let mut law_out = [0.0; 16];
+        let nl = names.len().min(law_out.len());
+        let Some(i) = names[..nl].iter().position(|n| *n == name) else {
+            return Ok(0.0);
+        };
+        let sl = self.law.state_len();
+        let mut max = 0.0f64;
+        for q in 0..self.points.len() {
+            self.law.outputs(
+                &ctx.state_committed[q * sl..(q + 1) * sl],
+                &mut law_out[..nl],
+            );
+            max = max.max(law_out[i]);
+        }
+        Ok(max)
+    }
+
     fn interface_stiffness(&self) -> Option<[f64; 3]> {
         Some(self.law.initial_stiffness())
     }

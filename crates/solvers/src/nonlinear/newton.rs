@@ -471,7 +471,7 @@ impl Dissipation {
     ) -> Dissipation {
         let energy = model.dissipated_energy(u, state).unwrap_or(0.0);
         let viscous = model
-            .max_point_output(u, state, VISCOUS_ENERGY)
+            .max_law_output(u, state, VISCOUS_ENERGY)
             .unwrap_or(0.0)
             > 0.0;
         Dissipation {
@@ -513,7 +513,7 @@ impl LoadRun<'_> {
         let Some(f) = &model.fatigue else {
             return Ok(1.0);
         };
-        let rate = model.max_point_output(
+        let rate = model.max_law_output(
             &self.w.u_conv,
             &self.state,
             junta_core::law::output::DAMAGE_RATE,
