@@ -9,6 +9,7 @@ use junta_core::element::{ElementContext, StepInfo};
 use junta_core::state::StateStore;
 use junta_core::Model;
 use junta_core::PointStage;
+use rayon::prelude::*;
 
 /// Cell-averaged output of every solid element, in block order, and the
 /// range of each stress component over the integration points per block.
@@ -204,11 +205,32 @@ pub fn interface_results_at(
         }
         let responses = batched_responses(model, u, state, bi, step)?;
         let np = model.elements[bi].num_points();
-        let mut points = Vec::new();
-        for e in 0..b.len() {
-            let own = (!responses.is_empty()).then(|| &responses[e * np..(e + 1) * np]);
-            points.extend(element_points_with(model, u, state, bi, e, step, own)?);
-        }
+        let points = if responses.is_empty() {
+            // on rayon's threads (the run's drivers ask every increment),
+            // in element order
+            let per_element: Vec<Vec<junta_core::PointOutput>> = (0..b.len())
+                .into_par_iter()
+                .map(|e| element_points_with(model, u, state, bi, e, step, None))
+                .collect::<Result<_>>()?;
+            per_element.into_iter().flatten().collect()
+        } else {
+            // a batched (Python) law answers from the block's responses,
+            // on this thread
+            let mut points = Vec::new();
+            for e in 0..b.len() {
+                let own = &responses[e * np..(e + 1) * np];
+                points.extend(element_points_with(
+                    model,
+                    u,
+                    state,
+                    bi,
+                    e,
+                    step,
+                    Some(own),
+                )?);
+            }
+            points
+        };
         out.push(InterfaceResults {
             block: bi,
             points_per_element: model.elements[bi].num_points(),
