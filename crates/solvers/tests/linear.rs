@@ -342,6 +342,50 @@ fn cholesky_warns_on_a_penalty_that_ruins_digits() {
 /// penalty (caught by the pivot ratio of the single factor) and an
 /// ill-conditioned chain with a uniform diagonal (caught by refinement
 /// that does not converge).
+/// The triangular solves split at the first branching of the elimination
+/// tree (`parallel_solve_entries`): the subtrees in parallel, each adding
+/// its updates of the separator's rows into its own buffer. With nested
+/// dissection (a real tree) the split solve gives the serial one's solution
+/// to round-off, in double and in single precision, and the exact solution
+/// to the factor's accuracy (no refinement to mend it).
+#[test]
+fn parallel_cholesky_solves_equal_the_serial_ones() {
+    let (a, coords) = grid_3d(12, 12, 12, 3, Stencil::Point27);
+    let xs = exact(a.n);
+    let b = rhs(&a, &xs);
+    for precision in [Precision::Double, Precision::Mixed] {
+        let solve = |entries: usize| {
+            let mut s = CholeskySolver::new(CholeskySettings {
+                ordering: OrderingKind::NestedDissection,
+                threads: 2,
+                parallel_solve_entries: entries,
+                precision,
+                mixed_min_equations: 0,
+                max_refinements: 0,
+                ..Default::default()
+            });
+            s.analyze(&a, Some(&coords)).unwrap();
+            s.factorize(&a).unwrap();
+            let mut x = b.clone();
+            s.solve_in_place(&a, &mut x).unwrap();
+            (x, s.stats().solve_tasks)
+        };
+        let ((xs1, serial_tasks), (xp, parallel_tasks)) = (solve(usize::MAX), solve(0));
+        assert_eq!(serial_tasks, 0);
+        assert!(
+            parallel_tasks >= 2,
+            "{precision:?}: {parallel_tasks} subtrees"
+        );
+        let apart = max_rel_error(&xp, &xs1);
+        assert!(apart < 1e-12, "{precision:?}: {apart:e}");
+        assert!(
+            max_rel_error(&xp, &xs) < 1e-10,
+            "{precision:?}: {:e}",
+            max_rel_error(&xp, &xs)
+        );
+    }
+}
+
 #[test]
 fn mixed_precision_refines_to_double_accuracy_or_falls_back() {
     // auto's size threshold off, so that these small matrices qualify

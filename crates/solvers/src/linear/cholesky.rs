@@ -68,12 +68,15 @@ use crate::common::{
     inf_norm, norm2, residual, symmetric_norm_inf, symmetric_only, validate, Pattern,
 };
 use crate::ordering::OrderingKind;
-use crate::supernodal::{FactorScalar, PanelFactor};
+use crate::supernodal::{threads_of, FactorScalar, PanelFactor, SolvePlan};
 use faer::Par;
 use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
 use junta_core::{LinearSolver, PrecomputedDissection, SolveReport, SolverError, SymmetricCsc};
 use serde::Deserialize;
 use std::time::Instant;
+
+/// Default [`CholeskySettings::parallel_solve_entries`] (`ldlt`'s too).
+const PARALLEL_SOLVE_ENTRIES: usize = 1 << 20;
 
 /// Settings of [`CholeskySolver`] (TOML parameters of the `cholesky` key).
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
@@ -93,9 +96,14 @@ pub struct CholeskySettings {
     pub pivot_warn: f64,
     /// Pivot ratio at or below which the matrix is refused as singular (1e-14).
     pub pivot_fail: f64,
-    /// Threads for the numeric factorisation (0: rayon's pool); the
-    /// triangular solves are sequential.
+    /// Threads for the numeric factorisation and the triangular solves
+    /// (0: rayon's pool).
     pub threads: usize,
+    /// Stored factor entries from which the triangular solves run the
+    /// factor's independent subtrees in parallel (2^20; a solve is
+    /// memory-bound, and below this the threads' hand-over costs more than
+    /// it saves).
+    pub parallel_solve_entries: usize,
     /// Working precision of the factor (see [`Precision`]; default `auto`).
     pub precision: Precision,
     /// `auto` uses the mixed mode only when the matrix diagonal spans at
@@ -176,6 +184,7 @@ impl Default for CholeskySettings {
             pivot_warn: 1e-12,
             pivot_fail: 1e-14,
             threads: 0,
+            parallel_solve_entries: PARALLEL_SOLVE_ENTRIES,
             precision: Precision::Auto,
             mixed_max_spread: 1e6,
             mixed_min_equations: 20_000,
@@ -216,6 +225,10 @@ pub const CHOLESKY_PARAMS: &[ParamDoc] = &[
         doc: "threads for factorisation and solves, 0 = all of rayon's pool (default 0)",
     },
     ParamDoc {
+        name: "parallel_solve_entries",
+        doc: "stored factor entries from which the triangular solves run independent subtrees in parallel (default 1048576)",
+    },
+    ParamDoc {
         name: "precision",
         doc: "\"double\" (f64 factor), \"mixed\" (f32 factor, solutions refined to f64 residuals, falls back to double when refinement fails) or \"auto\" (default: mixed from mixed_min_equations equations on when the matrix diagonal spans at most mixed_max_spread); thin-walled or slender models refine poorly in single precision: use double",
     },
@@ -252,6 +265,9 @@ pub struct CholeskyStats {
     /// Of those, analyses that took the caller's nested dissection
     /// ([`LinearSolver::offer_dissection`]) instead of computing it.
     pub dissections_reused: usize,
+    /// Independent subtrees the triangular solves of the current factor
+    /// run in parallel (0: the solves run in panel order on one thread).
+    pub solve_tasks: usize,
     /// Number of numeric factorisations so far.
     pub factor_count: usize,
     /// Number of solves so far.
@@ -290,6 +306,9 @@ pub struct CholeskySolver {
     perm: Vec<usize>,
     perm_inv: Vec<usize>,
     factor: Option<PanelFactor>,
+    /// The independent parts of the triangular solves, balanced for the
+    /// threads ([`SolvePlan`]), from the last analysis.
+    plan: Option<SolvePlan>,
     /// Values of the double- or single-precision factor (only one is
     /// non-empty at a time).
     values64: Vec<f64>,
@@ -336,6 +355,7 @@ impl CholeskySolver {
             perm: Vec::new(),
             perm_inv: Vec::new(),
             factor: None,
+            plan: None,
             values64: Vec::new(),
             values32: Vec::new(),
             single: false,
@@ -385,13 +405,22 @@ impl CholeskySolver {
         }
     }
 
+    /// The plan of parallel triangular solves, for a factor of `entries`
+    /// stored values of at least [`CholeskySettings::parallel_solve_entries`]
+    /// with more than one group of subtrees.
+    fn parallel_plan(&self, entries: usize) -> Option<&SolvePlan> {
+        self.plan
+            .as_ref()
+            .filter(|p| p.groups.len() > 1 && entries >= self.settings.parallel_solve_entries)
+    }
+
     /// `x <- (L L^T)^-1 x` through the permutation, in the factor's
     /// precision (`work`: scratch of length `n`).
     fn apply_inverse<T: FactorScalar>(&self, values: &[T], x: &mut [f64], work: &mut Vec<T>) {
         let factor = self.factor.as_ref().expect("analysed");
         work.clear();
         work.extend(self.perm.iter().map(|&old| T::of_f64(x[old])));
-        factor.solve_permuted(values, work);
+        factor.solve_permuted(values, work, self.parallel_plan(values.len()));
         for (i, xi) in x.iter_mut().enumerate() {
             *xi = work[self.perm_inv[i]].to_f64();
         }
@@ -481,6 +510,9 @@ impl CholeskySolver {
         self.report.precision = "double".into();
         let factor = self.factor.as_ref().expect("analysed");
         self.stats.factor_bytes = allocate_values(&mut self.values64, factor.len_val(), "double")?;
+        self.stats.solve_tasks = self
+            .parallel_plan(factor.len_val())
+            .map_or(0, |p| p.tasks.len());
         let mut values = std::mem::take(&mut self.values64);
         let res = factor.factorize(&mut values, matrix, &self.perm_inv, par);
         self.stats.factor_count += 1;
@@ -712,6 +744,11 @@ impl LinearSolver for CholeskySolver {
         self.stats.dissections_reused += usize::from(dissection_reused);
         self.stats.supernodal = true;
         self.stats.factor_nonzeros = factor.nonzeros();
+        self.plan = factor.solve_plan();
+        let threads = threads_of(self.par());
+        if let Some(plan) = self.plan.as_mut() {
+            plan.balance(threads);
+        }
         self.factor = Some(factor);
         self.stats.ordering = kind.name();
         self.stats.ordering_candidates = candidates.iter().map(|(k, e)| (k.name(), *e)).collect();
@@ -808,6 +845,7 @@ impl LinearSolver for CholeskySolver {
             let len = self.factor.as_ref().expect("analysed").len_val();
             self.values64 = Vec::new();
             self.stats.factor_bytes = allocate_values(&mut self.values32, len, "single")?;
+            self.stats.solve_tasks = self.parallel_plan(len).map_or(0, |p| p.tasks.len());
             match self.factor_single(matrix, &diag) {
                 Ok(()) => {
                     self.report.factor_seconds += t0.elapsed().as_secs_f64();

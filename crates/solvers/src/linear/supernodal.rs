@@ -877,60 +877,182 @@ impl PanelFactor {
         d
     }
 
-    /// `x <- (L L^T)^-1 x` in the permuted numbering.
-    pub(crate) fn solve_permuted<T: FactorScalar>(&self, values: &[T], x: &mut [T]) {
-        use faer::linalg::triangular_solve as tri;
-        let np = self.n_panels();
+    /// `x <- (L L^T)^-1 x` in the permuted numbering: one dense triangular
+    /// solve and one dense product per panel, in panel order; with a
+    /// `plan` ([`SolvePlan`], balanced for the threads) the independent
+    /// subtrees run in parallel, each forward step adding its updates of
+    /// its chain's rows into a buffer of its own (summed before the
+    /// chains), each backward step reading the chain's rows only. Same
+    /// arithmetic per entry either way except for the order in which a
+    /// chain row's updates are summed.
+    pub(crate) fn solve_permuted<T: FactorScalar>(
+        &self,
+        values: &[T],
+        x: &mut [T],
+        plan: Option<&SolvePlan>,
+    ) {
+        let n = x.len();
+        let xp = SharedPtr(x.as_mut_ptr());
+        let top_cols = |plan: &SolvePlan, t: usize| {
+            let (lo, hi) = plan.tops[t];
+            (self.begin[lo], self.begin[hi + 1])
+        };
         let mut tmp: Vec<T> = Vec::new();
-        // forward: x_J <- L_JJ^-1 x_J, then x_R -= L_RJ x_J (one dense
-        // triangular solve and one dense product per panel)
-        for s in 0..np {
-            let (b, e) = (self.begin[s], self.begin[s + 1]);
-            let w = e - b;
-            let pat = self.pattern(s);
-            let m = w + pat.len();
-            let v = &values[self.val_ptr[s]..self.val_ptr[s] + m * w];
-            let panel = MatRef::from_column_major_slice(v, m, w);
-            let (top, bot) = panel.split_at_row(w);
-            let xj = MatMut::from_column_major_slice_mut(&mut x[b..e], w, 1);
-            tri::solve_lower_triangular_in_place(top, xj, Par::Seq);
-            if pat.is_empty() {
-                continue;
+        // SAFETY (all blocks below): a step writes only its panel's
+        // columns and the rows its plan gives it, or its own buffer.
+        match plan {
+            Some(plan) => {
+                let accs: Vec<(usize, Vec<T>)> = plan
+                    .groups
+                    .par_iter()
+                    .flat_map_iter(|group| {
+                        let mut tmp = Vec::new();
+                        group
+                            .iter()
+                            .map(|&ti| {
+                                let t = &plan.tasks[ti];
+                                let (t0, t1) = top_cols(plan, t.top);
+                                let mut acc = vec![T::default(); t1 - t0];
+                                let own_end = self.begin[t.hi + 1];
+                                for s in t.lo..=t.hi {
+                                    unsafe {
+                                        self.forward_step(
+                                            s, values, xp, own_end, &mut acc, t0, &mut tmp,
+                                        )
+                                    };
+                                }
+                                (ti, acc)
+                            })
+                            .collect::<Vec<_>>()
+                    })
+                    .collect();
+                for (ti, acc) in &accs {
+                    let (t0, _) = top_cols(plan, plan.tasks[*ti].top);
+                    for (xi, &a) in x[t0..t0 + acc.len()].iter_mut().zip(acc) {
+                        *xi -= a;
+                    }
+                }
+                for &(lo, hi) in &plan.tops {
+                    for s in lo..=hi {
+                        unsafe { self.forward_step(s, values, xp, n, &mut [], 0, &mut tmp) };
+                    }
+                }
+                for &(lo, hi) in plan.tops.iter().rev() {
+                    for s in (lo..=hi).rev() {
+                        unsafe { self.backward_step(s, values, xp, &mut tmp) };
+                    }
+                }
+                plan.groups.par_iter().for_each(|group| {
+                    let mut tmp = Vec::new();
+                    for &ti in group {
+                        let t = &plan.tasks[ti];
+                        for s in (t.lo..=t.hi).rev() {
+                            unsafe { self.backward_step(s, values, xp, &mut tmp) };
+                        }
+                    }
+                });
             }
+            None => {
+                for s in 0..self.n_panels() {
+                    unsafe { self.forward_step(s, values, xp, n, &mut [], 0, &mut tmp) };
+                }
+                for s in (0..self.n_panels()).rev() {
+                    unsafe { self.backward_step(s, values, xp, &mut tmp) };
+                }
+            }
+        }
+    }
+
+    /// Forward step of panel `s` on `x`: `x_J <- L_JJ^-1 x_J`, then `x_R -=
+    /// L_RJ x_J`, where a row at or past `own_end` is not subtracted: its
+    /// update is added to `acc` (from row `acc_begin` on) instead.
+    ///
+    /// # Safety
+    /// No other task may touch the columns of `s` or the rows below
+    /// `own_end` that it updates.
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn forward_step<T: FactorScalar>(
+        &self,
+        s: usize,
+        values: &[T],
+        x: SharedPtr<T>,
+        own_end: usize,
+        acc: &mut [T],
+        acc_begin: usize,
+        tmp: &mut Vec<T>,
+    ) {
+        use faer::linalg::triangular_solve as tri;
+        let (b, e) = (self.begin[s], self.begin[s + 1]);
+        let w = e - b;
+        let pat = self.pattern(s);
+        let m = w + pat.len();
+        let v = &values[self.val_ptr[s]..self.val_ptr[s] + m * w];
+        let panel = MatRef::from_column_major_slice(v, m, w);
+        let (top, bot) = panel.split_at_row(w);
+        let xj = std::slice::from_raw_parts_mut(x.get().add(b), w);
+        tri::solve_lower_triangular_in_place(
+            top,
+            MatMut::from_column_major_slice_mut(&mut *xj, w, 1),
+            Par::Seq,
+        );
+        if pat.is_empty() {
+            return;
+        }
+        tmp.clear();
+        tmp.resize(pat.len(), T::default());
+        let t = MatMut::from_column_major_slice_mut(&mut tmp[..], pat.len(), 1);
+        let xr = MatRef::from_column_major_slice(&*xj, w, 1);
+        faer::linalg::matmul::matmul(t, Accum::Replace, bot, xr, T::of_f64(1.0), Par::Seq);
+        for (&g, &t) in pat.iter().zip(tmp.iter()) {
+            let g = g as usize;
+            if g < own_end {
+                *x.get().add(g) -= t;
+            } else {
+                debug_assert!(g >= acc_begin && g - acc_begin < acc.len());
+                acc[g - acc_begin] += t;
+            }
+        }
+    }
+
+    /// Backward step of panel `s` on `x`: `x_J <- L_JJ^-T (x_J - L_RJ^T
+    /// x_R)`.
+    ///
+    /// # Safety
+    /// No other task may touch the columns of `s`, or write the rows of its
+    /// pattern, meanwhile.
+    unsafe fn backward_step<T: FactorScalar>(
+        &self,
+        s: usize,
+        values: &[T],
+        x: SharedPtr<T>,
+        tmp: &mut Vec<T>,
+    ) {
+        use faer::linalg::triangular_solve as tri;
+        let (b, e) = (self.begin[s], self.begin[s + 1]);
+        let w = e - b;
+        let pat = self.pattern(s);
+        let m = w + pat.len();
+        let v = &values[self.val_ptr[s]..self.val_ptr[s] + m * w];
+        let panel = MatRef::from_column_major_slice(v, m, w);
+        let (top, bot) = panel.split_at_row(w);
+        let xj = std::slice::from_raw_parts_mut(x.get().add(b), w);
+        if !pat.is_empty() {
             tmp.clear();
-            tmp.resize(pat.len(), T::default());
-            let t = MatMut::from_column_major_slice_mut(&mut tmp[..], pat.len(), 1);
-            let xj = MatRef::from_column_major_slice(&x[b..e], w, 1);
-            faer::linalg::matmul::matmul(t, Accum::Replace, bot, xj, T::of_f64(1.0), Par::Seq);
-            for (&g, &t) in pat.iter().zip(&tmp) {
-                x[g as usize] -= t;
-            }
+            tmp.extend(pat.iter().map(|&g| *x.get().add(g as usize)));
+            let t = MatRef::from_column_major_slice(&tmp[..], pat.len(), 1);
+            faer::linalg::matmul::matmul(
+                MatMut::from_column_major_slice_mut(&mut *xj, w, 1),
+                Accum::Add,
+                bot.transpose(),
+                t,
+                T::of_f64(-1.0),
+                Par::Seq,
+            );
         }
-        // backward: x_J <- L_JJ^-T (x_J - L_RJ^T x_R)
-        for s in (0..np).rev() {
-            let (b, e) = (self.begin[s], self.begin[s + 1]);
-            let w = e - b;
-            let pat = self.pattern(s);
-            let m = w + pat.len();
-            let v = &values[self.val_ptr[s]..self.val_ptr[s] + m * w];
-            let panel = MatRef::from_column_major_slice(v, m, w);
-            let (top, bot) = panel.split_at_row(w);
-            if !pat.is_empty() {
-                tmp.clear();
-                tmp.extend(pat.iter().map(|&g| x[g as usize]));
-                let t = MatRef::from_column_major_slice(&tmp[..], pat.len(), 1);
-                let xj = MatMut::from_column_major_slice_mut(&mut x[b..e], w, 1);
-                faer::linalg::matmul::matmul(
-                    xj,
-                    Accum::Add,
-                    bot.transpose(),
-                    t,
-                    T::of_f64(-1.0),
-                    Par::Seq,
-                );
-            }
-            let xj = MatMut::from_column_major_slice_mut(&mut x[b..e], w, 1);
-            tri::solve_upper_triangular_in_place(top.transpose(), xj, Par::Seq);
-        }
+        tri::solve_upper_triangular_in_place(
+            top.transpose(),
+            MatMut::from_column_major_slice_mut(xj, w, 1),
+            Par::Seq,
+        );
     }
 }
