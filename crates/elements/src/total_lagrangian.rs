@@ -175,7 +175,11 @@ struct PointTangent<'a> {
     dv: f64,
 }
 
-/// [`add_tangent`] for `D = 3 g.len()` dofs with fixed-size products.
+/// [`add_tangent`] for `D = 3 g.len()` dofs with fixed-size products: `B`
+/// and `dv C B` (`6 x D`), then the `3 x 3` blocks `B_a^T (dv C B_b)` of
+/// the upper block triangle (`b >= a`: the matrix is symmetric, so half the
+/// product of `B^T (dv C B)` in full), each written with the geometric
+/// `dv (g_a . S g_b) I` to block `(a, b)` and its transpose to `(b, a)`.
 fn add_tangent_fixed<const D: usize>(p: &PointTangent<'_>, k: &mut [f64], ld: usize) {
     let PointTangent { g, f, s, c, dv } = *p;
     let mut b = SMatrix::<f64, 6, D>::zeros();
@@ -185,16 +189,20 @@ fn add_tangent_fixed<const D: usize>(p: &PointTangent<'_>, k: &mut [f64], ld: us
         }
     }
     let cb = (c * dv) * b;
-    let kmat: SMatrix<f64, D, D> = b.transpose() * cb;
     let st = tensor(s) * dv;
     for (a, ga) in g.iter().enumerate() {
+        let ba = b.fixed_columns::<3>(3 * a);
         let sga = st * nalgebra::Vector3::from(*ga);
-        for (bn, gb) in g.iter().enumerate() {
+        for (bn, gb) in g.iter().enumerate().skip(a) {
+            let block = ba.transpose() * cb.fixed_columns::<3>(3 * bn);
             let geo = sga[0] * gb[0] + sga[1] * gb[1] + sga[2] * gb[2];
             for i in 0..3 {
-                let row = &mut k[(3 * a + i) * ld + 3 * bn..(3 * a + i) * ld + 3 * bn + 3];
-                for (j, kij) in row.iter_mut().enumerate() {
-                    *kij += kmat[(3 * a + i, 3 * bn + j)] + if i == j { geo } else { 0.0 };
+                for j in 0..3 {
+                    let v = block[(i, j)] + if i == j { geo } else { 0.0 };
+                    k[(3 * a + i) * ld + 3 * bn + j] += v;
+                    if bn != a {
+                        k[(3 * bn + j) * ld + 3 * a + i] += v;
+                    }
                 }
             }
         }
