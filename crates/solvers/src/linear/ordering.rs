@@ -437,7 +437,7 @@ fn amd_scalar(matrix: &SymmetricCsc) -> Vec<usize> {
 /// compression: `parent[i]` (or `usize::MAX` for a root), from the
 /// neighbours of each vertex `k` in elimination order (those `< k` are
 /// used). `O(nnz log n)` at worst, near-linear in practice.
-pub(crate) fn elimination_tree<I: Iterator<Item = usize>>(
+fn elimination_tree<I: Iterator<Item = usize>>(
     n: usize,
     neighbours: impl Fn(usize) -> I,
 ) -> Vec<usize> {
