@@ -445,19 +445,29 @@ impl Model {
         self.for_each_interface_element(
             u,
             state,
-            |b| {
-                if let Some(law) = self.elements[b].batch_law() {
-                    // one call for the block's outputs, none per point
-                    law.prefetch_outputs(state.block_committed(b, self.mesh.blocks[b].len()));
-                }
-                Ok(Some(Vec::new()))
-            },
+            |b| Ok(self.prefetch_committed_outputs(b, state)),
             |b, ctx| {
                 total += self.elements[b].dissipated_energy(ctx)?;
                 Ok(())
             },
         )?;
         Ok(total)
+    }
+
+    /// Before a pass over interface block `b` that reads its laws' outputs
+    /// of the committed `state` only: a batched law (a law written in
+    /// Python) is asked once for the whole block's outputs, none per point.
+    /// No law responses: `Some` of an empty list
+    /// ([`Self::for_each_interface_element`]).
+    fn prefetch_committed_outputs(
+        &self,
+        b: usize,
+        state: &StateStore,
+    ) -> Option<Vec<crate::LawResponse>> {
+        if let Some(law) = self.elements[b].batch_law() {
+            law.prefetch_outputs(state.block_committed(b, self.mesh.blocks[b].len()));
+        }
+        Some(Vec::new())
     }
 
     /// The largest value of the scalar law output `name` over every
@@ -475,13 +485,7 @@ impl Model {
         self.for_each_interface_element(
             u,
             state,
-            |b| {
-                if let Some(law) = self.elements[b].batch_law() {
-                    // one call for the block's outputs, none per point
-                    law.prefetch_outputs(state.block_committed(b, self.mesh.blocks[b].len()));
-                }
-                Ok(Some(Vec::new()))
-            },
+            |b| Ok(self.prefetch_committed_outputs(b, state)),
             |b, ctx| {
                 max = max.max(self.elements[b].max_law_output(ctx, name)?);
                 Ok(())
