@@ -563,40 +563,16 @@ impl LdltSolver {
             lperm: &self.pivots.lperm,
         };
         let plan = self.parallel_plan();
-        let top_cols = |plan: &SolvePlan, t: usize| {
-            let (lo, hi) = plan.tops[t];
-            (f.begin[lo], f.begin[hi + 1])
-        };
         // SAFETY (all blocks below): the panel steps write only their own
         // columns, the rows their plan lets them, or their own buffer.
         // forward: y_J = L_JJ^-1 Q_s x_J, x_R -= L_RJ y_J
         match plan {
             Some(plan) => {
-                let accs: Vec<(usize, Vec<f64>)> = plan
-                    .groups
-                    .par_iter()
-                    .flat_map_iter(|group| {
-                        let mut tmp = Vec::new();
-                        group
-                            .iter()
-                            .map(|&ti| {
-                                let t = &plan.tasks[ti];
-                                let (t0, t1) = top_cols(plan, t.top);
-                                let mut acc = vec![0.0; k * (t1 - t0)];
-                                for s in t.lo..=t.hi {
-                                    let own_end = f.begin[t.hi + 1];
-                                    unsafe {
-                                        panels.forward(s, rhs, own_end, &mut acc, t0, &mut tmp)
-                                    };
-                                }
-                                (ti, acc)
-                            })
-                            .collect::<Vec<_>>()
-                    })
-                    .collect();
+                let accs = plan.forward_tasks(&f.begin, k, |s, own_end, acc, t0, tmp| unsafe {
+                    panels.forward(s, rhs, own_end, acc, t0, tmp)
+                });
                 for (ti, acc) in &accs {
-                    let t = &plan.tasks[*ti];
-                    let (t0, t1) = top_cols(plan, t.top);
+                    let (t0, t1) = plan.top_columns(&f.begin, plan.tasks[*ti].top);
                     for r in 0..k {
                         let len = t1 - t0;
                         for (i, a) in acc[r * len..(r + 1) * len].iter().enumerate() {
@@ -643,15 +619,7 @@ impl LdltSolver {
                         unsafe { panels.backward(s, rhs, tmp) };
                     }
                 }
-                plan.groups.par_iter().for_each(|group| {
-                    let mut tmp = Vec::new();
-                    for &ti in group {
-                        let t = &plan.tasks[ti];
-                        for s in (t.lo..=t.hi).rev() {
-                            unsafe { panels.backward(s, rhs, &mut tmp) };
-                        }
-                    }
-                });
+                plan.backward_tasks(|s, tmp| unsafe { panels.backward(s, rhs, tmp) });
             }
             None => {
                 for s in (0..f.n_panels()).rev() {

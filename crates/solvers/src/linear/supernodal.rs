@@ -164,6 +164,71 @@ impl SolvePlan {
     }
 }
 
+impl SolvePlan {
+    /// Columns `first..end` of chain `t`, for a factor whose panel `s`
+    /// starts at column `begin[s]`.
+    pub(crate) fn top_columns(&self, begin: &[usize], t: usize) -> (usize, usize) {
+        let (lo, hi) = self.tops[t];
+        (begin[lo], begin[hi + 1])
+    }
+
+    /// The forward steps of the tasks, the groups in parallel: for each
+    /// task, `step(s, own_end, acc, acc_begin, scratch)` on its panels in
+    /// order, where `own_end` is the end of the task's columns and `acc`
+    /// (`width` times the chain's columns, zeroed, from column
+    /// `acc_begin`) takes its updates of the chain's rows. Returns each
+    /// task's `(task, acc)`, for the caller to subtract.
+    pub(crate) fn forward_tasks<T, S, F>(
+        &self,
+        begin: &[usize],
+        width: usize,
+        step: F,
+    ) -> Vec<(usize, Vec<T>)>
+    where
+        T: Clone + Default + Send,
+        S: Default,
+        F: Fn(usize, usize, &mut [T], usize, &mut S) + Sync,
+    {
+        self.groups
+            .par_iter()
+            .flat_map_iter(|group| {
+                let mut scratch = S::default();
+                group
+                    .iter()
+                    .map(|&ti| {
+                        let t = &self.tasks[ti];
+                        let (t0, t1) = self.top_columns(begin, t.top);
+                        let mut acc = vec![T::default(); width * (t1 - t0)];
+                        let own_end = begin[t.hi + 1];
+                        for s in t.lo..=t.hi {
+                            step(s, own_end, &mut acc, t0, &mut scratch);
+                        }
+                        (ti, acc)
+                    })
+                    .collect::<Vec<_>>()
+            })
+            .collect()
+    }
+
+    /// The backward steps of the tasks, the groups in parallel:
+    /// `step(s, scratch)` on each task's panels in reverse order.
+    pub(crate) fn backward_tasks<S, F>(&self, step: F)
+    where
+        S: Default,
+        F: Fn(usize, &mut S) + Sync,
+    {
+        self.groups.par_iter().for_each(|group| {
+            let mut scratch = S::default();
+            for &ti in group {
+                let t = &self.tasks[ti];
+                for s in (t.lo..=t.hi).rev() {
+                    step(s, &mut scratch);
+                }
+            }
+        });
+    }
+}
+
 /// One subtree of a [`SolvePlan`]: panels `lo..=hi`, below chain `top`.
 #[derive(Debug, Default, Clone, Copy)]
 pub(crate) struct SolveTask {
@@ -893,41 +958,16 @@ impl PanelFactor {
     ) {
         let n = x.len();
         let xp = SharedPtr(x.as_mut_ptr());
-        let top_cols = |plan: &SolvePlan, t: usize| {
-            let (lo, hi) = plan.tops[t];
-            (self.begin[lo], self.begin[hi + 1])
-        };
         let mut tmp: Vec<T> = Vec::new();
         // SAFETY (all blocks below): a step writes only its panel's
         // columns and the rows its plan gives it, or its own buffer.
         match plan {
             Some(plan) => {
-                let accs: Vec<(usize, Vec<T>)> = plan
-                    .groups
-                    .par_iter()
-                    .flat_map_iter(|group| {
-                        let mut tmp = Vec::new();
-                        group
-                            .iter()
-                            .map(|&ti| {
-                                let t = &plan.tasks[ti];
-                                let (t0, t1) = top_cols(plan, t.top);
-                                let mut acc = vec![T::default(); t1 - t0];
-                                let own_end = self.begin[t.hi + 1];
-                                for s in t.lo..=t.hi {
-                                    unsafe {
-                                        self.forward_step(
-                                            s, values, xp, own_end, &mut acc, t0, &mut tmp,
-                                        )
-                                    };
-                                }
-                                (ti, acc)
-                            })
-                            .collect::<Vec<_>>()
-                    })
-                    .collect();
+                let accs = plan.forward_tasks(&self.begin, 1, |s, own_end, acc, t0, tmp| unsafe {
+                    self.forward_step(s, values, xp, own_end, acc, t0, tmp)
+                });
                 for (ti, acc) in &accs {
-                    let (t0, _) = top_cols(plan, plan.tasks[*ti].top);
+                    let (t0, _) = plan.top_columns(&self.begin, plan.tasks[*ti].top);
                     for (xi, &a) in x[t0..t0 + acc.len()].iter_mut().zip(acc) {
                         *xi -= a;
                     }
@@ -942,15 +982,7 @@ impl PanelFactor {
                         unsafe { self.backward_step(s, values, xp, &mut tmp) };
                     }
                 }
-                plan.groups.par_iter().for_each(|group| {
-                    let mut tmp = Vec::new();
-                    for &ti in group {
-                        let t = &plan.tasks[ti];
-                        for s in (t.lo..=t.hi).rev() {
-                            unsafe { self.backward_step(s, values, xp, &mut tmp) };
-                        }
-                    }
-                });
+                plan.backward_tasks(|s, tmp| unsafe { self.backward_step(s, values, xp, tmp) });
             }
             None => {
                 for s in 0..self.n_panels() {
@@ -961,6 +993,23 @@ impl PanelFactor {
                 }
             }
         }
+    }
+
+    /// Panel `s`: its first column, its pattern (the rows below its
+    /// diagonal block), its diagonal block `L_JJ` and the rows below it,
+    /// `L_RJ`.
+    fn panel_blocks<'a, T: FactorScalar>(
+        &'a self,
+        s: usize,
+        values: &'a [T],
+    ) -> (usize, &'a [u32], MatRef<'a, T>, MatRef<'a, T>) {
+        let (b, e) = (self.begin[s], self.begin[s + 1]);
+        let w = e - b;
+        let pat = self.pattern(s);
+        let m = w + pat.len();
+        let v = &values[self.val_ptr[s]..self.val_ptr[s] + m * w];
+        let (top, bot) = MatRef::from_column_major_slice(v, m, w).split_at_row(w);
+        (b, pat, top, bot)
     }
 
     /// Forward step of panel `s` on `x`: `x_J <- L_JJ^-1 x_J`, then `x_R -=
@@ -982,13 +1031,8 @@ impl PanelFactor {
         tmp: &mut Vec<T>,
     ) {
         use faer::linalg::triangular_solve as tri;
-        let (b, e) = (self.begin[s], self.begin[s + 1]);
-        let w = e - b;
-        let pat = self.pattern(s);
-        let m = w + pat.len();
-        let v = &values[self.val_ptr[s]..self.val_ptr[s] + m * w];
-        let panel = MatRef::from_column_major_slice(v, m, w);
-        let (top, bot) = panel.split_at_row(w);
+        let (b, pat, top, bot) = self.panel_blocks(s, values);
+        let w = top.nrows();
         let xj = std::slice::from_raw_parts_mut(x.get().add(b), w);
         tri::solve_lower_triangular_in_place(
             top,
@@ -1028,13 +1072,8 @@ impl PanelFactor {
         tmp: &mut Vec<T>,
     ) {
         use faer::linalg::triangular_solve as tri;
-        let (b, e) = (self.begin[s], self.begin[s + 1]);
-        let w = e - b;
-        let pat = self.pattern(s);
-        let m = w + pat.len();
-        let v = &values[self.val_ptr[s]..self.val_ptr[s] + m * w];
-        let panel = MatRef::from_column_major_slice(v, m, w);
-        let (top, bot) = panel.split_at_row(w);
+        let (b, pat, top, bot) = self.panel_blocks(s, values);
+        let w = top.nrows();
         let xj = std::slice::from_raw_parts_mut(x.get().add(b), w);
         if !pat.is_empty() {
             tmp.clear();
