@@ -68,15 +68,12 @@ use crate::common::{
     inf_norm, norm2, residual, symmetric_norm_inf, symmetric_only, validate, Pattern,
 };
 use crate::ordering::OrderingKind;
-use crate::supernodal::{threads_of, FactorScalar, PanelFactor, SolvePlan};
+use crate::supernodal::{threads_of, FactorScalar, PanelFactor, SolvePlan, PARALLEL_SOLVE_ENTRIES};
 use faer::Par;
 use junta_core::registry::{parse_params, ParamDoc, SolverEntry};
 use junta_core::{LinearSolver, PrecomputedDissection, SolveReport, SolverError, SymmetricCsc};
 use serde::Deserialize;
 use std::time::Instant;
-
-/// Default [`CholeskySettings::parallel_solve_entries`] (`ldlt`'s too).
-const PARALLEL_SOLVE_ENTRIES: usize = 1 << 20;
 
 /// Settings of [`CholeskySolver`] (TOML parameters of the `cholesky` key).
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]

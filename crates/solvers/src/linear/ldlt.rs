@@ -117,7 +117,7 @@ use crate::common::{
     inf_norm, nan_max, norm2, residual, symmetric_only, symmetric_row_sums, validate, Pattern,
 };
 use crate::ordering::OrderingKind;
-use crate::supernodal::{PanelFactor, ScatterIndex, SharedPtr, SolvePlan};
+use crate::supernodal::{PanelFactor, ScatterIndex, SharedPtr, SolvePlan, PARALLEL_SOLVE_ENTRIES};
 use faer::linalg::triangular_solve as tri;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{MatMut, MatRef, Par};
@@ -1083,9 +1083,6 @@ fn scale_by_d(piv: PivotPtrs, col0: usize, rhs: MatRef<'_, f64>, mut out: MatMut
         }
     }
 }
-
-/// Default [`LdltSettings::parallel_solve_entries`].
-const PARALLEL_SOLVE_ENTRIES: usize = 1 << 20;
 
 /// `k` right-hand sides of length `n` stored one after another, shared by
 /// the tasks of a solve (each writes its own rows).

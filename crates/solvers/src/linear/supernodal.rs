@@ -119,6 +119,12 @@ pub(crate) struct ScatterIndex {
     entries: Vec<usize>,
 }
 
+/// Stored factor entries from which the triangular solves run a
+/// [`SolvePlan`]'s subtrees in parallel by default (`ldlt` and `cholesky`
+/// `parallel_solve_entries`): a solve is memory-bound, and below this the
+/// threads' hand-over costs more than it saves.
+pub(crate) const PARALLEL_SOLVE_ENTRIES: usize = 1 << 20;
+
 /// The independent parts of a triangular solve with a [`PanelFactor`].
 /// Below the first branching of each root's chain, the subtrees (`tasks`,
 /// each a contiguous range of panels and so of columns) touch only their
