@@ -17,12 +17,14 @@ mod lekhnitskii;
 use junta::{RunSettings, Simulation};
 use std::path::PathBuf;
 
-/// Inner radius, ply thickness, plies, strength and the moment per unit
-/// load factor on the unit thickness (the example's header).
+/// Inner radius, ply thickness, plies, strength, toughness (`G_Ic =
+/// G_IIc`) and the moment per unit load factor on the unit thickness (the
+/// example's header and law).
 const A: f64 = 6.0;
 const T: f64 = 0.25;
 const PLIES: usize = 8;
 const N: f64 = 40.0;
+const G_C: f64 = 0.2;
 const M_UNIT: f64 = 100.0;
 
 fn example(name: &str) -> (PathBuf, String) {
@@ -171,12 +173,16 @@ fn cross_section_is_the_plane_strain_slab() {
     assert!(worst < 1e-8 * scale, "{}", worst / scale);
 }
 
-/// The default control traces the unstable delamination: load control up
-/// to the peak (the onset, within 3 % of Lekhnitskii's), the snap-back,
-/// the mid-plane interface (r = 7) failed through the whole bend, then the
-/// crack growing stably along both arms. (Past 105 increments the crack
-/// runs out through arm b's loaded end; docs/laminates.md says how the run
-/// ends.)
+/// The default control traces the unstable delamination to its end: load
+/// control up to the peak (the onset, within 3 % of Lekhnitskii's), the
+/// snap-back, the mid-plane interface (r = 7) failed through the whole
+/// bend, the crack growing along both arms, then arm b's crack running out
+/// through the loaded end while the load falls back to zero. There the run
+/// ends by itself ("the delamination has run to its end"): at a positive
+/// load below 1e-3 of the peak (the increment that would carry it through
+/// zero is cut back), with the load's whole work dissipated (Clapeyron: the
+/// stored energy `½ M θ` is gone) and that energy `G_c` per unit of the
+/// failed area (Griffith) plus the process zone left at arm a's tip.
 #[test]
 fn unstable_delamination_is_traced_by_the_default_control() {
     let (path, text) = example("curved_beam_plane.toml");
@@ -185,7 +191,8 @@ fn unstable_delamination_is_traced_by_the_default_control() {
         "the example takes the default control"
     );
     let settings = RunSettings {
-        max_increments: Some(105),
+        // a bound only: the run ends by itself at 116
+        max_increments: Some(300),
         ..RunSettings::in_memory()
     };
     // keeps the last increment's fields
@@ -240,5 +247,33 @@ fn unstable_delamination_is_traced_by_the_default_control() {
     assert!(after.is_some(), "no snap-back after the peak");
     // 24 elements of 3 points around the bend
     assert_eq!(bend_failed, 72);
-    assert!(tip_a < -3.0 && tip_b > 3.0, "tips {tip_a}, {tip_b}");
+    // arm b's crack ran out through its loaded end (x = 10; the last Gauss
+    // point of its last element lies at 9.89); arm a's stopped half-way
+    assert!(tip_b > 9.8, "arm b's tip at {tip_b}");
+    assert!(tip_a < -3.0 && tip_a > -9.0, "arm a's tip at {tip_a}");
+    // the run ended by itself at the end of the crack's run
+    assert!(
+        r.status_line
+            .contains("the delamination has run to its end"),
+        "{}",
+        r.status_line
+    );
+    let last = rows.last().unwrap();
+    assert!(
+        last.lambda > 0.0 && last.lambda < 1e-3 * lambda_max,
+        "last load factor {} of {lambda_max}",
+        last.lambda
+    );
+    assert!(rows.iter().all(|row| row.lambda >= 0.0));
+    // Clapeyron: the load's work was all dissipated
+    let (work, dissipated) = (last.external_work, last.dissipated);
+    // Griffith: G_c per unit failed area, plus arm a's process zone
+    let griffith = G_C * last.damaged_area;
+    eprintln!(
+        "end of the run: work {work:.4} N mm, dissipated {dissipated:.4} N mm ({:+.2} %), G_c x failed area {griffith:.4} ({:+.2} %)",
+        100.0 * (dissipated / work - 1.0),
+        100.0 * (dissipated / griffith - 1.0)
+    );
+    assert!((work - dissipated).abs() < 0.01 * work);
+    assert!(dissipated > griffith && dissipated < 1.05 * griffith);
 }

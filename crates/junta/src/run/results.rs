@@ -29,9 +29,10 @@ pub enum EndReason {
     /// Path following brought the load factor back to zero after its
     /// maximum, with `failed` of the model's `points` interface points
     /// failed: the structure came apart when they all have; otherwise the
-    /// dissipation constraint unloaded it through its last softening
-    /// points, and the status line says so rather than that it carries no
-    /// load.
+    /// crack's run ended there (no further increment dissipates at a
+    /// positive load: the curved beam's delamination runs out through the
+    /// loaded end), and the status line says so rather than that it
+    /// carries no load.
     Unloaded {
         /// Interface points failed at the last increment.
         failed: usize,
@@ -84,7 +85,7 @@ impl EndReason {
             EndReason::EndOfProgram => "completed".into(),
             EndReason::Unloaded { failed, points } if failed >= points => "completed: the load factor fell back to zero after its maximum (every interface point has failed: the structure carries no load any more)".into(),
             EndReason::Unloaded { failed, points } => format!(
-                "completed: the load factor fell back to zero after its maximum, with {failed} of {points} interface points failed: the structure has not come apart; the dissipation constraint unloaded it through its last softening points, and the path that reloads is not traced"
+                "completed: the load factor fell back to zero after its maximum, with {failed} of {points} interface points failed: the delamination has run to its end (no further increment dissipates at a positive load); the structure has not come apart, and the branch on which it would carry load again is not traced"
             ),
             EndReason::Separated => "stopped: every interface point has failed".into(),
             EndReason::Requested(why) => format!("stopped: {why}"),

@@ -180,7 +180,16 @@
 //! maximum, 1e-4 under the interface balance, where a peeled tape pulled
 //! by a dead force hangs from the last softening points of its bond and
 //! their traction decays by a few per mille an increment), or after
-//! `max_increments` increments.
+//! `max_increments` increments. Two rules make that end the end of a
+//! crack's run where the structure has not come apart: a
+//! dissipation-controlled increment that carries the load factor through
+//! zero after its maximum is refused and cut back (up to
+//! `ZERO_CROSSING_TRIES` times), and a dissipation constraint that cannot
+//! be met (its step below 1e-3 of its first) at a load below
+//! `UNLOADED_NO_DISSIPATION` of the maximum ends the run instead of handing
+//! over to the arc length, which would reload the delaminated structure
+//! (`examples/laminates/curved_beam_plane.toml`: the crack runs out
+//! through the loaded end at 3.3e-4 of the peak).
 //!
 //! # Restart
 //!
@@ -322,6 +331,19 @@ const NO_REAL_ROOT: &str = "arc-length constraint has no real root";
 
 /// [`PathRun::rescue`]: tries, each a quarter of the last's `tau`.
 const RESCUE_TRIES: usize = 3;
+
+/// The load factor, as a share of its maximum, below which a run whose
+/// next increment cannot be made (or cannot dissipate) has come to the end
+/// of its path: [`PathEnd::Unloaded`].
+const UNLOADED_NO_DISSIPATION: f64 = 1e-3;
+
+/// Dissipation attempts of one increment refused for crossing zero
+/// ([`PathRun::crosses_zero`]) before a crossing is accepted (the run then
+/// ends, [`PathEnd::Unloaded`]).
+const ZERO_CROSSING_TRIES: usize = 4;
+
+/// The failure message of a refused zero crossing begins with this.
+const ZERO_CROSSING: &str = "the increment carried the load factor through zero";
 
 /// Why a path-following run ended without error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -664,6 +686,9 @@ struct Retry {
     linearised: bool,
     /// The arc length this increment's arc-length phase started with.
     arc_start: f64,
+    /// Dissipation attempts of this increment refused for carrying the
+    /// load factor through zero ([`PathRun::crosses_zero`]).
+    crossings: usize,
 }
 
 /// A converged increment: its attempt, what constrained it, the size that
@@ -791,6 +816,7 @@ impl<'a> PathRun<'a> {
             extrapolate: self.arc.predictor == Predictor::Secant,
             linearised: false,
             arc_start: path.size,
+            crossings: 0,
         };
         loop {
             let (outcome, control) = self.try_increment(solver, &r)?;
@@ -810,6 +836,9 @@ impl<'a> PathRun<'a> {
                     reason,
                 } => (iterations, rel, reason),
             };
+            if matches!(&reason, IncrementFailure::Element(m) if m.contains(ZERO_CROSSING)) {
+                r.crossings += 1;
+            }
             if self.try_exact_tangent(&reason)? {
                 // the same increment again, on the exact tangent
                 continue;
@@ -916,11 +945,39 @@ impl<'a> PathRun<'a> {
                         self.arc.max_arc_dissipation
                     )),
                 );
+            } else if r.mode == PathMode::Dissipation
+                && r.crossings < ZERO_CROSSING_TRIES
+                && self.crosses_zero()
+            {
+                outcome = failed(
+                    c.iterations,
+                    c.rel,
+                    IncrementFailure::Element(format!(
+                        "{ZERO_CROSSING} after its maximum \
+                         ({:.3e} -> {:.3e}): a shorter dissipation step finds where the crack's \
+                         run ends",
+                        self.cur.lambda,
+                        lambda_now(&self.w)
+                    )),
+                );
             } else if let Some(reason) = self.laws_disagree(&r.mode, dissipation)? {
                 outcome = failed(c.iterations, c.rel, reason);
             }
         }
         Ok((outcome, r.mode))
+    }
+
+    /// The trial load factor lies on the other side of zero from the
+    /// converged one, after a maximum: the dissipation step ran past the
+    /// end of a crack's run (where the load returns to zero with the
+    /// structure still whole, e.g. the curved beam of
+    /// `examples/laminates/curved_beam_plane.toml`, whose crack runs out
+    /// through the loaded end) onto a branch of reversed load.
+    fn crosses_zero(&self) -> bool {
+        let sign = self.end.signum();
+        self.path.lambda_max > 0.0
+            && self.cur.lambda * sign > 0.0
+            && lambda_now(&self.w) * sign < 0.0
     }
 
     /// Under the interface balance, a dissipation-controlled increment
@@ -1006,6 +1063,10 @@ impl<'a> PathRun<'a> {
             if let Attempt::Converged(conv) =
                 self.attempt(solver, Constraint::Dissipation(tau), true)?
             {
+                if self.crosses_zero() {
+                    tau *= 0.25;
+                    continue;
+                }
                 tracing::info!(
                     tau,
                     "arc length failed at a sharp turn: continued under dissipation control"
@@ -1051,6 +1112,15 @@ impl<'a> PathRun<'a> {
                 || matches!(reason, IncrementFailure::NonFinite))
             && path.arc_last > 0.0
         {
+            if path.lambda_max > 0.0
+                && cur.lambda * end.signum() <= UNLOADED_NO_DISSIPATION * path.lambda_max
+            {
+                // the end of a crack's run: the load is all but gone and
+                // nothing dissipates at a positive load any more; an arc
+                // from here would reload another structure (the
+                // delaminated one), not continue this crack
+                return Ok(false);
+            }
             r.fell_back = true;
             r.mode = PathMode::Arc;
             r.size = path.arc_last;
@@ -1066,7 +1136,9 @@ impl<'a> PathRun<'a> {
         if r.size < floor {
             // e.g. a fully cracked interface under force control, where
             // no equilibrium carries a load any more
-            if path.lambda_max > 0.0 && cur.lambda * end.signum() <= 1e-3 * path.lambda_max {
+            if path.lambda_max > 0.0
+                && cur.lambda * end.signum() <= UNLOADED_NO_DISSIPATION * path.lambda_max
+            {
                 return Ok(false);
             }
             if r.mode == PathMode::Arc
