@@ -342,9 +342,6 @@ const UNLOADED_NO_DISSIPATION: f64 = 1e-3;
 /// ends, [`PathEnd::Unloaded`]).
 const ZERO_CROSSING_TRIES: usize = 4;
 
-/// The failure message of a refused zero crossing begins with this.
-const ZERO_CROSSING: &str = "the increment carried the load factor through zero";
-
 /// Why a path-following run ended without error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PathEnd {
@@ -819,7 +816,7 @@ impl<'a> PathRun<'a> {
             crossings: 0,
         };
         loop {
-            let (outcome, control) = self.try_increment(solver, &r)?;
+            let (outcome, control) = self.try_increment(solver, &mut r)?;
             let (iterations, rel, reason) = match outcome {
                 Attempt::Converged(conv) => {
                     return Ok(Some(PathIncrement {
@@ -836,9 +833,6 @@ impl<'a> PathRun<'a> {
                     reason,
                 } => (iterations, rel, reason),
             };
-            if matches!(&reason, IncrementFailure::Element(m) if m.contains(ZERO_CROSSING)) {
-                r.crossings += 1;
-            }
             if self.try_exact_tangent(&reason)? {
                 // the same increment again, on the exact tangent
                 continue;
@@ -903,11 +897,14 @@ impl<'a> PathRun<'a> {
     /// under load control to end exactly there; an arc-length or load
     /// increment that dissipated more than `max_arc_dissipation` times the
     /// stored energy counts as failed (a long arc may have jumped to
-    /// another branch across a snap-back: a shorter one follows).
+    /// another branch across a snap-back: a shorter one follows); so does
+    /// a dissipation increment that carries the load factor through zero
+    /// after its maximum, up to `ZERO_CROSSING_TRIES` times an increment
+    /// (counted in `r.crossings`).
     fn try_increment(
         &mut self,
         solver: &mut dyn LinearSolver,
-        r: &Retry,
+        r: &mut Retry,
     ) -> Result<(Attempt, PathMode), NonlinearError> {
         let end = self.end;
         let constraint = self.constraint(r);
@@ -949,11 +946,12 @@ impl<'a> PathRun<'a> {
                 && r.crossings < ZERO_CROSSING_TRIES
                 && self.crosses_zero()
             {
+                r.crossings += 1;
                 outcome = failed(
                     c.iterations,
                     c.rel,
                     IncrementFailure::Element(format!(
-                        "{ZERO_CROSSING} after its maximum \
+                        "the increment carried the load factor through zero after its maximum \
                          ({:.3e} -> {:.3e}): a shorter dissipation step finds where the crack's \
                          run ends",
                         self.cur.lambda,
