@@ -36,6 +36,7 @@
 //! | `nonlinear/engine.rs` | the Newton engine (`Work`): residual, one Newton attempt, line search, exact tangent |
 //! | `nonlinear/newton.rs` | load/displacement control |
 //! | `nonlinear/arc_length.rs` | path following |
+//! | `nonlinear/arc_length_settings.rs` | path following's settings (`junta_solvers::arc_length::ArcLengthSettings`) |
 //! | `nonlinear/balance.rs` | the energy balances of the dissipation constraint (global; the interfaces' under large deformation) |
 //! | `nonlinear/path_switch.rs` | load control with path following at limit points |
 //! | `nonlinear/linear_static.rs` | the linear static solve |
