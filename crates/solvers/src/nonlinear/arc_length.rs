@@ -230,6 +230,12 @@ const RESCUE_TRIES: usize = 3;
 /// of its path: [`PathEnd::Unloaded`].
 const UNLOADED_NO_DISSIPATION: f64 = 1e-3;
 
+/// After a maximum, the converged load factor `cur.lambda` lies below
+/// [`UNLOADED_NO_DISSIPATION`] of it (on the side of the end load `end`).
+fn all_but_unloaded(path: &PathState, cur: &Cursor, end: f64) -> bool {
+    path.lambda_max > 0.0 && cur.lambda * end.signum() <= UNLOADED_NO_DISSIPATION * path.lambda_max
+}
+
 /// Dissipation attempts of one increment refused for crossing zero
 /// ([`PathRun::crosses_zero`]) before a crossing is accepted (the run then
 /// ends, [`PathEnd::Unloaded`]).
@@ -1003,9 +1009,7 @@ impl<'a> PathRun<'a> {
                 || matches!(reason, IncrementFailure::NonFinite))
             && path.arc_last > 0.0
         {
-            if path.lambda_max > 0.0
-                && cur.lambda * end.signum() <= UNLOADED_NO_DISSIPATION * path.lambda_max
-            {
+            if all_but_unloaded(path, cur, end) {
                 // the end of a crack's run: the load is all but gone and
                 // nothing dissipates at a positive load any more; an arc
                 // from here would reload another structure (the
@@ -1027,9 +1031,7 @@ impl<'a> PathRun<'a> {
         if r.size < floor {
             // e.g. a fully cracked interface under force control, where
             // no equilibrium carries a load any more
-            if path.lambda_max > 0.0
-                && cur.lambda * end.signum() <= UNLOADED_NO_DISSIPATION * path.lambda_max
-            {
+            if all_but_unloaded(path, cur, end) {
                 return Ok(false);
             }
             if r.mode == PathMode::Arc
